@@ -1,0 +1,42 @@
+"""Project exceptions. Their messages are for users: file, line, key path, what was expected."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Problem:
+    """One problem found in a spec file.
+
+    ``line`` is 1-based (None when the problem has no single place, e.g. mobility).
+    ``path`` is the key path, e.g. ``links.rod.mass`` or ``loads[0].value``.
+    """
+
+    file: str
+    line: int | None
+    path: str
+    message: str
+
+    def __str__(self) -> str:
+        where = f"{self.file}:{self.line}" if self.line else self.file
+        return f"{where}: {self.path}: {self.message}" if self.path else f"{where}: {self.message}"
+
+
+class MechreportError(Exception):
+    """Base class: anything the CLI reports to a user without a traceback."""
+
+
+class SpecError(MechreportError):
+    """A spec file that cannot be loaded; carries every problem found in it."""
+
+    def __init__(self, problems: list[Problem]):
+        self.problems = list(problems)
+        super().__init__("\n".join(str(p) for p in self.problems))
+
+
+class AssemblyError(MechreportError):
+    """The mechanism cannot be assembled (e.g. at its first reference angle)."""
+
+
+class UnsupportedMechanism(MechreportError):
+    """A mechanism that the analysis does not handle (e.g. no split into dyads)."""

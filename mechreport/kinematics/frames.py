@@ -1,0 +1,30 @@
+"""Planar vector helpers, vectorised over the angle axis (arrays shaped (n, 2) or (n,))."""
+from __future__ import annotations
+
+import numpy as np
+
+
+def rotate(v, theta: np.ndarray) -> np.ndarray:
+    """R(theta) v for a local vector ``v`` (2,) or (n, 2) and angles ``theta`` (n,) [rad]."""
+    v = np.asarray(v, float)
+    c, s = np.cos(theta), np.sin(theta)
+    x, y = v[..., 0], v[..., 1]
+    return np.stack([c * x - s * y, s * x + c * y], axis=-1)
+
+
+def perp(v: np.ndarray) -> np.ndarray:
+    """k x v: ``v`` turned +90 degrees."""
+    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+
+
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """z-component of a x b."""
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
+
+
+def norm(a: np.ndarray) -> np.ndarray:
+    return np.hypot(a[..., 0], a[..., 1])

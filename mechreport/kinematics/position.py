@@ -1,0 +1,246 @@
+"""Closed-form position of each dyad, and the choice and tracking of its assembly branch.
+
+Each dyad type reduces to one geometric primitive (textbook chapters 2-3):
+
+- RRR: two circles (interior pin at fixed distances from the two outer pins);
+- RRT / TRR: a circle and a line (the T outer joint fixes the orientation of its link);
+- RTR: the common angle of guide and slider solves ``|D| cos(angle(D) - theta - angle(n)) = c``;
+- TRT, RTT / TTR: orientations are fixed by the T joints; translations solve 2x2 linear
+  systems (one branch only).
+
+Two-branch types give candidates ``sign = +1`` and ``-1``. The branch at the first reference
+angle is the one nearest the ``assembly`` hints (or the documented default, ``+1``); it is then
+followed through the sweep: between neighbouring angles the branch label flips where the two
+candidates meet (a touch, e.g. a slider-crank with AB = BC at 90 deg) and the other label
+continues the motion smoothly, judged by extrapolating the last two angles.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..spec import GROUND, Joint, Spec
+from ..model import Dyad
+from .frames import cross, dot, norm, perp, rotate  # noqa: F401
+
+Poses = dict  # link name -> (r (n, 2) origin [m], theta (n,) [rad])
+
+DEFAULT_BRANCH_RULES = {
+    "RRR": "the interior pin lies to the left of the line from the first link's outer pin to "
+           "the second link's",
+    "RRT": "the interior pin lies ahead of the foot of the perpendicular from the other pin, "
+           "along the guide direction",
+    "RTR": "the guide's line direction points from its pivot toward the slider's side "
+           "(theta = angle(D) - angle(n) + acos(c/|D|))",
+}
+
+
+@dataclass(frozen=True)
+class BranchChoice:
+    """How a dyad's assembly branch was chosen at the first reference angle."""
+
+    dyad: str
+    kind: str
+    sign: int
+    rule: str  # "hint: C" or "default: <rule>" or "unique"
+
+
+def point_global(poses: Poses, link: str, local) -> np.ndarray:
+    r, th = poses[link]
+    return r + rotate(local, th)
+
+
+def _points(spec: Spec, link: str) -> dict:
+    return spec.ground if link == GROUND else spec.link(link).points
+
+
+def _other(joint: Joint, link: str) -> str:
+    return joint.links[1] if joint.links[0] == link else joint.links[0]
+
+
+def t_line(spec: Spec, joint: Joint, unknown: str, poses: Poses, theta_u: np.ndarray):
+    """T ``joint`` with one side known: returns (n, c) with n . r_unknown = c, where r_unknown
+    is the origin of link ``unknown`` whose orientation ``theta_u`` is already fixed."""
+    line = joint.line
+    n_loc = (-line.direction[1], line.direction[0])
+    if unknown == joint.slider:
+        guide_r, guide_th = poses[joint.guide]
+        n = rotate(n_loc, guide_th)
+        through = guide_r + rotate(line.through, guide_th)
+        slider_point = _points(spec, unknown)[joint.point]
+        return n, dot(n, through - rotate(slider_point, theta_u))
+    n = rotate(n_loc, theta_u)
+    s = point_global(poses, joint.slider, _points(spec, joint.slider)[joint.point])
+    return n, dot(n, s - rotate(line.through, theta_u))
+
+
+def _solve2(n1, c1, n2, c2):
+    """Solve n1 . r = c1, n2 . r = c2 for r (n, 2); NaN where the lines are parallel."""
+    det = cross(n1, n2)
+    ok = np.abs(det) > 1e-12
+    det = np.where(ok, det, np.nan)
+    x = (c1 * n2[:, 1] - c2 * n1[:, 1]) / det
+    y = (n1[:, 0] * c2 - n2[:, 0] * c1) / det
+    return np.stack([x, y], axis=-1)
+
+
+def _pin_pose(pivot, local_pivot, theta):
+    return pivot - rotate(local_pivot, theta), theta
+
+
+def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
+    """One or two candidate poses of the dyad's links for every angle; NaN where it cannot
+    close."""
+    kind = dyad.kind
+    (i, j), (oi, oj), inner = dyad.links, dyad.outer, dyad.inner
+    if kind in ("TRR", "TTR"):  # normalise: the R outer joint on link i
+        i, j, oi, oj = j, i, oj, oi
+        kind = kind[::-1]
+    pi, pj = _points(spec, i), _points(spec, j)
+
+    def pivot(outer: Joint, link: str):
+        known = _other(outer, link)
+        return point_global(poses, known, _points(spec, known)[outer.name])
+
+    out: list[Poses] = []
+    if kind == "RRR":
+        ki, kj = pivot(oi, i), pivot(oj, j)
+        ei, mi = np.array(pi[oi.name]), np.array(pi[inner.name])
+        ej, mj = np.array(pj[oj.name]), np.array(pj[inner.name])
+        li, lj = np.hypot(*(mi - ei)), np.hypot(*(mj - ej))
+        d = kj - ki
+        dist = norm(d)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            a = (li**2 - lj**2 + dist**2) / (2 * dist)
+            h2 = li**2 - a**2
+            h = np.sqrt(np.where(h2 >= -1e-12 * li**2, np.maximum(h2, 0), np.nan))
+            unit = d / dist[:, None]
+        for sign in (1, -1):
+            jp = ki + a[:, None] * unit + sign * h[:, None] * perp(unit)
+            thi = np.arctan2(*(jp - ki)[:, ::-1].T) - np.arctan2(mi[1] - ei[1], mi[0] - ei[0])
+            thj = np.arctan2(*(jp - kj)[:, ::-1].T) - np.arctan2(mj[1] - ej[1], mj[0] - ej[0])
+            out.append({i: _pin_pose(ki, ei, thi), j: _pin_pose(kj, ej, thj)})
+    elif kind == "RRT":
+        ki = pivot(oi, i)
+        ei, mi = np.array(pi[oi.name]), np.array(pi[inner.name])
+        li = np.hypot(*(mi - ei))
+        thj = poses[_other(oj, j)][1]
+        n, c = t_line(spec, oj, j, poses, thj)
+        mj = pj[inner.name]
+        c_pin = c + dot(n, rotate(mj, thj))          # n . J = c_pin for the interior pin J
+        u = np.stack([n[:, 1], -n[:, 0]], axis=-1)   # the guide direction
+        off = c_pin - dot(n, ki)
+        foot = ki + off[:, None] * n
+        h2 = li**2 - off**2
+        h = np.sqrt(np.where(h2 >= -1e-12 * max(li**2, 1e-30), np.maximum(h2, 0), np.nan))
+        for sign in (1, -1):
+            jp = foot + sign * h[:, None] * u
+            thi = np.arctan2(*(jp - ki)[:, ::-1].T) - np.arctan2(mi[1] - ei[1], mi[0] - ei[0])
+            out.append({i: _pin_pose(ki, ei, thi), j: (jp - rotate(mj, thj), thj)})
+    elif kind == "RTR":
+        g, s = inner.guide, inner.slider
+        og, os_ = (oi, oj) if g == i else (oj, oi)
+        kg, ks = pivot(og, g), pivot(os_, s)
+        pg, ps = _points(spec, g), _points(spec, s)
+        line = inner.line
+        nl = np.array([-line.direction[1], line.direction[0]])
+        a = (np.array(ps[inner.point]) - np.array(ps[os_.name]) - np.array(line.through)
+             + np.array(pg[og.name]))
+        c = -float(a @ nl)
+        d = ks - kg
+        dist = norm(d)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ratio = c / dist
+            ok = np.abs(ratio) <= 1 + 1e-12
+            half = np.arccos(np.where(ok, np.clip(ratio, -1, 1), np.nan))
+        base = np.arctan2(d[:, 1], d[:, 0]) - np.arctan2(nl[1], nl[0])
+        for sign in (1, -1):
+            th = base + sign * half
+            out.append({g: _pin_pose(kg, pg[og.name], th), s: _pin_pose(ks, ps[os_.name], th)})
+    elif kind == "TRT":
+        thi, thj = poses[_other(oi, i)][1], poses[_other(oj, j)][1]
+        n1, c1 = t_line(spec, oi, i, poses, thi)
+        n2, c2 = t_line(spec, oj, j, poses, thj)
+        # r_j = r_i + R_i m_i - R_j m_j  (interior pin): substitute into the j line
+        shift = rotate(pi[inner.name], thi) - rotate(pj[inner.name], thj)
+        ri = _solve2(n1, c1, n2, c2 - dot(n2, shift))
+        out.append({i: (ri, thi), j: (ri + shift, thj)})
+    elif kind == "RTT":
+        thj = poses[_other(oj, j)][1]
+        ki = pivot(oi, i)
+        ri = ki - rotate(pi[oi.name], thj)
+        known = dict(poses)
+        known[i] = (ri, thj)
+        n1, c1 = t_line(spec, oj, j, known, thj)
+        n2, c2 = t_line(spec, inner, j, known, thj)
+        out.append({i: (ri, thj), j: (_solve2(n1, c1, n2, c2), thj)})
+    else:  # pragma: no cover - decompose() rejects TTT
+        raise ValueError(kind)
+    return out
+
+
+def _signature(spec: Spec, dyad: Dyad, cand: Poses) -> np.ndarray:
+    """Global positions of every named point of the dyad's links, flattened: (n, 2 P)."""
+    cols = [point_global(cand, l, p) for l in dyad.links for p in spec.link(l).points.values()]
+    return np.concatenate(cols, axis=1)
+
+
+def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], angles: np.ndarray,
+                   ref: int) -> tuple[Poses, BranchChoice]:
+    """Pick the branch at index ``ref`` and follow it through all angles."""
+    name = f"{dyad.label} ({', '.join(dyad.links)})"
+    if len(cands) == 1:
+        return cands[0], BranchChoice(name, dyad.kind, 1, "unique")
+    sig = [_signature(spec, dyad, c) for c in cands]
+    hints = {p: v for p, v in spec.assembly.items() if spec.point_owner(p) in dyad.links}
+    if hints:
+        err = []
+        for cand in cands:
+            e = 0.0
+            for p, target in hints.items():
+                link = spec.point_owner(p)
+                pos = point_global(cand, link, spec.link(link).points[p])[ref]
+                e += float(np.sum((pos - np.asarray(target)) ** 2))
+            err.append(e)
+        sign = 1 if err[0] <= err[1] else -1
+        rule = "hint: " + ", ".join(hints)
+    else:
+        sign = 1
+        kind = dyad.kind if dyad.kind in DEFAULT_BRANCH_RULES else dyad.kind[::-1]
+        rule = "default: " + DEFAULT_BRANCH_RULES[kind]
+    flips = _flips(sig[0], sig[1], angles)
+    parity = np.concatenate([[0], np.cumsum(flips)])
+    parity = (parity - parity[ref]) % 2
+    use_plus = (parity == 0) == (sign == 1)
+    chosen: Poses = {}
+    for link in dyad.links:
+        r = np.where(use_plus[:, None], cands[0][link][0], cands[1][link][0])
+        th = np.where(use_plus, cands[0][link][1], cands[1][link][1])
+        chosen[link] = (r, th)
+    return chosen, BranchChoice(name, dyad.kind, sign, rule)
+
+
+def _flips(xp: np.ndarray, xm: np.ndarray, angles: np.ndarray) -> np.ndarray:
+    """For each interval k -> k+1 (n-1,): True where the branch labels swap roles."""
+    n = len(angles)
+    flips = np.zeros(max(n - 1, 0), bool)
+
+    def norm(x: np.ndarray) -> np.ndarray:  # over the flattened point coordinates
+        return np.sqrt(np.sum(x * x, axis=1))
+
+    if n < 3:
+        return flips
+    h = np.diff(angles)
+    scale = (h[1:] / h[:-1])[:, None]
+    votes = np.zeros(n - 2)
+    for same, other in ((xp, xm), (xm, xp)):
+        pred = same[1:-1] + (same[1:-1] - same[:-2]) * scale   # predicted k+1 from k-1, k
+        e_same = norm(same[2:] - pred)
+        e_other = norm(other[2:] - pred)
+        votes += np.where(e_other < e_same, 1, 0)
+    step = norm(xp[2:] - xp[1:-1]) + norm(xm[2:] - xm[1:-1])
+    gap = np.minimum(norm(xp[1:-1] - xm[1:-1]), norm(xp[2:] - xm[2:]))
+    close = gap <= 2 * step
+    flips[1:] = (votes == 2) & close
+    return flips

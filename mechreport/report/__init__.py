@@ -1,0 +1,1 @@
+"""Stage 6: rendering. Reads result models; never computes mechanics."""

@@ -1,0 +1,50 @@
+"""Plain-text tables for the terminal."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..kinematics import Kinematics
+
+
+def _table(header: list[str], rows: list[list[str]]) -> str:
+    widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(header)]
+    line = "  ".join(h.rjust(w) if i else h.ljust(w) for i, (h, w) in enumerate(zip(header, widths)))
+    out = [line, "  ".join("-" * w for w in widths)]
+    for r in rows:
+        out.append("  ".join(c.rjust(w) if i else c.ljust(w) for i, (c, w) in enumerate(zip(r, widths))))
+    return "\n".join(out)
+
+
+def _f(x: float) -> str:
+    return f"{x:.6g}" if abs(x) >= 1e-12 else "0"
+
+
+def kinematics_table(kin: Kinematics) -> str:
+    """Points (x, y, vx, vy, ax, ay) and links (angle, omega, alpha) at each angle of ``kin``."""
+    spec = kin.mechanism.spec
+    blocks = []
+    for k, angle in enumerate(kin.angles):
+        rows = []
+        seen = set()
+        for link in spec.links:
+            for name in link.points:
+                if name in seen:
+                    continue
+                seen.add(name)
+                s = kin.named_point(name, link.name)
+                rows.append([f"{name} ({link.name})", *(_f(v) for v in
+                             (*s.r[k], *s.v[k], *s.a[k]))])
+        pts = _table(["point", "x [m]", "y [m]", "vx [m/s]", "vy [m/s]", "ax [m/s^2]",
+                      "ay [m/s^2]"], rows)
+        lrows = []
+        for link in spec.links:
+            i = link.number
+            deg = (np.degrees(kin.theta[k, i]) + 180.0) % 360.0 - 180.0
+            deg = 180.0 if deg == -180.0 else deg
+            c = kin.com(link.name)
+            lrows.append([f"{link.number} {link.name}", _f(deg), _f(kin.omega[k, i]),
+                          _f(kin.alpha[k, i]), _f(c.a[k, 0]), _f(c.a[k, 1])])
+        lks = _table(["link", "angle [deg]", "omega [rad/s]", "alpha [rad/s^2]",
+                      "aC x [m/s^2]", "aC y [m/s^2]"], lrows)
+        blocks.append(f"{spec.name}: crank angle {angle:g} deg\n\n{pts}\n\n{lks}")
+    return "\n\n".join(blocks) if blocks else f"{spec.name}: no angle could be solved"

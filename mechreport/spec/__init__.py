@@ -1,0 +1,6 @@
+"""Stage 1: load and validate a spec file into SI dataclasses."""
+from .loader import load_spec, parse_spec
+from .types import GROUND, Driver, Expectation, Joint, Line, Link, Load, Shape, Spec, Sweep
+
+__all__ = ["load_spec", "parse_spec", "GROUND", "Driver", "Expectation", "Joint", "Line", "Link",
+           "Load", "Shape", "Spec", "Sweep"]

@@ -1,0 +1,644 @@
+"""Load and validate a spec file (format version 1, ../shared/spec-format.md; docs/spec.md).
+
+Every problem of a file is collected and raised together as one ``SpecError``; each names the
+file, line, key path and what was expected.
+"""
+from __future__ import annotations
+
+import difflib
+import math
+from pathlib import Path as FsPath
+from typing import Any
+
+from ..errors import Problem, SpecError
+from .types import (GROUND, Driver, Expectation, Joint, Line, Link, Load, Shape, Spec, Sweep,
+                    Vec)
+from .yaml_source import Source, format_path
+
+LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001}
+MASS_UNITS = {"kg": 1.0, "g": 0.001}
+DEFAULT_GRAVITY = (0.0, -9.80665)
+
+TOP_KEYS = ("mechreport", "name", "description", "units", "gravity", "ground", "links",
+            "joints", "driver", "sweep", "at", "assembly", "loads", "expect", "sheet")
+LINK_KEYS = ("points", "mass", "density", "com", "inertia", "shape")
+JOINT_KEYS = {"R": ("type", "links"), "T": ("type", "links", "point", "line")}
+POINT_QUANTITIES = ("x", "y", "vx", "vy", "ax", "ay")
+LINK_QUANTITIES = ("angle", "omega", "alpha")
+R_QUANTITIES = ("fx", "fy", "f")
+T_QUANTITIES = ("fx", "fy", "f", "moment", "px", "py")
+
+
+def _show(value: Any) -> str:
+    text = repr(value) if isinstance(value, str) else str(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+class _Checker:
+    """Typed access to the parsed document that records problems instead of raising."""
+
+    def __init__(self, src: Source):
+        self.src = src
+        self.problems: list[Problem] = list(src.problems)
+
+    def error(self, path: tuple, message: str) -> None:
+        self.problems.append(Problem(self.src.filename, self.src.line(path),
+                                     format_path(path), message))
+
+    def mapping(self, value: Any, path: tuple, allowed: tuple[str, ...],
+                required: tuple[str, ...] = ()) -> dict | None:
+        if not isinstance(value, dict):
+            self.error(path, f"must be a mapping of keys ({', '.join(allowed)}), got {_show(value)}")
+            return None
+        for key in value:
+            if key not in allowed:
+                near = difflib.get_close_matches(key, allowed, n=1)
+                hint = f"; did you mean '{near[0]}'?" if near else f"; allowed: {', '.join(allowed)}"
+                self.error(path + (key,), f"unknown key{hint}")
+        for key in required:
+            if key not in value:
+                self.error(path, f"missing required key '{key}'")
+        return value
+
+    def number(self, value: Any, path: tuple, *, positive: bool = False,
+               nonzero: bool = False) -> float | None:
+        number: float | None = None
+        if isinstance(value, bool):
+            number = None
+        elif isinstance(value, (int, float)):
+            number = float(value)
+        elif isinstance(value, str):
+            try:  # YAML 1.1 reads 1e-3 as a string; accept it as a number
+                number = float(value)
+            except ValueError:
+                number = None
+        if number is None or not math.isfinite(number):
+            kind = "a positive number" if positive else "a number"
+            self.error(path, f"must be {kind}, got {_show(value)}")
+            return None
+        if positive and number <= 0:
+            self.error(path, f"must be a positive number, got {_show(value)}")
+            return None
+        if nonzero and number == 0:
+            self.error(path, "must not be zero")
+            return None
+        return number
+
+    def vec2(self, value: Any, path: tuple, what: str = "[x, y]") -> Vec | None:
+        if not isinstance(value, list) or len(value) != 2:
+            self.error(path, f"must be a pair {what}, got {_show(value)}")
+            return None
+        x = self.number(value[0], path + (0,))
+        y = self.number(value[1], path + (1,))
+        return None if x is None or y is None else (x, y)
+
+    def name(self, value: Any, path: tuple) -> str | None:
+        if not isinstance(value, str) or not value:
+            self.error(path, f"must be a name, got {_show(value)}")
+            return None
+        return value
+
+    def choice(self, value: Any, path: tuple, options: tuple[str, ...]) -> str | None:
+        if value not in options:
+            self.error(path, f"must be one of {', '.join(options)}, got {_show(value)}")
+            return None
+        return value
+
+
+def load_spec(path: str | FsPath) -> Spec:
+    """Read, validate and convert a spec file to SI. Raises ``SpecError`` listing every problem."""
+    filename = str(path)
+    try:
+        text = FsPath(path).read_text(encoding="utf-8")
+    except OSError as exc:
+        raise SpecError([Problem(filename, None, "", f"cannot read file: {exc.strerror}")]) from None
+    return parse_spec(text, filename)
+
+
+def parse_spec(text: str, filename: str = "<spec>") -> Spec:
+    """Validate spec text; ``filename`` is used in messages."""
+    src = Source(filename, text)
+    ck = _Checker(src)
+    spec = _build(src.data, ck)
+    if ck.problems or spec is None:
+        raise SpecError(_sorted(ck.problems))
+    return spec
+
+
+def _sorted(problems: list[Problem]) -> list[Problem]:
+    return sorted(problems, key=lambda p: (p.line or 10**9))
+
+
+def _build(data: Any, ck: _Checker) -> Spec | None:
+    if data is None:
+        ck.error((), "the file is empty; a spec starts with 'mechreport: 1'")
+        return None
+    top = ck.mapping(data, (), TOP_KEYS, required=("mechreport", "name", "links", "joints",
+                                                   "driver"))
+    if top is None:
+        return None
+    if "mechreport" in top and top["mechreport"] != 1:
+        ck.error(("mechreport",), f"format version must be 1, got {_show(top['mechreport'])}")
+
+    name = ck.name(top.get("name"), ("name",)) if "name" in top else None
+    description = top.get("description", "") or ""
+    if not isinstance(description, str):
+        ck.error(("description",), "must be text (Markdown)")
+        description = ""
+
+    length_scale, mass_scale, units = _units(top.get("units"), ck)
+    gravity = DEFAULT_GRAVITY
+    if "gravity" in top:
+        gravity = ck.vec2(top["gravity"], ("gravity",), "[gx, gy] in m/s^2") or DEFAULT_GRAVITY
+
+    ground = _ground(top.get("ground", {}), ck, length_scale)
+    links = _links(top.get("links"), ck, length_scale, mass_scale)
+    link_names = {link.name for link in links}
+    joints = _joints(top.get("joints"), ck, ground, {l.name: l for l in links}, length_scale)
+    driver = _driver(top.get("driver"), ck, joints) if "driver" in top else None
+    sweep = _sweep(top.get("sweep"), ck)
+    at = _angle_list(top.get("at"), ("at",), ck) if "at" in top else (sweep.start,)
+    assembly = _assembly(top.get("assembly"), ck, links, length_scale)
+    loads = _loads(top.get("loads"), ck, {l.name: l for l in links})
+    expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src)
+    sheet = top.get("sheet", False)
+    if not isinstance(sheet, bool):
+        ck.error(("sheet",), f"must be true or false, got {_show(sheet)}")
+        sheet = False
+
+    if links and joints is not None and link_names:
+        _structure(ck, links, joints)
+
+    if ck.problems or name is None or driver is None or joints is None:
+        return None
+    return Spec(file=ck.src.filename, name=name, description=description.strip(),
+                gravity=gravity, ground=ground, links=tuple(links), joints=tuple(joints),
+                driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
+                expect=tuple(expect), sheet=sheet, units=units)
+
+
+def _units(value: Any, ck: _Checker) -> tuple[float, float, dict[str, str]]:
+    if value is None:
+        return 1.0, 1.0, {"length": "m", "mass": "kg"}
+    units = ck.mapping(value, ("units",), ("length", "mass")) or {}
+    length = ck.choice(units.get("length", "m"), ("units", "length"), tuple(LENGTH_UNITS)) or "m"
+    mass = ck.choice(units.get("mass", "kg"), ("units", "mass"), tuple(MASS_UNITS)) or "kg"
+    return LENGTH_UNITS[length], MASS_UNITS[mass], {"length": length, "mass": mass}
+
+
+def _scaled(v: Vec | None, s: float) -> Vec | None:
+    return None if v is None else (v[0] * s, v[1] * s)
+
+
+def _ground(value: Any, ck: _Checker, s: float) -> dict[str, Vec]:
+    if value is None:
+        return {}
+    if not isinstance(value, dict):
+        ck.error(("ground",), f"must be a mapping of point names to [x, y], got {_show(value)}")
+        return {}
+    out = {}
+    for pname, pvalue in value.items():
+        v = _scaled(ck.vec2(pvalue, ("ground", pname)), s)
+        if v is not None:
+            out[str(pname)] = v
+    return out
+
+
+def _links(value: Any, ck: _Checker, ls: float, ms: float) -> list[Link]:
+    if value is None:
+        return []
+    if not isinstance(value, dict) or not value:
+        ck.error(("links",), "must be a mapping of link names to link definitions")
+        return []
+    links = []
+    for number, (lname, body) in enumerate(value.items(), start=1):
+        path = ("links", lname)
+        if lname == GROUND:
+            ck.error(path, "'ground' is the reserved name of the frame; name moving links otherwise")
+            continue
+        link = _link(lname, number, body, path, ck, ls, ms)
+        if link is not None:
+            links.append(link)
+    return links
+
+
+def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
+          ls: float, ms: float) -> Link | None:
+    body = ck.mapping(body, path, LINK_KEYS, required=("points",))
+    if body is None:
+        return None
+    points: dict[str, Vec] = {}
+    raw_points = body.get("points")
+    if raw_points is not None:
+        if not isinstance(raw_points, dict) or not raw_points:
+            ck.error(path + ("points",), "must map at least one point name to [x, y]")
+        else:
+            for pname, pv in raw_points.items():
+                v = _scaled(ck.vec2(pv, path + ("points", pname)), ls)
+                if v is not None:
+                    points[str(pname)] = v
+    shape = _shape(body.get("shape"), path + ("shape",), ck, ls) if "shape" in body else None
+    mass = ck.number(body["mass"], path + ("mass",), positive=True) if "mass" in body else None
+    if mass is not None:
+        mass *= ms
+    density = (ck.number(body["density"], path + ("density",), positive=True)
+               if "density" in body else None)
+    com = _scaled(ck.vec2(body["com"], path + ("com",)), ls) if "com" in body else None
+    inertia = (ck.number(body["inertia"], path + ("inertia",), positive=True)
+               if "inertia" in body else None)
+    bad = any(k in body and v is None for k, v in
+              (("shape", shape), ("mass", mass), ("density", density), ("com", com),
+               ("inertia", inertia)))
+    if bad:
+        return None
+    if mass is None:
+        if density is None or shape is None:
+            ck.error(path, f"link '{lname}' needs 'mass', or 'density' with a 'shape'")
+            return None
+        mass = density * shape.volume
+    if com is None:
+        if shape is None:
+            ck.error(path, f"link '{lname}' needs 'com' (centre of mass) or a 'shape'")
+            return None
+        com = shape.centroid
+    if inertia is None:
+        if shape is None:
+            ck.error(path, f"link '{lname}' needs 'inertia' or a 'shape'")
+            return None
+        c = shape.centroid
+        if math.hypot(com[0] - c[0], com[1] - c[1]) > 1e-12:
+            ck.error(path + ("com",), f"is off the shape's centroid {list(c)}: give 'inertia' "
+                                      "too (a shape's inertia is about its own centroid)")
+            return None
+        inertia = shape.inertia(mass)
+    return Link(lname, number, points, mass, com, inertia, shape)
+
+
+def _shape(value: Any, path: tuple, ck: _Checker, ls: float) -> Shape | None:
+    if not isinstance(value, dict) or len(value) != 1 or next(iter(value)) not in ("bar", "block"):
+        ck.error(path, "must be {bar: {length, height, depth}} or {block: {width, height, depth}}")
+        return None
+    kind, dims = next(iter(value.items()))
+    first = "length" if kind == "bar" else "width"
+    keys = (first, "height", "depth")
+    dims = ck.mapping(dims, path + (kind,), keys, required=keys)
+    if dims is None or any(k not in dims for k in keys):
+        return None
+    sizes = [ck.number(dims[k], path + (kind, k), positive=True) for k in keys]
+    if any(v is None for v in sizes):
+        return None
+    return Shape(kind, sizes[0] * ls, sizes[1] * ls, sizes[2] * ls)
+
+
+def _link_points(lname: str, ground: dict[str, Vec], links: dict[str, Link]) -> dict[str, Vec]:
+    return ground if lname == GROUND else links[lname].points
+
+
+def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, Link],
+            ls: float) -> list[Joint] | None:
+    if value is None:
+        return None
+    if not isinstance(value, dict) or not value:
+        ck.error(("joints",), "must be a mapping of joint names to joint definitions")
+        return None
+    joints = []
+    for jname, body in value.items():
+        path = ("joints", jname)
+        if not isinstance(body, dict):
+            ck.error(path, f"must be a mapping like {{type: R, links: [a, b]}}, got {_show(body)}")
+            continue
+        jtype = ck.choice(body.get("type"), path + ("type",), ("R", "T")) if "type" in body \
+            else None
+        if "type" not in body:
+            ck.error(path, "missing required key 'type' (R or T)")
+        allowed = JOINT_KEYS.get(jtype or "T")
+        ck.mapping(body, path, allowed, required=allowed[1:])
+        if jtype is None or "links" not in body:
+            continue
+        pair = body["links"]
+        if (not isinstance(pair, list) or len(pair) != 2
+                or not all(isinstance(x, str) for x in pair)):
+            ck.error(path + ("links",), f"must be two link names [first, second], got {_show(pair)}")
+            continue
+        ok = True
+        for i, lname in enumerate(pair):
+            if lname != GROUND and lname not in links:
+                known = ", ".join([GROUND, *links])
+                ck.error(path + ("links", i), f"unknown link '{lname}' (links: {known})")
+                ok = False
+        if pair[0] == pair[1]:
+            ck.error(path + ("links",), "a joint needs two different links")
+            ok = False
+        if not ok:
+            continue
+        if jtype == "R":
+            for i, lname in enumerate(pair):
+                if jname not in _link_points(lname, ground, links):
+                    where = "ground points" if lname == GROUND else f"link '{lname}' points"
+                    ck.error(path + ("links", i),
+                             f"R joint '{jname}' needs a point named '{jname}' in {where}")
+                    ok = False
+            if ok:
+                joints.append(Joint(jname, "R", (pair[0], pair[1]), jname))
+        else:
+            joint = _t_joint(jname, body, pair, path, ck, ground, links, ls)
+            if joint is not None:
+                joints.append(joint)
+    return joints
+
+
+def _t_joint(jname: str, body: dict, pair: list, path: tuple, ck: _Checker,
+             ground: dict[str, Vec], links: dict[str, Link], ls: float) -> Joint | None:
+    guide, slider = pair
+    point = ck.name(body.get("point"), path + ("point",)) if "point" in body else None
+    if point is not None and point not in _link_points(slider, ground, links):
+        ck.error(path + ("point",), f"'{point}' is not a point of the slider '{slider}' "
+                                    "(the second link of a T joint slides on the first)")
+        point = None
+    line = body.get("line")
+    if line is None:
+        return None
+    line = ck.mapping(line, path + ("line",), ("through", "direction"),
+                      required=("through", "direction"))
+    if line is None or "through" not in line or "direction" not in line:
+        return None
+    through_raw, through_name = line["through"], None
+    if isinstance(through_raw, str):
+        pts = _link_points(guide, ground, links)
+        if through_raw not in pts:
+            ck.error(path + ("line", "through"), f"'{through_raw}' is not a point of the guide "
+                                                 f"'{guide}'")
+            through = None
+        else:
+            through, through_name = pts[through_raw], through_raw
+    else:
+        through = _scaled(ck.vec2(through_raw, path + ("line", "through"),
+                                  "[x, y] or a point name"), ls)
+    direction_raw = line["direction"]
+    if isinstance(direction_raw, list):
+        d = ck.vec2(direction_raw, path + ("line", "direction"), "[dx, dy] or an angle in degrees")
+        if d is not None and math.hypot(*d) == 0:
+            ck.error(path + ("line", "direction"), "must not be the zero vector")
+            d = None
+        direction = None if d is None else (d[0] / math.hypot(*d), d[1] / math.hypot(*d))
+    else:
+        angle = ck.number(direction_raw, path + ("line", "direction"))
+        direction = None if angle is None else (math.cos(math.radians(angle)),
+                                                math.sin(math.radians(angle)))
+    if point is None or through is None or direction is None:
+        return None
+    return Joint(jname, "T", (guide, slider), point, Line(through, direction, through_name))
+
+
+def _driver(value: Any, ck: _Checker, joints: list[Joint] | None) -> Driver | None:
+    path = ("driver",)
+    body = ck.mapping(value, path, ("joint", "rpm", "omega", "alpha"), required=("joint",))
+    if body is None or "joint" not in body:
+        return None
+    if ("rpm" in body) == ("omega" in body):
+        ck.error(path, "give exactly one of 'rpm' or 'omega' (rad/s)")
+        return None
+    rpm = None
+    if "rpm" in body:
+        rpm = ck.number(body["rpm"], path + ("rpm",))
+        omega = None if rpm is None else rpm * math.pi / 30.0
+    else:
+        omega = ck.number(body["omega"], path + ("omega",))
+    alpha = ck.number(body["alpha"], path + ("alpha",)) if "alpha" in body else 0.0
+    jname = ck.name(body["joint"], path + ("joint",))
+    if joints is None or jname is None or omega is None or alpha is None:
+        return None
+    joint = next((j for j in joints if j.name == jname), None)
+    if joint is None:
+        ck.error(path + ("joint",), f"unknown joint '{jname}' (joints: "
+                                    f"{', '.join(j.name for j in joints)})")
+        return None
+    if joint.type != "R" or GROUND not in joint.links:
+        ck.error(path + ("joint",), f"the driver joint '{jname}' must be an R joint with ground")
+        return None
+    crank = joint.links[1] if joint.links[0] == GROUND else joint.links[0]
+    return Driver(jname, crank, omega, alpha, rpm)
+
+
+def _sweep(value: Any, ck: _Checker) -> Sweep:
+    if value is None:
+        return Sweep()
+    body = ck.mapping(value, ("sweep",), ("start", "stop", "step")) or {}
+    vals = {}
+    for key, default in (("start", 0.0), ("stop", 360.0), ("step", 1.0)):
+        v = ck.number(body[key], ("sweep", key), positive=(key == "step")) if key in body \
+            else default
+        vals[key] = default if v is None else v
+    if vals["stop"] <= vals["start"]:
+        ck.error(("sweep", "stop"), f"must be greater than start ({vals['start']:g})")
+        return Sweep()
+    if (vals["stop"] - vals["start"]) / vals["step"] > 100000:
+        ck.error(("sweep", "step"), "gives more than 100000 angles; use a larger step")
+        return Sweep()
+    return Sweep(**vals)
+
+
+def _angle_list(value: Any, path: tuple, ck: _Checker) -> tuple[float, ...]:
+    if not isinstance(value, list) or not value:
+        ck.error(path, f"must be a list of crank angles in degrees, got {_show(value)}")
+        return (0.0,)
+    out = [ck.number(v, path + (i,)) for i, v in enumerate(value)]
+    return tuple(v for v in out if v is not None) or (0.0,)
+
+
+def _assembly(value: Any, ck: _Checker, links: list[Link], ls: float) -> dict[str, Vec]:
+    if value is None:
+        return {}
+    if not isinstance(value, dict):
+        ck.error(("assembly",), f"must map point names to rough [x, y], got {_show(value)}")
+        return {}
+    out = {}
+    for pname, pv in value.items():
+        v = _scaled(ck.vec2(pv, ("assembly", pname)), ls)
+        if not any(pname in l.points for l in links):
+            ck.error(("assembly", pname), f"'{pname}' is not a point of any moving link")
+        elif v is not None:
+            out[str(pname)] = v
+    return out
+
+
+def _profile(value: Any, path: tuple, ck: _Checker) -> tuple[tuple[float, float], ...] | None:
+    if not isinstance(value, list) or not value:
+        ck.error(path, "must be a list of [crank_angle_deg, magnitude] pairs")
+        return None
+    pairs = [ck.vec2(item, path + (i,), "[crank_angle_deg, magnitude]")
+             for i, item in enumerate(value)]
+    if any(p is None for p in pairs):
+        return None
+    angles = [p[0] for p in pairs]
+    if any(a < 0 or a >= 360 for a in angles):
+        ck.error(path, "angles must lie in [0, 360)")
+        return None
+    if any(b <= a for a, b in zip(angles, angles[1:])):
+        ck.error(path, "angles must be strictly increasing")
+        return None
+    return tuple(pairs)
+
+
+def _loads(value: Any, ck: _Checker, links: dict[str, Link]) -> list[Load]:
+    if value is None:
+        return []
+    if not isinstance(value, list):
+        ck.error(("loads",), "must be a list of loads ({type: force|moment, link, ...})")
+        return []
+    loads = []
+    for i, item in enumerate(value):
+        path = ("loads", i)
+        if not isinstance(item, dict):
+            ck.error(path, f"must be a mapping like {{type: force, link, point, value}}, "
+                           f"got {_show(item)}")
+            continue
+        kind = ck.choice(item.get("type"), path + ("type",), ("force", "moment"))
+        if kind is None:
+            continue
+        allowed = (("type", "link", "point", "value", "direction", "profile", "oppose")
+                   if kind == "force" else ("type", "link", "value", "profile", "oppose"))
+        req = ("link", "point") if kind == "force" else ("link",)
+        if ck.mapping(item, path, allowed, required=req) is None or any(k not in item for k in req):
+            continue
+        lname = item["link"]
+        if lname not in links:
+            ck.error(path + ("link",), f"unknown link '{lname}' (loads act on moving links: "
+                                       f"{', '.join(links)})")
+            continue
+        point = None
+        if kind == "force":
+            point = item["point"]
+            if point not in links[lname].points:
+                ck.error(path + ("point",), f"'{point}' is not a point of link '{lname}'")
+                continue
+        has_value, has_profile = "value" in item, "profile" in item
+        if has_value == has_profile:
+            what = "'value', or 'direction' with 'profile'" if kind == "force" else \
+                "'value' or 'profile'"
+            ck.error(path, f"give exactly one of {what}")
+            continue
+        value_, direction, profile = None, None, None
+        if kind == "force":
+            if has_value:
+                value_ = ck.vec2(item["value"], path + ("value",), "[Fx, Fy] in N")
+                if "direction" in item:
+                    ck.error(path + ("direction",), "goes with 'profile', not with 'value'")
+            else:
+                if "direction" not in item:
+                    ck.error(path, "a force 'profile' needs a 'direction' [dx, dy]")
+                    continue
+                d = ck.vec2(item["direction"], path + ("direction",), "[dx, dy]")
+                if d is not None and math.hypot(*d) == 0:
+                    ck.error(path + ("direction",), "must not be the zero vector")
+                    d = None
+                direction = None if d is None else (d[0] / math.hypot(*d), d[1] / math.hypot(*d))
+                profile = _profile(item["profile"], path + ("profile",), ck)
+        else:
+            if has_value:
+                value_ = ck.number(item["value"], path + ("value",))
+            else:
+                profile = _profile(item["profile"], path + ("profile",), ck)
+        oppose = None
+        if "oppose" in item:
+            oppose = ck.choice(item["oppose"], path + ("oppose",),
+                               ("velocity",) if kind == "force" else ("rotation",))
+        if (has_value and value_ is None) or (has_profile and profile is None) or \
+                ("oppose" in item and oppose is None):
+            continue
+        if kind == "force" and has_profile and direction is None:
+            continue
+        loads.append(Load(kind, lname, i, point, value_, direction, profile, oppose))
+    return loads
+
+
+def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | None,
+            src_lines: Source) -> list[Expectation]:
+    if value is None:
+        return []
+    if not isinstance(value, list):
+        ck.error(("expect",), "must be a list of {angle, quantity, value, tol}")
+        return []
+    out = []
+    joint_types = {j.name: j.type for j in (joints or [])}
+    for i, item in enumerate(value):
+        path = ("expect", i)
+        body = ck.mapping(item, path, ("angle", "quantity", "value", "tol"),
+                          required=("angle", "quantity", "value"))
+        if body is None or any(k not in body for k in ("angle", "quantity", "value")):
+            continue
+        angle = ck.number(body["angle"], path + ("angle",))
+        target = ck.number(body["value"], path + ("value",))
+        tol = ck.number(body["tol"], path + ("tol",), positive=True) if "tol" in body else None
+        quantity = body["quantity"]
+        problem = _quantity_problem(quantity, links, joint_types, joints is not None)
+        if problem:
+            ck.error(path + ("quantity",), problem)
+            continue
+        if angle is None or target is None or ("tol" in body and tol is None):
+            continue
+        if tol is None:
+            tol = 1e-4 * max(1.0, abs(target))
+        out.append(Expectation(angle, quantity, target, tol, src_lines.line(path)))
+    return out
+
+
+def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
+                      joints_known: bool) -> str | None:
+    """None if ``q`` names something, else a message saying what it should look like."""
+    usage = ("expected driver.torque, joint.J.fx|fy|f|moment|px|py, "
+             "point.P.x|y|vx|vy|ax|ay or link.L.angle|omega|alpha")
+    if not isinstance(q, str):
+        return f"must be a quantity name ({usage}), got {_show(q)}"
+    parts = q.split(".")
+    if q == "driver.torque":
+        return None
+    if len(parts) != 3:
+        return f"'{q}' names nothing: {usage}"
+    kind, name, attr = parts
+    if kind == "joint":
+        if not joints_known:
+            return None
+        if name not in joint_types:
+            return f"'{q}': no joint named '{name}' (joints: {', '.join(joint_types)})"
+        allowed = R_QUANTITIES if joint_types[name] == "R" else T_QUANTITIES
+        if attr not in allowed:
+            return f"'{q}': a {joint_types[name]} joint has {', '.join(allowed)}"
+        return None
+    if kind == "point":
+        if not any(name in l.points for l in links):
+            return f"'{q}': no moving link has a point named '{name}'"
+        if attr not in POINT_QUANTITIES:
+            return f"'{q}': a point has {', '.join(POINT_QUANTITIES)}"
+        return None
+    if kind == "link":
+        if name not in {l.name for l in links}:
+            return f"'{q}': no link named '{name}' (links: {', '.join(l.name for l in links)})"
+        if attr not in LINK_QUANTITIES:
+            return f"'{q}': a link has {', '.join(LINK_QUANTITIES)}"
+        return None
+    return f"'{q}' names nothing: {usage}"
+
+
+def _structure(ck: _Checker, links: list[Link], joints: list[Joint]) -> None:
+    """Mobility (Gruebler: M = 3 n - 2 j for one-freedom joints) and connectivity."""
+    n, j = len(links), len(joints)
+    mobility = 3 * n - 2 * j
+    if mobility != 1:
+        ck.error(("joints",), f"the mechanism has mobility {mobility} (Gruebler: 3 x {n} moving "
+                              f"links - 2 x {j} joints); a single driver needs mobility 1")
+    adjacency: dict[str, set[str]] = {GROUND: set(), **{l.name: set() for l in links}}
+    for joint in joints:
+        a, b = joint.links
+        adjacency[a].add(b)
+        adjacency[b].add(a)
+    seen, todo = {GROUND}, [GROUND]
+    while todo:
+        for nxt in adjacency[todo.pop()]:
+            if nxt not in seen:
+                seen.add(nxt)
+                todo.append(nxt)
+    loose = [l.name for l in links if l.name not in seen]
+    if loose:
+        ck.error(("links", loose[0]), f"not connected to the rest of the mechanism: "
+                                      f"{', '.join(loose)}")

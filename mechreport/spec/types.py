@@ -1,0 +1,192 @@
+"""The loaded spec: frozen dataclasses, all quantities SI (m, kg, s, rad for internal angles).
+
+Angles that users wrote in degrees stay in degrees where they are *crank angles* (sweep, at,
+expect, profiles); directions are stored as unit vectors.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+Vec = tuple[float, float]
+GROUND = "ground"
+
+
+@dataclass(frozen=True)
+class Shape:
+    """``bar``: plate from x=0 to x=length along the link x-axis, centred on y=0.
+    ``block``: rectangle of ``length`` (the spec's width) x height centred on the link origin.
+    All sizes in m."""
+
+    kind: str
+    length: float
+    height: float
+    depth: float
+
+    @property
+    def volume(self) -> float:
+        """[m^3]"""
+        return self.length * self.height * self.depth
+
+    @property
+    def centroid(self) -> Vec:
+        """Centroid in the link frame [m]."""
+        return (self.length / 2, 0.0) if self.kind == "bar" else (0.0, 0.0)
+
+    def inertia(self, mass: float) -> float:
+        """Polar moment of inertia about the centroid [kg m^2]."""
+        return mass * (self.length**2 + self.height**2) / 12.0
+
+
+@dataclass(frozen=True)
+class Link:
+    """A moving link. ``number`` is 1, 2, ... in the order written (ground is 0)."""
+
+    name: str
+    number: int
+    points: dict[str, Vec]
+    mass: float          # [kg]
+    com: Vec             # centre of mass in the link frame [m]
+    inertia: float       # about the centre of mass [kg m^2]
+    shape: Shape | None = None
+
+
+@dataclass(frozen=True)
+class Line:
+    """A sliding line in the guide's frame: ``through`` [m] and unit ``direction``."""
+
+    through: Vec
+    direction: Vec
+    through_name: str | None = None
+
+
+@dataclass(frozen=True)
+class Joint:
+    """``R``: pin at the point named like the joint on both links.
+    ``T``: ``links[0]`` is the guide, ``links[1]`` the slider; ``point`` is the slider's point on
+    ``line``. The reaction is the force (and, for T, couple) that links[0] exerts on links[1]."""
+
+    name: str
+    type: str
+    links: tuple[str, str]
+    point: str
+    line: Line | None = None
+
+    @property
+    def guide(self) -> str:
+        return self.links[0]
+
+    @property
+    def slider(self) -> str:
+        return self.links[1]
+
+
+@dataclass(frozen=True)
+class Driver:
+    """The crank: ``joint`` is an R joint with ground; ``omega`` [rad/s], ``alpha`` [rad/s^2]."""
+
+    joint: str
+    link: str
+    omega: float
+    alpha: float = 0.0
+    rpm_given: float | None = None
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """Crank angles start, start+step, ... up to stop [deg]; a whole turn leaves stop out."""
+
+    start: float = 0.0
+    stop: float = 360.0
+    step: float = 1.0
+
+    def angles(self) -> np.ndarray:
+        span = self.stop - self.start
+        n = int(math.floor(span / self.step + 1e-9))
+        values = self.start + self.step * np.arange(n + 1)
+        whole_turn = abs(span - 360.0 * round(span / 360.0)) < 1e-9 and span > 0
+        if whole_turn and abs(values[-1] - self.stop) < 1e-9:
+            values = values[:-1]
+        return values
+
+
+@dataclass(frozen=True)
+class Load:
+    """An applied force (at ``point`` of ``link``, global N) or moment (N m, CCW positive).
+
+    Either a constant ``value`` or ``direction`` (unit, forces) with a ``profile`` of
+    (crank angle [deg], magnitude) pairs, interpolated periodically. ``oppose`` is ``velocity``
+    (forces) or ``rotation`` (moments)."""
+
+    kind: str
+    link: str
+    index: int
+    point: str | None = None
+    value: Vec | float | None = None
+    direction: Vec | None = None
+    profile: tuple[tuple[float, float], ...] | None = None
+    oppose: str | None = None
+
+
+@dataclass(frozen=True)
+class Expectation:
+    """``quantity`` at crank ``angle`` [deg] must equal ``value`` within ``tol`` (absolute)."""
+
+    angle: float
+    quantity: str
+    value: float
+    tol: float
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class Spec:
+    """A validated mechanism spec, SI throughout."""
+
+    file: str
+    name: str
+    description: str
+    gravity: Vec
+    ground: dict[str, Vec]
+    links: tuple[Link, ...]
+    joints: tuple[Joint, ...]
+    driver: Driver
+    sweep: Sweep
+    at: tuple[float, ...]
+    assembly: dict[str, Vec]
+    loads: tuple[Load, ...] = ()
+    expect: tuple[Expectation, ...] = ()
+    sheet: bool = False
+    units: dict[str, str] = field(default_factory=lambda: {"length": "m", "mass": "kg"})
+
+    def link(self, name: str) -> Link:
+        for link in self.links:
+            if link.name == name:
+                return link
+        raise KeyError(name)
+
+    def number(self, name: str) -> int:
+        """Link number: 0 for ground, 1.. in spec order."""
+        return 0 if name == GROUND else self.link(name).number
+
+    def joint(self, name: str) -> Joint:
+        for joint in self.joints:
+            if joint.name == name:
+                return joint
+        raise KeyError(name)
+
+    def point_owner(self, point: str) -> str | None:
+        """The first link, in ``links`` order, that has ``point`` (None if no link has it)."""
+        for link in self.links:
+            if point in link.points:
+                return link.name
+        return None
+
+    def analysed_angles(self) -> np.ndarray:
+        """Sweep angles plus the reference and expectation angles, sorted, unique [deg]."""
+        extra = list(self.at) + [e.angle for e in self.expect]
+        angles = np.concatenate([self.sweep.angles(), np.asarray(extra, float)])
+        angles = np.unique(np.round(angles, 9))
+        return angles
