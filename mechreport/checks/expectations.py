@@ -1,0 +1,66 @@
+"""Check each ``expect:`` entry against the kinematics, or against every force method."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..forces import ForceResult
+from ..kinematics import Kinematics
+from ..spec import Expectation
+
+
+@dataclass(frozen=True)
+class ExpectationResult:
+    """``source`` is ``kinematics`` or a method name; ``got`` is None when there is no value
+    (angle left out, point undefined); ``message`` says why it failed."""
+
+    expect: Expectation
+    source: str
+    got: float | None
+    ok: bool
+    message: str = ""
+
+
+def kinematic_value(kin: Kinematics, quantity: str, k: int) -> float:
+    kind, name, attr = quantity.split(".")
+    if kind == "point":
+        s = kin.named_point(name)
+        vec = {"x": s.r, "y": s.r, "vx": s.v, "vy": s.v, "ax": s.a, "ay": s.a}[attr]
+        return float(vec[k, 0 if attr.endswith("x") else 1])
+    i = kin.index(name)
+    if attr == "angle":
+        deg = (np.degrees(kin.theta[k, i]) + 180.0) % 360.0 - 180.0
+        return 180.0 if deg == -180.0 else float(deg)
+    return float({"omega": kin.omega, "alpha": kin.alpha}[attr][k, i])
+
+
+def check_expectations(kin: Kinematics, results: dict[str, ForceResult],
+                       flags) -> list[ExpectationResult]:
+    out = []
+    for e in kin.mechanism.spec.expect:
+        k = kin.at(e.angle)
+        if k is None:
+            why = next((f.reason for f in flags if abs(f.angle - e.angle) < 1e-9),
+                       "not analysed")
+            out.append(ExpectationResult(e, "-", None, False,
+                                         f"crank angle {e.angle:g} deg is left out: {why}"))
+            continue
+        if e.quantity.startswith(("point.", "link.")):
+            sources = {"kinematics": kinematic_value(kin, e.quantity, k)}
+        else:
+            sources = {}
+            for name, res in results.items():
+                values = res.quantity(e.quantity)
+                if values is not None:
+                    sources[name] = float(values[k])
+        for source, got in sources.items():
+            if not np.isfinite(got):
+                out.append(ExpectationResult(e, source, None, False,
+                                             f"{e.quantity} is undefined at {e.angle:g} deg"))
+                continue
+            ok = abs(got - e.value) <= e.tol
+            msg = "" if ok else (f"{e.quantity} at {e.angle:g} deg: expected {e.value:.10g} "
+                                 f"± {e.tol:.2g}, got {got:.10g} ({source})")
+            out.append(ExpectationResult(e, source, got, ok, msg))
+    return out

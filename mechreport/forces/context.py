@@ -1,0 +1,148 @@
+"""What every force method starts from: per-link inertia data, gravity, applied loads, and the
+actions on any free body (a set of links), built once per analysis.
+
+Conventions: a joint's reaction is the force (and, for T joints, the couple) that its first
+link exerts on its second, global components: unknowns ``joint.J.fx``, ``joint.J.fy``,
+``joint.J.moment``. On the first link it acts with sign -1 (textbook F21 = -F12). An R joint's
+force acts at the pin; a T joint's at the slider's point, its couple about that point.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from ..kinematics import Kinematics
+from ..model import Mechanism
+from ..spec import GROUND, Joint
+from .equations import Action
+from .loads import AppliedLoad, evaluate_loads
+
+DRIVER_TORQUE = "driver.torque"
+
+
+def reaction_unknowns(joint: Joint) -> tuple[str, ...]:
+    base = (f"joint.{joint.name}.fx", f"joint.{joint.name}.fy")
+    return base + ((f"joint.{joint.name}.moment",) if joint.type == "T" else ())
+
+
+@dataclass(frozen=True)
+class LinkState:
+    """Inertia data of a moving link over the sweep: centre of mass position ``r``, velocity
+    ``v``, acceleration ``a`` (n, 2) [m, m/s, m/s^2]; ``omega``, ``alpha`` (n,); mass [kg],
+    inertia about the centre of mass [kg m^2]."""
+
+    name: str
+    number: int
+    mass: float
+    inertia: float
+    r: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    omega: np.ndarray
+    alpha: np.ndarray
+
+
+class ForceContext:
+    """Inputs shared by all force methods for one solved kinematics."""
+
+    def __init__(self, kin: Kinematics):
+        self.kin = kin
+        self.mech: Mechanism = kin.mechanism
+        self.spec = self.mech.spec
+        self.n = kin.n
+        self.gravity = np.asarray(self.spec.gravity, float)
+        self.loads: list[AppliedLoad] = evaluate_loads(kin)
+        self.links: dict[str, LinkState] = {}
+        for link in self.spec.links:
+            c = kin.com(link.name)
+            k = link.number
+            self.links[link.name] = LinkState(link.name, k, link.mass, link.inertia, c.r, c.v,
+                                              c.a, kin.omega[:, k], kin.alpha[:, k])
+
+    def num(self, link: str) -> int:
+        return self.spec.number(link)
+
+    @cached_property
+    def joint_points(self) -> dict[str, np.ndarray]:
+        """Where each joint's reaction acts (n, 2): the pin, or the slider's point."""
+        out = {}
+        for j in self.spec.joints:
+            owner = j.links[1] if j.type == "T" else (j.links[1] if j.links[0] == GROUND
+                                                      else j.links[0])
+            out[j.name] = self.kin.named_point(j.point, owner).r
+        return out
+
+    def point_of(self, name: str) -> np.ndarray:
+        """Global position (n, 2) of a joint point or named point."""
+        if name in self.joint_points:
+            return self.joint_points[name]
+        if name in self.spec.ground:
+            return np.broadcast_to(np.asarray(self.spec.ground[name]), (self.n, 2))
+        return self.kin.named_point(name).r
+
+    def reaction(self, joint: Joint, on: str) -> list[Action]:
+        """The joint's reaction as it acts on link ``on`` (one of its links)."""
+        a, b = joint.links
+        sign = 1.0 if on == b else -1.0
+        src, dst = (a, b) if on == b else (b, a)
+        unknowns = reaction_unknowns(joint)
+        sym = f"F{self.num(src)}{self.num(dst)}"
+        acts = [Action(sym, "force", "reaction", on, self.joint_points[joint.name], joint.point,
+                       unknowns[:2], sign)]
+        if joint.type == "T":
+            acts.append(Action(f"M{self.num(src)}{self.num(dst)}", "couple", "reaction", on,
+                               unknowns=unknowns[2:], sign=sign))
+        return acts
+
+    def gravity_action(self, link: str) -> Action:
+        s = self.links[link]
+        return Action(f"G{s.number}", "force", "gravity", link, s.r, f"C{s.number}",
+                      value=np.broadcast_to(s.mass * self.gravity, (self.n, 2)))
+
+    def inertia_actions(self, link: str) -> list[Action]:
+        """d'Alembert inertia force -m a_C at the centre of mass and couple -I alpha."""
+        s = self.links[link]
+        return [Action(f"Fin{s.number}", "force", "inertia", link, s.r, f"C{s.number}",
+                       value=-s.mass * s.a),
+                Action(f"Min{s.number}", "couple", "inertia", link, value=-s.inertia * s.alpha)]
+
+    def load_actions(self, link: str) -> list[Action]:
+        acts = []
+        for ld in self.loads:
+            if ld.load.link != link:
+                continue
+            if ld.force is not None:
+                at = self.kin.named_point(ld.load.point, link).r
+                acts.append(Action(ld.symbol, "force", "load", link, at, ld.load.point,
+                                   value=ld.force))
+            else:
+                acts.append(Action(ld.symbol, "couple", "load", link, value=ld.moment))
+        return acts
+
+    def driver_action(self) -> Action:
+        return Action("M", "couple", "driver", self.spec.driver.link,
+                      unknowns=(DRIVER_TORQUE,))
+
+    def actions_on(self, bodies, *, inertia: bool, exclude=()) -> list[Action]:
+        """Every external action on the free body made of ``bodies`` (moving links): reactions
+        of joints that cross its boundary, gravity, loads, the driver torque, and (d'Alembert)
+        the inertia forces and couples. Joints inside the body cancel and are left out, and so
+        are the joints named in ``exclude`` (those an equation is written to eliminate)."""
+        body = set(bodies)
+        acts: list[Action] = []
+        for j in self.spec.joints:
+            if j.name in exclude:
+                continue
+            inside = [l for l in j.links if l in body]
+            if len(inside) == 1:
+                acts.extend(self.reaction(j, inside[0]))
+        for link in bodies:
+            if inertia:
+                acts.extend(self.inertia_actions(link))
+            acts.append(self.gravity_action(link))
+            acts.extend(self.load_actions(link))
+            if link == self.spec.driver.link:
+                acts.append(self.driver_action())
+        return acts

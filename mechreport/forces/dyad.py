@@ -1,0 +1,76 @@
+"""Dyad (Assur group) method (textbook 4.4, eqs. 4.37-4.48; worked in 4.6.3 and 4.7.2).
+
+Dyads are solved from the last (farthest from the driver) back toward the driver, each with
+d'Alembert loads and the reactions already found on its later neighbours:
+
+1. the outer reactions, from the group's own equations: sum F^(i&j) . i and . j; then
+   - interior pin: moments of link i and of link j about it (RRR 4.39-4.40, RRT 4.44);
+   - interior slider: the slider link's forces projected on the sliding direction and the
+     moments of both links about the first outer pin (RTR 4.47-4.48);
+   - each outer T joint: F . Delta = 0 (RRT 4.41);
+2. the interior reaction from link i's force balance (F32 = -F12 - Fin2 - G2), with, for an
+   interior slider, link i's moment about the slider point for the couple;
+3. the driver link last: F01 and the torque M from its forces and moment about the pivot.
+"""
+from __future__ import annotations
+
+from ..model import Dyad
+from .builders import force_equation, moment_equation, normal_constraint, sliding_direction
+from .context import DRIVER_TORQUE, ForceContext, reaction_unknowns
+from .equations import Step
+from .result import ForceResult, run_steps
+
+NAME = "dyad"
+TITLE = "Dyad (Assur groups)"
+SECTION = "4.4, 4.6.3, 4.7.2"
+
+
+def _outer_step(ctx: ForceContext, dyad: Dyad) -> Step:
+    i, j = dyad.links
+    inner = dyad.inner
+    both = ctx.actions_on([i, j], inertia=True)
+    eqs = [force_equation(ctx, [i, j], both, "x"), force_equation(ctx, [i, j], both, "y")]
+    if inner.type == "R":
+        for link in (i, j):
+            acts = ctx.actions_on([link], inertia=True, exclude=(inner.name,))
+            eqs.append(moment_equation(ctx, [link], acts, inner.point))
+    else:
+        s = inner.slider
+        acts = ctx.actions_on([s], inertia=True, exclude=(inner.name,))
+        eqs.append(force_equation(ctx, [s], acts, f"Delta_{inner.name}",
+                                  sliding_direction(ctx, inner), kind="force"))
+        pin = next(o for o in dyad.outer if o.type == "R")
+        eqs.append(moment_equation(ctx, [i, j], both, pin.point))
+    eqs += [normal_constraint(ctx, o) for o in dyad.outer if o.type == "T"]
+    unknowns = [u for o in dyad.outer for u in reaction_unknowns(o)]
+    return Step(f"Dyad {dyad.label}: outer reactions", unknowns, eqs, dyad.links)
+
+
+def _inner_step(ctx: ForceContext, dyad: Dyad) -> Step:
+    i = dyad.links[0]
+    inner = dyad.inner
+    acts = ctx.actions_on([i], inertia=True)
+    eqs = [force_equation(ctx, [i], acts, "x"), force_equation(ctx, [i], acts, "y")]
+    if inner.type == "T":
+        eqs.append(moment_equation(ctx, [i], acts, inner.point,
+                                   at=ctx.joint_points[inner.name]))
+    return Step(f"Dyad {dyad.label}: interior joint {inner.name}", list(reaction_unknowns(inner)),
+                eqs, (i,))
+
+
+def _driver_step(ctx: ForceContext) -> Step:
+    drv = ctx.spec.driver
+    joint = ctx.spec.joint(drv.joint)
+    acts = ctx.actions_on([drv.link], inertia=True)
+    eqs = [force_equation(ctx, [drv.link], acts, "x"), force_equation(ctx, [drv.link], acts, "y"),
+           moment_equation(ctx, [drv.link], acts, joint.point)]
+    return Step(f"Driver link {drv.link}", list(reaction_unknowns(joint)) + [DRIVER_TORQUE], eqs,
+                (drv.link,))
+
+
+def solve(ctx: ForceContext) -> ForceResult:
+    steps = []
+    for dyad in reversed(ctx.mech.dyads):
+        steps += [_outer_step(ctx, dyad), _inner_step(ctx, dyad)]
+    steps.append(_driver_step(ctx))
+    return run_steps(NAME, ctx, steps)

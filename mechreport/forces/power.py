@@ -1,0 +1,46 @@
+"""Power balance (virtual work): the driver torque alone, using no joint reaction.
+
+Ideal joints do no work, so with d'Alembert's inertia loads the total power vanishes:
+M omega_1 + sum_links (Fin . v_C + Min omega + G . v_C) + sum_loads (F . v_P or M omega) = 0,
+i.e. M omega_1 = sum(m a_C . v_C + I alpha omega) - sum(load power) - power of gravity.
+Not in the textbook: an independent check of the other methods' driver torque. Undefined
+(flagged singular) where the crank is at rest (omega_1 = 0).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .context import DRIVER_TORQUE, ForceContext
+from .equations import Equation, Step, Term
+from .result import ForceResult, run_steps
+
+NAME = "power"
+TITLE = "Power balance"
+SECTION = "(independent check)"
+
+
+def power_equation(ctx: ForceContext) -> Equation:
+    n = ctx.n
+    terms = []
+    driver = ctx.driver_action()
+    w1 = ctx.links[ctx.spec.driver.link].omega
+    terms.append(Term(driver, w1[:, None].copy(), np.zeros(n), rate=w1))
+    for link in ctx.spec.links:
+        s = ctx.links[link.name]
+        for act in ctx.inertia_actions(link.name) + [ctx.gravity_action(link.name)] + \
+                ctx.load_actions(link.name):
+            if act.kind == "force":
+                v = s.v if act.at_name == f"C{s.number}" else \
+                    ctx.kin.named_point(act.at_name, link.name).v
+                terms.append(Term(act, np.zeros((n, 0)), np.einsum("ni,ni->n", act.value, v),
+                                  rate=v))
+            else:
+                terms.append(Term(act, np.zeros((n, 0)), act.value * s.omega, rate=s.omega))
+    return Equation("sum P = M omega1 + sum F . v + sum M omega = 0", "power",
+                    tuple(l.name for l in ctx.spec.links), terms)
+
+
+def solve(ctx: ForceContext) -> ForceResult:
+    step = Step("Power balance of the whole mechanism", [DRIVER_TORQUE], [power_equation(ctx)],
+                tuple(l.name for l in ctx.spec.links))
+    return run_steps(NAME, ctx, [step])

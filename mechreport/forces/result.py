@@ -1,0 +1,108 @@
+"""The common result type of every force method."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kinematics.frames import cross, rotate
+from .equations import Step
+
+
+@dataclass(frozen=True)
+class JointReaction:
+    """Reaction of ``links[0]`` on ``links[1]`` of joint ``joint`` over the angles (n,).
+
+    ``fx``, ``fy`` [N], global; T joints also ``moment`` [N m], the couple about the slider's
+    point, and ``px``, ``py`` [m], the equivalent application point on the sliding line (NaN
+    where the force vanishes and the point is undefined; ``p_defined`` says where it is)."""
+
+    joint: str
+    type: str
+    fx: np.ndarray
+    fy: np.ndarray
+    moment: np.ndarray | None = None
+    px: np.ndarray | None = None
+    py: np.ndarray | None = None
+
+    @property
+    def f(self) -> np.ndarray:
+        """Magnitude [N]."""
+        return np.hypot(self.fx, self.fy)
+
+    @property
+    def p_defined(self) -> np.ndarray | None:
+        return None if self.px is None else np.isfinite(self.px)
+
+    def component(self, attr: str) -> np.ndarray | None:
+        return self.f if attr == "f" else getattr(self, attr, None)
+
+
+@dataclass(frozen=True)
+class ForceResult:
+    """One method's joint reactions and driver torque at every analysed angle.
+
+    ``angles`` (n,) crank angles [deg]; ``driver_torque`` (n,) [N m], the moment the driver
+    applies to the crank, CCW positive; ``reactions`` by joint name (empty for ``power``);
+    ``steps`` the labelled systems the method solved, in order; ``singular`` (n,) bool."""
+
+    method: str
+    angles: np.ndarray
+    reactions: dict[str, JointReaction]
+    driver_torque: np.ndarray
+    steps: tuple[Step, ...]
+    singular: np.ndarray
+
+    def quantity(self, name: str) -> np.ndarray | None:
+        """A result quantity by its ``expect`` name, e.g. ``joint.B.fx`` or ``driver.torque``."""
+        if name == "driver.torque":
+            return self.driver_torque
+        parts = name.split(".")
+        if len(parts) == 3 and parts[0] == "joint" and parts[1] in self.reactions:
+            return self.reactions[parts[1]].component(parts[2])
+        return None
+
+    def values(self) -> dict[str, np.ndarray]:
+        """Every unknown by name (joint.J.fx/fy/moment, driver.torque)."""
+        out = {"driver.torque": self.driver_torque}
+        for r in self.reactions.values():
+            out[f"joint.{r.joint}.fx"] = r.fx
+            out[f"joint.{r.joint}.fy"] = r.fy
+            if r.moment is not None:
+                out[f"joint.{r.joint}.moment"] = r.moment
+        return out
+
+
+def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular) -> ForceResult:
+    """Assemble a ForceResult from solved unknowns (shared by all methods)."""
+    spec = ctx.spec
+    reactions = {}
+    if any(k.startswith("joint.") for k in values):
+        for j in spec.joints:
+            fx, fy = values[f"joint.{j.name}.fx"], values[f"joint.{j.name}.fy"]
+            if j.type == "R":
+                reactions[j.name] = JointReaction(j.name, "R", fx, fy)
+                continue
+            m = values[f"joint.{j.name}.moment"]
+            u = rotate(j.line.direction, ctx.kin.theta[:, ctx.num(j.guide)])
+            f = np.stack([fx, fy], axis=1)
+            s = cross(u, f)
+            scale = np.maximum(np.max(np.abs(f)), 1e-300)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t = np.where(np.abs(s) > 1e-12 * scale, m / s, np.nan)
+            p = ctx.joint_points[j.name] + t[:, None] * u
+            reactions[j.name] = JointReaction(j.name, "T", fx, fy, m, p[:, 0], p[:, 1])
+    return ForceResult(method, ctx.kin.angles, reactions, values["driver.torque"], tuple(steps),
+                       singular)
+
+
+def run_steps(method: str, ctx, steps) -> ForceResult:
+    """Solve ``steps`` in order, each with the values found by those before it."""
+    from .equations import solve_step
+    known: dict[str, np.ndarray] = {}
+    singular = np.zeros(ctx.n, bool)
+    for step in steps:
+        sol = solve_step(step, known, ctx.n)
+        known.update(sol.values)
+        singular |= sol.singular
+    return make_result(method, ctx, known, steps, singular)
