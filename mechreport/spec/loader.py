@@ -40,6 +40,11 @@ class _Checker:
     def __init__(self, src: Source):
         self.src = src
         self.problems: list[Problem] = list(src.problems)
+        # Names written in the spec whose definitions failed (already reported): later checks
+        # skip them instead of reporting follow-on errors such as "unknown link".
+        self.invalid_links: set[str] = set()
+        self.invalid_joints: set[str] = set()
+        self.invalid_points: set[str] = set()
 
     def error(self, path: tuple, message: str) -> None:
         self.problems.append(Problem(self.src.filename, self.src.line(path),
@@ -166,7 +171,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
         ck.error(("sheet",), f"must be true or false, got {_show(sheet)}")
         sheet = False
 
-    if links and joints is not None and link_names:
+    if links and joints is not None and link_names and not (ck.invalid_links or
+                                                            ck.invalid_joints):
         _structure(ck, links, joints)
 
     if ck.problems or name is None or driver is None or joints is None:
@@ -219,6 +225,10 @@ def _links(value: Any, ck: _Checker, ls: float, ms: float) -> list[Link]:
         link = _link(lname, number, body, path, ck, ls, ms)
         if link is not None:
             links.append(link)
+        else:
+            ck.invalid_links.add(str(lname))
+            raw = body.get("points") if isinstance(body, dict) else None
+            ck.invalid_points.update(str(p) for p in (raw if isinstance(raw, dict) else ()))
     return links
 
 
@@ -229,14 +239,18 @@ def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
         return None
     points: dict[str, Vec] = {}
     raw_points = body.get("points")
+    points_ok = raw_points is not None
     if raw_points is not None:
         if not isinstance(raw_points, dict) or not raw_points:
             ck.error(path + ("points",), "must map at least one point name to [x, y]")
+            points_ok = False
         else:
             for pname, pv in raw_points.items():
                 v = _scaled(ck.vec2(pv, path + ("points", pname)), ls)
                 if v is not None:
                     points[str(pname)] = v
+                else:
+                    points_ok = False
     shape = _shape(body.get("shape"), path + ("shape",), ck, ls) if "shape" in body else None
     mass = ck.number(body["mass"], path + ("mass",), positive=True) if "mass" in body else None
     if mass is not None:
@@ -248,7 +262,7 @@ def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
                if "inertia" in body else None)
     bad = any(k in body and v is None for k, v in
               (("shape", shape), ("mass", mass), ("density", density), ("com", com),
-               ("inertia", inertia)))
+               ("inertia", inertia))) or not points_ok
     if bad:
         return None
     if mass is None:
@@ -312,7 +326,7 @@ def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, L
         if "type" not in body:
             ck.error(path, "missing required key 'type' (R or T)")
         allowed = JOINT_KEYS.get(jtype or "T")
-        ck.mapping(body, path, allowed, required=allowed[1:])
+        ck.mapping(body, path, allowed, required=allowed[1:] if jtype else ("links",))
         if jtype is None or "links" not in body:
             continue
         pair = body["links"]
@@ -323,8 +337,9 @@ def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, L
         ok = True
         for i, lname in enumerate(pair):
             if lname != GROUND and lname not in links:
-                known = ", ".join([GROUND, *links])
-                ck.error(path + ("links", i), f"unknown link '{lname}' (links: {known})")
+                if lname not in ck.invalid_links:
+                    known = ", ".join([GROUND, *links])
+                    ck.error(path + ("links", i), f"unknown link '{lname}' (links: {known})")
                 ok = False
         if pair[0] == pair[1]:
             ck.error(path + ("links",), "a joint needs two different links")
@@ -344,6 +359,7 @@ def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, L
             joint = _t_joint(jname, body, pair, path, ck, ground, links, ls)
             if joint is not None:
                 joints.append(joint)
+    ck.invalid_joints.update(str(name) for name in value if name not in {j.name for j in joints})
     return joints
 
 
@@ -410,8 +426,9 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None) -> Driver | No
         return None
     joint = next((j for j in joints if j.name == jname), None)
     if joint is None:
-        ck.error(path + ("joint",), f"unknown joint '{jname}' (joints: "
-                                    f"{', '.join(j.name for j in joints)})")
+        if jname not in ck.invalid_joints:
+            ck.error(path + ("joint",), f"unknown joint '{jname}' (joints: "
+                                        f"{', '.join(j.name for j in joints)})")
         return None
     if joint.type != "R" or GROUND not in joint.links:
         ck.error(path + ("joint",), f"the driver joint '{jname}' must be an R joint with ground")
@@ -456,7 +473,8 @@ def _assembly(value: Any, ck: _Checker, links: list[Link], ls: float) -> dict[st
     for pname, pv in value.items():
         v = _scaled(ck.vec2(pv, ("assembly", pname)), ls)
         if not any(pname in l.points for l in links):
-            ck.error(("assembly", pname), f"'{pname}' is not a point of any moving link")
+            if pname not in ck.invalid_points:
+                ck.error(("assembly", pname), f"'{pname}' is not a point of any moving link")
         elif v is not None:
             out[str(pname)] = v
     return out
@@ -503,8 +521,9 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link]) -> list[Load]:
             continue
         lname = item["link"]
         if lname not in links:
-            ck.error(path + ("link",), f"unknown link '{lname}' (loads act on moving links: "
-                                       f"{', '.join(links)})")
+            if lname not in ck.invalid_links:
+                ck.error(path + ("link",), f"unknown link '{lname}' (loads act on moving links: "
+                                           f"{', '.join(links)})")
             continue
         point = None
         if kind == "force":
@@ -571,7 +590,7 @@ def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | N
         target = ck.number(body["value"], path + ("value",))
         tol = ck.number(body["tol"], path + ("tol",), positive=True) if "tol" in body else None
         quantity = body["quantity"]
-        problem = _quantity_problem(quantity, links, joint_types, joints is not None)
+        problem = _quantity_problem(quantity, links, joint_types, joints is not None, ck)
         if problem:
             ck.error(path + ("quantity",), problem)
             continue
@@ -584,7 +603,7 @@ def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | N
 
 
 def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
-                      joints_known: bool) -> str | None:
+                      joints_known: bool, ck: _Checker) -> str | None:
     """None if ``q`` names something, else a message saying what it should look like."""
     usage = ("expected driver.torque, joint.J.fx|fy|f|moment|px|py, "
              "point.P.x|y|vx|vy|ax|ay or link.L.angle|omega|alpha")
@@ -600,6 +619,8 @@ def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
         if not joints_known:
             return None
         if name not in joint_types:
+            if name in ck.invalid_joints:
+                return None
             return f"'{q}': no joint named '{name}' (joints: {', '.join(joint_types)})"
         allowed = R_QUANTITIES if joint_types[name] == "R" else T_QUANTITIES
         if attr not in allowed:
@@ -607,12 +628,16 @@ def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
         return None
     if kind == "point":
         if not any(name in l.points for l in links):
+            if name in ck.invalid_points:
+                return None
             return f"'{q}': no moving link has a point named '{name}'"
         if attr not in POINT_QUANTITIES:
             return f"'{q}': a point has {', '.join(POINT_QUANTITIES)}"
         return None
     if kind == "link":
         if name not in {l.name for l in links}:
+            if name in ck.invalid_links:
+                return None
             return f"'{q}': no link named '{name}' (links: {', '.join(l.name for l in links)})"
         if attr not in LINK_QUANTITIES:
             return f"'{q}': a link has {', '.join(LINK_QUANTITIES)}"
