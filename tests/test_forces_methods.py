@@ -1,0 +1,105 @@
+"""Properties of the force methods over whole sweeps of every spec in specs/.
+
+- one contract every method must meet (same result type, square labelled systems, its own
+  equations satisfied by its own answer);
+- all methods agree to 1e-9 relative and the power balance gives the same torque;
+- every method's reactions satisfy every link's Newton-Euler equations;
+- the methods are genuinely different computations (different systems).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechreport.analysis import analyse
+from mechreport.forces import METHODS, ForceResult
+from mechreport.forces.equations import batched_solve
+
+ROOT = Path(__file__).resolve().parents[1]
+SPECS = sorted((ROOT / "specs").glob("*.yaml"))
+
+
+@pytest.fixture(scope="module", params=SPECS, ids=lambda p: p.stem)
+def analysis(request):
+    return analyse(request.param)
+
+
+@pytest.mark.parametrize("method", list(METHODS))
+def test_contract_every_method(analysis, method):
+    res = analysis.forces[method]
+    assert isinstance(res, ForceResult) and res.method == method
+    assert np.array_equal(res.angles, analysis.angles)
+    assert not res.singular.any()
+    values = res.values()
+    for name, v in values.items():
+        assert v.shape == analysis.angles.shape and np.all(np.isfinite(v)), name
+    if method != "power":
+        assert set(res.reactions) == {j.name for j in analysis.spec.joints}
+    scale = max(float(np.max(np.abs(v))) for v in values.values())
+    for step in res.steps:
+        assert len(step.equations) == len(step.unknowns), step.title
+        for eq in step.equations:  # the labelled equations are what was solved
+            assert np.max(np.abs(eq.evaluate(values))) <= 1e-9 * scale, (step.title, eq.label)
+
+
+def test_methods_agree_over_sweep(analysis):
+    for a in analysis.agreement:
+        assert a.relative <= 1e-9, a
+
+
+def test_power_balance_matches_torque(analysis):
+    ne = analysis.forces["newton_euler"].driver_torque
+    pw = analysis.forces["power"].driver_torque
+    np.testing.assert_allclose(pw, ne, rtol=0, atol=1e-9 * np.max(np.abs(ne)))
+
+
+def test_reactions_satisfy_newton_euler_of_every_link(analysis):
+    forces = [np.max(np.abs(r.f)) for r in analysis.forces["dyad"].reactions.values()]
+    for r in analysis.residuals:
+        assert r.force <= 1e-10 * max(forces), r
+        assert r.moment <= 1e-10 * max(forces), r
+
+
+def test_expectations_pass(analysis):
+    failed = [e.message for e in analysis.expectations if not e.ok]
+    assert not failed
+
+
+def test_methods_are_different_computations(analysis):
+    """Same answers, different systems: step structure and moment centres differ."""
+    f = analysis.forces
+    n_links = len(analysis.spec.links)
+    assert len(f["newton_euler"].steps) == len(f["dalembert"].steps) == 1
+    assert len(f["dyad"].steps) == 2 * len(analysis.mechanism.dyads) + 1
+    assert len(f["contour"].steps) == len(analysis.spec.joints)
+    ne_about = {eq.about for eq in f["newton_euler"].steps[0].equations if eq.kind == "moment"}
+    da_about = {eq.about for eq in f["dalembert"].steps[0].equations if eq.kind == "moment"}
+    assert ne_about == {f"C{k}" for k in range(1, n_links + 1)}   # centres of mass
+    assert not ne_about & da_about                                 # joints, not centres
+
+
+def test_no_nan_in_results(analysis):
+    for res in analysis.forces.values():
+        for r in res.reactions.values():
+            for arr in (r.fx, r.fy, r.moment):
+                assert arr is None or np.all(np.isfinite(arr))
+            if r.px is not None:   # undefined only where the slider force vanishes
+                undefined = ~np.isfinite(r.px)
+                assert np.all(r.f[undefined] < 1e-9 * max(1.0, np.max(r.f)))
+
+
+def test_singular_system_is_flagged_not_solved():
+    A = np.array([np.eye(3), [[1.0, 2, 3], [2, 4, 6], [0, 0, 1]], [[1.0, 1, 0], [1, 1 + 1e-13, 0], [0, 0, 1]]])
+    b = np.ones((3, 3))
+    x, singular = batched_solve(A, b)
+    assert singular.tolist() == [False, True, True]
+    assert np.allclose(x[0], 1) and np.all(np.isnan(x[1:]))
+
+
+def test_condition_check_ignores_units():
+    """A well-posed system in mm and tonnes is as regular as in m and kg."""
+    A = np.array([[[1e6, 0.0], [0.0, 1e-6]]])
+    x, singular = batched_solve(A, np.array([[1e6, 1e-6]]))
+    assert not singular[0] and np.allclose(x, 1)
