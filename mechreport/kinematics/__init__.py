@@ -3,21 +3,21 @@
 Positions come dyad by dyad in closed form (``position``); velocities and accelerations solve,
 dyad by dyad, the differentiated joint constraints (``constraints``) as batched 6x6 systems.
 Angles where a dyad cannot close, or whose velocity equations are singular (condition number
-of the column-scaled 6x6 system above ``SINGULAR_COND``), are flagged and left out.
+of the equilibrated 6x6 system above ``SINGULAR_COND``, see ``linalg``), are flagged and left
+out.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from ..errors import AssemblyError
+from ..linalg import SINGULAR_COND, batched_solve
 from ..model import Mechanism
 from ..spec import GROUND
 from .constraints import joint_blocks
 from .frames import perp, rotate
 from .position import BranchChoice, dyad_candidates, track_branches
 from .result import Flag, Kinematics, PointState
-
-SINGULAR_COND = 1e10
 
 
 def solve_kinematics(mech: Mechanism, angles: np.ndarray | None = None) -> Kinematics:
@@ -65,7 +65,6 @@ def solve_kinematics(mech: Mechanism, angles: np.ndarray | None = None) -> Kinem
     safe_r = {k: np.where(finite[:, None], x, 0.0) for k, x in r.items()}
     for dyad in mech.dyads:
         i, j = dyad.links
-        scale = max(1e-9, _size(spec, dyad))
         A = np.zeros((n, 6, 6))
         b_v = np.zeros((n, 6))
         rows = []
@@ -79,17 +78,12 @@ def solve_kinematics(mech: Mechanism, angles: np.ndarray | None = None) -> Kinem
                 else:
                     qd = np.concatenate([v[link], w[link][:, None]], axis=1)
                     b_v[:, 2 * row:2 * row + 2] -= np.einsum("nij,nj->ni", blk, qd)
-        A[:, :, 2] *= scale
-        A[:, :, 5] *= scale
-        cond = np.linalg.cond(A)
-        sing = ~(cond < SINGULAR_COND)
+        x, sing = batched_solve(A, b_v)
         for k in np.flatnonzero(sing & finite):
-            problems.setdefault(int(k), f"dyad {dyad.label}: velocity equations singular "
-                                        f"(condition number {cond[k]:.1e})")
-        A_safe = np.where(sing[:, None, None], np.eye(6), A)
-        x = np.linalg.solve(A_safe, b_v[..., None])[..., 0]
-        v[i], w[i] = x[:, 0:2], x[:, 2] * scale
-        v[j], w[j] = x[:, 3:5], x[:, 5] * scale
+            problems.setdefault(int(k), f"dyad {dyad.label}: velocity equations singular")
+        x = np.where(sing[:, None], 0.0, x)
+        v[i], w[i] = x[:, 0:2], x[:, 2]
+        v[j], w[j] = x[:, 3:5], x[:, 5]
         b_a = np.zeros((n, 6))
         for row, joint, blocks in rows:
             _, gamma = joint_blocks(spec, joint, safe_r, safe_th, v, w)
@@ -98,9 +92,10 @@ def solve_kinematics(mech: Mechanism, angles: np.ndarray | None = None) -> Kinem
                 if link not in (i, j):
                     qdd = np.concatenate([acc[link], al[link][:, None]], axis=1)
                     b_a[:, 2 * row:2 * row + 2] -= np.einsum("nij,nj->ni", blk, qdd)
-        x = np.linalg.solve(A_safe, b_a[..., None])[..., 0]
-        acc[i], al[i] = x[:, 0:2], x[:, 2] * scale
-        acc[j], al[j] = x[:, 3:5], x[:, 5] * scale
+        x, _ = batched_solve(A, b_a)
+        x = np.where(sing[:, None], 0.0, x)
+        acc[i], al[i] = x[:, 0:2], x[:, 2]
+        acc[j], al[j] = x[:, 3:5], x[:, 5]
 
     keep = np.ones(n, bool)
     keep[list(problems)] = False
@@ -114,12 +109,6 @@ def solve_kinematics(mech: Mechanism, angles: np.ndarray | None = None) -> Kinem
     theta = stack(th, False)
     return Kinematics(mech, phi_deg[keep], stack(r, True), theta, stack(v, True), stack(w, False),
                       stack(acc, True), stack(al, False), flags, tuple(branches))
-
-
-def _size(spec, dyad) -> float:
-    """Characteristic length of a dyad [m]: its largest point spread, for column scaling."""
-    pts = np.array([p for l in dyad.links for p in spec.link(l).points.values()])
-    return float(np.max(np.ptp(pts, axis=0))) if len(pts) > 1 else 1.0
 
 
 __all__ = ["solve_kinematics", "Kinematics", "PointState", "Flag", "BranchChoice",
