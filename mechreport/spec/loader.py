@@ -415,11 +415,17 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None) -> Driver | No
         ck.error(path, "give exactly one of 'rpm' or 'omega' (rad/s)")
         return None
     rpm = None
-    if "rpm" in body:
-        rpm = ck.number(body["rpm"], path + ("rpm",))
-        omega = None if rpm is None else rpm * math.pi / 30.0
+    key = "rpm" if "rpm" in body else "omega"
+    speed = ck.number(body[key], path + (key,))
+    if speed == 0:
+        ck.error(path + (key,), "must not be zero: the sweep is kinetostatic (the crank turns "
+                                "at this speed at every angle); the power balance needs it")
+        speed = None
+    if key == "rpm":
+        rpm = speed
+        omega = None if speed is None else speed * math.pi / 30.0
     else:
-        omega = ck.number(body["omega"], path + ("omega",))
+        omega = speed
     alpha = ck.number(body["alpha"], path + ("alpha",)) if "alpha" in body else 0.0
     jname = ck.name(body["joint"], path + ("joint",))
     if joints is None or jname is None or omega is None or alpha is None:
