@@ -8,6 +8,8 @@ out.
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ..errors import AssemblyError
@@ -22,9 +24,31 @@ from .result import Flag, Kinematics, PointState
 
 def solve_kinematics(mech: Mechanism, angles: np.ndarray | None = None) -> Kinematics:
     """Solve positions, velocities, accelerations at ``angles`` [deg] (default: the spec's
-    analysed angles). Raises ``AssemblyError`` if the first reference angle cannot close."""
+    analysed angles). Raises ``AssemblyError`` if the first reference angle cannot close.
+
+    Explicit ``angles`` are solved together with the spec's analysed angles, so that the
+    assembly branch chosen at the first reference angle is followed to them; the result holds
+    the requested angles only, in the order given."""
+    if angles is None:
+        return _solve(mech, mech.spec.analysed_angles())
+    wanted = np.round(np.atleast_1d(np.asarray(angles, float)), 9)
+    grid = np.unique(np.concatenate([mech.spec.analysed_angles(), wanted]))
+    return _select(_solve(mech, grid), wanted)
+
+
+def _select(kin: Kinematics, wanted: np.ndarray) -> Kinematics:
+    """The rows of ``kin`` at the ``wanted`` angles (those left out stay in ``flags``)."""
+    have = kin.angles
+    pos = np.clip(np.searchsorted(have, wanted), 0, max(len(have) - 1, 0))
+    hit = np.abs(have[pos] - wanted) < 1e-9 if len(have) else np.zeros(len(wanted), bool)
+    rows = pos[hit]
+    flags = tuple(f for f in kin.flags if np.any(np.abs(wanted - f.angle) < 1e-9))
+    return replace(kin, angles=have[rows], r=kin.r[rows], theta=kin.theta[rows], v=kin.v[rows],
+                   omega=kin.omega[rows], a=kin.a[rows], alpha=kin.alpha[rows], flags=flags)
+
+
+def _solve(mech: Mechanism, phi_deg: np.ndarray) -> Kinematics:
     spec = mech.spec
-    phi_deg = spec.analysed_angles() if angles is None else np.asarray(angles, float)
     n = len(phi_deg)
     phi = np.radians(phi_deg)
     ref_angle = spec.at[0]

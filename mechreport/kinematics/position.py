@@ -233,14 +233,38 @@ def _flips(xp: np.ndarray, xm: np.ndarray, angles: np.ndarray) -> np.ndarray:
         return flips
     h = np.diff(angles)
     scale = (h[1:] / h[:-1])[:, None]
-    votes = np.zeros(n - 2)
-    for same, other in ((xp, xm), (xm, xp)):
-        pred = same[1:-1] + (same[1:-1] - same[:-2]) * scale   # predicted k+1 from k-1, k
-        e_same = norm(same[2:] - pred)
-        e_other = norm(other[2:] - pred)
-        votes += np.where(e_other < e_same, 1, 0)
     step = norm(xp[2:] - xp[1:-1]) + norm(xm[2:] - xm[1:-1])
     gap = np.minimum(norm(xp[1:-1] - xm[1:-1]), norm(xp[2:] - xm[2:]))
     close = gap <= 2 * step
-    flips[1:] = (votes == 2) & close
+    # The history (k-1, k) that predicts k+1 must follow the tracked branch: when the interval
+    # k-1 -> k flipped, the label's point at k-1 is the other label's. Votes for both cases,
+    # then a sequential scan picks the one that applies.
+    decide = []
+    for swapped in (False, True):
+        votes = np.zeros(n - 2)
+        for same, other in ((xp, xm), (xm, xp)):
+            before = (other if swapped else same)[:-2]
+            pred = same[1:-1] + (same[1:-1] - before) * scale   # predicted k+1 from k-1, k
+            e_same = norm(same[2:] - pred)
+            e_other = norm(other[2:] - pred)
+            votes += np.where(e_other < e_same, 1, 0)
+        decide.append((votes == 2) & close)
+    flips[1:] = _chain(decide[0], decide[1])
     return flips
+
+
+def _chain(if_kept: np.ndarray, if_flipped: np.ndarray) -> np.ndarray:
+    """Resolve f[k] = (if_flipped if f[k-1] else if_kept)[k], with f[-1] = False, vectorised.
+
+    Each step maps the previous decision by a constant (both choices agree), the identity or a
+    negation; so f[k] is the value at the last constant step, XOR the parity of negations
+    since then."""
+    n = len(if_kept)
+    const = if_kept == if_flipped
+    negate = if_kept & ~if_flipped
+    idx = np.arange(n)
+    last = np.maximum.accumulate(np.where(const, idx, -1))
+    neg_count = np.cumsum(negate)
+    before = np.where(last >= 0, neg_count[np.maximum(last, 0)], 0)
+    start = np.where(last >= 0, if_kept[np.maximum(last, 0)], False)
+    return start ^ ((neg_count - before) % 2 == 1)

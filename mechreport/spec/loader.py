@@ -142,7 +142,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                                                    "driver"))
     if top is None:
         return None
-    if "mechreport" in top and top["mechreport"] != 1:
+    version = top.get("mechreport")
+    if "mechreport" in top and (type(version) is not int or version != 1):
         ck.error(("mechreport",), f"format version must be 1, got {_show(top['mechreport'])}")
 
     name = ck.name(top.get("name"), ("name",)) if "name" in top else None

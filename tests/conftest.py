@@ -1,0 +1,66 @@
+"""Shared fixtures: the repository root, the spec files under specs/, loaded mechanisms.
+
+Any test that takes a ``spec_path`` argument runs once per ``specs/*.yaml`` file (collected
+with a glob, so new specs are picked up without touching the tests).
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+if str(ROOT) not in sys.path:  # make `mechreport` importable however pytest is started
+    sys.path.insert(0, str(ROOT))
+
+SPEC_DIR = ROOT / "specs"
+SPEC_FILES = sorted(SPEC_DIR.glob("*.yaml"))
+
+
+def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
+    if "spec_path" in metafunc.fixturenames:
+        metafunc.parametrize("spec_path", SPEC_FILES, ids=[p.stem for p in SPEC_FILES])
+
+
+@pytest.fixture(scope="session")
+def repo_root() -> Path:
+    """The project root (the folder holding specs/, tests/, mechreport/)."""
+    return ROOT
+
+
+@pytest.fixture(scope="session")
+def spec_files() -> list[Path]:
+    """Every spec file under specs/, sorted."""
+    assert SPEC_FILES, f"no spec files found under {SPEC_DIR}"
+    return list(SPEC_FILES)
+
+
+@pytest.fixture(scope="session")
+def mechanisms():
+    """Loader cache: ``mechanisms(path)`` returns the built Mechanism of a spec file, loading
+    each file once per test session."""
+    from mechreport.model import build_mechanism
+    from mechreport.spec import load_spec
+
+    cache: dict[Path, object] = {}
+
+    def get(path: Path):
+        path = Path(path)
+        if path not in cache:
+            cache[path] = build_mechanism(load_spec(path))
+        return cache[path]
+
+    return get
+
+
+@pytest.fixture
+def mechanism(spec_path: Path, mechanisms):
+    """The built Mechanism of the current ``spec_path``."""
+    return mechanisms(spec_path)
+
+
+@pytest.fixture(scope="session")
+def textbook_specs() -> dict[str, Path]:
+    """The two specs that reproduce the textbook's worked examples (sections 4.6 and 4.7)."""
+    return {"4.6": SPEC_DIR / "slider_crank.yaml", "4.7": SPEC_DIR / "r_rtr_rtr.yaml"}
