@@ -339,7 +339,7 @@ def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, L
         for i, lname in enumerate(pair):
             if lname != GROUND and lname not in links:
                 if lname not in ck.invalid_links:
-                    known = ", ".join([GROUND, *links])
+                    known = ", ".join([GROUND, *sorted({*links, *ck.invalid_links})])
                     ck.error(path + ("links", i), f"unknown link '{lname}' (links: {known})")
                 ok = False
         if pair[0] == pair[1]:
