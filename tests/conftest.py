@@ -1,7 +1,8 @@
 """Shared fixtures: the repository root, the spec files under specs/, loaded mechanisms.
 
-Any test that takes a ``spec_path`` argument runs once per ``specs/*.yaml`` file (collected
-with a glob, so new specs are picked up without touching the tests).
+Any test that takes a ``spec_path`` argument runs once per ``specs/*.yaml`` file and per test
+mechanism in ``tests/data/*.yaml`` (collected with globs, so new specs are picked up without
+touching the tests).
 """
 from __future__ import annotations
 
@@ -16,11 +17,13 @@ if str(ROOT) not in sys.path:  # make `mechreport` importable however pytest is 
 
 SPEC_DIR = ROOT / "specs"
 SPEC_FILES = sorted(SPEC_DIR.glob("*.yaml"))
+DATA_SPEC_FILES = sorted((ROOT / "tests" / "data").glob("*.yaml"))
 
 
 def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
     if "spec_path" in metafunc.fixturenames:
-        metafunc.parametrize("spec_path", SPEC_FILES, ids=[p.stem for p in SPEC_FILES])
+        paths = SPEC_FILES + DATA_SPEC_FILES
+        metafunc.parametrize("spec_path", paths, ids=[p.stem for p in paths])
 
 
 @pytest.fixture(scope="session")

@@ -1,4 +1,5 @@
-"""Properties of the force methods over whole sweeps of every spec in specs/.
+"""Properties of the force methods over whole sweeps of every spec in specs/ and tests/data/
+(the latter cover dyad types the shipped specs do not, e.g. TRT).
 
 - one contract every method must meet (same result type, square labelled systems, its own
   equations satisfied by its own answer);
@@ -18,7 +19,7 @@ from mechreport.forces import METHODS, ForceResult
 from mechreport.forces.equations import batched_solve
 
 ROOT = Path(__file__).resolve().parents[1]
-SPECS = sorted((ROOT / "specs").glob("*.yaml"))
+SPECS = sorted((ROOT / "specs").glob("*.yaml")) + sorted((ROOT / "tests" / "data").glob("*.yaml"))
 
 
 @pytest.fixture(scope="module", params=SPECS, ids=lambda p: p.stem)
