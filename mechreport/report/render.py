@@ -1,0 +1,66 @@
+"""Render a :class:`~mechreport.report.model.ReportModel` to report.md, report.pdf,
+results.csv and summary.json, and a batch's index; every file written atomically.
+
+Templates live in ``templates/`` (Jinja2); they format nothing but strings the model holds."""
+from __future__ import annotations
+
+import csv
+import io
+import json
+from functools import lru_cache
+from pathlib import Path
+
+from .files import atomic_write_text
+from .pdf import compile_typst, typst_escape, typst_string
+
+TEMPLATES = Path(__file__).resolve().parents[2] / "templates"
+
+
+def _md_cell(text) -> str:
+    """A Markdown table cell: pipes escaped, no line breaks."""
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
+@lru_cache(maxsize=1)
+def environment():
+    import jinja2
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)),
+                             undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
+                             trim_blocks=True, lstrip_blocks=True, autoescape=False)
+    env.filters["typ"] = lambda s: typst_escape(str(s))
+    env.filters["ts"] = lambda s: typst_string(str(s))
+    env.filters["md"] = _md_cell
+    return env
+
+
+def render(template: str, **context) -> str:
+    return environment().get_template(template).render(**context)
+
+
+def csv_text(header: list[str], rows: list[list[str]]) -> str:
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(header)
+    w.writerows(rows)
+    return buf.getvalue()
+
+
+def write_report(model, outdir: Path) -> list[Path]:
+    """results.csv, summary.json, report.md and report.pdf of ``model`` in ``outdir``
+    (figures must already be there: the PDF embeds them)."""
+    outdir = Path(outdir)
+    out = [atomic_write_text(outdir / "results.csv", csv_text(model.csv_header, model.csv_rows)),
+           atomic_write_text(outdir / "summary.json",
+                             json.dumps(model.summary, indent=2, allow_nan=False) + "\n"),
+           atomic_write_text(outdir / "report.md", render("report.md.j2", m=model))]
+    source = render("report.typ.j2", m=model)
+    out.append(compile_typst(source, outdir / "report.pdf", outdir))
+    return out
+
+
+def write_index(rows: list[dict], out: Path, title: str = "mechreport batch") -> list[Path]:
+    """OUT/index.md and OUT/index.pdf: one row per spec (failed ones carry their message)."""
+    out = Path(out)
+    md = atomic_write_text(out / "index.md", render("index.md.j2", rows=rows, title=title))
+    pdf = compile_typst(render("index.typ.j2", rows=rows, title=title), out / "index.pdf", out)
+    return [md, pdf]

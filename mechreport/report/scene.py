@@ -1,0 +1,157 @@
+"""Geometry of a mechanism drawing at one analysed crank angle, as plain primitives (global
+coordinates [m], forces [N]) that drawing.py draws. No matplotlib here."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..forces import ForceResult
+from ..kinematics.frames import rotate
+from ..spec import GROUND
+
+BAR_MIN = 0.022     # bar width at least this fraction of the drawing's extent
+BLOCK_MIN = 0.07    # block sides at least this fraction of the extent
+
+
+@dataclass
+class Shape2D:
+    """A link outline: ``kind`` bar|block|plate|line, polygon ``xy`` (m, 2) [m]."""
+
+    link: str
+    number: int
+    kind: str
+    xy: list
+
+
+@dataclass
+class Arrow:
+    """A force ``f`` [N] at ``at`` [m]; ``kind`` reaction|load; ``color`` hex."""
+
+    at: tuple
+    f: tuple
+    label: str
+    kind: str
+    color: str
+
+
+@dataclass
+class Couple:
+    """A moment [N m] (CCW positive) about ``at`` [m]."""
+
+    at: tuple
+    value: float
+    label: str
+    color: str
+
+
+@dataclass
+class Scene:
+    """Everything drawn at one crank angle [deg]."""
+
+    angle: float
+    extent: float
+    shapes: list = field(default_factory=list)
+    pins: list = field(default_factory=list)          # (x, y, on_ground)
+    guides: list = field(default_factory=list)   # (p0, p1, on_ground, normal, offset [m])
+    labels: list = field(default_factory=list)        # (x, y, text)
+    arrows: list = field(default_factory=list)
+    couples: list = field(default_factory=list)
+
+
+def _point_positions(kin, k: int) -> dict[str, tuple]:
+    spec = kin.mechanism.spec
+    pts = {name: tuple(map(float, xy)) for name, xy in spec.ground.items()}
+    for link in spec.links:
+        for name in link.points:
+            pts.setdefault(name, tuple(map(float, kin.named_point(name, link.name).r[k])))
+    return pts
+
+
+def _to_global(kin, k: int, link_number: int, local: np.ndarray) -> list:
+    th = kin.theta[k, link_number]
+    xy = rotate(np.asarray(local, float), np.full(len(local), th)) + kin.r[k, link_number]
+    return [tuple(map(float, p)) for p in xy]
+
+
+def _extent(pts: dict) -> float:
+    xy = np.array(list(pts.values()))
+    span = np.ptp(xy, axis=0) if len(xy) > 1 else np.zeros(2)
+    return float(max(span.max(), 1e-3))
+
+
+def _link_shapes(kin, k: int, extent: float) -> list[Shape2D]:
+    out = []
+    for link in kin.mechanism.spec.links:
+        local = np.array(list(link.points.values()), float)
+        s = link.shape
+        if len(local) >= 3:
+            out.append(Shape2D(link.name, link.number, "plate", _to_global(kin, k, link.number,
+                                                                             local)))
+        if s is not None and s.kind == "bar":
+            h = max(s.height, BAR_MIN * extent) / 2
+            box = np.array([[0, -h], [s.length, -h], [s.length, h], [0, h]])
+            out.append(Shape2D(link.name, link.number, "bar",
+                               _to_global(kin, k, link.number, box)))
+        elif s is not None or len(local) == 1:
+            w = max(s.length if s else 0.0, BLOCK_MIN * extent) / 2
+            h = max(s.height if s else 0.0, BLOCK_MIN * extent * 0.7) / 2
+            box = np.array([[-w, -h], [w, -h], [w, h], [-w, h]])
+            out.append(Shape2D(link.name, link.number, "block",
+                               _to_global(kin, k, link.number, box)))
+        elif len(local) == 2:
+            out.append(Shape2D(link.name, link.number, "line",
+                               _to_global(kin, k, link.number, local)))
+    return out
+
+
+def _guides(kin, k: int, pts: dict, extent: float) -> list:
+    spec = kin.mechanism.spec
+    out = []
+    for j in spec.joints:
+        if j.type != "T":
+            continue
+        g = spec.number(j.guide)
+        u = rotate(np.asarray(j.line.direction, float), kin.theta[k, g])
+        p = np.asarray(pts[j.point])
+        shape = spec.link(j.slider).shape
+        size = max(shape.length, shape.height) / 2 if shape and shape.kind == "block" else 0.0
+        size = max(size, BLOCK_MIN * extent / 2)
+        half = max(0.25 * extent, 2.5 * size)
+        normal = (float(-u[1]), float(u[0]))
+        out.append((tuple(p - half * u), tuple(p + half * u), j.guide == GROUND, normal,
+                    1.05 * size))
+    return out
+
+
+def build_scene(analysis, res: ForceResult, k: int, colors: dict[str, str],
+                symbols: dict[str, str]) -> Scene:
+    """The drawing at analysed index ``k``: links, pins, guides, labels, the reactions of
+    ``res`` (first link on second, at the joint point) and the applied loads."""
+    kin, ctx, spec = analysis.kinematics, analysis.context, analysis.spec
+    pts = _point_positions(kin, k)
+    extent = _extent(pts)
+    sc = Scene(float(kin.angles[k]), extent, _link_shapes(kin, k, extent))
+    for j in spec.joints:
+        if j.type == "R":
+            sc.pins.append((*pts[j.point], GROUND in j.links))
+    sc.guides = _guides(kin, k, pts, extent)
+    sc.labels = [(x, y, name) for name, (x, y) in pts.items()]
+    for j in spec.joints:
+        r = res.reactions.get(j.name)
+        if r is None:
+            continue
+        at = tuple(map(float, ctx.joint_points[j.name][k]))
+        sc.arrows.append(Arrow(at, (float(r.fx[k]), float(r.fy[k])), symbols[j.name],
+                               "reaction", colors[j.name]))
+    for ld in ctx.loads:
+        if ld.force is not None:
+            at = tuple(map(float, kin.named_point(ld.load.point, ld.load.link).r[k]))
+            sc.arrows.append(Arrow(at, tuple(map(float, ld.force[k])), ld.symbol, "load",
+                                   "#000000"))
+        else:
+            c = tuple(map(float, kin.com(ld.load.link).r[k]))
+            sc.couples.append(Couple(c, float(ld.moment[k]), ld.symbol, "#000000"))
+    pivot = tuple(map(float, ctx.joint_points[spec.driver.joint][k]))
+    sc.couples.append(Couple(pivot, float(res.driver_torque[k]), "M", "#b00000"))
+    return sc

@@ -1,0 +1,67 @@
+"""The batch: parallel build, index, one corrupted spec that fails alone, exit code."""
+from __future__ import annotations
+
+import json
+import shutil
+
+import pytest
+
+from mechreport.report.build import Progress, build_files
+
+
+@pytest.fixture(scope="module")
+def batch(tmp_path_factory, textbook_specs):
+    specs = tmp_path_factory.mktemp("specs")
+    good = shutil.copy(textbook_specs["4.6"], specs / "slider_crank.yaml")
+    bad = specs / "broken.yaml"
+    bad.write_text(textbook_specs["4.6"].read_text().replace("mass: 1\n", "mass: -1\n", 1))
+    out = tmp_path_factory.mktemp("out")
+    code = build_files([bad, good], out, jobs=2)
+    return code, out, bad
+
+
+def test_exit_code_says_a_spec_failed(batch):
+    code, _, _ = batch
+    assert code == 1
+
+
+def test_index_has_a_fail_row_with_the_message(batch):
+    _, out, bad = batch
+    index = (out / "index.md").read_text(encoding="utf-8")
+    row = next(line for line in index.splitlines() if str(bad) in line)
+    assert "| FAIL |" in row
+    assert "mass" in row.lower()                 # the SpecError's message is carried
+    assert "1 built, 1 failed" in index
+    good = next(line for line in index.splitlines() if line.startswith("| R-RRT slider-crank"))
+    assert "| PASS |" in good and "[pdf](slider_crank/report.pdf)" in good
+    assert "200.631 N·m at 85°" in good          # peak driver torque of the slider-crank
+    assert (out / "index.pdf").stat().st_size > 0
+
+
+def test_the_other_report_is_complete(batch):
+    _, out, _ = batch
+    folder = out / "slider_crank"
+    for name in ("report.md", "report.pdf", "results.csv", "summary.json"):
+        assert (folder / name).stat().st_size > 0
+    assert json.loads((folder / "summary.json").read_text())["status"] == "PASS"
+    assert not (out / "broken").exists()
+
+
+def test_failure_is_reported_on_stderr(tmp_path, capsys):
+    bad = tmp_path / "nope.yaml"
+    bad.write_text("mechreport: 1\nname: [unclosed\n")
+    assert build_files([bad], tmp_path / "out", jobs=1) == 1
+    err = capsys.readouterr().err
+    assert f"FAIL {bad}" in err
+
+
+def test_progress_plain_lines_off_a_terminal(capsys):
+    import sys
+    p = Progress(2, sys.stderr)
+    p.update({"spec": "specs/x.yaml", "ok": True, "seconds": 1.23})
+    p.close()
+    assert "built specs/x.yaml (1.2 s)" in capsys.readouterr().err
+
+
+def test_no_specs_is_an_error(tmp_path):
+    assert build_files([], tmp_path) == 1

@@ -1,0 +1,182 @@
+"""Reports of the two textbook specs (Marghitu, *Dynamic Force Analysis*, sections 4.6 and
+4.7), built once into a temporary folder.
+
+Textbook values are printed to 6 significant figures in report.md (the book's rounding);
+summary.json and results.csv must agree with the solver to full precision.
+"""
+from __future__ import annotations
+
+import csv
+import json
+import math
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechreport.analysis import analyse
+from mechreport.report.build import build_files
+from mechreport.report.model import build_model
+
+pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
+
+STEMS = {"4.6": "slider_crank", "4.7": "r_rtr_rtr"}
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory, textbook_specs):
+    out = tmp_path_factory.mktemp("reports")
+    code = build_files([textbook_specs["4.6"], textbook_specs["4.7"]], out, jobs=1)
+    assert code == 0
+    return out
+
+
+@pytest.fixture(scope="module")
+def analyses(textbook_specs):
+    return {k: analyse(p) for k, p in textbook_specs.items()}
+
+
+def read(out: Path, book: str, name: str) -> str:
+    return (out / STEMS[book] / name).read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize("book", ["4.6", "4.7"])
+def test_every_file_is_written(built, book):
+    folder = built / STEMS[book]
+    for name in ("report.md", "report.pdf", "results.csv", "summary.json"):
+        assert (folder / name).stat().st_size > 0, name
+    for fig in ("torque", "reactions", "polar", "shaking"):
+        assert (folder / "figures" / f"{fig}.png").read_bytes()[:4] == b"\x89PNG"
+        assert b"<svg" in (folder / "figures" / f"{fig}.svg").read_bytes()[:1000]
+    assert not list(folder.rglob("*.tmp")), "temporary files left behind"
+    assert (built / "index.md").exists() and (built / "index.pdf").exists()
+
+
+def test_slider_crank_textbook_values_in_markdown(built):
+    md = read(built, "4.6", "report.md")
+    assert "| driver | M [N·m] | 151.492 |" in md           # 3 + 105 sqrt2
+    assert "F01 = -102.828 i + 116.414 j N" in md           # -2 (50 + sqrt2), 115 + sqrt2
+    assert "F23 = -101.414 i + 97.1213 j N" in md           # -100 - sqrt2, 95 + 3 sqrt2/2
+    assert "## Crank angle 45°" in md
+    assert "![" in md and "(figures/drawing_45.png)" in md
+    assert "nan" not in md.lower()
+
+
+def test_r_rtr_rtr_textbook_values_in_markdown(built):
+    md = read(built, "4.7", "report.md")
+    assert "driver torque M = 17.5356 N·m" in md
+    assert "F01 = -11.4214 i + 138.092 j N" in md
+    assert "F03 = -256.745 i - 272.179 j N" in md           # joint C
+    for title in ("Newton-Euler", "D'Alembert", "Dyad (Assur groups)", "Contour"):
+        assert title in md
+    assert "nan" not in md.lower()
+
+
+def test_left_out_angles_are_listed(built):
+    md = read(built, "4.6", "report.md")
+    assert "| 90 | dyad" in md and "| 270 | dyad" in md
+
+
+@pytest.mark.parametrize("book", ["4.6", "4.7"])
+def test_summary_agrees_with_solver(built, analyses, book):
+    s = json.loads(read(built, book, "summary.json"))
+    a = analyses[book]
+    t = a.forces["newton_euler"].driver_torque
+    assert s["status"] == "PASS"
+    assert s["driver_torque"]["mean"] == pytest.approx(np.mean(t), rel=1e-12)
+    assert s["driver_torque"]["rms"] == pytest.approx(np.sqrt(np.mean(t**2)), rel=1e-12)
+    k = int(np.argmax(np.abs(t)))
+    assert s["driver_torque"]["peak"] == {"value": pytest.approx(t[k]),
+                                          "angle_deg": pytest.approx(a.angles[k])}
+    ref = str(int(a.spec.at[0]))
+    for m, res in a.forces.items():
+        kk = a.kinematics.at(a.spec.at[0])
+        assert s["reference_angles"][ref]["driver_torque"][m] == pytest.approx(
+            res.driver_torque[kk], rel=1e-12)
+    assert s["agreement"]["worst"]["relative"] == pytest.approx(a.worst.relative)
+    assert len(s["flags"]) == len(a.flags)
+    big = s["largest_bearing_load"]
+    r = a.forces["newton_euler"].reactions[big["joint"]]
+    assert big["value"] == pytest.approx(np.max(r.f))
+
+
+def test_summary_textbook_reference_values(built):
+    s = json.loads(read(built, "4.7", "summary.json"))
+    ref = s["reference_angles"]["30"]
+    assert ref["driver_torque"]["dyad"] == pytest.approx(17.5356, abs=1e-4)
+    assert ref["reactions"]["A"]["contour"]["fx"] == pytest.approx(-11.4214, abs=1e-4)
+    assert ref["reactions"]["A"]["contour"]["fy"] == pytest.approx(138.092, abs=1e-3)
+    s46 = json.loads(read(built, "4.6", "summary.json"))
+    assert s46["reference_angles"]["45"]["driver_torque"]["power"] == pytest.approx(
+        3 + 105 * math.sqrt(2), abs=1e-9)
+
+
+def test_csv_has_a_row_per_angle_and_empty_cells_for_left_out_angles(built, analyses):
+    rows = list(csv.DictReader(read(built, "4.6", "results.csv").splitlines()))
+    assert len(rows) == 360                                 # 358 solved + 90 and 270
+    by_angle = {float(r["crank_angle [deg]"]): r for r in rows}
+    assert by_angle[90.0]["flag"] and by_angle[90.0]["dyad.driver.torque [N m]"] == ""
+    assert float(by_angle[45.0]["dyad.driver.torque [N m]"]) == pytest.approx(
+        3 + 105 * math.sqrt(2), abs=1e-7)
+    assert float(by_angle[45.0]["newton_euler.joint.A.fx [N]"]) == pytest.approx(
+        -2 * (50 + math.sqrt(2)), abs=1e-7)
+    assert not any("nan" in v.lower() for r in rows for v in r.values() if v)
+
+
+def test_model_shaking_force_is_the_sum_of_ground_reactions(analyses):
+    """R-RTR-RTR: the frame joints are A, C, E, all [ground, X]: the frame receives -F."""
+    a = analyses["4.7"]
+    model = build_model(a)
+    res = a.forces["newton_euler"].reactions
+    expected = -(res["A"].fx + res["C"].fx + res["E"].fx)
+    assert np.allclose(model.sweep.shaking.fx, expected)
+    # static check: weights are carried by the frame, inertia averages out over a turn
+    k = a.kinematics.at(30)
+    assert model.sweep.shaking.fy[k] == pytest.approx(
+        -(res["A"].fy[k] + res["C"].fy[k] + res["E"].fy[k]))
+
+
+def test_polar_trace_is_in_the_carrier_frame(analyses):
+    a = analyses["4.6"]
+    model = build_model(a)
+    pol = {p.name: p for p in model.sweep.polar}
+    assert pol["A"].carrier == "ground" and pol["B"].carrier == "rod"
+    # |F| is frame-independent; the rod-frame components differ from the global ones
+    r = a.forces["newton_euler"].reactions["B"]
+    assert np.allclose(np.hypot(pol["B"].x, pol["B"].y), r.f)
+    assert not np.allclose(pol["B"].x, r.fx)
+
+
+def _pgm_pages(pdf: Path, tmp: Path) -> list[np.ndarray]:
+    subprocess.run(["pdftoppm", "-r", "30", "-gray", str(pdf), str(tmp / "p")], check=True)
+    pages = []
+    for f in sorted(tmp.glob("p-*.pgm")):
+        data = f.read_bytes()
+        parts = data.split(maxsplit=4)      # P5 width height maxval pixels
+        w, h = int(parts[1]), int(parts[2])
+        pages.append(np.frombuffer(parts[4][-w * h:], np.uint8).reshape(h, w))
+    return pages
+
+
+@pytest.mark.skipif(shutil.which("pdftoppm") is None, reason="pdftoppm not installed")
+@pytest.mark.parametrize("book", ["4.6", "4.7"])
+def test_pdf_pages_are_not_blank(built, book, tmp_path):
+    pages = _pgm_pages(built / STEMS[book] / "report.pdf", tmp_path)
+    assert len(pages) >= 4
+    for i, page in enumerate(pages):
+        assert (page < 128).mean() > 0.002, f"page {i + 1} is blank"
+
+
+@pytest.mark.skipif(shutil.which("pdftotext") is None, reason="pdftotext not installed")
+@pytest.mark.parametrize("book", ["4.6", "4.7"])
+def test_pdf_has_every_figure(built, analyses, book):
+    model = build_model(analyses[book])
+    text = subprocess.run(["pdftotext", str(built / STEMS[book] / "report.pdf"), "-"],
+                          check=True, capture_output=True, text=True).stdout
+    pages = text.split("\f")
+    with_fig = [i for i, p in enumerate(pages) if "Figure " in p]
+    n = sum(p.count("Figure ") for p in pages)
+    assert n == len(model.figures) == len(analyses[book].spec.at) + 4   # drawings + 4 plots
+    assert len(with_fig) >= 3
