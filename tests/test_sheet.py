@@ -3,11 +3,9 @@ sheet for every spec, exact mode, and that the sheet is generated from the equat
 from __future__ import annotations
 
 import copy
-import re
 from dataclasses import replace
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 from mechreport.analysis import analyse

@@ -28,10 +28,9 @@ def kinematic_value(kin: Kinematics, quantity: str, k: int) -> float:
         s = kin.named_point(name)
         vec = {"x": s.r, "y": s.r, "vx": s.v, "vy": s.v, "ax": s.a, "ay": s.a}[attr]
         return float(vec[k, 0 if attr.endswith("x") else 1])
-    i = kin.index(name)
     if attr == "angle":
-        deg = (np.degrees(kin.theta[k, i]) + 180.0) % 360.0 - 180.0
-        return 180.0 if deg == -180.0 else float(deg)
+        return float(kin.angle_deg(name)[k])
+    i = kin.index(name)
     return float({"omega": kin.omega, "alpha": kin.alpha}[attr][k, i])
 
 

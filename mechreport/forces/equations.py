@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..linalg import SINGULAR_COND, batched_solve  # noqa: F401  (re-exported)
+from ..linalg import batched_solve
 
 
 

@@ -75,6 +75,11 @@ class Kinematics:
     def com(self, link: str) -> PointState:
         return self.point(link, self.mechanism.spec.link(link).com)
 
+    def angle_deg(self, link: str) -> np.ndarray:
+        """Orientation of ``link``'s x-axis [deg] in (-180, 180], (n,)."""
+        deg = (np.degrees(self.theta[:, self.index(link)]) + 180.0) % 360.0 - 180.0
+        return np.where(deg == -180.0, 180.0, deg)
+
     def at(self, angle: float) -> int | None:
         """Index of a crank angle among the analysed ones, None if left out."""
         hit = np.flatnonzero(np.abs(self.angles - angle) < 1e-9)

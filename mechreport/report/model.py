@@ -221,26 +221,17 @@ def _driver_text(spec) -> str:
 
 # --------------------------------------------------------------------- reference angles
 
-def _wrap_deg(theta: float) -> float:
-    d = (math.degrees(theta) + 180.0) % 360.0 - 180.0
-    return 180.0 if d == -180.0 else d
-
-
 def _kin_tables(kin, k: int) -> tuple[list[list[str]], list[list[str]]]:
     spec = kin.mechanism.spec
-    pts, seen = [], set()
-    for ln in spec.links:
-        for name in ln.points:
-            if name in seen:
-                continue
-            seen.add(name)
-            s = kin.named_point(name, ln.name)
-            pts.append([f"{name} ({ln.name})", *(num(v) for v in (*s.r[k], *s.v[k], *s.a[k]))])
+    pts = []
+    for name, owner in spec.named_points():
+        s = kin.named_point(name, owner)
+        pts.append([f"{name} ({owner})", *(num(v) for v in (*s.r[k], *s.v[k], *s.a[k]))])
     links = []
     for ln in spec.links:
         i = ln.number
         c = kin.com(ln.name)
-        links.append([f"{i} {ln.name}", num(_wrap_deg(kin.theta[k, i])), num(kin.omega[k, i]),
+        links.append([f"{i} {ln.name}", num(kin.angle_deg(ln.name)[k]), num(kin.omega[k, i]),
                       num(kin.alpha[k, i]), num(c.a[k, 0]), num(c.a[k, 1])])
     return pts, links
 
@@ -384,19 +375,14 @@ def _csv_columns(analysis) -> tuple[list[str], list[np.ndarray]]:
         i = ln.number
         names += [f"{ln.name}.theta [deg]", f"{ln.name}.omega [rad/s]",
                   f"{ln.name}.alpha [rad/s^2]"]
-        cols += [np.degrees(kin.theta[:, i]), kin.omega[:, i], kin.alpha[:, i]]
-    seen = set()
-    for ln in spec.links:
-        for p in ln.points:
-            if p in seen:
-                continue
-            seen.add(p)
-            s = kin.named_point(p, ln.name)
-            for lab, arr, unit in (("x", s.r[:, 0], "m"), ("y", s.r[:, 1], "m"),
-                                   ("vx", s.v[:, 0], "m/s"), ("vy", s.v[:, 1], "m/s"),
-                                   ("ax", s.a[:, 0], "m/s^2"), ("ay", s.a[:, 1], "m/s^2")):
-                names.append(f"{p}.{lab} [{unit}]")
-                cols.append(arr)
+        cols += [kin.angle_deg(ln.name), kin.omega[:, i], kin.alpha[:, i]]
+    for p, owner in spec.named_points():
+        s = kin.named_point(p, owner)
+        for lab, arr, unit in (("x", s.r[:, 0], "m"), ("y", s.r[:, 1], "m"),
+                               ("vx", s.v[:, 0], "m/s"), ("vy", s.v[:, 1], "m/s"),
+                               ("ax", s.a[:, 0], "m/s^2"), ("ay", s.a[:, 1], "m/s^2")):
+            names.append(f"{p}.{lab} [{unit}]")
+            cols.append(arr)
     for m, res in analysis.forces.items():
         names.append(f"{m}.driver.torque [N m]")
         cols.append(res.driver_torque)

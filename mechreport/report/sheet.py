@@ -22,11 +22,9 @@ from ..forces import METHODS
 from ..forces.context import DRIVER_TORQUE
 from ..forces.equations import Equation as FEquation
 from ..forces.equations import Step, Term
-from ..spec import GROUND
 from .files import atomic_write_text
 from .pdf import compile_typst, typst_escape
-from .sheet_math import (Equation, Expr, Num, Op, Paren, Point, Raw, RVec, Sym, Text, fmt,
-                         math)
+from .sheet_math import (Equation, Expr, Num, Op, Paren, Point, Raw, RVec, Sym, fmt, math)
 
 TEMPLATES = Path(__file__).resolve().parents[2] / "templates"
 
@@ -716,7 +714,7 @@ def _angle_model(analysis, angle: float, names: Names, exact) -> AngleModel:
 
 def build_sheet(analysis, exact: bool = False) -> SheetModel:
     """The sheet model of an analysis (every reference angle, every method)."""
-    spec, ctx = analysis.spec, analysis.context
+    spec = analysis.spec
     names = Names(spec)
     ex = Exact() if exact else None
     link_names = [(l.number, l.name) for l in spec.links]

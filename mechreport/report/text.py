@@ -1,8 +1,6 @@
 """Plain-text tables for the terminal."""
 from __future__ import annotations
 
-import numpy as np
-
 from ..kinematics import Kinematics
 
 
@@ -25,24 +23,16 @@ def kinematics_table(kin: Kinematics) -> str:
     blocks = []
     for k, angle in enumerate(kin.angles):
         rows = []
-        seen = set()
-        for link in spec.links:
-            for name in link.points:
-                if name in seen:
-                    continue
-                seen.add(name)
-                s = kin.named_point(name, link.name)
-                rows.append([f"{name} ({link.name})", *(_f(v) for v in
-                             (*s.r[k], *s.v[k], *s.a[k]))])
+        for name, owner in spec.named_points():
+            s = kin.named_point(name, owner)
+            rows.append([f"{name} ({owner})", *(_f(v) for v in (*s.r[k], *s.v[k], *s.a[k]))])
         pts = _table(["point", "x [m]", "y [m]", "vx [m/s]", "vy [m/s]", "ax [m/s^2]",
                       "ay [m/s^2]"], rows)
         lrows = []
         for link in spec.links:
             i = link.number
-            deg = (np.degrees(kin.theta[k, i]) + 180.0) % 360.0 - 180.0
-            deg = 180.0 if deg == -180.0 else deg
             c = kin.com(link.name)
-            lrows.append([f"{link.number} {link.name}", _f(deg), _f(kin.omega[k, i]),
+            lrows.append([f"{i} {link.name}", _f(kin.angle_deg(link.name)[k]), _f(kin.omega[k, i]),
                           _f(kin.alpha[k, i]), _f(c.a[k, 0]), _f(c.a[k, 1])])
         lks = _table(["link", "angle [deg]", "omega [rad/s]", "alpha [rad/s^2]",
                       "aC x [m/s^2]", "aC y [m/s^2]"], lrows)

@@ -184,6 +184,14 @@ class Spec:
                 return link.name
         return None
 
+    def named_points(self) -> list[tuple[str, str]]:
+        """(point, link) for every point name, with the first link in spec order that has it."""
+        out: dict[str, str] = {}
+        for link in self.links:
+            for name in link.points:
+                out.setdefault(name, link.name)
+        return list(out.items())
+
     def analysed_angles(self) -> np.ndarray:
         """Sweep angles plus the reference and expectation angles, sorted, unique [deg]."""
         extra = list(self.at) + [e.angle for e in self.expect]
