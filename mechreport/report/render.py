@@ -10,10 +10,10 @@ import json
 from functools import lru_cache
 from pathlib import Path
 
+from .templating import loader
 from .files import atomic_write_text
 from .pdf import compile_typst, typst_escape, typst_string
 
-TEMPLATES = Path(__file__).resolve().parents[2] / "templates"
 
 
 def _md_cell(text) -> str:
@@ -24,7 +24,7 @@ def _md_cell(text) -> str:
 @lru_cache(maxsize=1)
 def environment():
     import jinja2
-    env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)),
+    env = jinja2.Environment(loader=loader(),
                              undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
                              trim_blocks=True, lstrip_blocks=True, autoescape=False)
     env.filters["typ"] = lambda s: typst_escape(str(s))

@@ -18,6 +18,7 @@ from pathlib import Path
 import jinja2
 import numpy as np
 
+from .templating import loader
 from ..forces import METHODS
 from ..forces.context import DRIVER_TORQUE
 from ..forces.equations import Equation as FEquation
@@ -26,7 +27,6 @@ from .files import atomic_write_text
 from .pdf import compile_typst, typst_escape
 from .sheet_math import (Equation, Expr, Num, Op, Paren, Point, Raw, RVec, Sym, fmt, math)
 
-TEMPLATES = Path(__file__).resolve().parents[2] / "templates"
 
 N_ = Raw(r"\mathrm{N}", '"N"', "N", "")
 NM_ = Raw(r"\mathrm{N\,m}", '"N·m"', "N·m", "")
@@ -756,7 +756,7 @@ def build_sheet(analysis, exact: bool = False) -> SheetModel:
 # ------------------------------------------------------------------------------ rendering
 
 def _env() -> jinja2.Environment:
-    env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)),
+    env = jinja2.Environment(loader=loader(),
                              autoescape=False, trim_blocks=True, lstrip_blocks=True,
                              keep_trailing_newline=True, undefined=jinja2.StrictUndefined)
     env.filters["tex"] = lambda x: math(x, "tex")
