@@ -58,6 +58,6 @@ def agreement(results: dict[str, ForceResult]) -> list[Agreement]:
         scale = max(float(np.max(np.abs(stack))), SCALE_FLOOR * kind_scale[_kind(q)])
         rel = float(spread[k] / scale) if scale > 0 else 0.0
         angle = float(next(iter(results.values())).angles[k])
-        out.append(Agreement(q, rel, float(spread[k]), (names[hi[k]], names[lo[k]]), angle,
-                             len(names)))
+        pair = (names[hi[k]], names[lo[k]]) if spread[k] > 0 else (names[0], names[1])
+        out.append(Agreement(q, rel, float(spread[k]), pair, angle, len(names)))
     return sorted(out, key=lambda a: -a.relative)

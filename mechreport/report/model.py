@@ -346,8 +346,12 @@ def _largest_load(sw: SweepData) -> tuple[str, q.Peak] | None:
     return best
 
 
+def _unit(quantity: str) -> str:
+    return "N·m" if quantity.endswith(".moment") or quantity == "driver.torque" else "N"
+
+
 def _agreement_rows(analysis) -> list[list[str]]:
-    return [[a.quantity, f"{a.relative:.1e}", num(a.absolute, 3),
+    return [[a.quantity, f"{a.relative:.1e}", f"{a.absolute:.1e} {_unit(a.quantity)}",
              f"{METHODS[a.methods[0]].TITLE} vs {METHODS[a.methods[1]].TITLE}", deg(a.angle),
              str(a.n_methods)] for a in analysis.agreement]
 
@@ -359,7 +363,7 @@ def _power_check(sw: SweepData) -> tuple[str, dict | None]:
     k = int(np.argmax(diff))
     scale = max(float(np.max(np.abs(sw.torque))), 1e-300)
     text = (f"Power balance (M ω = Σ of the power of every other action) against "
-            f"{sw.method_title}: largest torque difference {num(diff[k], 3)} N·m "
+            f"{sw.method_title}: largest torque difference {diff[k]:.1e} N·m "
             f"({diff[k] / scale:.1e} of the peak torque) at {deg(sw.angles[k])}°.")
     return text, {"max_abs": jnum(diff[k]), "relative": jnum(diff[k] / scale),
                   "angle_deg": float(sw.angles[k])}
