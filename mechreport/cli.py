@@ -16,7 +16,10 @@ def spec_files(args: list[str]) -> list[Path]:
     for arg in args:
         p = Path(arg)
         if p.is_dir():
-            out.extend(sorted(list(p.glob("*.yaml")) + list(p.glob("*.yml"))))
+            found = sorted(list(p.glob("*.yaml")) + list(p.glob("*.yml")))
+            if not found:
+                print(f"{p}: no spec files (*.yaml) in this folder", file=sys.stderr)
+            out.extend(found)
         else:
             out.append(p)
     return out
