@@ -18,7 +18,6 @@ from .checks import (Agreement, ExpectationResult, Residual, agreement, check_ex
                      residuals)
 from .forces import METHODS, ForceContext, ForceResult, solve_forces
 from .kinematics import Flag, Kinematics, solve_kinematics
-from .kinematics.result import Kinematics as _Kin
 from .model import Mechanism, build_mechanism
 from .spec import Spec, load_spec
 
@@ -57,12 +56,6 @@ class Analysis:
                 and self.kinematics.n > 0)
 
 
-def _subset(kin: Kinematics, keep: np.ndarray, extra: list[Flag]) -> Kinematics:
-    flags = tuple(sorted(kin.flags + tuple(extra), key=lambda f: f.angle))
-    return _Kin(kin.mechanism, kin.angles[keep], kin.r[keep], kin.theta[keep], kin.v[keep],
-                kin.omega[keep], kin.a[keep], kin.alpha[keep], flags, kin.branches)
-
-
 def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> Analysis:
     """Load (if given a path), solve every method and run the checks."""
     if not isinstance(spec, Spec):
@@ -79,7 +72,8 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> 
             which = [m for m, r in forces.items() if r.singular[k]]
             extra.append(Flag(float(kin.angles[k]),
                               f"force equations singular ({', '.join(which)})"))
-        kin = _subset(kin, ~singular, extra)
+        kin = kin.take(~singular, tuple(sorted(kin.flags + tuple(extra),
+                                                key=lambda f: f.angle)))
         forces = solve_forces(kin, methods)
     ctx = ForceContext(kin)
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces),

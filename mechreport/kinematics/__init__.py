@@ -8,8 +8,6 @@ out.
 """
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 
 from ..errors import AssemblyError
@@ -41,27 +39,40 @@ def _select(kin: Kinematics, wanted: np.ndarray) -> Kinematics:
     have = kin.angles
     pos = np.clip(np.searchsorted(have, wanted), 0, max(len(have) - 1, 0))
     hit = np.abs(have[pos] - wanted) < 1e-9 if len(have) else np.zeros(len(wanted), bool)
-    rows = pos[hit]
     flags = tuple(f for f in kin.flags if np.any(np.abs(wanted - f.angle) < 1e-9))
-    return replace(kin, angles=have[rows], r=kin.r[rows], theta=kin.theta[rows], v=kin.v[rows],
-                   omega=kin.omega[rows], a=kin.a[rows], alpha=kin.alpha[rows], flags=flags)
+    return kin.take(pos[hit], flags)
 
 
 def _solve(mech: Mechanism, phi_deg: np.ndarray) -> Kinematics:
     spec = mech.spec
-    n = len(phi_deg)
     phi = np.radians(phi_deg)
+    problems: dict[int, str] = {}   # angle index -> why it is left out
+    r, th, branches = _positions(mech, phi_deg, problems)
+    v, w, acc, al = _rates(mech, phi, r, th, problems)
+    keep = np.ones(len(phi), bool)
+    keep[list(problems)] = False
+    order = [GROUND] + [l.name for l in spec.links]
+
+    def stack(d):
+        return np.stack([d[k] for k in order], axis=1)[keep]
+
+    flags = tuple(Flag(float(phi_deg[k]), why) for k, why in sorted(problems.items()))
+    return Kinematics(mech, phi_deg[keep], stack(r), stack(th), stack(v), stack(w), stack(acc),
+                      stack(al), flags, tuple(branches))
+
+
+def _positions(mech: Mechanism, phi_deg: np.ndarray, problems: dict[int, str]):
+    """Link-frame origins r (n, 2) and angles theta (n,) by link name, dyad by dyad, with the
+    branch of each chosen at the first reference angle and followed through the sweep."""
+    spec = mech.spec
+    n, phi = len(phi_deg), np.radians(phi_deg)
     ref_angle = spec.at[0]
     ref = int(np.argmin(np.abs(phi_deg - ref_angle)))
-
     crank = spec.link(spec.driver.link)
     pivot = np.asarray(spec.ground[spec.driver.joint])
-    p_loc = crank.points[spec.driver.joint]
-    zeros2 = np.zeros((n, 2))
-    r = {GROUND: zeros2, crank.name: pivot - rotate(p_loc, phi)}
+    r = {GROUND: np.zeros((n, 2)), crank.name: pivot - rotate(crank.points[spec.driver.joint],
+                                                                phi)}
     th = {GROUND: np.zeros(n), crank.name: phi}
-    problems: dict[int, str] = {}
-
     branches: list[BranchChoice] = []
     for dyad in mech.dyads:
         cands = dyad_candidates(spec, dyad, {k: (r[k], th[k]) for k in r})
@@ -73,13 +84,20 @@ def _solve(mech: Mechanism, phi_deg: np.ndarray) -> Kinematics:
         branches.append(choice)
         for link, (rr, tt) in chosen.items():
             r[link], th[link] = rr, tt
-        bad = ~np.isfinite(chosen[dyad.links[0]][0][:, 0])
-        for k in np.flatnonzero(bad):
+        for k in np.flatnonzero(~np.isfinite(chosen[dyad.links[0]][0][:, 0])):
             problems.setdefault(int(k), f"dyad {dyad.label} cannot close")
+    return r, th, branches
 
-    # velocities and accelerations, dyad by dyad
-    crank_s = rotate(p_loc, phi)
+
+def _rates(mech: Mechanism, phi: np.ndarray, r: dict, th: dict, problems: dict[int, str]):
+    """Velocities and accelerations (origins and angular) by link name, dyad by dyad: each
+    dyad's 6x6 system J qdot = -J_known qdot_known, then J qddot = gamma - J_known qddot_known."""
+    spec = mech.spec
+    n = len(phi)
+    crank = spec.link(spec.driver.link)
+    crank_s = rotate(crank.points[spec.driver.joint], phi)
     w_d, a_d = spec.driver.omega, spec.driver.alpha
+    zeros2 = np.zeros((n, 2))
     v = {GROUND: zeros2, crank.name: -w_d * perp(crank_s)}
     w = {GROUND: np.zeros(n), crank.name: np.full(n, w_d)}
     acc = {GROUND: zeros2, crank.name: -a_d * perp(crank_s) + w_d**2 * crank_s}
@@ -90,49 +108,33 @@ def _solve(mech: Mechanism, phi_deg: np.ndarray) -> Kinematics:
     for dyad in mech.dyads:
         i, j = dyad.links
         A = np.zeros((n, 6, 6))
-        b_v = np.zeros((n, 6))
-        rows = []
+        b_v, b_a = np.zeros((n, 6)), np.zeros((n, 6))
+        known_blocks = []
         for row, joint in enumerate((*dyad.outer, dyad.inner)):
+            rows = slice(2 * row, 2 * row + 2)
             blocks, _ = joint_blocks(spec, joint, safe_r, safe_th)
-            rows.append((row, joint, blocks))
             for link, blk in blocks.items():
                 if link in (i, j):
                     col = 0 if link == i else 3
-                    A[:, 2 * row:2 * row + 2, col:col + 3] = blk
+                    A[:, rows, col:col + 3] = blk
                 else:
+                    known_blocks.append((rows, link, blk))
                     qd = np.concatenate([v[link], w[link][:, None]], axis=1)
-                    b_v[:, 2 * row:2 * row + 2] -= np.einsum("nij,nj->ni", blk, qd)
+                    b_v[:, rows] -= np.einsum("nij,nj->ni", blk, qd)
         x, sing = batched_solve(A, b_v)
         for k in np.flatnonzero(sing & finite):
             problems.setdefault(int(k), f"dyad {dyad.label}: velocity equations singular")
         x = np.where(sing[:, None], 0.0, x)
-        v[i], w[i] = x[:, 0:2], x[:, 2]
-        v[j], w[j] = x[:, 3:5], x[:, 5]
-        b_a = np.zeros((n, 6))
-        for row, joint, blocks in rows:
-            _, gamma = joint_blocks(spec, joint, safe_r, safe_th, v, w)
-            b_a[:, 2 * row:2 * row + 2] += gamma
-            for link, blk in blocks.items():
-                if link not in (i, j):
-                    qdd = np.concatenate([acc[link], al[link][:, None]], axis=1)
-                    b_a[:, 2 * row:2 * row + 2] -= np.einsum("nij,nj->ni", blk, qdd)
+        v[i], w[i], v[j], w[j] = x[:, 0:2], x[:, 2], x[:, 3:5], x[:, 5]
+        for row, joint in enumerate((*dyad.outer, dyad.inner)):
+            b_a[:, 2 * row:2 * row + 2] += joint_blocks(spec, joint, safe_r, safe_th, v, w)[1]
+        for rows, link, blk in known_blocks:
+            qdd = np.concatenate([acc[link], al[link][:, None]], axis=1)
+            b_a[:, rows] -= np.einsum("nij,nj->ni", blk, qdd)
         x, _ = batched_solve(A, b_a)
         x = np.where(sing[:, None], 0.0, x)
-        acc[i], al[i] = x[:, 0:2], x[:, 2]
-        acc[j], al[j] = x[:, 3:5], x[:, 5]
-
-    keep = np.ones(n, bool)
-    keep[list(problems)] = False
-    order = [GROUND] + [l.name for l in spec.links]
-
-    def stack(d, vec):
-        arr = np.stack([d[k] for k in order], axis=1)
-        return arr[keep]
-
-    flags = tuple(Flag(float(phi_deg[k]), why) for k, why in sorted(problems.items()))
-    theta = stack(th, False)
-    return Kinematics(mech, phi_deg[keep], stack(r, True), theta, stack(v, True), stack(w, False),
-                      stack(acc, True), stack(al, False), flags, tuple(branches))
+        acc[i], al[i], acc[j], al[j] = x[:, 0:2], x[:, 2], x[:, 3:5], x[:, 5]
+    return v, w, acc, al
 
 
 __all__ = ["solve_kinematics", "Kinematics", "PointState", "Flag", "BranchChoice",

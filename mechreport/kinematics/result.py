@@ -1,7 +1,7 @@
 """The kinematics result: link-frame states over the analysed crank angles."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -74,6 +74,12 @@ class Kinematics:
 
     def com(self, link: str) -> PointState:
         return self.point(link, self.mechanism.spec.link(link).com)
+
+    def take(self, rows: np.ndarray, flags: tuple[Flag, ...]) -> "Kinematics":
+        """The same kinematics at angle indices ``rows`` (index array or bool mask)."""
+        return replace(self, angles=self.angles[rows], r=self.r[rows], theta=self.theta[rows],
+                       v=self.v[rows], omega=self.omega[rows], a=self.a[rows],
+                       alpha=self.alpha[rows], flags=flags)
 
     def angle_deg(self, link: str) -> np.ndarray:
         """Orientation of ``link``'s x-axis [deg] in (-180, 180], (n,)."""
