@@ -237,8 +237,8 @@ def _flips(xp: np.ndarray, xm: np.ndarray, angles: np.ndarray) -> np.ndarray:
     gap = np.minimum(norm(xp[1:-1] - xm[1:-1]), norm(xp[2:] - xm[2:]))
     close = gap <= 2 * step
     # The history (k-1, k) that predicts k+1 must follow the tracked branch: when the interval
-    # k-1 -> k flipped, the label's point at k-1 is the other label's. Votes for both cases,
-    # then a sequential scan picks the one that applies.
+    # k-1 -> k flipped, the label's point at k-1 is the other label's. Vote for both cases;
+    # _chain then resolves which case applies at each interval.
     decide = []
     for swapped in (False, True):
         votes = np.zeros(n - 2)
