@@ -104,3 +104,18 @@ def test_condition_check_ignores_units():
     A = np.array([[[1e6, 0.0], [0.0, 1e-6]]])
     x, singular = batched_solve(A, np.array([[1e6, 1e-6]]))
     assert not singular[0] and np.allclose(x, 1)
+
+
+def test_load_at_a_point_named_like_a_centre_of_mass(tmp_path):
+    """A user point called C2 on link 2 is not link 2's centre of mass (textbook names C1,
+    C2 ... are ours): a load there must work through that point's own velocity."""
+    text = (ROOT / "specs" / "slider_crank.yaml").read_text()
+    text = text.replace("points: {B: [0, 0], C: [1, 0]}", "points: {B: [0, 0], C: [1, 0], "
+                                                          "C2: [0.8, 0.1]}")
+    text = text.replace("loads:\n", "loads:\n  - {type: force, link: rod, point: C2, "
+                                    "value: [30, -70]}\n")
+    spec = tmp_path / "c2.yaml"
+    spec.write_text(text.split("expect:")[0])
+    a = analyse(spec)
+    np.testing.assert_allclose(a.forces["power"].driver_torque,
+                               a.forces["newton_euler"].driver_torque, rtol=0, atol=1e-9)

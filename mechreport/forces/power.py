@@ -29,8 +29,8 @@ def power_equation(ctx: ForceContext) -> Equation:
         s = ctx.links[link.name]
         for act in ctx.inertia_actions(link.name) + [ctx.gravity_action(link.name)] + \
                 ctx.load_actions(link.name):
-            if act.kind == "force":
-                v = s.v if act.at_name == f"C{s.number}" else \
+            if act.kind == "force":  # inertia and weight act at the centre of mass
+                v = s.v if act.category != "load" else \
                     ctx.kin.named_point(act.at_name, link.name).v
                 terms.append(Term(act, np.zeros((n, 0)), np.einsum("ni,ni->n", act.value, v),
                                   rate=v))
