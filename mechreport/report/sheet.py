@@ -148,11 +148,11 @@ def scalar_sym(symbol: str) -> Sym:
     return Sym(base, sub, py_name=symbol.replace(",", "_"))
 
 
-def lhs_sym(symbol: str, axis: str | None) -> Raw:
-    """Newton-Euler left-hand sides: ``m3 aC3`` (with axis) and ``IC3 alpha3``."""
-    first, second = symbol.split(" ")
-    n = first[1:] if first.startswith("m") else first[2:]
-    if first.startswith("m"):
+def lhs_sym(action, ctx, axis: str | None) -> Raw:
+    """Newton-Euler left-hand sides, from the action's link and kind: m3 aC3 (a force, with
+    its axis) or IC3 alpha3 (a couple)."""
+    n = ctx.num(action.link)
+    if action.kind == "force":
         ax = axis or ""
         return Raw(f"m_{{{n}}}\\,a_{{C_{{{n}}}{ax}}}", f"m_{n} a_(C_{n} {ax})",
                    f"m{n} aC{n}{ax}", f"m{n}_aC{n}{ax}")
@@ -289,7 +289,7 @@ def _symbolic(eq: FEquation, ctx, names: Names) -> Equation:
         if lhs:
             left = Expr()
             for t in lhs:
-                left.add(1, lhs_sym(t.action.symbol, None))
+                left.add(1, lhs_sym(t.action, ctx, None))
             return Equation([left, e])
         return Equation([Expr().add(1, sum_label("moment", nums, about=eq.about)), e, Expr()])
     # force projections and constraints
@@ -301,7 +301,7 @@ def _symbolic(eq: FEquation, ctx, names: Names) -> Equation:
         if lhs:
             left = Expr()
             for t in lhs:
-                left.add(1, lhs_sym(t.action.symbol, axis))
+                left.add(1, lhs_sym(t.action, ctx, axis))
             return Equation([left, e])
         if eq.kind == "constraint":
             return Equation([e, Expr()])
