@@ -9,6 +9,7 @@
 """
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -119,3 +120,25 @@ def test_load_at_a_point_named_like_a_centre_of_mass(tmp_path):
     a = analyse(spec)
     np.testing.assert_allclose(a.forces["power"].driver_torque,
                                a.forces["newton_euler"].driver_torque, rtol=0, atol=1e-9)
+
+
+def test_angle_singular_for_one_method_is_flagged_and_left_out(monkeypatch):
+    """A method whose system is singular at an angle (kinematics fine there): the angle is
+    flagged with the method named, and left out of every result, which stay free of NaN."""
+    from mechreport.forces import power
+    real = power.solve
+
+    def singular_at_60(ctx):
+        res = real(ctx)
+        bad = ctx.kin.angles == 60.0
+        torque = np.where(bad, np.nan, res.driver_torque)
+        return dataclasses.replace(res, driver_torque=torque, singular=res.singular | bad)
+
+    monkeypatch.setattr(power, "solve", singular_at_60)
+    a = analyse(ROOT / "specs" / "four_bar.yaml")
+    assert [(f.angle, f.reason) for f in a.flags] == [(60.0, "force equations singular "
+                                                             "(power)")]
+    assert a.kinematics.at(60) is None and len(a.angles) == 359
+    for res in a.forces.values():
+        assert len(res.angles) == 359
+        assert all(np.all(np.isfinite(v)) for v in res.values().values())
