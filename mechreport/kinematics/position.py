@@ -12,7 +12,7 @@ Two-branch types give candidates ``sign = +1`` and ``-1``. The branch at the fir
 angle is the one nearest the ``assembly`` hints (or the documented default, ``+1``); it is then
 followed through the sweep: between neighbouring angles the branch label flips where the two
 candidates meet (a touch, e.g. a slider-crank with AB = BC at 90 deg) and the other label
-continues the motion smoothly, judged by extrapolating the last two angles.
+continues the motion smoothly, judged by extrapolating the last three angles.
 """
 from __future__ import annotations
 
@@ -222,49 +222,62 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], angles: np.ndarra
 
 
 def _flips(xp: np.ndarray, xm: np.ndarray, angles: np.ndarray) -> np.ndarray:
-    """For each interval k -> k+1 (n-1,): True where the branch labels swap roles."""
+    """For each interval k -> k+1 (n-1,): True where the branch labels swap roles.
+
+    The tracked branch's last three positions (k-2, k-1, k) predict k+1 by quadratic
+    extrapolation (two points where only two are known); a flip is where, for both labels, the
+    other candidate is nearer the prediction and the candidates are close (a touch). The
+    history must follow the tracked branch, so its labels at k-1 and k-2 depend on the flips
+    before k: every case is decided, and ``_resolve`` picks the applicable ones."""
     n = len(angles)
     flips = np.zeros(max(n - 1, 0), bool)
+    if n < 3:
+        return flips
 
     def norm(x: np.ndarray) -> np.ndarray:  # over the flattened point coordinates
         return np.sqrt(np.sum(x * x, axis=1))
 
-    if n < 3:
-        return flips
-    h = np.diff(angles)
-    scale = (h[1:] / h[:-1])[:, None]
+    X = (xp, xm)
+    t0, t1, t2, t3 = angles[:-3], angles[1:-2], angles[2:-1], angles[3:]
     step = norm(xp[2:] - xp[1:-1]) + norm(xm[2:] - xm[1:-1])
     gap = np.minimum(norm(xp[1:-1] - xm[1:-1]), norm(xp[2:] - xm[2:]))
     close = gap <= 2 * step
-    # The history (k-1, k) that predicts k+1 must follow the tracked branch: when the interval
-    # k-1 -> k flipped, the label's point at k-1 is the other label's. Vote for both cases;
-    # _chain then resolves which case applies at each interval.
-    decide = []
-    for swapped in (False, True):
-        votes = np.zeros(n - 2)
-        for same, other in ((xp, xm), (xm, xp)):
-            before = (other if swapped else same)[:-2]
-            pred = same[1:-1] + (same[1:-1] - before) * scale   # predicted k+1 from k-1, k
-            e_same = norm(same[2:] - pred)
-            e_other = norm(other[2:] - pred)
-            votes += np.where(e_other < e_same, 1, 0)
-        decide.append((votes == 2) & close)
-    flips[1:] = _chain(decide[0], decide[1])
+    scale = ((angles[2:] - angles[1:-1]) / (angles[1:-1] - angles[:-2]))[:, None]
+    # Lagrange weights extrapolating (t0, t1, t2) to t3, for intervals k >= 2
+    w0 = ((t3 - t1) * (t3 - t2) / ((t0 - t1) * (t0 - t2)))[:, None]
+    w1 = ((t3 - t0) * (t3 - t2) / ((t1 - t0) * (t1 - t2)))[:, None]
+    w2 = ((t3 - t0) * (t3 - t1) / ((t2 - t0) * (t2 - t1)))[:, None]
+    decide = np.zeros((2, 2, n - 2), bool)   # [flip before k, flip before k-1, interval k-1]
+    for a in (0, 1):
+        for b in (0, 1):
+            votes = np.zeros(n - 2)
+            for lab in (0, 1):
+                same, other = X[lab], X[1 - lab]
+                x_k, x_k1 = same[1:-1], X[lab ^ a][:-2]
+                pred = x_k + (x_k - x_k1) * scale                  # two-point prediction
+                x_k2 = X[lab ^ a ^ b][:-3]
+                quad = w0 * x_k2 + w1 * x_k1[1:] + w2 * x_k[1:]
+                pred[1:] = np.where(np.isfinite(quad), quad, pred[1:])
+                votes += norm(other[2:] - pred) < norm(same[2:] - pred)
+            decide[a, b] = (votes == 2) & close
+    flips[1:] = _resolve(decide)
     return flips
 
 
-def _chain(if_kept: np.ndarray, if_flipped: np.ndarray) -> np.ndarray:
-    """Resolve f[k] = (if_flipped if f[k-1] else if_kept)[k], with f[-1] = False, vectorised.
+def _resolve(decide: np.ndarray) -> np.ndarray:
+    """f[k] = decide[f[k-1], f[k-2], k] with f[-1] = f[-2] = False, vectorised.
 
-    Each step maps the previous decision by a constant (both choices agree), the identity or a
-    negation; so f[k] is the value at the last constant step, XOR the parity of negations
-    since then."""
-    n = len(if_kept)
-    const = if_kept == if_flipped
-    negate = if_kept & ~if_flipped
-    idx = np.arange(n)
-    last = np.maximum.accumulate(np.where(const, idx, -1))
-    neg_count = np.cumsum(negate)
-    before = np.where(last >= 0, neg_count[np.maximum(last, 0)], 0)
-    start = np.where(last >= 0, if_kept[np.maximum(last, 0)], False)
-    return start ^ ((neg_count - before) % 2 == 1)
+    Each step maps the state s = 2 f[k-1] + f[k-2] to 2 f[k] + f[k-1]; the states follow from
+    the prefix compositions of these maps, computed by doubling (log2(n) gathers)."""
+    m = decide.shape[2]
+    if m == 0:
+        return np.zeros(0, bool)
+    maps = np.empty((m, 4), np.intp)
+    for state in range(4):
+        f1, f2 = state >> 1, state & 1
+        maps[:, state] = 2 * decide[f1, f2].astype(np.intp) + f1
+    d = 1
+    while d < m:
+        maps[d:] = np.take_along_axis(maps[d:], maps[:-d], axis=1)
+        d *= 2
+    return (maps[:, 0] >> 1).astype(bool)
