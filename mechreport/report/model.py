@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .text import kinematics_rows
 from ..forces import METHODS
 from ..spec import GROUND
 from . import quantities as q
@@ -222,18 +223,7 @@ def _driver_text(spec) -> str:
 # --------------------------------------------------------------------- reference angles
 
 def _kin_tables(kin, k: int) -> tuple[list[list[str]], list[list[str]]]:
-    spec = kin.mechanism.spec
-    pts = []
-    for name, owner in spec.named_points():
-        s = kin.named_point(name, owner)
-        pts.append([f"{name} ({owner})", *(num(v) for v in (*s.r[k], *s.v[k], *s.a[k]))])
-    links = []
-    for ln in spec.links:
-        i = ln.number
-        c = kin.com(ln.name)
-        links.append([f"{i} {ln.name}", num(kin.angle_deg(ln.name)[k]), num(kin.omega[k, i]),
-                      num(kin.alpha[k, i]), num(c.a[k, 0]), num(c.a[k, 1])])
-    return pts, links
+    return kinematics_rows(kin, k, num)
 
 
 def _reaction_rows(spec, forces, symbols, k: int) -> list[list[str]]:

@@ -17,23 +17,31 @@ def _f(x: float) -> str:
     return f"{x:.6g}" if abs(x) >= 1e-12 else "0"
 
 
+def kinematics_rows(kin: Kinematics, k: int, fmt=_f) -> tuple[list[list[str]], list[list[str]]]:
+    """Rows at angle index ``k``: points (name (link), x, y, vx, vy, ax, ay) and links
+    (number name, angle [deg], omega, alpha, a_C x, a_C y), numbers formatted by ``fmt``."""
+    spec = kin.mechanism.spec
+    points = []
+    for name, owner in spec.named_points():
+        s = kin.named_point(name, owner)
+        points.append([f"{name} ({owner})", *(fmt(v) for v in (*s.r[k], *s.v[k], *s.a[k]))])
+    links = []
+    for link in spec.links:
+        i = link.number
+        c = kin.com(link.name)
+        links.append([f"{i} {link.name}", fmt(kin.angle_deg(link.name)[k]), fmt(kin.omega[k, i]),
+                      fmt(kin.alpha[k, i]), fmt(c.a[k, 0]), fmt(c.a[k, 1])])
+    return points, links
+
+
 def kinematics_table(kin: Kinematics) -> str:
     """Points (x, y, vx, vy, ax, ay) and links (angle, omega, alpha) at each angle of ``kin``."""
     spec = kin.mechanism.spec
     blocks = []
     for k, angle in enumerate(kin.angles):
-        rows = []
-        for name, owner in spec.named_points():
-            s = kin.named_point(name, owner)
-            rows.append([f"{name} ({owner})", *(_f(v) for v in (*s.r[k], *s.v[k], *s.a[k]))])
+        rows, lrows = kinematics_rows(kin, k)
         pts = _table(["point", "x [m]", "y [m]", "vx [m/s]", "vy [m/s]", "ax [m/s^2]",
                       "ay [m/s^2]"], rows)
-        lrows = []
-        for link in spec.links:
-            i = link.number
-            c = kin.com(link.name)
-            lrows.append([f"{i} {link.name}", _f(kin.angle_deg(link.name)[k]), _f(kin.omega[k, i]),
-                          _f(kin.alpha[k, i]), _f(c.a[k, 0]), _f(c.a[k, 1])])
         lks = _table(["link", "angle [deg]", "omega [rad/s]", "alpha [rad/s^2]",
                       "aC x [m/s^2]", "aC y [m/s^2]"], lrows)
         blocks.append(f"{spec.name}: crank angle {angle:g} deg\n\n{pts}\n\n{lks}")
