@@ -88,11 +88,10 @@ class ForceContext:
         sign = 1.0 if on == b else -1.0
         src, dst = (a, b) if on == b else (b, a)
         unknowns = reaction_unknowns(joint)
-        sym = f"F{self.num(src)}{self.num(dst)}"
-        acts = [Action(sym, "force", "reaction", on, self.joint_points[joint.name], joint.point,
+        acts = [Action(self.spec.symbol(src, dst), "force", "reaction", on, self.joint_points[joint.name], joint.point,
                        unknowns[:2], sign)]
         if joint.type == "T":
-            acts.append(Action(f"M{self.num(src)}{self.num(dst)}", "couple", "reaction", on,
+            acts.append(Action(self.spec.symbol(src, dst, "M"), "couple", "reaction", on,
                                unknowns=unknowns[2:], sign=sign))
         return acts
 

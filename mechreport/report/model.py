@@ -163,7 +163,7 @@ class ReportModel:
 
 def _symbols(spec) -> dict[str, str]:
     """Textbook reaction symbol of each joint: F<first><second> by link number."""
-    return {j.name: f"F{spec.number(j.links[0])}{spec.number(j.links[1])}" for j in spec.joints}
+    return {j.name: spec.symbol(*j.links) for j in spec.joints}
 
 
 def _link_rows(spec) -> list[list[str]]:

@@ -206,12 +206,12 @@ class Names:
         self.sym: dict[str, Sym] = {DRIVER_TORQUE: Sym("M", py_name="M")}
         self.vec: dict[str, str] = {}
         for j in spec.joints:
-            a, b = (spec.number(l) for l in j.links)
-            self.vec[j.name] = f"F{a}{b}"
-            self.sym[f"joint.{j.name}.fx"] = comp_sym(f"F{a}{b}", "x")
-            self.sym[f"joint.{j.name}.fy"] = comp_sym(f"F{a}{b}", "y")
+            force = spec.symbol(*j.links)
+            self.vec[j.name] = force
+            self.sym[f"joint.{j.name}.fx"] = comp_sym(force, "x")
+            self.sym[f"joint.{j.name}.fy"] = comp_sym(force, "y")
             if j.type == "T":
-                self.sym[f"joint.{j.name}.moment"] = scalar_sym(f"M{a}{b}")
+                self.sym[f"joint.{j.name}.moment"] = scalar_sym(spec.symbol(*j.links, "M"))
 
     def __getitem__(self, unknown: str) -> Sym:
         return self.sym[unknown]

@@ -171,6 +171,10 @@ class Spec:
         """Link number: 0 for ground, 1.. in spec order."""
         return 0 if name == GROUND else self.link(name).number
 
+    def symbol(self, src: str, dst: str, prefix: str = "F") -> str:
+        """Textbook name of what link ``src`` exerts on ``dst``: F12, or M03 for a couple."""
+        return f"{prefix}{self.number(src)}{self.number(dst)}"
+
     def joint(self, name: str) -> Joint:
         for joint in self.joints:
             if joint.name == name:
