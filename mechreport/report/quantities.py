@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..forces import ForceResult
-from ..kinematics.frames import cross
+from ..kinematics.frames import cross, rotate
 from ..spec import GROUND, Joint
 
 
@@ -72,9 +72,7 @@ def bearing_trace(analysis, res: ForceResult, joint: Joint) -> np.ndarray:
     carrier = bearing_carrier(joint)
     if carrier == GROUND:
         return f
-    th = analysis.kinematics.theta[:, analysis.spec.number(carrier)]
-    c, s = np.cos(th), np.sin(th)
-    return np.stack([c * f[:, 0] + s * f[:, 1], -s * f[:, 0] + c * f[:, 1]], axis=1)
+    return rotate(f, -analysis.kinematics.theta[:, analysis.spec.number(carrier)])
 
 
 @dataclass(frozen=True)
