@@ -71,7 +71,6 @@ class Equation:
     terms: list[Term] = field(default_factory=list)
     axis: str | None = None
     about: str | None = None
-    note: str = ""
 
     def unknown_names(self) -> list[str]:
         names: list[str] = []

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..spec import GROUND, Joint, Spec
 from ..model import Dyad
-from .frames import cross, dot, norm, perp, rotate  # noqa: F401
+from .frames import cross, dot, norm, perp, rotate
 
 Poses = dict  # link name -> (r (n, 2) origin [m], theta (n,) [rad])
 

@@ -16,11 +16,6 @@ class Mechanism:
     dyads: tuple[Dyad, ...]
     loops: tuple[Loop, ...]
 
-    @property
-    def n_links(self) -> int:
-        """Number of moving links (ground excluded)."""
-        return len(self.spec.links)
-
     def joints_of(self, link: str) -> list[Joint]:
         return [j for j in self.spec.joints if link in j.links]
 
