@@ -14,10 +14,12 @@ from pathlib import Path
 
 import numpy as np
 
+from .errors import AnalysisError
 from .checks import (Agreement, ExpectationResult, Residual, agreement, check_expectations,
                      residuals)
 from .forces import METHODS, ForceContext, ForceResult, solve_forces
-from .kinematics import Flag, Kinematics, solve_kinematics
+from .kinematics import EPS, TRUST_RTOL, Flag, Kinematics, solve_kinematics
+from .linalg import SINGULAR_COND
 from .model import Mechanism, build_mechanism
 from .spec import Spec, load_spec
 
@@ -57,27 +59,122 @@ class Analysis:
 
 
 def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> Analysis:
-    """Load (if given a path), solve every method and run the checks."""
+    """Load (if given a path), solve every method and run the checks.
+
+    Angles where any method's result could not be trusted to ``TRUST_RTOL`` are flagged and
+    left out of every result. Raises ``AnalysisError`` when no angle is left, or when a value
+    in any result is not finite (never reported as a number)."""
     if not isinstance(spec, Spec):
         spec = load_spec(spec)
     mech = build_mechanism(spec)
-    kin = solve_kinematics(mech)
+    kin = _require_angles(solve_kinematics(mech))
+    _require_finite_inputs(ForceContext(kin))
     forces = solve_forces(kin, methods)
-    singular = np.zeros(kin.n, bool)
-    for res in forces.values():
-        singular |= res.singular
-    if singular.any():
-        extra = []
-        for k in np.flatnonzero(singular):
-            which = [m for m, r in forces.items() if r.singular[k]]
-            extra.append(Flag(float(kin.angles[k]),
-                              f"force equations singular ({', '.join(which)})"))
-        kin = kin.take(~singular, tuple(sorted(kin.flags + tuple(extra),
-                                                key=lambda f: f.angle)))
+    extra = _force_flags(kin, forces)
+    if extra:
+        bad = np.isin(np.round(kin.angles, 9), np.round([f.angle for f in extra], 9))
+        kin = _require_angles(kin.take(~bad, tuple(sorted(kin.flags + tuple(extra),
+                                                            key=lambda f: f.angle))))
         forces = solve_forces(kin, methods)
+    _require_finite(kin, forces)
     ctx = ForceContext(kin)
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces),
                     residuals(ctx, forces), check_expectations(kin, forces, kin.flags), tol)
+
+
+def _force_flags(kin: Kinematics, forces: dict[str, ForceResult]) -> list[Flag]:
+    """Angles where a method's equations are singular, or where its rounding error bound
+    (eps x condition number) added to the kinematics' own error exceeds ``TRUST_RTOL``.
+
+    The kinematic error already covers the physical singularities (Newton-Euler's matrix is
+    the transpose of the constraint Jacobian); the force systems add their own rounding."""
+    inputs = kin.error if kin.error is not None else np.zeros(kin.n)
+    worst = np.ones(kin.n)
+    singular = np.zeros(kin.n, bool)
+    which: list[list[str]] = [[] for _ in range(kin.n)]
+    for name, res in forces.items():
+        cond = res.cond if res.cond is not None else np.ones(kin.n)
+        if np.isnan(cond).any():
+            k = int(np.flatnonzero(np.isnan(cond))[0])
+            raise AnalysisError(
+                f"{kin.mechanism.spec.file}: the {name} equations are not finite numbers at "
+                f"{kin.angles[k]:g} deg: the inputs are beyond what double precision can "
+                "represent (check masses, lengths, speeds, gravity and loads)")
+        with np.errstate(over="ignore", invalid="ignore"):
+            doubtful = res.singular | ~(inputs + EPS * cond <= TRUST_RTOL)
+        for k in np.flatnonzero(doubtful):
+            which[k].append(name)
+        singular |= res.singular
+        worst = np.maximum(worst, np.nan_to_num(cond, nan=np.inf))
+    flags = []
+    for k, names in enumerate(which):
+        if not names:
+            continue
+        if singular[k] or not worst[k] < SINGULAR_COND:
+            flags.append(Flag(float(kin.angles[k]),
+                              f"force equations singular ({', '.join(names)})", "singular"))
+        else:
+            flags.append(Flag(float(kin.angles[k]),
+                              f"near-singular: force equations of {', '.join(names)} "
+                              f"(condition {worst[k]:.1e}); results would not be trustworthy "
+                              f"to {TRUST_RTOL:g}", "near-singular"))
+    return flags
+
+
+def _require_angles(kin: Kinematics) -> Kinematics:
+    """``kin`` if it has at least one angle; else an error saying why every angle was lost."""
+    if kin.n:
+        return kin
+    spec = kin.mechanism.spec
+    kinds: dict[str, list[float]] = {}
+    for f in kin.flags:
+        kinds.setdefault(f.reason, []).append(f.angle)
+    why = "; ".join(f"{reason} ({_angles(a)})" for reason, a in list(kinds.items())[:3])
+    more = f"; and {len(kinds) - 3} more reason(s)" if len(kinds) > 3 else ""
+    raise AnalysisError(f"{spec.file}: no angle of the sweep can be analysed: {why}{more}")
+
+
+def _angles(angles: list[float]) -> str:
+    shown = ", ".join(f"{a:g}" for a in angles[:4])
+    return f"{shown} deg" + (f" and {len(angles) - 4} more" if len(angles) > 4 else "")
+
+
+def _require_finite_inputs(ctx: ForceContext) -> None:
+    """Raise ``AnalysisError`` where an inertia force or couple, a weight or a load overflows
+    double precision (the loader bounds each input; products of several can still overflow)."""
+    file = ctx.spec.file
+    with np.errstate(over="ignore", invalid="ignore"):
+        arrays = [(f"{what} of link {name}", value) for name, s in ctx.links.items()
+                  for what, value in (("m a_C", s.mass * s.a), ("I_C alpha", s.inertia * s.alpha),
+                                      ("weight m g", s.mass * ctx.gravity * np.ones((ctx.n, 1))))]
+        arrays += [(f"load {ld.symbol}", ld.force if ld.force is not None else ld.moment)
+                   for ld in ctx.loads]
+    for what, values in arrays:
+        ok = np.isfinite(values).reshape(ctx.n, -1).all(axis=1)
+        if not ok.all():
+            k = int(np.flatnonzero(~ok)[0])
+            raise AnalysisError(
+                f"{file}: {what} is not a finite number at {ctx.kin.angles[k]:g} deg: the "
+                "inputs are beyond what double precision can represent (check masses, "
+                "lengths, speeds, gravity and loads)")
+
+
+def _require_finite(kin: Kinematics, forces: dict[str, ForceResult]) -> None:
+    """Raise ``AnalysisError`` naming the first non-finite value of any result (quantity,
+    method, angle): a NaN must never reach a check or a report as a number."""
+    spec = kin.mechanism.spec
+    arrays = [(f"kinematics {what} of link {link.name}", getattr(kin, what)[:, link.number])
+              for link in spec.links for what in ("r", "theta", "v", "omega", "a", "alpha")]
+    arrays += [(f"{q} ({name})", v) for name, res in forces.items()
+               for q, v in res.values().items()]
+    for what, values in arrays:
+        ok = np.isfinite(values)
+        if not ok.all():
+            k = int(np.flatnonzero(~ok.reshape(len(kin.angles), -1).all(axis=1))[0])
+            raise AnalysisError(
+                f"{spec.file}: {what} is not a finite number at {kin.angles[k]:g} deg: the "
+                "inputs are beyond what double precision can represent (check masses, "
+                "lengths, speeds, gravity and loads)")
 
 
 __all__ = ["Analysis", "analyse", "METHODS", "DEFAULT_TOL"]

@@ -40,3 +40,7 @@ class AssemblyError(MechreportError):
 
 class UnsupportedMechanism(MechreportError):
     """A mechanism that the analysis does not handle (e.g. no split into dyads)."""
+
+
+class AnalysisError(MechreportError):
+    """The analysis cannot give a trustworthy result (no solvable angle, a non-finite value)."""

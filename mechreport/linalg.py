@@ -8,6 +8,15 @@ SINGULAR_COND = 1e10  # equilibrated condition number above which an angle is fl
 
 def batched_solve(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Solve A x = b for A (n, m, m) and b (n, m); returns x (n, m) and singular (n,) bool.
+    See :func:`batched_solve_cond`; singular angles get NaN."""
+    x, cond = batched_solve_cond(A, b)
+    return x, ~(cond < SINGULAR_COND)
+
+
+def batched_solve_cond(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Solve A x = b for A (n, m, m) and b (n, m); returns x (n, m) and the estimated
+    condition number (n,) of the equilibrated matrix: inf where exactly singular, NaN where A
+    or b is not finite (an input that overflowed, or a pose that could not be solved).
 
     Rows and columns are first equilibrated (each scaled to a largest entry of 1), which makes
     the test independent of units. An angle is singular when the condition number of the
@@ -18,7 +27,7 @@ def batched_solve(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     """
     n, m, _ = A.shape
     if m == 0:
-        return np.zeros((n, 0)), np.zeros(n, bool)
+        return np.zeros((n, 0)), np.ones(n)
     absA = np.abs(A)
     rs = absA.max(axis=2)
     rs[rs == 0] = 1.0
@@ -30,20 +39,28 @@ def batched_solve(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     rhs = np.empty((n, m, 3))
     rhs[:, :, 0] = b / rs
     rhs[:, :, 1:] = _PROBES[:m]
+    # non-finite input (a pose that could not be solved) is singular, never a LAPACK error
+    bad = ~(np.isfinite(As).all(axis=(1, 2)) & np.isfinite(rhs[:, :, 0]).all(axis=1))
+    overflow = bad.copy()
+    if bad.any():
+        As[bad] = np.eye(m)
+        rhs[bad, :, 0] = 0.0
     try:
         y = np.linalg.solve(As, rhs)
-    except np.linalg.LinAlgError:  # an exactly singular angle: find it the slow way
-        exact = ~(np.linalg.cond(As) < SINGULAR_COND)
-        As = np.where(exact[:, None, None], np.eye(m), As)
+    except np.linalg.LinAlgError:  # an exactly singular angle: LU finds a zero pivot
+        exact = np.linalg.det(As) == 0
+        As[exact] = np.eye(m)
         y = np.linalg.solve(As, rhs)
-        y[exact] = np.inf
+        bad |= exact
+    y[bad] = np.inf
     with np.errstate(over="ignore", invalid="ignore"):
         probe = np.sqrt(np.einsum("nik,nik->nk", y[:, :, 1:], y[:, :, 1:])) / _PROBE_NORMS[m]
         cond = np.sqrt(np.einsum("nij,nij->n", As, As)) * np.max(probe, axis=1)
-    singular = ~(cond < SINGULAR_COND)
+    cond = np.where(np.isfinite(cond), cond, np.inf)
+    cond[overflow] = np.nan
     x = y[:, :, 0] / cs
-    x[singular] = np.nan
-    return x, singular
+    x[~(cond < SINGULAR_COND)] = np.nan
+    return x, cond
 
 
 _PROBES = np.random.default_rng(20261121).standard_normal((64, 2))

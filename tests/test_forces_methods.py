@@ -17,7 +17,7 @@ import pytest
 
 from mechreport.analysis import analyse
 from mechreport.forces import METHODS, ForceResult
-from mechreport.forces.equations import batched_solve
+from mechreport.linalg import batched_solve
 
 ROOT = Path(__file__).resolve().parents[1]
 SPECS = sorted((ROOT / "specs").glob("*.yaml")) + sorted((ROOT / "tests" / "data").glob("*.yaml"))

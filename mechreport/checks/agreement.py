@@ -54,9 +54,14 @@ def agreement(results: dict[str, ForceResult]) -> list[Agreement]:
             continue
         hi, lo = np.argmax(stack, axis=0), np.argmin(stack, axis=0)
         spread = np.max(stack, axis=0) - np.min(stack, axis=0)
-        k = int(np.argmax(spread))
+        finite = np.isfinite(spread)
+        # a NaN never agrees: it is the worst disagreement there is, not none
+        k = int(np.argmax(spread)) if finite.all() else int(np.flatnonzero(~finite)[0])
         scale = max(float(np.max(np.abs(stack))), SCALE_FLOOR * kind_scale[_kind(q)])
-        rel = float(spread[k] / scale) if scale > 0 else 0.0
+        if not (finite[k] and np.isfinite(scale)):
+            rel = float("inf")
+        else:
+            rel = float(spread[k] / scale) if scale > 0 else 0.0
         angle = float(next(iter(results.values())).angles[k])
         pair = (names[hi[k]], names[lo[k]]) if spread[k] > 0 else (names[0], names[1])
         out.append(Agreement(q, rel, float(spread[k]), pair, angle, len(names)))

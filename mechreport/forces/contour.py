@@ -10,25 +10,29 @@ writing, for S,
 
 A path stops before it would take in the ground. Candidates are taken alternately from paths I
 and II; one is used when every unknown in it is X's (or already found) and it is independent
-of those chosen (rank checked at three angles); a T joint X also gets F . Delta = 0. The driver
-torque is solved with the driver joint (4.73-4.75), so a body holding the crank is usable only
-then.
+of those chosen (rank judged at up to 16 angles spread over the sweep: independent at every
+one first, then at most of them); a T joint X also gets F . Delta = 0. The driver torque is
+solved with the driver joint (4.73-4.75), so a body holding the crank is usable only then.
 
-Loops come from the joint graph's cycle basis (model.graph). Multi-loop mechanisms are done
-loop by loop, loops without the driver first, each joint as soon as enough equations are
-usable with the reactions already found (4.7.3: E, D_T, D on 0-3-4-5-0; then C, B_T, B, A).
+Loops are every simple cycle of the joint graph (model.graph), shortest first and those
+without the driver before those with it. Joints are taken by name, last first, each as soon
+as one of its loops gives enough equations usable with the reactions already found (4.7.3:
+E, D_T, D on 0-3-4-5-0; then C, B_T, B, A). Nothing depends on the order of the spec.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from ..errors import UnsupportedMechanism
-from ..model import Loop
+from ..model import Loop, all_loops
 from ..spec import GROUND, Joint
 from .builders import force_equation, moment_equation, normal_constraint, sliding_direction
 from .context import DRIVER_TORQUE, ForceContext, reaction_unknowns
 from .equations import Equation, Step
 from .result import ForceResult, run_steps
+
+PROBES = 16         # angles at which the rank of candidate equations is judged
+RANK_RTOL = 1e-9    # singular values below this fraction of the largest count as zero
 
 NAME = "contour"
 TITLE = "Contour"
@@ -67,52 +71,76 @@ def _rows(eq: Equation, unknowns: list[str], probes: np.ndarray) -> np.ndarray:
     return row
 
 
+def _rank(rows: np.ndarray) -> np.ndarray:
+    """Numerical rank (P,) of each probe's matrix ``rows`` (P, r, k)."""
+    s = np.linalg.svd(rows, compute_uv=False)
+    top = np.maximum(s[:, :1], 1e-300)
+    return np.sum(s > RANK_RTOL * top, axis=1)
+
+
 def _try_joint(ctx: ForceContext, loop: Loop, joint: Joint, known: set[str],
                probes: np.ndarray) -> Step | None:
+    """Enough independent equations along ``loop`` for ``joint``'s unknowns, or None.
+
+    Candidates are tried in the text's order (alternately along paths I and II); a candidate
+    is taken first only where it adds rank at every probe angle, then, for what is still
+    missing, where it adds rank at most of them (independent except at isolated angles, which
+    the solve then flags)."""
     unknowns = list(reaction_unknowns(joint))
     if joint.name == ctx.spec.driver.joint:
         unknowns.append(DRIVER_TORQUE)
     chosen: list[Equation] = [normal_constraint(ctx, joint)] if joint.type == "T" else []
     x = [j.name for j in loop.joints].index(joint.name)
     paths = [list(_path(loop, x, True)), list(_path(loop, x, False))]
-    candidates = [p[k] for k in range(max(map(len, paths))) for p in paths if k < len(p)]
-    for w, body in candidates:
-        if len(chosen) == len(unknowns):
-            break
+    candidates = []
+    for w, body in (p[k] for k in range(max(map(len, paths))) for p in paths if k < len(p)):
         eq = _equation(ctx, w, body)
         needed = set(eq.unknown_names())
-        if not needed & set(unknowns) or not needed <= set(unknowns) | known:
-            continue
-        trial = np.stack([_rows(e, unknowns, probes) for e in chosen + [eq]], axis=1)
-        ranks = [np.linalg.matrix_rank(trial[p], tol=1e-9 * max(1.0, np.abs(trial[p]).max()))
-                 for p in range(len(probes))]
-        if min(ranks) == len(chosen) + 1:
-            chosen.append(eq)
+        if needed & set(unknowns) and needed <= set(unknowns) | known:
+            candidates.append(eq)
+    rank = _rank(np.stack([_rows(e, unknowns, probes) for e in chosen], axis=1)) if chosen \
+        else np.zeros(len(probes), int)
+    for share in (1.0, 0.5):
+        for eq in candidates:
+            if len(chosen) == len(unknowns):
+                break
+            if any(eq is c for c in chosen):
+                continue
+            trial = np.stack([_rows(e, unknowns, probes) for e in chosen + [eq]], axis=1)
+            new = _rank(trial)
+            if np.mean(new > rank) >= share and np.mean(new > rank) > 0:
+                chosen.append(eq)
+                rank = new
     if len(chosen) < len(unknowns):
         return None
     return Step(f"Joint {joint.name} (loop {loop.label(ctx.spec)})", unknowns, chosen,
                 tuple(sorted({b for e in chosen for b in e.bodies})))
 
 
+def _probes(n: int) -> np.ndarray:
+    """Up to ``PROBES`` angle indices spread evenly over the sweep."""
+    return np.unique(np.linspace(0, n - 1, min(PROBES, n)).round().astype(int))
+
+
 def solve(ctx: ForceContext) -> ForceResult:
+    """Joints in a canonical order (by name, last first: the text's order for 4.6 and 4.7),
+    each from the first loop through it, loops without the driver first, that gives enough
+    independent equations with the reactions already found. Nothing depends on the order in
+    which links and joints are written."""
     spec = ctx.spec
     drv = spec.driver.joint
-    loops = list(ctx.mech.loops)
-    loops = [l for l in reversed(loops) if drv not in {j.name for j in l.joints}] + \
-            [l for l in loops if drv in {j.name for j in l.joints}]
-    probes = np.unique(np.linspace(0, ctx.n - 1, 3).astype(int))
+    loops = sorted(all_loops(spec), key=lambda l: (drv in {j.name for j in l.joints},
+                                                  len(l.joints), sorted(j.name for j in l.joints)))
+    probes = _probes(ctx.n)
     known: set[str] = set()
     solved: set[str] = set()
     steps: list[Step] = []
-    order = [j for j in reversed(spec.joints)]
-    for loop in loops:
-        members = {j.name for j in loop.joints}
-        progress = True
-        while progress:
-            progress = False
-            for joint in order:
-                if joint.name in solved or joint.name not in members:
-                    continue
+    order = sorted(spec.joints, key=lambda j: j.name, reverse=True)
+    progress = True
+    while progress and len(solved) < len(order):
+        progress = False
+        for joint in (j for j in order if j.name not in solved):
+            for loop in (l for l in loops if joint.name in {j.name for j in l.joints}):
                 step = _try_joint(ctx, loop, joint, known, probes)
                 if step is not None:
                     steps.append(step)
@@ -120,6 +148,8 @@ def solve(ctx: ForceContext) -> ForceResult:
                     known.update(step.unknowns)
                     progress = True
                     break
+            if progress:
+                break
     missing = [j.name for j in spec.joints if j.name not in solved]
     if missing:
         raise UnsupportedMechanism(

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..linalg import batched_solve
+from ..linalg import SINGULAR_COND, batched_solve_cond
 
 
 
@@ -104,10 +104,15 @@ class Step:
 
 @dataclass(frozen=True)
 class Solution:
-    """Values (n,) per unknown, and where the system was singular (n,) bool."""
+    """Values (n,) per unknown; the system's estimated condition number (n,) (equilibrated,
+    inf where exactly singular); where it was singular (n,) bool."""
 
     values: dict[str, np.ndarray]
-    singular: np.ndarray
+    cond: np.ndarray
+
+    @property
+    def singular(self) -> np.ndarray:
+        return ~(self.cond < SINGULAR_COND)
 
 
 def solve_step(step: Step, known: dict[str, np.ndarray], n: int) -> Solution:
@@ -130,5 +135,5 @@ def solve_step(step: Step, known: dict[str, np.ndarray], n: int) -> Solution:
                 else:
                     raise ValueError(f"{step.title}: equation '{eq.label}' needs {u}, "
                                      "which is neither solved here nor known")
-    x, singular = batched_solve(A, b)
-    return Solution({u: x[:, i] for u, i in col.items()}, singular)
+    x, cond = batched_solve_cond(A, b)
+    return Solution({u: x[:, i] for u, i in col.items()}, cond)

@@ -44,7 +44,10 @@ class ForceResult:
 
     ``angles`` (n,) crank angles [deg]; ``driver_torque`` (n,) [N m], the moment the driver
     applies to the crank, CCW positive; ``reactions`` by joint name (empty for ``power``);
-    ``steps`` the labelled systems the method solved, in order; ``singular`` (n,) bool."""
+    ``steps`` the labelled systems the method solved, in order; ``singular`` (n,) bool;
+    ``cond`` (n,) the product of the steps' condition numbers (later steps take earlier steps'
+    results as data, so their errors multiply): relative errors of the inputs grow by at most
+    about this factor; NaN where a system's coefficients were not finite (overflow)."""
 
     method: str
     angles: np.ndarray
@@ -52,6 +55,7 @@ class ForceResult:
     driver_torque: np.ndarray
     steps: tuple[Step, ...]
     singular: np.ndarray
+    cond: np.ndarray | None = None
 
     def quantity(self, name: str) -> np.ndarray | None:
         """A result quantity by its ``expect`` name, e.g. ``joint.B.fx`` or ``driver.torque``."""
@@ -73,7 +77,8 @@ class ForceResult:
         return out
 
 
-def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular) -> ForceResult:
+def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular,
+                cond=None) -> ForceResult:
     """Assemble a ForceResult from solved unknowns (shared by all methods)."""
     spec = ctx.spec
     reactions = {}
@@ -93,7 +98,7 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
             p = ctx.joint_points[j.name] + t[:, None] * u
             reactions[j.name] = JointReaction(j.name, "T", fx, fy, m, p[:, 0], p[:, 1])
     return ForceResult(method, ctx.kin.angles, reactions, values["driver.torque"], tuple(steps),
-                       singular)
+                       singular, cond)
 
 
 def run_steps(method: str, ctx, steps) -> ForceResult:
@@ -101,8 +106,11 @@ def run_steps(method: str, ctx, steps) -> ForceResult:
     from .equations import solve_step
     known: dict[str, np.ndarray] = {}
     singular = np.zeros(ctx.n, bool)
+    cond = np.ones(ctx.n)
     for step in steps:
         sol = solve_step(step, known, ctx.n)
         known.update(sol.values)
         singular |= sol.singular
-    return make_result(method, ctx, known, steps, singular)
+        with np.errstate(over="ignore", invalid="ignore"):
+            cond = cond * sol.cond
+    return make_result(method, ctx, known, steps, singular, cond)

@@ -23,8 +23,10 @@ import numpy as np
 from ..spec import GROUND, Joint, Spec
 from ..model import Dyad
 from .frames import cross, dot, norm, perp, rotate
+from .path import SweepPath
 
 Poses = dict  # link name -> (r (n, 2) origin [m], theta (n,) [rad])
+BRANCHES_MEET = 1e-9   # candidates this close (relative to the mechanism's size) are one pose
 
 DEFAULT_BRANCH_RULES = {
     "RRR": "the interior pin lies to the left of the line from the first link's outer pin to "
@@ -43,7 +45,7 @@ class BranchChoice:
     dyad: str
     kind: str
     sign: int
-    rule: str  # "hint: C" or "default: <rule>" or "unique"
+    rule: str  # "hint: C", "default: <rule>", "undecided: <why>" or "unique"
 
 
 def point_global(poses: Poses, link: str, local) -> np.ndarray:
@@ -186,39 +188,92 @@ def _signature(spec: Spec, dyad: Dyad, cand: Poses) -> np.ndarray:
     return np.concatenate(cols, axis=1)
 
 
-def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], angles: np.ndarray,
-                   ref: int) -> tuple[Poses, BranchChoice]:
-    """Pick the branch at index ``ref`` and follow it through all angles."""
+def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
+                   runs: list[np.ndarray]) -> tuple[Poses, BranchChoice, list[np.ndarray]]:
+    """Pick the branch at the first reference angle (``path.ref``) and follow it along the
+    ``runs``, each cut where the dyad cannot close (the mechanism locks there). Off-grid angles
+    take the candidate nearest the tracked branch interpolated from their grid neighbours.
+    Returns the chosen poses over ``path.angles`` (NaN where not reached), how the branch was
+    chosen, and the cut runs."""
     name = f"{dyad.label} ({', '.join(dyad.links)})"
-    if len(cands) == 1:
-        return cands[0], BranchChoice(name, dyad.kind, 1, "unique")
     sig = [_signature(spec, dyad, c) for c in cands]
-    hints = {p: v for p, v in spec.assembly.items() if spec.point_owner(p) in dyad.links}
-    if hints:
-        err = []
-        for cand in cands:
-            e = 0.0
-            for p, target in hints.items():
-                link = spec.point_owner(p)
-                pos = point_global(cand, link, spec.link(link).points[p])[ref]
-                e += float(np.sum((pos - np.asarray(target)) ** 2))
-            err.append(e)
-        sign = 1 if err[0] <= err[1] else -1
-        rule = "hint: " + ", ".join(hints)
+    finite = np.all(np.isfinite(np.concatenate(sig, axis=1)), axis=1)
+    runs = [run[:_first_false(finite[run])] for run in runs]
+    n = len(path.angles)
+    reached = np.zeros(n, bool)
+    use_plus = np.ones(n, bool)
+    if len(cands) == 1:
+        choice = BranchChoice(name, dyad.kind, 1, "unique")
+        for run in runs:
+            reached[run] = True
     else:
-        sign = 1
-        kind = dyad.kind if dyad.kind in DEFAULT_BRANCH_RULES else dyad.kind[::-1]
-        rule = "default: " + DEFAULT_BRANCH_RULES[kind]
-    flips = _flips(sig[0], sig[1], angles)
-    parity = np.concatenate([[0], np.cumsum(flips)])
-    parity = (parity - parity[ref]) % 2
-    use_plus = (parity == 0) == (sign == 1)
+        sign, rule = _pick_branch(spec, dyad, cands, sig, path)
+        choice = BranchChoice(name, dyad.kind, sign, rule)
+        for run, travel in zip(runs, path.travel):
+            todo = ~reached[run]
+            flips = _flips(sig[0][run], sig[1][run], travel[:len(run)])
+            parity = np.concatenate([[0], np.cumsum(flips)]) % 2
+            plus = (parity == 0) == (sign == 1)
+            use_plus[run[todo]] = plus[todo]
+            reached[run] = True
+    off, lo, hi, w = path.off_grid_neighbours()
+    if off.size:
+        pick = [np.where(use_plus[k][:, None], sig[0][k], sig[-1][k]) for k in (lo, hi)]
+        guess = (1 - w)[:, None] * pick[0] + w[:, None] * pick[1]
+        if len(cands) == 2:
+            use_plus[off] = (np.sum((sig[0][off] - guess) ** 2, axis=1)
+                             <= np.sum((sig[1][off] - guess) ** 2, axis=1))
+        reached[off] = reached[lo] & reached[hi] & finite[off]
     chosen: Poses = {}
     for link in dyad.links:
-        r = np.where(use_plus[:, None], cands[0][link][0], cands[1][link][0])
-        th = np.where(use_plus, cands[0][link][1], cands[1][link][1])
-        chosen[link] = (r, th)
-    return chosen, BranchChoice(name, dyad.kind, sign, rule)
+        r = np.where(use_plus[:, None], cands[0][link][0], cands[-1][link][0])
+        th = np.where(use_plus, cands[0][link][1], cands[-1][link][1])
+        chosen[link] = (np.where(reached[:, None], r, np.nan), np.where(reached, th, np.nan))
+    return chosen, choice, runs
+
+
+def _first_false(mask: np.ndarray) -> int:
+    bad = np.flatnonzero(~mask)
+    return int(bad[0]) if bad.size else len(mask)
+
+
+def _pick_branch(spec: Spec, dyad: Dyad, cands: list[Poses], sig: list[np.ndarray],
+                 path: SweepPath) -> tuple[int, str]:
+    """The branch sign at the first reference angle and the rule that chose it. Where the two
+    branches meet there (a singular position), no hint can decide: say so, take the default
+    and say where it leads."""
+    ref = path.ref
+    kind = dyad.kind if dyad.kind in DEFAULT_BRANCH_RULES else dyad.kind[::-1]
+    hints = {p: v for p, v in spec.assembly.items() if spec.point_owner(p) in dyad.links}
+    size = max(float(np.max(np.abs(np.concatenate([sig[0][ref], sig[1][ref]])))), 1e-12)
+    if float(np.max(np.abs(sig[0][ref] - sig[1][ref]))) <= BRANCHES_MEET * size:
+        follow = path.runs[0][1:]
+        apart = follow[np.max(np.abs(sig[0][follow] - sig[1][follow]), axis=1)
+                       > BRANCHES_MEET * size] if follow.size else follow
+        where = ""
+        if apart.size:
+            k = int(apart[0])
+            named = [(p, l) for l in dyad.links for p in spec.link(l).points]
+            gap = np.abs(sig[0][k] - sig[1][k]).reshape(-1, 2).max(axis=1)
+            p_name, p_link = named[int(np.argmax(gap))]   # the point the branches move most
+            pos = point_global(cands[0], p_link, spec.link(p_link).points[p_name])[k]
+            where = (f"; on it, at {path.angles[k]:g} deg, {p_name} is at "
+                     f"({pos[0]:.6g}, {pos[1]:.6g}) m")
+        why = (f"no hint can decide at {path.angles[ref]:g} deg, where both branches meet "
+               f"(a singular position); took the default: {DEFAULT_BRANCH_RULES[kind]}{where}. "
+               "Choose a first reference angle away from it to choose the branch")
+        return 1, "undecided: " + why
+    if not hints:
+        return 1, "default: " + DEFAULT_BRANCH_RULES[kind]
+    err = []
+    for cand in cands:
+        e = 0.0
+        for p, target in hints.items():
+            link = spec.point_owner(p)
+            pos = point_global(cand, link, spec.link(link).points[p])[ref]
+            e += float(np.sum((pos - np.asarray(target)) ** 2))
+        err.append(e)
+    return (1 if err[0] <= err[1] else -1), "hint: " + ", ".join(hints)
 
 
 def _flips(xp: np.ndarray, xm: np.ndarray, angles: np.ndarray) -> np.ndarray:

@@ -13,10 +13,78 @@ from .position import BranchChoice
 
 @dataclass(frozen=True)
 class Flag:
-    """A crank angle left out of the results, and why."""
+    """A crank angle left out of the results, and why. ``kind``: ``unreachable`` (beyond a
+    lock), ``cannot close``, ``singular`` or ``near-singular`` (not trustworthy to
+    ``TRUST_RTOL``)."""
 
     angle: float   # [deg]
     reason: str
+    kind: str = "singular"
+
+
+@dataclass(frozen=True)
+class Motion:
+    """How far the driver moves continuously from the assembled first reference angle.
+
+    ``low`` .. ``high`` [deg] is the range reached (for a whole-turn sweep unwrapped around the
+    reference angle, so ``low`` may lie below the sweep's start); ``locks`` the (last reached,
+    first not reached) sample pairs where the mechanism locks; ``full`` when nothing of the
+    sweep is out of reach (for a whole turn: the crank turns fully)."""
+
+    full: bool
+    low: float
+    high: float
+    locks: tuple[tuple[float, float], ...]
+    periodic: bool
+    start: float = 0.0   # the sweep's start: wrapped angles are shown in [start, start + 360)
+
+    def _wrap(self, a: float) -> float:
+        return self.start + (a - self.start) % 360.0 if self.periodic else a
+
+    def contains(self, angle: float) -> bool:
+        if self.full:
+            return True
+        a = self.low + (angle - self.low) % 360.0 if self.periodic else angle
+        return self.low - 1e-9 <= a <= self.high + 1e-9
+
+    def nearest_lock(self, angle: float) -> tuple[float, float] | None:
+        """The lock nearest ``angle`` (circular distance for whole turns), wrapped for show."""
+        def dist(lock):
+            d = abs(angle - (lock[0] + lock[1]) / 2)
+            return min(d % 360.0, 360.0 - d % 360.0) if self.periodic else d
+        if not self.locks:
+            return None
+        lock = min(self.locks, key=dist)
+        return self._wrap(lock[0]), self._wrap(lock[1])
+
+    def describe(self) -> str | None:
+        """One sentence for users, None when the whole sweep is reachable."""
+        if self.full:
+            return None
+        locks = " and ".join(f"between {self._wrap(a):g} and {self._wrap(b):g} deg"
+                             for a, b in self.locks)
+        if self.periodic:
+            return (f"the driver cannot make a full turn: the mechanism locks {locks}; range "
+                    f"of motion {self.high - self.low:g} deg, from {self._wrap(self.low):g} to "
+                    f"{self._wrap(self.high):g} deg")
+        return (f"only {self.low:g} to {self.high:g} deg can be reached from the assembly: the "
+                f"mechanism locks {locks}")
+
+
+def motion_of(path, runs, omega: float) -> Motion:
+    """The range of motion from the ``runs`` of a SweepPath after they were cut at locks."""
+    ref = float(path.angles[path.ref])
+    ends, locks, full = [], [], []
+    for k, (run, whole, travel) in enumerate(zip(runs, path.runs, path.travel)):
+        sign = (1.0 if omega > 0 else -1.0) * (1.0 if k == 0 else -1.0)
+        ends.append(ref + sign * float(travel[len(run) - 1]))
+        full.append(len(run) == len(whole))
+        if len(run) < len(whole):
+            a, b = ref + sign * float(travel[len(run) - 1]), ref + sign * float(travel[len(run)])
+            locks.append((min(a, b), max(a, b)))
+    whole_turn = path.periodic and full[0]
+    return Motion(whole_turn or all(full), min(ends), max(ends), tuple(locks), path.periodic,
+                  float(np.min(path.angles[path.on_grid])))
 
 
 @dataclass(frozen=True)
@@ -35,7 +103,9 @@ class Kinematics:
     Arrays are indexed ``[angle, link]`` with the link axis in link-number order (0 = ground):
     ``r`` (n, L+1, 2) origin of each link frame [m], ``theta`` (n, L+1) [rad], ``v`` [m/s],
     ``omega`` [rad/s], ``a`` [m/s^2], ``alpha`` [rad/s^2]. ``angles`` (n,) are crank angles
-    [deg]; ``flags`` lists the angles left out (cannot close, or singular).
+    [deg]; ``flags`` lists the angles left out (unreachable, cannot close, singular or
+    near-singular); ``motion`` the range the driver reaches from the assembly; ``error`` (n,)
+    the estimated relative error of the accelerations (see ``kinematic_error``).
     """
 
     mechanism: Mechanism
@@ -48,6 +118,8 @@ class Kinematics:
     alpha: np.ndarray
     flags: tuple[Flag, ...]
     branches: tuple[BranchChoice, ...]
+    motion: Motion | None = None
+    error: np.ndarray | None = None   # (n,) estimated relative error of the accelerations
 
     @property
     def n(self) -> int:
@@ -79,7 +151,8 @@ class Kinematics:
         """The same kinematics at angle indices ``rows`` (index array or bool mask)."""
         return replace(self, angles=self.angles[rows], r=self.r[rows], theta=self.theta[rows],
                        v=self.v[rows], omega=self.omega[rows], a=self.a[rows],
-                       alpha=self.alpha[rows], flags=flags)
+                       alpha=self.alpha[rows], flags=flags,
+                       error=None if self.error is None else self.error[rows])
 
     def angle_deg(self, link: str) -> np.ndarray:
         """Orientation of ``link``'s x-axis [deg] in (-180, 180], (n,)."""

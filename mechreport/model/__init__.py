@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 from ..spec import GROUND, Joint, Spec
 from .dyads import Dyad, decompose
-from .graph import Loop, cycle_basis
+from .graph import Loop, all_loops, cycle_basis
 
 
 @dataclass(frozen=True)
@@ -25,4 +25,4 @@ def build_mechanism(spec: Spec) -> Mechanism:
     return Mechanism(spec, decompose(spec), cycle_basis(spec))
 
 
-__all__ = ["Mechanism", "build_mechanism", "Dyad", "Loop", "GROUND"]
+__all__ = ["Mechanism", "build_mechanism", "Dyad", "Loop", "GROUND", "all_loops"]

@@ -53,11 +53,20 @@ def _simple_cycles(spec: Spec) -> list[Loop]:
     return list(found.values())
 
 
+def _canonical(loop: Loop) -> tuple:
+    return len(loop.joints), sorted(j.name for j in loop.joints)
+
+
+def all_loops(spec: Spec) -> tuple[Loop, ...]:
+    """Every simple cycle, ground first in each, shortest first, ties by joint names."""
+    return tuple(_rooted(c) for c in sorted(_simple_cycles(spec), key=_canonical))
+
+
 def cycle_basis(spec: Spec) -> tuple[Loop, ...]:
-    """Shortest independent loops, ground first in each loop, in a stable order."""
+    """Shortest independent loops, ground first in each loop, in a stable order (by length,
+    then joint names: never by the order the spec was written in)."""
     names = [j.name for j in spec.joints]
-    cycles = sorted(_simple_cycles(spec),
-                    key=lambda c: (len(c.joints), sorted(names.index(j.name) for j in c.joints)))
+    cycles = sorted(_simple_cycles(spec), key=_canonical)
     basis: list[Loop] = []
     rows: list[int] = []  # GF(2) row echelon over joint bitmasks
     for cyc in cycles:
@@ -73,8 +82,14 @@ def cycle_basis(spec: Spec) -> tuple[Loop, ...]:
 
 
 def _rooted(loop: Loop) -> Loop:
-    """Rotate a loop so it starts at ground when it passes through ground."""
-    if GROUND not in loop.links:
-        return loop
-    k = loop.links.index(GROUND)
-    return Loop(loop.links[k:] + loop.links[:k], loop.joints[k:] + loop.joints[:k])
+    """The loop in a canonical form: starting at ground when it passes through ground (else at
+    the link first by name), walked so that the first joint's name sorts before the last's
+    (textbook 4.6: 0-1-2-3-0 through A, B, C, C_T). Never depends on the spec's order."""
+    links, joints = list(loop.links), list(loop.joints)
+    start = links.index(GROUND) if GROUND in links else links.index(min(links))
+    links, joints = links[start:] + links[:start], joints[start:] + joints[:start]
+    if len(joints) > 1 and joints[0].name > joints[-1].name:
+        # reverse the walk: links[0], links[-1], ..., links[1]; joints[k] joins links[k], k+1
+        links = links[:1] + links[1:][::-1]
+        joints = joints[::-1]
+    return Loop(tuple(links), tuple(joints))
