@@ -29,8 +29,8 @@ Poses = dict  # link name -> (r (n, 2) origin [m], theta (n,) [rad])
 BRANCHES_MEET = 1e-9   # candidates this close (relative to the mechanism's size) are one pose
 
 DEFAULT_BRANCH_RULES = {
-    "RRR": "the interior pin lies to the left of the line from the first link's outer pin to "
-           "the second link's",
+    "RRR": "the interior pin lies to the left of the line from the outer pin of the link "
+           "first by name to the other link's",
     "RRT": "the interior pin lies ahead of the foot of the perpendicular from the other pin, "
            "along the guide direction",
     "RTR": "the guide's line direction points from its pivot toward the slider's side "
@@ -211,6 +211,8 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
         choice = BranchChoice(name, dyad.kind, sign, rule)
         for run, travel in zip(runs, path.travel):
             todo = ~reached[run]
+            if not todo.any():   # a full turn forward leaves nothing for the backward run
+                continue
             flips = _flips(sig[0][run], sig[1][run], travel[:len(run)])
             parity = np.concatenate([[0], np.cumsum(flips)]) % 2
             plus = (parity == 0) == (sign == 1)
@@ -244,6 +246,9 @@ def _pick_branch(spec: Spec, dyad: Dyad, cands: list[Poses], sig: list[np.ndarra
     and say where it leads."""
     ref = path.ref
     kind = dyad.kind if dyad.kind in DEFAULT_BRANCH_RULES else dyad.kind[::-1]
+    # candidate +1 of an RRR dyad lies left of the line from link i's pivot to link j's; the
+    # default is stated by name so that it does not depend on which link the split found first
+    default = -1 if kind == "RRR" and dyad.links[0] > dyad.links[1] else 1
     hints = {p: v for p, v in spec.assembly.items() if spec.point_owner(p) in dyad.links}
     size = max(float(np.max(np.abs(np.concatenate([sig[0][ref], sig[1][ref]])))), 1e-12)
     if float(np.max(np.abs(sig[0][ref] - sig[1][ref]))) <= BRANCHES_MEET * size:
@@ -256,15 +261,16 @@ def _pick_branch(spec: Spec, dyad: Dyad, cands: list[Poses], sig: list[np.ndarra
             named = [(p, l) for l in dyad.links for p in spec.link(l).points]
             gap = np.abs(sig[0][k] - sig[1][k]).reshape(-1, 2).max(axis=1)
             p_name, p_link = named[int(np.argmax(gap))]   # the point the branches move most
-            pos = point_global(cands[0], p_link, spec.link(p_link).points[p_name])[k]
+            taken = cands[0] if default == 1 else cands[1]
+            pos = point_global(taken, p_link, spec.link(p_link).points[p_name])[k]
             where = (f"; on it, at {path.angles[k]:g} deg, {p_name} is at "
                      f"({pos[0]:.6g}, {pos[1]:.6g}) m")
         why = (f"no hint can decide at {path.angles[ref]:g} deg, where both branches meet "
                f"(a singular position); took the default: {DEFAULT_BRANCH_RULES[kind]}{where}. "
                "Choose a first reference angle away from it to choose the branch")
-        return 1, "undecided: " + why
+        return default, "undecided: " + why
     if not hints:
-        return 1, "default: " + DEFAULT_BRANCH_RULES[kind]
+        return default, "default: " + DEFAULT_BRANCH_RULES[kind]
     err = []
     for cand in cands:
         e = 0.0

@@ -3,8 +3,7 @@
 A dyad is two links i, j and three joints: ``outer[0]`` joins i to an already-known link,
 ``inner`` joins i and j, ``outer[1]`` joins j to an already-known link (textbook 4.4). Dyads
 are listed in solving order: each one's outer joints attach to ground, the driver or earlier
-dyads. Links and joints are searched by name, so the split does not depend on the order the
-spec is written in. The force-analysis dyad method walks this list backwards.
+dyads. The force-analysis dyad method walks this list backwards.
 """
 from __future__ import annotations
 
@@ -41,15 +40,12 @@ class Dyad:
 def decompose(spec: Spec) -> tuple[Dyad, ...]:
     """Dyads in solving order; raises ``UnsupportedMechanism`` naming links it cannot group."""
     known = {GROUND, spec.driver.link}
-    # by name, never by the order the spec is written in: the default branch of a dyad is
-    # stated in terms of its first and second link, and results must not depend on that order
-    remaining = sorted(l.name for l in spec.links if l.name not in known)
-    joints = sorted(spec.joints, key=lambda j: j.name)
+    remaining = [l.name for l in spec.links if l.name not in known]
     used = {spec.driver.joint}
     dyads: list[Dyad] = []
 
     def joints_between(a: str, bs: set[str]) -> list[Joint]:
-        return [j for j in joints if j.name not in used and
+        return [j for j in spec.joints if j.name not in used and
                 ((j.links[0] == a and j.links[1] in bs) or (j.links[1] == a and j.links[0] in bs))]
 
     while remaining:
@@ -81,7 +77,7 @@ def decompose(spec: Spec) -> tuple[Dyad, ...]:
         known.update(found.links)
         remaining = [l for l in remaining if l not in found.links]
 
-    leftover = [j.name for j in joints if j.name not in used]
+    leftover = [j.name for j in spec.joints if j.name not in used]
     if leftover:
         raise UnsupportedMechanism(
             f"{spec.file}: joints {', '.join(leftover)} are not part of any dyad; this "
