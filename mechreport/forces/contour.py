@@ -117,6 +117,35 @@ def _try_joint(ctx: ForceContext, loop: Loop, joint: Joint, known: set[str],
                 tuple(sorted({b for e in chosen for b in e.bodies})))
 
 
+def _bridge_step(ctx: ForceContext, joint: Joint, known: set[str]) -> Step | None:
+    """A joint on no loop cuts the mechanism in two: the part away from the ground is a free
+    body whose forces (x, y) and moments about the joint determine the joint's reaction (and
+    the driver torque, for the driver joint). None if the joint is on a loop after all."""
+    spec = ctx.spec
+    side = {l for l in joint.links if l != GROUND}
+    grew = True
+    while grew:
+        grew = False
+        for j in spec.joints:
+            if j.name != joint.name and (set(j.links) & side) and not set(j.links) <= side:
+                if GROUND in j.links:
+                    return None
+                side |= set(j.links)
+                grew = True
+    body = [l.name for l in spec.links if l.name in side]
+    acts = ctx.actions_on(body, inertia=True)
+    eqs = [force_equation(ctx, body, acts, "x"), force_equation(ctx, body, acts, "y"),
+           moment_equation(ctx, body, acts, joint.point, at=ctx.joint_points[joint.name])]
+    unknowns = [u for e in eqs for u in e.unknown_names() if u not in known]
+    unknowns = list(dict.fromkeys(unknowns))
+    if joint.type == "T":
+        eqs.insert(0, normal_constraint(ctx, joint))
+    if len(unknowns) != len(eqs):
+        return None
+    return Step(f"Joint {joint.name} (no loop: {', '.join(body)} as one free body)", unknowns,
+                eqs, tuple(body))
+
+
 def _probes(n: int) -> np.ndarray:
     """Up to ``PROBES`` angle indices spread evenly over the sweep."""
     return np.unique(np.linspace(0, n - 1, min(PROBES, n)).round().astype(int))
@@ -150,6 +179,12 @@ def solve(ctx: ForceContext) -> ForceResult:
                     break
             if progress:
                 break
+    for joint in (j for j in order if j.name not in solved):
+        step = _bridge_step(ctx, joint, known)   # a joint on no loop (a lone crank)
+        if step is not None:
+            steps.append(step)
+            solved.add(joint.name)
+            known.update(step.unknowns)
     missing = [j.name for j in spec.joints if j.name not in solved]
     if missing:
         raise UnsupportedMechanism(

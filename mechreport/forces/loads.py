@@ -27,6 +27,10 @@ class AppliedLoad:
     force: np.ndarray | None = None
     moment: np.ndarray | None = None
 
+    @property
+    def name(self) -> str:
+        return self.load.label
+
 
 def _profile(profile, angles_deg: np.ndarray) -> np.ndarray:
     xp = np.array([p[0] for p in profile])

@@ -118,7 +118,8 @@ class Load:
 
     Either a constant ``value`` or ``direction`` (unit, forces) with a ``profile`` of
     (crank angle [deg], magnitude) pairs, interpolated periodically. ``oppose`` is ``velocity``
-    (forces) or ``rotation`` (moments)."""
+    (forces) or ``rotation`` (moments). ``reacts_on`` ``ground``: the load's reaction acts on
+    the frame (left out of the shaking force)."""
 
     kind: str
     link: str
@@ -128,6 +129,13 @@ class Load:
     direction: Vec | None = None
     profile: tuple[tuple[float, float], ...] | None = None
     oppose: str | None = None
+    name: str | None = None
+    reacts_on: str | None = None    # "ground": its reaction acts on the frame
+
+    @property
+    def label(self) -> str:
+        """The load's ``name``, or ``load i`` (1-based, in list order)."""
+        return self.name or f"load {self.index + 1}"
 
 
 @dataclass(frozen=True)

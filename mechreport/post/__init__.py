@@ -1,0 +1,15 @@
+"""Stage 6: post-processing. Pure functions of the solved kinematics and forces: what the
+mechanism does to its frame, bearing loads, transmission angles, balancing, and the cycle
+quantities and verdicts of a design review. Nothing here draws or formats."""
+from .balance import Counterweight, counterweight
+from .bearings import BearingLoad, bearing_carrier, bearing_load, bearing_trace, rating_life_h
+from .cycle import Cycle, CycleUndefined, cycle_of, cycle_problem
+from .frame import FrameLoad, frame_load, inertia_force, joint_point, reference_method
+from .review import JOINT_UNITS, UNITS, Review, review, unit_of
+from .transmission import transmission_angles
+
+__all__ = ["Counterweight", "counterweight", "BearingLoad", "bearing_carrier", "bearing_load",
+           "bearing_trace", "rating_life_h", "Cycle", "CycleUndefined", "cycle_of",
+           "cycle_problem", "FrameLoad", "frame_load", "inertia_force", "joint_point",
+           "reference_method", "JOINT_UNITS", "UNITS", "Review", "review", "unit_of",
+           "transmission_angles"]

@@ -1,0 +1,43 @@
+"""Balancing the crank: the point counterweight that minimises the RMS inertial shaking force.
+
+A mass m at radius r on the crank, at angle beta from the crank's x-axis, adds m a to the sum
+of m a_C. In complex notation (z = x + i y) with the crank angle theta and constant driver
+alpha, omega: a = r e^{i(theta + beta)} (i alpha - omega^2), so the added force is c u(theta)
+with c = m r e^{i beta} and u = e^{i theta} (i alpha - omega^2). Minimising sum |S + c u|^2
+over the cycle is linear least squares in c: c = -sum(conj(u) S) / sum(|u|^2).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Counterweight:
+    """``mr`` [kg m] and ``angle`` [deg, in (-180, 180], from the crank's x-axis] of the best
+    point counterweight; ``rms_before`` and ``rms_after`` the RMS inertial shaking force
+    [N] over the cycle without and with it."""
+
+    mr: float
+    angle: float
+    rms_before: float
+    rms_after: float
+
+
+def counterweight(inertia_force: np.ndarray, crank_theta: np.ndarray, omega: float,
+                  alpha: float = 0.0) -> Counterweight:
+    """``inertia_force`` (N, 2) [N] = sum of m a_C over the cycle grid; ``crank_theta`` (N,)
+    [rad] the crank's x-axis angle there."""
+    s = inertia_force[:, 0] + 1j * inertia_force[:, 1]
+    u = np.exp(1j * np.asarray(crank_theta, float)) * (1j * alpha - omega ** 2)
+    c = -np.vdot(u, s) / np.vdot(u, u).real
+    before = float(np.sqrt(np.mean(np.abs(s) ** 2)))
+    if abs(c) * np.sqrt(np.mean(np.abs(u) ** 2)) <= 1e-12 * max(before, 1e-300):
+        c = 0j                     # nothing to balance: no counterweight, angle 0 (not -0)
+    after = s + c * u
+    angle = float(np.degrees(np.angle(c))) + 0.0
+    if angle <= -180.0:
+        angle += 360.0
+    return Counterweight(float(abs(c)), angle, before,
+                         float(np.sqrt(np.mean(np.abs(after) ** 2))))

@@ -1,0 +1,96 @@
+"""One turn of the crank on the sweep's grid, with left-out angles filled in.
+
+Cycle quantities (integrals, means, extremes over a turn) need every angle of the turn. They
+use the sweep's own grid (``at`` angles off it are not part of the cycle); angles left out of
+the results (singular, near-singular) are filled by periodic linear interpolation of their
+neighbours, and ``interpolated`` says which. Means and integrals are periodic trapezoids (the
+closing interval included); on a uniform grid the mean is the plain average.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import MechreportError
+from ..kinematics.path import whole_turn
+from ..spec import GROUND, Spec
+
+
+class CycleUndefined(MechreportError):
+    """A cycle quantity was asked for where there is no whole turn of an R driver."""
+
+
+@dataclass(frozen=True)
+class Cycle:
+    """``angles`` (N,) the sweep grid over one turn [deg]; ``rows`` (N,) the row of each in
+    the analysed results (-1 where left out); ``interpolated`` (K,) the grid angles filled in
+    [deg]; ``omega`` the driver speed [rad/s]."""
+
+    angles: np.ndarray
+    rows: np.ndarray
+    interpolated: np.ndarray
+    omega: float
+
+    @property
+    def step(self) -> float:
+        """Grid spacing [rad]."""
+        return float(np.radians(360.0 / len(self.angles)))
+
+    def sample(self, values: np.ndarray, analysed: np.ndarray) -> np.ndarray:
+        """``values`` (n, ...) over the analysed angles -> (N, ...) over the cycle grid, left-out
+        angles interpolated periodically from their analysed neighbours."""
+        values = np.asarray(values, float)
+        out = np.empty((len(self.angles),) + values.shape[1:])
+        have = self.rows >= 0
+        out[have] = values[self.rows[have]]
+        if (~have).any():
+            x = self.angles[have]
+            flat = out[have].reshape(have.sum(), -1)
+            filled = np.stack([np.interp(self.angles[~have], x, flat[:, c], period=360.0)
+                               for c in range(flat.shape[1])], axis=1)
+            out[~have] = filled.reshape((-1,) + values.shape[1:])
+        return out
+
+    def mean(self, values: np.ndarray) -> float:
+        return float(np.mean(values))
+
+    def rms(self, values: np.ndarray) -> float:
+        return float(np.sqrt(np.mean(np.asarray(values) ** 2)))
+
+    def integral(self, values: np.ndarray) -> np.ndarray:
+        """Running integral over the crank angle [value x rad] at each grid angle, from 0 at
+        the first (trapezoids; the closing interval back to the start is not included)."""
+        v = np.asarray(values, float)
+        return np.concatenate([[0.0], np.cumsum((v[1:] + v[:-1]) / 2)]) * self.step
+
+
+def cycle_problem(spec: Spec) -> str | None:
+    """Why cycle quantities are undefined for ``spec`` (None when they are defined)."""
+    joint = spec.joint(spec.driver.joint)
+    if joint.type != "R" or GROUND not in joint.links:
+        return "cycle quantities need an R driver with ground (a crank)"
+    if not whole_turn(spec):
+        sw = spec.sweep
+        return (f"cycle quantities need a sweep over one whole turn of the crank; this one runs "
+                f"from {sw.start:g} to {sw.stop:g} deg")
+    return None
+
+
+def cycle_of(spec: Spec, analysed_angles: np.ndarray, reachable: bool = True) -> Cycle:
+    """The cycle grid of ``spec`` and where each of its angles sits among ``analysed_angles``.
+    Raises ``CycleUndefined`` when the sweep is not one whole turn of a crank, or when the
+    crank cannot make a full turn (``reachable`` False)."""
+    why = cycle_problem(spec)
+    if why is None and not reachable:
+        why = "cycle quantities need a crank that makes a full turn; this one locks"
+    if why is not None:
+        raise CycleUndefined(f"{spec.file}: {why}")
+    grid = np.round(spec.sweep.angles(), 9)
+    have = np.round(np.asarray(analysed_angles, float), 9)
+    pos = np.clip(np.searchsorted(have, grid), 0, max(len(have) - 1, 0))
+    hit = np.abs(have[pos] - grid) < 1e-9 if len(have) else np.zeros(len(grid), bool)
+    if not hit.any():
+        raise CycleUndefined(f"{spec.file}: no angle of the cycle could be analysed")
+    rows = np.where(hit, pos, -1)
+    return Cycle(grid, rows, grid[~hit], spec.driver.omega)

@@ -1,0 +1,82 @@
+"""What the mechanism exerts on its frame: the shaking force and moment, and the inertial
+shaking force that balancing acts on. Pure functions; arrays (n,) over the analysed angles."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..forces import ForceResult
+from ..kinematics import Kinematics
+from ..kinematics.frames import cross
+from ..spec import GROUND, Joint
+
+
+def reference_method(forces: dict[str, ForceResult]) -> str:
+    """The method whose reactions plots, drawings and cycle quantities use: the first that has
+    reactions (all methods agree to rounding; the agreement table says how well)."""
+    for name, res in forces.items():
+        if res.reactions:
+            return name
+    return next(iter(forces))
+
+
+def joint_point(kin: Kinematics, joint: Joint) -> np.ndarray:
+    """Where a joint's reaction acts (n, 2) [m]: the pin, or the slider's point."""
+    owner = joint.links[1] if joint.type == "T" or joint.links[0] == GROUND else joint.links[0]
+    return kin.named_point(joint.point, owner).r
+
+
+@dataclass(frozen=True)
+class FrameLoad:
+    """Resultant force ``fx``, ``fy`` (n,) [N] the mechanism exerts on the frame, and its
+    moment ``m`` (n,) [N m] about the driver's ground pivot (CCW positive)."""
+
+    fx: np.ndarray
+    fy: np.ndarray
+    m: np.ndarray
+
+    @property
+    def f(self) -> np.ndarray:
+        """Magnitude [N]."""
+        return np.hypot(self.fx, self.fy)
+
+
+def frame_load(kin: Kinematics, res: ForceResult, loads=()) -> FrameLoad:
+    """Shaking force and moment from method ``res``'s reactions: every joint with ground (for
+    [ground, X] the frame receives -F, for [X, ground] +F; T couples likewise), the motor's
+    reaction torque -M, and the reaction -F (or -M) of each load that ``reacts_on: ground``
+    (``loads``: the analysis' AppliedLoads). Weights reach the frame through the joints."""
+    spec = kin.mechanism.spec
+    pivot = joint_point(kin, spec.joint(spec.driver.joint))
+    n = kin.n
+    fx, fy, m = np.zeros(n), np.zeros(n), -np.asarray(res.driver_torque, float)
+    for joint in spec.joints:
+        if GROUND not in joint.links or joint.name not in res.reactions:
+            continue
+        sign = -1.0 if joint.links[0] == GROUND else 1.0
+        r = res.reactions[joint.name]
+        f = sign * np.stack([r.fx, r.fy], axis=1)
+        fx, fy = fx + f[:, 0], fy + f[:, 1]
+        m = m + cross(joint_point(kin, joint) - pivot, f)
+        if r.moment is not None:
+            m = m + sign * r.moment
+    for ld in loads:
+        if ld.load.reacts_on != GROUND:
+            continue
+        if ld.force is not None:
+            at = kin.named_point(ld.load.point, ld.load.link).r
+            fx, fy = fx - ld.force[:, 0], fy - ld.force[:, 1]
+            m = m - cross(at - pivot, ld.force)
+        else:
+            m = m - ld.moment
+    return FrameLoad(fx, fy, m)
+
+
+def inertia_force(kin: Kinematics) -> np.ndarray:
+    """Sum of m a_C over the moving links (n, 2) [N]: the inertial shaking force's negative
+    (gravity and loads left out)."""
+    total = np.zeros((kin.n, 2))
+    for link in kin.mechanism.spec.links:
+        total += link.mass * kin.com(link.name).a
+    return total
