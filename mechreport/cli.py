@@ -1,24 +1,68 @@
-"""Command line: a thin layer over the public load -> solve -> render API."""
+"""Command line: a thin layer over the public load -> solve -> render API.
+
+Every command goes through all the specs it is given: a spec that cannot be read or analysed
+is reported (one message naming the file) and the others still run; the exit code is 1 if
+any spec failed. Errors never print a traceback, unless MECHREPORT_DEBUG=1 is set.
+"""
 from __future__ import annotations
 
 import argparse
+import math
+import os
 import sys
+import traceback
 from pathlib import Path
 
 import numpy as np
 
 from .errors import MechreportError, SpecError
 
+EXIT_INTERRUPTED = 130          # 128 + SIGINT, as a shell reports Ctrl-C
+EXIT_TERMINATED = 143           # 128 + SIGTERM
+
+
+def debug() -> bool:
+    """MECHREPORT_DEBUG set (and not 0): print tracebacks of internal errors."""
+    return os.environ.get("MECHREPORT_DEBUG", "") not in ("", "0")
+
+
+def internal_error(exc: BaseException, attach: str = "the spec file") -> str:
+    """One line for a failure that is a bug in mechreport, not in the spec."""
+    text = " ".join(str(exc).split())
+    return (f"internal error: {type(exc).__name__}{': ' + text if text else ''} — please "
+            f"report this with {attach}")
+
+
+def describe_failure(exc: BaseException) -> str:
+    """The message for a spec that failed with ``exc``: the error's own message for a
+    :class:`MechreportError`, what the system said for a file problem, otherwise an internal
+    error (see :func:`internal_error`)."""
+    if isinstance(exc, MechreportError):
+        return str(exc)
+    if isinstance(exc, UnicodeDecodeError):
+        return (f"cannot read file: not UTF-8 text (byte {exc.start}: {exc.reason}); save it "
+                "as UTF-8")
+    if isinstance(exc, OSError) and exc.strerror:
+        where = f"{exc.filename}: " if exc.filename else ""
+        return f"{where}{exc.strerror}"
+    return internal_error(exc)
+
+
+def print_traceback_if_debug() -> None:
+    if debug():
+        traceback.print_exc(file=sys.stderr)
+
 
 def spec_files(args: list[str]) -> list[Path]:
-    """Expand SPEC|DIR arguments into spec files (a directory gives its *.yaml, sorted)."""
+    """Expand SPEC|DIR arguments into spec files (a directory gives its *.yaml and *.yml,
+    sorted)."""
     out: list[Path] = []
     for arg in args:
         p = Path(arg)
         if p.is_dir():
             found = sorted(list(p.glob("*.yaml")) + list(p.glob("*.yml")))
             if not found:
-                print(f"{p}: no spec files (*.yaml) in this folder", file=sys.stderr)
+                print(f"{p}: no spec files (*.yaml, *.yml) in this folder", file=sys.stderr)
             out.extend(found)
         else:
             out.append(p)
@@ -30,16 +74,28 @@ def _cmd_validate(ns: argparse.Namespace) -> int:
     from .model import build_mechanism
     from .spec import load_spec
 
+    paths = spec_files(ns.specs)
+    if not paths:
+        print("no spec files given", file=sys.stderr)
+        return 1
     failed = 0
-    for path in spec_files(ns.specs):
+    for path in paths:
         try:
             spec = load_spec(path)
             kin = solve_kinematics(build_mechanism(spec), np.asarray(spec.at, float))
-            note = f" ({len(kin.flags)} reference angle(s) singular)" if kin.flags else ""
-            print(f"{path}: OK{note}")
-        except MechreportError as exc:
+        except MechreportError as exc:           # its message names the file
             failed += 1
             print(str(exc), file=sys.stderr)
+            continue
+        except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the others
+            failed += 1
+            print(f"{path}: {describe_failure(exc)}", file=sys.stderr)
+            print_traceback_if_debug()
+            continue
+        note = f" ({len(kin.flags)} reference angle(s) left out)" if kin.flags else ""
+        print(f"{path}: OK{note}")
+        for text in kin.notes():
+            print(f"  note: {text}")
     return 1 if failed else 0
 
 
@@ -49,12 +105,22 @@ def _cmd_kin(ns: argparse.Namespace) -> int:
     from .report.text import kinematics_table
     from .spec import load_spec
 
-    spec = load_spec(ns.spec)
-    angles = np.asarray(ns.angle if ns.angle else spec.at, float)
-    kin = solve_kinematics(build_mechanism(spec), angles)
+    try:
+        spec = load_spec(ns.spec)
+        angles = np.asarray(ns.angle if ns.angle else spec.at, float)
+        kin = solve_kinematics(build_mechanism(spec), angles)
+    except MechreportError as exc:               # its message names the file
+        print(str(exc), file=sys.stderr)
+        return 1
+    except Exception as exc:  # noqa: BLE001 - a message, not a traceback
+        print(f"{ns.spec}: {describe_failure(exc)}", file=sys.stderr)
+        print_traceback_if_debug()
+        return 1
     print(kinematics_table(kin))
     for flag in kin.flags:
         print(f"crank angle {flag.angle:g} deg left out: {flag.reason}")
+    for text in kin.notes():
+        print(f"note: {text}")
     return 0
 
 
@@ -66,7 +132,53 @@ def _cmd_check(ns: argparse.Namespace) -> int:
 def _cmd_build(ns: argparse.Namespace) -> int:
     from .report.build import build_files
     return build_files(spec_files(ns.specs), Path(ns.out), jobs=ns.jobs, sheet=ns.sheet,
-                       exact=ns.exact)
+                       exact=ns.exact, wait=ns.wait)
+
+
+# ------------------------------------------------------------------- argument checks
+
+def _int_at_least_1(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a whole number >= 1, got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be a whole number >= 1, got {text!r}")
+    return value
+
+
+def _number_above_0(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number > 0, got {text!r}") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text!r}")
+    return value
+
+
+def _seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number of seconds >= 0, got {text!r}") \
+            from None
+    if not (math.isfinite(value) and value >= 0):
+        raise argparse.ArgumentTypeError(f"must be a number of seconds >= 0, got {text!r}")
+    return value
+
+
+BUILD_EPILOG = """\
+exit status: 0 if every spec was built and passed its check; 1 if any spec failed to build,
+or was built but failed its check (expectations or method agreement: the report and the
+index say FAIL), or if the output folder cannot be used; 130 if interrupted (Ctrl-C),
+143 if terminated (SIGTERM).
+
+Each spec is written to OUT/<name>/, <name> being its file name without .yaml, with any
+character other than letters, digits, '-', '_', '.' replaced by '_'; specs of one batch with
+the same name get -2, -3, ... in argument order. A report folder is replaced as a whole when
+its spec is built; OUT/index.md and index.pdf list every report folder in OUT. Two builds
+into the same OUT take turns (OUT/.mechreport.lock)."""
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -75,7 +187,9 @@ def main(argv: list[str] | None = None) -> int:
         description="Dynamic force analysis of planar linkages from YAML specs.")
     sub = parser.add_subparsers(dest="command", required=True)
 
-    p = sub.add_parser("validate", help="load specs and assemble them at their reference angles")
+    p = sub.add_parser("validate", help="load specs and assemble them at their reference angles",
+                       description="Load specs and assemble them at their reference angles. "
+                       "Exit status 1 if any spec fails or none is given.")
     p.add_argument("specs", nargs="+", metavar="SPEC|DIR")
     p.set_defaults(func=_cmd_validate)
 
@@ -85,19 +199,28 @@ def main(argv: list[str] | None = None) -> int:
                    help="crank angle in degrees (repeatable; default: the spec's `at`)")
     p.set_defaults(func=_cmd_kin)
 
-    p = sub.add_parser("check", help="solve by every method; compare methods and expectations")
+    p = sub.add_parser("check", help="solve by every method; compare methods and expectations",
+                       description="Solve by every method, compare the methods and check the "
+                       "spec's expectations: one PASS/FAIL line per spec. Exit status 1 if any "
+                       "spec fails or none is given.")
     p.add_argument("specs", nargs="+", metavar="SPEC|DIR")
-    p.add_argument("--tol", type=float, default=1e-6,
+    p.add_argument("--tol", type=_number_above_0, default=1e-6,
                    help="largest relative disagreement between methods (default 1e-6)")
     p.set_defaults(func=_cmd_check)
 
-    p = sub.add_parser("build", help="write Markdown and PDF reports")
+    p = sub.add_parser("build", help="write Markdown and PDF reports",
+                       description="Write a Markdown and PDF report per spec, and an index.",
+                       epilog=BUILD_EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("specs", nargs="+", metavar="SPEC|DIR")
     p.add_argument("-o", "--out", default="out", help="output folder (default: out)")
-    p.add_argument("--jobs", type=int, default=None, help="parallel specs (default: cores)")
+    p.add_argument("--jobs", type=_int_at_least_1, default=None,
+                   help="parallel specs, >= 1 (default: cores)")
     p.add_argument("--sheet", action="store_true", help="also write worked solution sheets")
     p.add_argument("--exact", action="store_true",
                    help="solution sheets also show closed forms (needs sympy)")
+    p.add_argument("--wait", type=_seconds, default=120.0, metavar="SECONDS",
+                   help="how long to wait for another build writing to the same output "
+                   "folder (default 120)")
     p.set_defaults(func=_cmd_build)
 
     ns = parser.parse_args(argv)
@@ -108,6 +231,16 @@ def main(argv: list[str] | None = None) -> int:
         return 1
     except MechreportError as exc:
         print(f"error: {exc}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt as exc:
+        from .report.build import Terminated
+        terminated = isinstance(exc, Terminated)
+        if not getattr(exc, "reported", False):
+            print("terminated" if terminated else "interrupted", file=sys.stderr)
+        return EXIT_TERMINATED if terminated else EXIT_INTERRUPTED
+    except Exception as exc:  # noqa: BLE001 - a bug: one line, a traceback only when asked
+        print(f"error: {internal_error(exc, 'the command you ran')}", file=sys.stderr)
+        print_traceback_if_debug()
         return 1
 
 

@@ -16,14 +16,27 @@ def summary_line(path, result) -> str:
              f"{w.methods[1]} at {w.angle:g} deg)" if w else "no quantity to compare")
     res = max((r.force for r in result.residuals), default=0.0)
     resm = max((r.moment for r in result.residuals), default=0.0)
-    flags = f", {len(result.flags)} angle(s) left out" if result.flags else ""
+    flags = f", {len(result.flags)} angle(s) left out ({left_out(result.flags)})" \
+        if result.flags else ""
     status = "PASS" if result.passed else "FAIL"
     return (f"{status} {path}: {n_exp} expectation(s) ({n_checks} checks), {agree}, "
             f"largest residual {res:.1e} N / {resm:.1e} N·m{flags}")
 
 
+def left_out(flags) -> str:
+    """``2 singular, 3 near-singular``: how many angles were left out, by kind."""
+    counts: dict[str, int] = {}
+    for f in flags:
+        counts[f.kind] = counts.get(f.kind, 0) + 1
+    return ", ".join(f"{n} {kind}" for kind, n in counts.items())
+
+
 def check_files(paths: list[Path], tol: float) -> int:
+    """One PASS/FAIL line per spec on stdout (details indented below a FAIL); a spec that
+    cannot be read or analysed is a FAIL line with its message and the others go on. Exit
+    code 1 if any spec fails (or none is given)."""
     from ..analysis import analyse
+    from ..cli import print_traceback_if_debug, describe_failure
 
     failed = 0
     if not paths:
@@ -32,11 +45,19 @@ def check_files(paths: list[Path], tol: float) -> int:
     for path in paths:
         try:
             result = analyse(path, tol=tol)
+            line = summary_line(path, result)
         except MechreportError as exc:
             failed += 1
             print(f"FAIL {path}: {exc}")
             continue
-        print(summary_line(path, result))
+        except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the others
+            failed += 1
+            print(f"FAIL {path}: {describe_failure(exc)}")
+            print_traceback_if_debug()
+            continue
+        print(line)
+        for note in result.kinematics.notes():
+            print(f"  note: {note}")
         if not result.passed:
             failed += 1
             for e in result.expectations:

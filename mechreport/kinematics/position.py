@@ -263,6 +263,7 @@ def _pick_branch(spec: Spec, dyad: Dyad, cands: list[Poses], sig: list[np.ndarra
             p_name, p_link = named[int(np.argmax(gap))]   # the point the branches move most
             taken = cands[0] if default == 1 else cands[1]
             pos = point_global(taken, p_link, spec.link(p_link).points[p_name])[k]
+            pos = np.where(np.abs(pos) < 1e-9 * size, 0.0, pos) + 0.0   # no round-off, no -0
             where = (f"; on it, at {path.angles[k]:g} deg, {p_name} is at "
                      f"({pos[0]:.6g}, {pos[1]:.6g}) m")
         why = (f"no hint can decide at {path.angles[ref]:g} deg, where both branches meet "

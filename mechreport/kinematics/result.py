@@ -159,6 +159,16 @@ class Kinematics:
         deg = (np.degrees(self.theta[:, self.index(link)]) + 180.0) % 360.0 - 180.0
         return np.where(deg == -180.0, 180.0, deg)
 
+    def notes(self) -> list[str]:
+        """What a user must know before reading numbers: a driver that cannot make a full
+        turn, and branches no hint could choose (one sentence each)."""
+        out = []
+        if self.motion is not None and not self.motion.full:
+            out.append(self.motion.describe())
+        out += [f"dyad {b.dyad}: {b.rule}" for b in self.branches
+                if b.rule.startswith("undecided")]
+        return out
+
     def at(self, angle: float) -> int | None:
         """Index of a crank angle among the analysed ones, None if left out."""
         hit = np.flatnonzero(np.abs(self.angles - angle) < 1e-9)

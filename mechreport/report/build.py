@@ -1,66 +1,97 @@
 """``mechreport build``: one report folder per spec, in parallel, and a batch index.
 
-    OUT/<stem>/report.md, report.pdf, results.csv, summary.json, figures/*.png|svg
+    OUT/<name>/report.md, report.pdf, results.csv, summary.json, figures/*.png|svg
     OUT/index.md, OUT/index.pdf
 
-One failing spec is reported (stderr, and a FAIL row with its message in the index) and does
-not stop the others; the exit code is 1 if any spec failed to build.
+Folder names, the lock on ``OUT`` and the whole-folder swap are described in
+:mod:`mechreport.report.outdir`. One failing spec is reported (stderr, and a FAIL row with its
+message in the index) and does not stop the others. The index lists every report folder in
+``OUT`` (read back from each folder's summary.json), with this run's failures as FAIL rows.
+The exit code is 1 if any spec of this run failed to build or failed its check.
+
+Workers end with the build: Ctrl-C or SIGTERM stops the pool and terminates the workers, and
+a worker whose parent has died exits by itself within a second.
 """
 from __future__ import annotations
 
 import multiprocessing
 import os
+import signal
 import sys
+import threading
 import time
+import traceback
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import MechreportError
+from . import outdir as od
+
+DEFAULT_WAIT = 120.0
 
 
-def build_one(path: Path, out: Path, sheet: bool = False, exact: bool = False) -> dict:
-    """Analyse ``path`` and write its report folder under ``out``; the index row.
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, handled like Ctrl-C."""
+
+
+def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = False,
+              exact: bool = False) -> dict:
+    """Analyse ``path`` and write its report into ``folder`` (a private folder inside
+    ``out``, later renamed to ``out/name``); the run's row.
 
     Raises whatever the analysis or rendering raises (see :func:`build_safe`)."""
     from ..analysis import analyse
     from .drawing import write_drawings
-    from .model import build_model
+    from .model import _index_row, build_model
     from .plots import write_plots
     from .render import write_report
 
-    path = Path(path)
+    path, folder = Path(path), od.inside(out, folder)
     analysis = analyse(path)
     model = build_model(analysis, path)
-    outdir = Path(out) / model.stem
-    write_plots(model, outdir / "figures")
-    write_drawings(model, outdir / "figures")
-    write_report(model, outdir)
-    row = dict(model.index_row, sheets=[])
+    model.stem, model.index_row = name, _index_row(model.summary, name)
+    write_plots(model, folder / "figures")
+    write_drawings(model, folder / "figures")
+    write_report(model, folder)
     if sheet or analysis.spec.sheet:
         from .sheet import write_sheet
-        written = write_sheet(analysis, outdir, exact=exact)
-        row["sheets"] = [Path(p).resolve().relative_to(Path(out).resolve()).as_posix()
-                         for p in written if str(p).endswith((".md", ".pdf"))]
-    return row
+        write_sheet(analysis, folder, exact=exact)
+    for written in folder.rglob("*"):                   # nothing escaped the folder
+        od.inside(folder, written)
+    return dict(model.index_row, folder=name)
 
 
-def build_safe(path: str, out: str, sheet: bool, exact: bool) -> dict:
-    """:func:`build_one` that never raises: a failure becomes a row with ``ok`` False and
-    the error ``message``. Adds ``seconds``. (Top-level so worker processes can run it.)"""
+def build_safe(path: str, out: str, name: str, sheet: bool, exact: bool,
+               owner: int | None = None) -> dict:
+    """:func:`build_one` into ``OUT/.tmp-<name>-<owner>`` that never raises an Exception: a
+    failure becomes a row with ``ok`` False and the error ``message`` (the private folder is
+    then removed). Adds ``seconds`` and ``tmp``. (Top-level so worker processes can run it.)"""
+    from ..cli import describe_failure
+
     start = time.perf_counter()
+    tmp = None
     try:
-        row = build_one(Path(path), Path(out), sheet, exact)
-    except MechreportError as exc:
-        row = _failure(path, str(exc))
+        tmp = od.make_tmp_dir(Path(out), name, owner)
+        row = build_one(Path(path), Path(out), name, tmp, sheet, exact)
+        row["tmp"] = str(tmp)
     except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the batch
-        row = _failure(path, f"{type(exc).__name__}: {exc}")
+        if tmp is not None:
+            od.remove(tmp)
+        row = _failure(path, name, describe_failure(exc))
+        if os.environ.get("MECHREPORT_DEBUG"):
+            row["traceback"] = traceback.format_exc()
+    except BaseException:
+        if tmp is not None:
+            od.remove(tmp)
+        raise
     row["seconds"] = time.perf_counter() - start
     row["spec"] = str(path)
     return row
 
 
-def _failure(path, message: str) -> dict:
-    return {"ok": False, "spec": str(path), "stem": Path(path).stem, "name": Path(path).stem,
+def _failure(path, name: str, message: str) -> dict:
+    return {"ok": False, "spec": str(path), "folder": name, "stem": name, "name": name,
             "status": "FAIL", "message": message.strip() or "unknown error", "sheets": []}
 
 
@@ -78,13 +109,21 @@ class Progress:
         if not row["ok"]:
             self._clear()
             print(f"FAIL {spec}: {row['message']}", file=self.stream)
+            if row.get("traceback"):
+                print(row["traceback"].rstrip(), file=self.stream)
+        elif row.get("status") == "FAIL":
+            self._clear()
+            print(f"built {spec} ({secs:.1f} s), but its check FAILED: see "
+                  f"{row.get('folder', '?')}/report.md", file=self.stream)
         elif not self.tty:
             print(f"built {spec} ({secs:.1f} s)", file=self.stream)
         if self.tty:
             width = 30
             fill = int(width * self.done / max(self.total, 1))
+            label = Path(spec).name[:40].encode("ascii", "replace").decode()
+            label = "".join(c if c.isprintable() else "?" for c in label)
             self.stream.write(f"\r[{'#' * fill}{'.' * (width - fill)}] {self.done}/"
-                              f"{self.total} {Path(spec).name[:40]:<40}")
+                              f"{self.total} {label:<40}")
             self.stream.flush()
 
     def _clear(self) -> None:
@@ -97,53 +136,198 @@ class Progress:
             self.stream.flush()
 
 
-def _run(paths: list[Path], out: Path, jobs: int, sheet: bool, exact: bool,
-         progress: Progress) -> list[dict]:
-    rows: dict[str, dict] = {}
-    if jobs <= 1 or len(paths) <= 1:
-        for p in paths:
-            rows[str(p)] = build_safe(str(p), str(out), sheet, exact)
-            progress.update(rows[str(p)])
-    else:
-        # fresh interpreters: forking a process whose Typst/BLAS threads are running can
-        # deadlock the child (seen under pytest, after a report was typeset in-process)
-        ctx = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
-            futs = {pool.submit(build_safe, str(p), str(out), sheet, exact): str(p)
-                    for p in paths}
-            for fut in as_completed(futs):
-                try:
-                    row = fut.result()
-                except Exception as exc:  # noqa: BLE001 - a worker died
-                    row = _failure(futs[fut], f"{type(exc).__name__}: {exc}")
-                rows[futs[fut]] = row
-                progress.update(row)
-    return [rows[str(p)] for p in paths]
+# ------------------------------------------------------------------------------ workers
 
+def _worker_init(parent: int) -> None:
+    """In each worker: leave Ctrl-C to the parent (the terminal sends it to every process of
+    the group; the parent then terminates the workers), and exit if the parent dies."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    threading.Thread(target=_watch_parent, args=(parent,), daemon=True,
+                     name="mechreport-parent-watch").start()
+
+
+def _watch_parent(parent: int, every: float = 0.5) -> None:
+    while True:
+        time.sleep(every)
+        if os.getppid() != parent:
+            os._exit(1)                    # orphaned: the build is gone, stop writing
+
+
+def _stop_pool(pool: ProcessPoolExecutor) -> None:
+    """Cancel what has not started and terminate the workers (they must not outlive us)."""
+    procs = list((getattr(pool, "_processes", None) or {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for p in procs:
+        if p.is_alive():
+            p.terminate()
+    deadline = time.monotonic() + 3.0
+    for p in procs:
+        p.join(max(0.0, deadline - time.monotonic()))
+        if p.is_alive():
+            p.kill()
+            p.join(1.0)
+
+
+@contextmanager
+def _sigterm_as_interrupt():
+    """SIGTERM raises :class:`Terminated` (a KeyboardInterrupt) in the main thread."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def handler(signum, frame):
+        raise Terminated()
+
+    previous = signal.signal(signal.SIGTERM, handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, exact: bool,
+         finish) -> None:
+    """Build each ``(i, path, name)`` of ``todo``; ``finish(i, row)`` is called in this
+    process as each one ends (in completion order)."""
+    owner = os.getpid()
+    if jobs <= 1 or len(todo) <= 1:
+        for i, p, name in todo:
+            finish(i, build_safe(str(p), str(out), name, sheet, exact, owner))
+        return
+    # fresh interpreters: forking a process whose Typst/BLAS threads are running can
+    # deadlock the child (seen under pytest, after a report was typeset in-process)
+    ctx = multiprocessing.get_context("spawn")
+    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_worker_init,
+                               initargs=(owner,))
+    try:
+        futs = {pool.submit(build_safe, str(p), str(out), name, sheet, exact, owner): (i, p, name)
+                for i, p, name in todo}
+        for fut in as_completed(futs):
+            i, p, name = futs[fut]
+            try:
+                row = fut.result()
+            except Exception as exc:  # noqa: BLE001 - a worker died
+                from ..cli import internal_error
+                row = _failure(p, name, internal_error(exc))
+            finish(i, row)
+    except BaseException:
+        _stop_pool(pool)
+        raise
+    pool.shutdown(wait=True)
+
+
+# -------------------------------------------------------------------------------- index
+
+def index_rows(out: Path, failures: dict[str, dict] | None = None) -> list[dict]:
+    """The index of ``out``: one row per report folder on disk (from its summary.json), with
+    ``failures`` (folder name -> this run's FAIL row) in place of, or beside, the folders."""
+    from .model import _index_row
+
+    failures = failures or {}
+    disk = od.report_folders(out)
+    rows = []
+    for name in sorted(set(disk) | set(failures), key=lambda n: (n.casefold(), n)):
+        if name in failures:
+            row = dict(failures[name])
+            if name in disk:
+                row["message"] += f" (the report of an earlier build is still in {name}/)"
+            rows.append(row)
+            continue
+        data = disk[name]
+        try:
+            if isinstance(data, str):
+                raise ValueError(data)
+            row = _index_row(data, name)
+        except (KeyError, TypeError, ValueError, IndexError) as exc:
+            msg = str(exc) if isinstance(data, str) else \
+                f"{name}/summary.json is not a mechreport summary ({type(exc).__name__}: {exc})"
+            rows.append(_failure(name, name, msg))
+            continue
+        row["sheets"] = [f"{name}/{f}" for f in ("solution.md", "solution.pdf")
+                         if (Path(out) / name / f).is_file()]
+        rows.append(row)
+    return rows
+
+
+def _write_index(out: Path, failures: dict[str, dict]) -> None:
+    from .render import write_index
+    write_index(index_rows(out, failures), out)
+
+
+# -------------------------------------------------------------------------------- batch
 
 def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bool = False,
-                exact: bool = False) -> int:
-    """Build every spec in ``paths`` into ``out`` and write the index; exit code 0 if all
-    built, 1 otherwise. ``jobs``: parallel processes (default: the number of cores)."""
-    from .render import write_index
+                exact: bool = False, wait: float = DEFAULT_WAIT) -> int:
+    """Build every spec in ``paths`` into ``out`` and rewrite the index; exit code 0 if all
+    built and passed their checks, 1 otherwise. ``jobs``: parallel processes (default: the
+    number of cores); ``wait``: seconds to wait for another build writing to ``out``.
 
-    paths = [Path(p) for p in paths]
+    Raises :class:`~mechreport.report.outdir.OutputError` if ``out`` cannot be used, and
+    KeyboardInterrupt (or :class:`Terminated`) if interrupted: then the workers are stopped,
+    finished reports are in place, unfinished ones left as they were, and the index rebuilt."""
+    paths = od.unique_specs([Path(p) for p in paths])
     if not paths:
         print("no spec files given", file=sys.stderr)
         return 1
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = od.prepare(Path(out))
+    names = od.folder_names(paths)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(paths)))
     start = time.perf_counter()
-    progress = Progress(len(paths))
-    rows = _run(paths, out, jobs, sheet, exact, progress)
-    progress.close()
-    failed = [r for r in rows if not r["ok"]]
-    try:
-        write_index(rows, out)
-    except MechreportError as exc:
-        print(f"error: index: {exc}", file=sys.stderr)
-        return 1
-    print(f"{len(rows) - len(failed)} of {len(rows)} report(s) built in {out} "
-          f"({time.perf_counter() - start:.1f} s)", file=sys.stderr)
-    return 1 if failed else 0
+    with _sigterm_as_interrupt(), od.OutputLock(out).acquire(wait):
+        od.clean_leftovers(out)
+        progress = Progress(len(paths))
+        failures: dict[str, dict] = {}
+        rows: list[dict] = [{} for _ in paths]
+
+        def finish(i: int, row: dict) -> None:
+            if row["ok"]:
+                try:
+                    od.swap_in(out, Path(row.pop("tmp")), names[i])
+                except (OSError, MechreportError) as exc:
+                    from ..cli import describe_failure
+                    od.remove(od.tmp_dir(out, names[i]))
+                    row = _failure(paths[i], names[i], "cannot put the report in place: "
+                                   + describe_failure(exc))
+            if not row["ok"]:
+                od.remove(od.tmp_dir(out, names[i]))           # a worker that died
+                failures[names[i]] = row
+            progress.update(row)
+            rows[i] = row
+
+        todo = []
+        for i, (path, name) in enumerate(zip(paths, names)):
+            why = od.occupied(out, name)      # not a report folder: never replaced
+            if why:
+                finish(i, dict(_failure(path, name, why), seconds=0.0))
+            else:
+                todo.append((i, path, name))
+        try:
+            _run(todo, out, min(jobs, max(len(todo), 1)), sheet, exact, finish)
+        except KeyboardInterrupt as exc:
+            progress.close()
+            for name in names:
+                od.remove(od.tmp_dir(out, name))
+            try:
+                _write_index(out, failures)
+            except Exception:  # noqa: BLE001 - interrupted anyway; the next build rewrites it
+                pass
+            what = "terminated" if isinstance(exc, Terminated) else "interrupted"
+            print(f"{what} after {progress.done} of {len(paths)} spec(s): finished reports "
+                  f"are in {out}, the others were left as they were", file=sys.stderr)
+            exc.reported = True
+            raise
+        progress.close()
+        failed = [r for r in rows if not r["ok"]]
+        check_failed = [r for r in rows if r["ok"] and r.get("status") != "PASS"]
+        try:
+            _write_index(out, failures)
+        except MechreportError as exc:
+            print(f"error: index: {exc}", file=sys.stderr)
+            return 1
+    built = len(rows) - len(failed)
+    note = (f"; {len(check_failed)} failed {'its' if len(check_failed) == 1 else 'their'} "
+            "check" if check_failed else "")
+    print(f"{built} of {len(rows)} report(s) built in {out} "
+          f"({time.perf_counter() - start:.1f} s){note}", file=sys.stderr)
+    return 1 if failed or check_failed else 0

@@ -8,6 +8,7 @@ analysed crank angles [deg]. Units: SI throughout (m, kg, s, N, N m, W).
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -146,6 +147,7 @@ class ReportModel:
     power_check: str
     residuals: list[list[str]]
     flags: list[list[str]]
+    notes: list[str]
     figures: dict[str, Figure]
     sweep: SweepData
     scenes: list[Scene]
@@ -458,7 +460,9 @@ def _summary(analysis, sw: SweepData, ref: str, status_line: str, power: dict | 
         "power_balance": power,
         "residuals": [{"method": r.method, "force": r.force, "moment": r.moment}
                       for r in analysis.residuals],
-        "flags": [{"angle_deg": f.angle, "reason": f.reason} for f in analysis.flags],
+        "flags": [{"angle_deg": f.angle, "kind": f.kind, "reason": f.reason}
+                  for f in analysis.flags],
+        "notes": analysis.kinematics.notes(),
     }
 
 
@@ -521,9 +525,25 @@ def build_model(analysis, source: str | Path | None = None) -> ReportModel:
         agreement=_agreement_rows(analysis), power_check=power_text,
         residuals=[[METHODS[r.method].TITLE, f"{r.force:.1e}", f"{r.moment:.1e}"]
                    for r in analysis.residuals],
-        flags=[[deg(f.angle), f.reason] for f in analysis.flags],
+        flags=_flag_rows(analysis), notes=analysis.kinematics.notes(),
         figures=figures, sweep=sw, scenes=scenes, csv_header=header, csv_rows=rows,
         summary=summary, index_row=_index_row(summary, stem))
+
+
+def _flag_rows(analysis) -> list[list[str]]:
+    """Left-out angles as rows (angles, reason): runs of neighbouring angles left out for the
+    same reason share a row ("54 to 306 (253 angles)"); near-singular runs share one however
+    their condition numbers differ."""
+    kept = np.asarray(analysis.angles, float)
+    runs: list[list] = []      # [key, first, last, count, reason]
+    for f in analysis.flags:
+        key = (f.kind, re.sub(r" \(condition [^)]*\)", "", f.reason))
+        if runs and runs[-1][0] == key and not np.any((kept > runs[-1][2]) & (kept < f.angle)):
+            runs[-1][2], runs[-1][3] = f.angle, runs[-1][3] + 1
+        else:
+            runs.append([key, f.angle, f.angle, 1, key[1]])
+    return [[deg(a) if n == 1 else f"{deg(a)} to {deg(b)} ({n} angles)", why]
+            for _, a, b, n, why in runs]
 
 
 def _figures(sw: SweepData, refs: list[RefAngle], ref: str) -> dict[str, Figure]:

@@ -2,6 +2,8 @@
 system packages, no network)."""
 from __future__ import annotations
 
+import re
+import string
 from pathlib import Path
 
 import typst
@@ -24,17 +26,25 @@ def compile_typst(source: str, out_pdf: Path, root: Path) -> Path:
     return atomic_write_bytes(Path(out_pdf), pdf)
 
 
+#: line breaks of any kind, with the blanks around them
+_BREAKS = re.compile(r"[ \t]*(?:\r\n|[\r\n\v\f\x1c-\x1e\x85\u2028\u2029])\s*")
+#: every ASCII punctuation character: each is markup somewhere in Typst (code ``#``, math
+#: ``$``, labels ``<>``, references ``@``, content ``[]``, emphasis ``*_``, raw `` ` ``,
+#: headings ``=``, lists ``-+/``, numbered lists ``1.``, shorthands ``~ ... -- -?``, smart
+#: quotes ``' "``, comments ``//``, escapes ``\``); ``\`` before any of them prints it as is
+_PUNCT = frozenset(string.punctuation)
+_STRING_ESCAPES = {"\\": "\\\\", '"': '\\"', "\n": "\\n", "\r": "\\r", "\t": "\\t"}
+
+
 def typst_string(text: str) -> str:
-    """``text`` as a Typst string literal."""
-    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    """``text`` as a Typst string literal (quotes, backslashes and line breaks escaped): user
+    text passed this way is data, never markup or code."""
+    return '"' + "".join(_STRING_ESCAPES.get(ch, ch) for ch in str(text)) + '"'
 
 
 def typst_escape(text: str) -> str:
-    """``text`` safe in Typst markup (no accidental emphasis, math, labels or code)."""
-    out = []
-    for ch in text:
-        if ch in "\\*_`$#@<>[]~/=-+":
-            out.append("\\" + ch)
-        else:
-            out.append(ch)
-    return "".join(out)
+    """``text`` as plain text in Typst markup: every ASCII punctuation character
+    backslash-escaped, line breaks collapsed to one space (no markup, math, labels, code,
+    paragraph breaks or line-start constructs can come out of it)."""
+    s = _BREAKS.sub(" ", str(text))
+    return "".join("\\" + ch if ch in _PUNCT else ch for ch in s)

@@ -1,7 +1,9 @@
 """Render a :class:`~mechreport.report.model.ReportModel` to report.md, report.pdf,
 results.csv and summary.json, and a batch's index; every file written atomically.
 
-Templates live in ``templates/`` (Jinja2); they format nothing but strings the model holds."""
+Templates live in ``templates/`` (Jinja2); they format nothing but strings the model holds,
+and every string that can hold user text goes through an escaping filter (see
+:func:`environment`)."""
 from __future__ import annotations
 
 import csv
@@ -12,24 +14,25 @@ from pathlib import Path
 
 from .templating import loader
 from .files import atomic_write_text
+from .markdown import md_inline, md_text, md_url
 from .pdf import compile_typst, typst_escape, typst_string
-
-
-
-def _md_cell(text) -> str:
-    """A Markdown table cell: pipes escaped, no line breaks."""
-    return str(text).replace("|", "\\|").replace("\n", " ")
 
 
 @lru_cache(maxsize=1)
 def environment():
+    """The Jinja2 environment of the report and index templates. User text reaches a template
+    only through a filter: Markdown ``md`` (inline text: names, paths, messages), ``md_text``
+    (a spec's Markdown description: no raw HTML), ``url`` (link targets); Typst ``typ``
+    (markup text) and ``ts`` (a string literal)."""
     import jinja2
     env = jinja2.Environment(loader=loader(),
                              undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
                              trim_blocks=True, lstrip_blocks=True, autoescape=False)
-    env.filters["typ"] = lambda s: typst_escape(str(s))
-    env.filters["ts"] = lambda s: typst_string(str(s))
-    env.filters["md"] = _md_cell
+    env.filters["typ"] = typst_escape
+    env.filters["ts"] = typst_string
+    env.filters["md"] = md_inline
+    env.filters["md_text"] = md_text
+    env.filters["url"] = md_url
     return env
 
 

@@ -18,6 +18,7 @@ from pathlib import Path
 import jinja2
 import numpy as np
 
+from .markdown import md_inline
 from .templating import loader
 from ..forces import METHODS
 from ..forces.context import DRIVER_TORQUE
@@ -764,7 +765,7 @@ def _env() -> jinja2.Environment:
     env.filters["plain"] = lambda x: math(x, "plain")
     env.filters["esc"] = lambda s: typst_escape(str(s))
     env.filters["fmt"] = fmt
-    env.filters["mdcell"] = lambda s: str(s).replace("|", r"\|")
+    env.filters["mdcell"] = md_inline
     return env
 
 

@@ -1,0 +1,307 @@
+"""The output folder of ``mechreport build``: folder names, the lock, whole-folder swaps.
+
+- **Names.** Each spec's folder is named after its file name without ``.yaml``/``.yml``:
+  letters, digits, ``-``, ``_`` and ``.`` are kept, anything else becomes ``_``, leading dots
+  become ``_``, the name is cut to 100 characters, and an empty or dot-only name becomes
+  ``spec``. Two specs of one batch whose names match (ignoring case, so that ``A.yaml`` and
+  ``a.yaml`` cannot meet on a case-insensitive disk) are told apart in argument order: the
+  first keeps the name, the next get ``-2``, ``-3``, ... (skipping names already taken). The
+  same spec paths in the same order always give the same names. A spec named twice in one
+  batch (the same resolved file) is built once.
+- **Lock.** ``OUT/.mechreport.lock`` is held (``flock``) for the whole build and holds the
+  builder's pid. A second build into the same folder says who holds it and waits (``--wait``
+  seconds, default 120), then fails with exit 1 if it is still held.
+- **Swap.** A spec is written into ``OUT/.tmp-<name>-<pid>/``; when complete, the old
+  ``OUT/<name>`` is renamed to ``OUT/.old-<name>-<pid>``, the new folder renamed in, the old
+  one deleted: a folder only ever holds one run's files. A spec that fails keeps its previous
+  folder untouched. Only a report folder (holding summary.json) or an empty folder is ever
+  replaced; any other file or folder of that name makes the spec fail, untouched. Leftover
+  ``.tmp-<name>-<pid>``/``.old-<name>-<pid>`` folders of an interrupted build are deleted by
+  the next build (under the lock).
+- Nothing is written outside ``OUT``: every path is checked to resolve inside it.
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+import shutil
+import sys
+import time
+from pathlib import Path
+
+from ..errors import MechreportError
+
+LOCK_NAME = ".mechreport.lock"
+MAX_NAME = 100
+SPEC_SUFFIXES = (".yaml", ".yml")
+_UNSAFE = re.compile(r"[^A-Za-z0-9._-]")
+
+
+class OutputError(MechreportError):
+    """The output folder cannot be used (not a folder, locked, not writable)."""
+
+
+# --------------------------------------------------------------------------------- names
+
+def safe_stem(path) -> str:
+    """The folder name of one spec file, before disambiguation (see the module docstring)."""
+    name = Path(path).name
+    for suffix in SPEC_SUFFIXES:
+        if name.lower().endswith(suffix):
+            name = name[: -len(suffix)]
+            break
+    else:
+        name = Path(name).stem if not name.startswith(".") else name
+    name = _UNSAFE.sub("_", name)
+    if name.strip(".") == "":
+        return "spec"
+    stripped = name.lstrip(".")
+    name = "_" * (len(name) - len(stripped)) + stripped
+    return name[:MAX_NAME]
+
+
+def folder_names(paths: list[Path]) -> list[str]:
+    """One distinct folder name per path, in order (see the module docstring)."""
+    names: list[str | None] = [None] * len(paths)
+    taken: set[str] = set()
+    bases = [safe_stem(p) for p in paths]
+    for i, base in enumerate(bases):                       # first come keeps its name
+        if base.casefold() not in taken:
+            names[i] = base
+            taken.add(base.casefold())
+    reserved = {b.casefold() for b in bases}
+    for i, base in enumerate(bases):                       # the others: -2, -3, ...
+        if names[i] is not None:
+            continue
+        n = 2
+        while (f"{base}-{n}".casefold() in taken or f"{base}-{n}".casefold() in reserved):
+            n += 1
+        names[i] = f"{base}-{n}"
+        taken.add(names[i].casefold())
+    return names  # type: ignore[return-value]
+
+
+def unique_specs(paths: list[Path]) -> list[Path]:
+    """``paths`` without repeats of the same file (first mention kept)."""
+    seen: set[str] = set()
+    out = []
+    for p in paths:
+        try:
+            key = str(Path(p).resolve())
+        except (OSError, RuntimeError):
+            key = os.path.abspath(p)
+        if key not in seen:
+            seen.add(key)
+            out.append(Path(p))
+    return out
+
+
+def inside(out: Path, path: Path) -> Path:
+    """``path`` if it resolves to a direct or deeper child of ``out``; raises otherwise."""
+    root = Path(out).resolve()
+    target = Path(path).resolve()
+    if target == root or root not in target.parents:
+        raise OutputError(f"refusing to write {path}: it is not inside the output folder {out}")
+    return Path(path)
+
+
+# ------------------------------------------------------------------------ output folder
+
+def prepare(out: Path) -> Path:
+    """Create ``out`` (and its parents) if needed; a clear error if it cannot be a folder."""
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise OutputError(f"{out}: the output folder (-o) is an existing file, not a folder")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:
+        raise OutputError(f"{out}: cannot create the output folder: it, or a folder above "
+                          "it, exists and is not a folder") from None
+    except OSError as exc:
+        raise OutputError(f"{out}: cannot create the output folder: "
+                          f"{exc.strerror or exc}") from None
+    if not os.access(out, os.W_OK | os.X_OK):
+        raise OutputError(f"{out}: the output folder is not writable")
+    return out
+
+
+class OutputLock:
+    """``OUT/.mechreport.lock`` held with ``flock`` while a build writes to ``OUT``.
+
+    ``acquire(timeout)`` waits at most ``timeout`` seconds for another holder (telling the
+    user once who it is), then raises :class:`OutputError`."""
+
+    def __init__(self, out: Path, stream=None):
+        self.out = Path(out)
+        self.path = self.out / LOCK_NAME
+        self.stream = stream or sys.stderr
+        self.fd: int | None = None
+
+    def holder(self) -> str:
+        try:
+            pid = self.path.read_text(encoding="ascii").strip()
+        except (OSError, ValueError):
+            return ""
+        return pid if pid.isdigit() else ""
+
+    def acquire(self, timeout: float = 120.0, poll: float = 0.2) -> "OutputLock":
+        try:
+            import fcntl
+        except ImportError:                                 # pragma: no cover - not POSIX
+            return self
+        try:
+            fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o666)
+        except OSError as exc:
+            raise OutputError(f"{self.path}: cannot create the lock file: "
+                              f"{exc.strerror or exc}") from None
+        deadline = time.monotonic() + max(timeout, 0.0)
+        told = False
+        try:
+            while True:
+                try:
+                    fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                    break
+                except BlockingIOError:
+                    pid = self.holder()
+                    who = f"another build (pid {pid})" if pid else "another build"
+                    if time.monotonic() >= deadline:
+                        raise OutputError(
+                            f"{who} is still writing to {self.out} after {timeout:g} s; "
+                            "try again when it has finished, or use another -o folder") from None
+                    if not told:
+                        print(f"{who} is writing to {self.out}; waiting up to {timeout:g} s...",
+                              file=self.stream)
+                        told = True
+                    time.sleep(poll)
+            os.ftruncate(fd, 0)
+            os.pwrite(fd, f"{os.getpid()}\n".encode("ascii"), 0)
+        except BaseException:
+            os.close(fd)
+            raise
+        self.fd = fd
+        return self
+
+    def release(self) -> None:
+        if self.fd is not None:
+            try:
+                os.ftruncate(self.fd, 0)
+            except OSError:
+                pass
+            os.close(self.fd)                               # closing drops the flock
+            self.fd = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.release()
+
+
+def tmp_dir(out: Path, name: str, pid: int | None = None) -> Path:
+    """The private folder a spec is written into before it is swapped in."""
+    return Path(out) / f".tmp-{name}-{pid or os.getpid()}"
+
+
+def make_tmp_dir(out: Path, name: str, pid: int | None = None) -> Path:
+    """Create (fresh) the private folder of ``name``; returns it."""
+    tmp = inside(out, tmp_dir(out, name, pid))
+    remove(tmp)
+    tmp.mkdir()                                    # 0777 less the umask, like mkdir(1)
+    return tmp
+
+
+def remove(path: Path) -> None:
+    """Delete a file, symlink or folder tree if it is there (never follows a symlink)."""
+    path = Path(path)
+    try:
+        if path.is_symlink() or not path.is_dir():
+            path.unlink(missing_ok=True)
+        else:
+            shutil.rmtree(path, ignore_errors=True)
+    except OSError:
+        pass
+
+
+def occupied(out: Path, name: str) -> str | None:
+    """Why ``OUT/name`` must not be replaced by a report, or None. Only a report folder (one
+    holding summary.json) or an empty folder is replaced: a build into ``-o .`` must never
+    delete a folder of the user's that happens to share a spec's name."""
+    path = Path(out) / name
+    if not os.path.lexists(path):
+        return None
+    advice = "move it away or use another -o folder"
+    if path.is_symlink() or not path.is_dir():
+        return f"{path} exists and is not a report folder; {advice}"
+    try:
+        entries = {e.name for e in path.iterdir()}
+    except OSError as exc:
+        return f"{path}: {exc.strerror or exc}"
+    if entries and "summary.json" not in entries:
+        return (f"{path} exists and is not a mechreport report folder (no summary.json); "
+                f"{advice}")
+    return None
+
+
+def swap_in(out: Path, tmp: Path, name: str) -> Path:
+    """Replace ``OUT/name`` by the complete folder ``tmp`` (two renames; the old folder, if
+    any, is deleted afterwards). Returns the final folder."""
+    out = Path(out)
+    if _UNSAFE.search(name) is not None or name.strip(".") == "" or name.startswith("."):
+        raise OutputError(f"refusing to write {out / name}: {name!r} is not a folder name "
+                          "mechreport makes")
+    why = occupied(out, name)
+    if why:
+        raise OutputError(why)
+    final = out / name
+    inside(out, tmp)
+    old = out / f".old-{name}-{os.getpid()}"
+    remove(old)
+    had_old = os.path.lexists(final)
+    if had_old:
+        os.rename(final, old)
+    try:
+        os.rename(tmp, final)
+    except BaseException:
+        if had_old:
+            os.rename(old, final)
+        raise
+    if had_old:
+        remove(old)
+    return final
+
+
+_LEFTOVER = re.compile(r"\.(?:tmp|old)-[A-Za-z0-9_][A-Za-z0-9._-]*-\d+")
+
+
+def clean_leftovers(out: Path) -> list[str]:
+    """Delete the ``.tmp-<name>-<pid>`` and ``.old-<name>-<pid>`` folders an interrupted
+    build left in ``out`` (call with the lock held). Returns their names."""
+    gone = []
+    for entry in Path(out).iterdir():
+        if _LEFTOVER.fullmatch(entry.name):
+            remove(entry)
+            gone.append(entry.name)
+    return gone
+
+
+# ------------------------------------------------------------------------------ index
+
+def report_folders(out: Path) -> dict[str, dict | str]:
+    """Every report folder in ``out``: name -> its summary.json (a dict), or a message saying
+    why it could not be read. Folders without summary.json are not reports and are skipped."""
+    found: dict[str, dict | str] = {}
+    for entry in sorted(Path(out).iterdir(), key=lambda p: p.name.casefold()):
+        if entry.name.startswith(".") or entry.is_symlink() or not entry.is_dir():
+            continue
+        summary = entry / "summary.json"
+        if not summary.is_file():
+            continue
+        try:
+            data = json.loads(summary.read_text(encoding="utf-8"))
+            if not isinstance(data, dict):
+                raise ValueError("not a JSON object")
+            found[entry.name] = data
+        except (OSError, ValueError) as exc:
+            found[entry.name] = f"{entry.name}/summary.json could not be read: {exc}"
+    return found
