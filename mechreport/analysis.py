@@ -47,6 +47,12 @@ class Analysis:
         return self.kinematics.angles
 
     @property
+    def loads(self):
+        """The applied loads evaluated over ``angles`` (AppliedLoad: force (n, 2) [N] or
+        moment (n,) [N m])."""
+        return self.context.loads
+
+    @property
     def worst(self) -> Agreement | None:
         return self.agreement[0] if self.agreement else None
 

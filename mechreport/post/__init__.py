@@ -6,10 +6,11 @@ from .bearings import BearingLoad, bearing_carrier, bearing_load, bearing_trace,
 from .cycle import Cycle, CycleUndefined, cycle_of, cycle_problem
 from .frame import FrameLoad, frame_load, inertia_force, joint_point, reference_method
 from .review import JOINT_UNITS, UNITS, Review, review, unit_of
+from .torque import Peak, TorqueStats, peak, torque_stats
 from .transmission import transmission_angles
 
 __all__ = ["Counterweight", "counterweight", "BearingLoad", "bearing_carrier", "bearing_load",
            "bearing_trace", "rating_life_h", "Cycle", "CycleUndefined", "cycle_of",
            "cycle_problem", "FrameLoad", "frame_load", "inertia_force", "joint_point",
            "reference_method", "JOINT_UNITS", "UNITS", "Review", "review", "unit_of",
-           "transmission_angles"]
+           "transmission_angles", "Peak", "TorqueStats", "peak", "torque_stats"]

@@ -82,7 +82,7 @@ def review(analysis, speed_fluctuation: float | None = None,
     if speed_fluctuation:
         values["cycle.flywheel_inertia"] = (values["cycle.energy_fluctuation"]
                                             / (speed_fluctuation * omega ** 2))
-    frame = frame_load(kin, res, analysis.context.loads)
+    frame = frame_load(kin, res, analysis.loads)
     shaking = sample(np.stack([frame.fx, frame.fy], axis=1))
     f = np.hypot(shaking[:, 0], shaking[:, 1])
     values["cycle.shaking.force_max"] = float(np.max(f))

@@ -17,7 +17,7 @@ import numpy as np
 from .text import kinematics_rows
 from ..forces import METHODS
 from ..spec import GROUND
-from . import quantities as q
+from .. import post as q
 from .scene import Scene, build_scene
 
 DASH = "—"
@@ -296,14 +296,16 @@ def _sweep(analysis, ref: str, symbols, colors) -> SweepData:
     polar = []
     for j in spec.joints:
         if j.type == "R" and j.name in res.reactions:
-            xy = q.bearing_trace(analysis, res, j)
+            xy = q.bearing_trace(analysis.kinematics, res, j)
             polar.append(PolarSeries(j.name, symbols[j.name], colors[j.name],
                                      q.bearing_carrier(j), xy[:, 0], xy[:, 1]))
     check = analysis.forces.get("power")
     return SweepData(analysis.angles, [float(a) for a in spec.at],
                      [f.angle for f in analysis.flags], METHODS[ref].TITLE, res.driver_torque,
                      None if check is None or check is res else check.driver_torque,
-                     q.torque_stats(analysis, res), joints, polar, q.frame_load(analysis, res))
+                     q.torque_stats(res, analysis.kinematics.omega[:, analysis.kinematics.index(
+                         analysis.spec.driver.link)]), joints, polar,
+                     q.frame_load(analysis.kinematics, res, analysis.loads))
 
 
 def _peak_text(p: q.Peak | None, unit: str) -> str:

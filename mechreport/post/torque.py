@@ -1,0 +1,49 @@
+"""Driver effort statistics over the analysed angles (not a whole-turn cycle: see review)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..forces import ForceResult
+
+
+@dataclass(frozen=True)
+class Peak:
+    """Largest |value| [unit of the quantity] and the crank angle [deg] where it occurs."""
+
+    value: float
+    angle: float
+
+
+def peak(angles: np.ndarray, values: np.ndarray) -> Peak | None:
+    """Signed value of largest magnitude and its angle; None for an empty sweep."""
+    if len(values) == 0:
+        return None
+    k = int(np.argmax(np.abs(values)))
+    return Peak(float(values[k]), float(angles[k]))
+
+
+@dataclass(frozen=True)
+class TorqueStats:
+    """Driver torque over the analysed angles [N m]: mean, RMS, peak (signed, largest |T|),
+    min, max; ``power`` the mean input power T omega [W]."""
+
+    mean: float
+    rms: float
+    peak: Peak
+    low: Peak
+    high: Peak
+    power: float
+
+
+def torque_stats(res: ForceResult, omega: np.ndarray) -> TorqueStats | None:
+    """Statistics of ``res.driver_torque``; ``omega`` (n,) the driver's speed [rad/s]."""
+    t = np.asarray(res.driver_torque, float)
+    if len(t) == 0:
+        return None
+    ang = res.angles
+    kmin, kmax = int(np.argmin(t)), int(np.argmax(t))
+    return TorqueStats(float(np.mean(t)), float(np.sqrt(np.mean(t**2))), peak(ang, t),
+                       Peak(float(t[kmin]), float(ang[kmin])),
+                       Peak(float(t[kmax]), float(ang[kmax])), float(np.mean(t * omega)))
