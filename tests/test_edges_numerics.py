@@ -94,6 +94,14 @@ def test_sweep_singular_everywhere_is_a_clear_error():
         analyse(spec)
 
 
+def test_a_sweep_shorter_than_round_off_keeps_its_angle():
+    """Sweep(0, 1e-10) counted as 'zero whole turns' and lost its only angle (IndexError)."""
+    spec = slider_crank(at="[0]")
+    spec = dataclasses.replace(spec, sweep=dataclasses.replace(spec.sweep, start=0, stop=1e-10))
+    assert list(spec.sweep.angles()) == [0.0]
+    assert list(analyse(spec).angles) == [0.0]
+
+
 # 4. near-singular positions ------------------------------------------------------------------
 
 @pytest.mark.parametrize("offset", [1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6])

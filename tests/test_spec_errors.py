@@ -809,12 +809,14 @@ def test_reference_angle_that_cannot_close_raises_assembly_error():
         solve_kinematics(mech)
     assert str(info.value) == (f"{FILE}: the dyad B_R C_R C_T (rod, slider) cannot close at the "
                                "first reference angle 90 deg; check link lengths and `at`")
-    # with a reference angle where it closes (|sin phi| <= 0.5), the other angles are flagged
+    # with a reference angle where it closes (|sin phi| <= 0.5), the other angles are flagged:
+    # 30 deg is the lock itself (velocities unbounded), 40 deg lies beyond it
     mech = build_mechanism(parse_spec(edit(text, "at: [90]", "at: [0]"), FILE))
     kin = solve_kinematics(mech, [0, 10, 20, 30, 40])
-    assert list(kin.angles) == [0, 10, 20, 30]
-    assert [f.angle for f in kin.flags] == [40]
-    assert kin.flags[0].reason == "dyad B_R C_R C_T cannot close"
+    assert list(kin.angles) == [0, 10, 20]
+    assert [(f.angle, f.kind) for f in kin.flags] == [(30, "near-singular"), (40, "unreachable")]
+    assert kin.flags[1].reason == ("not reachable from the assembly: the mechanism locks "
+                                   "between 30 and 31 deg")
 
 
 # -- the command line ----------------------------------------------------------------------

@@ -1,23 +1,42 @@
 """Load and validate a spec file (format version 1, ../shared/spec-format.md; docs/spec.md).
 
 Every problem of a file is collected and raised together as one ``SpecError``; each names the
-file, line, key path and what was expected.
+file, line, key path and what was expected. Whatever the input, loading ends in a ``Spec`` or a
+``SpecError``, quickly and in little memory: the reader (``yaml_source``) caps the file size
+and the nesting depth and refuses aliases, tags and non-UTF-8 text; this module checks every
+value's type and every number's range (docs/spec.md, "What the loader refuses, and why").
 """
 from __future__ import annotations
 
 import difflib
 import math
+import os
+import re
 from pathlib import Path as FsPath
 from typing import Any
 
 from ..errors import Problem, SpecError
 from .types import (GROUND, Driver, Expectation, Joint, Line, Link, Load, Shape, Spec, Sweep,
                     Vec)
-from .yaml_source import Source, format_path
+from .yaml_source import (MAX_DEPTH, MAX_FILE_BYTES, HugeInteger, Source, check_text, decode,
+                          format_path, too_big)
 
 LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001}
 MASS_UNITS = {"kg": 1.0, "g": 0.001}
 DEFAULT_GRAVITY = (0.0, -9.80665)
+
+# Every number in a spec is finite and, unless exactly zero, has a magnitude between
+# NUMBER_MIN and NUMBER_MAX, as written and in SI: squares, products and sums of such numbers
+# (kinematics, forces, power, condition numbers) stay far from float overflow and underflow.
+NUMBER_MAX = 1e20
+NUMBER_MIN = 1e-20
+NUMBER_RANGE = (f"between {-NUMBER_MAX:g} and {NUMBER_MAX:g} "
+                f"(nonzero magnitudes at least {NUMBER_MIN:g})")
+POSITIVE_RANGE = f"between {NUMBER_MIN:g} and {NUMBER_MAX:g}"
+MAX_PROBLEMS = 100   # listed per file; the rest are counted
+
+__all__ = ["load_spec", "parse_spec", "LENGTH_UNITS", "MASS_UNITS", "NUMBER_MAX", "NUMBER_MIN",
+           "MAX_FILE_BYTES", "MAX_DEPTH", "MAX_PROBLEMS"]
 
 TOP_KEYS = ("mechreport", "name", "description", "units", "gravity", "ground", "links",
             "joints", "driver", "sweep", "at", "assembly", "loads", "expect", "sheet")
@@ -28,10 +47,49 @@ LINK_QUANTITIES = ("angle", "omega", "alpha")
 R_QUANTITIES = ("fx", "fy", "f")
 T_QUANTITIES = ("fx", "fy", "f", "moment", "px", "py")
 
+_YAML11_BOOLS = {"yes", "no", "on", "off", "y", "n"}
+_SEXAGESIMAL = re.compile(r"[-+]?[0-9][0-9_]*(?::[0-5]?[0-9])+(?:\.[0-9_]*)?\Z")
+_NUMBER_TEXT = re.compile(r"\s*[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?\s*\Z")
+
 
 def _show(value: Any) -> str:
-    text = repr(value) if isinstance(value, str) else str(value)
+    if value is None:
+        text = "null"
+    elif isinstance(value, bool):
+        text = "true" if value else "false"
+    elif isinstance(value, str):
+        text = repr(value)
+    elif isinstance(value, int) and abs(value) > 10**30:
+        text = str(HugeInteger(str(value)))
+    else:
+        text = str(value)
     return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _in_range(x: float) -> bool:
+    """Zero, or a magnitude in [NUMBER_MIN, NUMBER_MAX] (False for inf and nan)."""
+    return x == 0 or NUMBER_MIN <= abs(x) <= NUMBER_MAX
+
+
+def _text_hint(value: Any, boolean: bool = False) -> str:
+    """Why a text value that looks like something else is text (YAML 1.1 habits)."""
+    if not isinstance(value, str):
+        return ""
+    if value.strip().lower() in _YAML11_BOOLS:
+        if boolean:
+            return (" (YAML 1.1 read yes/no/on/off as true/false; a spec does not: write true "
+                    "or false)")
+        return " (yes/no/on/off are text in a spec, not true/false)"
+    if boolean:
+        return ""
+    if _SEXAGESIMAL.match(value.strip()):
+        return (" (YAML 1.1 reads this as a base-60 number; mechreport reads it as text: write "
+                "the number in plain digits)")
+    if _NUMBER_TEXT.match(value):
+        return " (a quoted number is text: remove the quotes)"
+    if "_" in value and _NUMBER_TEXT.match(value.replace("_", "")):
+        return " (write numbers without '_')"
+    return ""
 
 
 class _Checker:
@@ -39,7 +97,8 @@ class _Checker:
 
     def __init__(self, src: Source):
         self.src = src
-        self.problems: list[Problem] = list(src.problems)
+        self.problems: list[Problem] = list(src.problems[:MAX_PROBLEMS])
+        self.dropped = max(0, len(src.problems) - MAX_PROBLEMS)
         # Names written in the spec whose definitions failed (already reported): later checks
         # skip them instead of reporting follow-on errors such as "unknown link".
         self.invalid_links: set[str] = set()
@@ -47,6 +106,9 @@ class _Checker:
         self.invalid_points: set[str] = set()
 
     def error(self, path: tuple, message: str) -> None:
+        if len(self.problems) >= MAX_PROBLEMS:
+            self.dropped += 1
+            return
         self.problems.append(Problem(self.src.filename, self.src.line(path),
                                      format_path(path), message))
 
@@ -66,20 +128,28 @@ class _Checker:
         return value
 
     def number(self, value: Any, path: tuple, *, positive: bool = False,
-               nonzero: bool = False) -> float | None:
-        number: float | None = None
-        if isinstance(value, bool):
-            number = None
-        elif isinstance(value, (int, float)):
-            number = float(value)
-        elif isinstance(value, str):
-            try:  # YAML 1.1 reads 1e-3 as a string; accept it as a number
-                number = float(value)
-            except ValueError:
-                number = None
-        if number is None or not math.isfinite(number):
-            kind = "a positive number" if positive else "a number"
-            self.error(path, f"must be {kind}, got {_show(value)}")
+               nonzero: bool = False, scale: float = 1.0, unit: str = "") -> float | None:
+        """A finite number in range, times ``scale`` (to SI; ``unit`` names the written unit);
+        None (reported) otherwise."""
+        if type(value) is float and scale == 1.0 and not positive and not nonzero and (
+                value == 0 or NUMBER_MIN <= abs(value) <= NUMBER_MAX):
+            return value                             # fast path: the common case
+        kind = "a positive number" if positive else "a number"
+        if (isinstance(value, bool) or not isinstance(value, (int, float, HugeInteger))):
+            if len(self.problems) >= MAX_PROBLEMS:   # not listed: skip the message
+                self.dropped += 1
+                return None
+            self.error(path, f"must be {kind}, got {_show(value)}{_text_hint(value)}")
+            return None
+        wanted = (f"must be a positive number {POSITIVE_RANGE}" if positive else
+                  f"must be a number {NUMBER_RANGE}")
+        # compare ints exactly: float() of a 400-digit integer overflows
+        if isinstance(value, HugeInteger) or (isinstance(value, int) and abs(value) > NUMBER_MAX):
+            self.error(path, f"{wanted}, got {_show(value)}")
+            return None
+        number = float(value)
+        if not _in_range(number):
+            self.error(path, f"{wanted}, got {_show(value)}")
             return None
         if positive and number <= 0:
             self.error(path, f"must be a positive number, got {_show(value)}")
@@ -87,51 +157,116 @@ class _Checker:
         if nonzero and number == 0:
             self.error(path, "must not be zero")
             return None
-        return number
+        si = number * scale
+        if not _in_range(si):
+            self.error(path, f"{_show(value)} {unit} is {si:g} in SI units; numbers must lie "
+                             f"{NUMBER_RANGE} in SI units too")
+            return None
+        return si
 
-    def vec2(self, value: Any, path: tuple, what: str = "[x, y]") -> Vec | None:
+    def vec2(self, value: Any, path: tuple, what: str = "[x, y]", *, scale: float = 1.0,
+             unit: str = "") -> Vec | None:
         if not isinstance(value, list) or len(value) != 2:
             self.error(path, f"must be a pair {what}, got {_show(value)}")
             return None
-        x = self.number(value[0], path + (0,))
-        y = self.number(value[1], path + (1,))
+        x = self.number(value[0], path + (0,), scale=scale, unit=unit)
+        y = self.number(value[1], path + (1,), scale=scale, unit=unit)
         return None if x is None or y is None else (x, y)
 
     def name(self, value: Any, path: tuple) -> str | None:
         if not isinstance(value, str) or not value:
-            self.error(path, f"must be a name, got {_show(value)}")
+            hint = (" (quote a name that looks like a number, true/false or null)"
+                    if value is None or isinstance(value, (bool, int, float)) else "")
+            self.error(path, f"must be a name, got {_show(value)}{hint}")
             return None
         return value
 
     def choice(self, value: Any, path: tuple, options: tuple[str, ...]) -> str | None:
-        if value not in options:
+        if not isinstance(value, str) or value not in options:
             self.error(path, f"must be one of {', '.join(options)}, got {_show(value)}")
+            return None
+        return value
+
+    def derived(self, value: float, path: tuple, what: str, unit: str) -> float | None:
+        """A value computed from others (a mass from density x volume, an inertia from a shape)
+        must lie in range too."""
+        if not _in_range(value):
+            self.error(path, f"{what} {value:g} {unit}; numbers must lie {NUMBER_RANGE}")
             return None
         return value
 
 
 def load_spec(path: str | FsPath) -> Spec:
-    """Read, validate and convert a spec file to SI. Raises ``SpecError`` listing every problem."""
+    """Read, validate and convert a spec file to SI. Raises ``SpecError`` listing every problem.
+
+    The size is checked before reading (at most ``MAX_FILE_BYTES``), and at most one byte more
+    is ever read, so a huge file or a device such as /dev/zero is refused at once."""
     filename = str(path)
     try:
-        text = FsPath(path).read_text(encoding="utf-8")
-    except OSError as exc:
-        raise SpecError([Problem(filename, None, "", f"cannot read file: {exc.strerror}")]) from None
-    return parse_spec(text, filename)
+        with open(path, "rb") as fh:
+            size = os.fstat(fh.fileno()).st_size
+            if size > MAX_FILE_BYTES:
+                raise too_big(size, filename)
+            data = fh.read(MAX_FILE_BYTES + 1)
+    except (OSError, ValueError) as exc:   # ValueError: a NUL character in the path
+        reason = getattr(exc, "strerror", None) or str(exc)
+        raise SpecError([Problem(filename, None, "", f"cannot read file: {reason}")]) from None
+    if len(data) > MAX_FILE_BYTES:
+        raise too_big(len(data), filename)
+    return parse_spec(data, filename)
 
 
-def parse_spec(text: str, filename: str = "<spec>") -> Spec:
-    """Validate spec text; ``filename`` is used in messages."""
-    src = Source(filename, text)
-    ck = _Checker(src)
-    spec = _build(src.data, ck)
-    if ck.problems or spec is None:
-        raise SpecError(_sorted(ck.problems))
-    return spec
+def parse_spec(text: str | bytes, filename: str = "<spec>") -> Spec:
+    """Validate spec text (or UTF-8 bytes); ``filename`` is used in messages.
+
+    Raises ``SpecError`` and nothing else, whatever the input."""
+    try:
+        if isinstance(text, (bytes, bytearray, memoryview)):
+            data = bytes(text)
+            if len(data) > MAX_FILE_BYTES:
+                raise too_big(len(data), filename)
+            text = decode(data, filename)
+        elif not isinstance(text, str):
+            raise SpecError([Problem(filename, None, "", "spec text must be str or bytes, got "
+                                                         f"{type(text).__name__}")])
+        check_text(text, filename)
+        src = Source(filename, text)
+        ck = _Checker(src)
+        spec = _build(src.data, ck)
+        if spec is None or ck.problems:
+            if not ck.problems:   # pragma: no cover - every refusal records its reason
+                ck.error((), "internal error: the spec was refused without a reason; please "
+                             "report this")
+            raise SpecError(_listed(ck))
+        return spec
+    except SpecError:
+        raise
+    except RecursionError:
+        raise SpecError([Problem(filename, None, "", "the spec is nested too deeply to read")]) \
+            from None
+    except MemoryError:
+        raise SpecError([Problem(filename, None, "", "out of memory while reading the spec")]) \
+            from None
+    except Exception as exc:   # never a traceback for a user's file; tests assert this is unused
+        raise SpecError([Problem(filename, None, "", f"internal error while loading the spec "
+                                                     f"({type(exc).__name__}: {exc}); please "
+                                                     "report this")]) from exc
+
+
+def _listed(ck: _Checker) -> list[Problem]:
+    problems = _sorted(ck.problems)
+    if ck.dropped:
+        problems.append(Problem(ck.src.filename, None, "",
+                                f"... and {ck.dropped} more problem(s); only the first "
+                                f"{MAX_PROBLEMS} are listed"))
+    return problems
 
 
 def _sorted(problems: list[Problem]) -> list[Problem]:
     return sorted(problems, key=lambda p: (p.line or 10**9))
+
+
+_ABSENT = object()
 
 
 def _build(data: Any, ck: _Checker) -> Spec | None:
@@ -147,9 +282,11 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
         ck.error(("mechreport",), f"format version must be 1, got {_show(top['mechreport'])}")
 
     name = ck.name(top.get("name"), ("name",)) if "name" in top else None
-    description = top.get("description", "") or ""
+    description = top.get("description", "")
+    if description is None:
+        description = ""
     if not isinstance(description, str):
-        ck.error(("description",), "must be text (Markdown)")
+        ck.error(("description",), f"must be text (Markdown), got {_show(description)}")
         description = ""
 
     length_scale, mass_scale, units = _units(top.get("units"), ck)
@@ -157,21 +294,25 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     if "gravity" in top:
         gravity = ck.vec2(top["gravity"], ("gravity",), "[gx, gy] in m/s^2") or DEFAULT_GRAVITY
 
-    ground = _ground(top.get("ground", {}), ck, length_scale)
-    links = _links(top.get("links"), ck, length_scale, mass_scale)
+    ground = _ground(top.get("ground", {}), ck, length_scale, units["length"])
+    links = _links(top.get("links", _ABSENT), ck, length_scale, mass_scale, units)
     link_names = {link.name for link in links}
-    joints = _joints(top.get("joints"), ck, ground, {l.name: l for l in links}, length_scale)
+    joints = _joints(top.get("joints", _ABSENT), ck, ground, {l.name: l for l in links},
+                     length_scale, units["length"])
     driver = _driver(top.get("driver"), ck, joints) if "driver" in top else None
     sweep = _sweep(top.get("sweep"), ck)
     at = _angle_list(top.get("at"), ("at",), ck) if "at" in top else (sweep.start,)
-    assembly = _assembly(top.get("assembly"), ck, links, length_scale)
+    assembly = _assembly(top.get("assembly"), ck, links, length_scale, units["length"])
     loads = _loads(top.get("loads"), ck, {l.name: l for l in links})
     expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src)
     sheet = top.get("sheet", False)
     if not isinstance(sheet, bool):
-        ck.error(("sheet",), f"must be true or false, got {_show(sheet)}")
+        ck.error(("sheet",), f"must be true or false, got {_show(sheet)}"
+                             f"{_text_hint(sheet, boolean=True)}")
         sheet = False
 
+    if links and joints:
+        _zero_length(ck, links, joints)
     if links and joints is not None and link_names and not (ck.invalid_links or
                                                             ck.invalid_joints):
         _structure(ck, links, joints)
@@ -193,11 +334,7 @@ def _units(value: Any, ck: _Checker) -> tuple[float, float, dict[str, str]]:
     return LENGTH_UNITS[length], MASS_UNITS[mass], {"length": length, "mass": mass}
 
 
-def _scaled(v: Vec | None, s: float) -> Vec | None:
-    return None if v is None else (v[0] * s, v[1] * s)
-
-
-def _ground(value: Any, ck: _Checker, s: float) -> dict[str, Vec]:
+def _ground(value: Any, ck: _Checker, s: float, unit: str) -> dict[str, Vec]:
     if value is None:
         return {}
     if not isinstance(value, dict):
@@ -205,17 +342,20 @@ def _ground(value: Any, ck: _Checker, s: float) -> dict[str, Vec]:
         return {}
     out = {}
     for pname, pvalue in value.items():
-        v = _scaled(ck.vec2(pvalue, ("ground", pname)), s)
+        v = ck.vec2(pvalue, ("ground", pname), scale=s, unit=unit)
         if v is not None:
-            out[str(pname)] = v
+            out[pname] = v
+        else:
+            ck.invalid_points.add(pname)
     return out
 
 
-def _links(value: Any, ck: _Checker, ls: float, ms: float) -> list[Link]:
-    if value is None:
+def _links(value: Any, ck: _Checker, ls: float, ms: float, units: dict[str, str]) -> list[Link]:
+    if value is _ABSENT:
         return []
     if not isinstance(value, dict) or not value:
-        ck.error(("links",), "must be a mapping of link names to link definitions")
+        ck.error(("links",), "must be a mapping of link names to link definitions"
+                             + ("" if isinstance(value, dict) else f", got {_show(value)}"))
         return []
     links = []
     for number, (lname, body) in enumerate(value.items(), start=1):
@@ -223,42 +363,43 @@ def _links(value: Any, ck: _Checker, ls: float, ms: float) -> list[Link]:
         if lname == GROUND:
             ck.error(path, "'ground' is the reserved name of the frame; name moving links otherwise")
             continue
-        link = _link(lname, number, body, path, ck, ls, ms)
+        link = _link(lname, number, body, path, ck, ls, ms, units)
         if link is not None:
             links.append(link)
         else:
-            ck.invalid_links.add(str(lname))
+            ck.invalid_links.add(lname)
             raw = body.get("points") if isinstance(body, dict) else None
-            ck.invalid_points.update(str(p) for p in (raw if isinstance(raw, dict) else ()))
+            ck.invalid_points.update(raw if isinstance(raw, dict) else ())
     return links
 
 
 def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
-          ls: float, ms: float) -> Link | None:
+          ls: float, ms: float, units: dict[str, str]) -> Link | None:
     body = ck.mapping(body, path, LINK_KEYS, required=("points",))
     if body is None:
         return None
+    lu, mu = units["length"], units["mass"]
     points: dict[str, Vec] = {}
     raw_points = body.get("points")
-    points_ok = raw_points is not None
-    if raw_points is not None:
+    points_ok = "points" in body
+    if "points" in body:
         if not isinstance(raw_points, dict) or not raw_points:
-            ck.error(path + ("points",), "must map at least one point name to [x, y]")
+            ck.error(path + ("points",), "must map at least one point name to [x, y]"
+                     + ("" if isinstance(raw_points, dict) else f", got {_show(raw_points)}"))
             points_ok = False
         else:
             for pname, pv in raw_points.items():
-                v = _scaled(ck.vec2(pv, path + ("points", pname)), ls)
+                v = ck.vec2(pv, path + ("points", pname), scale=ls, unit=lu)
                 if v is not None:
-                    points[str(pname)] = v
+                    points[pname] = v
                 else:
                     points_ok = False
-    shape = _shape(body.get("shape"), path + ("shape",), ck, ls) if "shape" in body else None
-    mass = ck.number(body["mass"], path + ("mass",), positive=True) if "mass" in body else None
-    if mass is not None:
-        mass *= ms
+    shape = _shape(body.get("shape"), path + ("shape",), ck, ls, lu) if "shape" in body else None
+    mass = (ck.number(body["mass"], path + ("mass",), positive=True, scale=ms, unit=mu)
+            if "mass" in body else None)
     density = (ck.number(body["density"], path + ("density",), positive=True)
                if "density" in body else None)
-    com = _scaled(ck.vec2(body["com"], path + ("com",)), ls) if "com" in body else None
+    com = ck.vec2(body["com"], path + ("com",), scale=ls, unit=lu) if "com" in body else None
     inertia = (ck.number(body["inertia"], path + ("inertia",), positive=True)
                if "inertia" in body else None)
     bad = any(k in body and v is None for k, v in
@@ -270,7 +411,10 @@ def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
         if density is None or shape is None:
             ck.error(path, f"link '{lname}' needs 'mass', or 'density' with a 'shape'")
             return None
-        mass = density * shape.volume
+        mass = ck.derived(density * shape.volume, path + ("density",),
+                          "density x shape volume gives a mass of", "kg")
+        if mass is None:
+            return None
     if com is None:
         if shape is None:
             ck.error(path, f"link '{lname}' needs 'com' (centre of mass) or a 'shape'")
@@ -285,11 +429,14 @@ def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
             ck.error(path + ("com",), f"is off the shape's centroid {list(c)}: give 'inertia' "
                                       "too (a shape's inertia is about its own centroid)")
             return None
-        inertia = shape.inertia(mass)
+        inertia = ck.derived(shape.inertia(mass), path + ("shape",),
+                             "the shape gives an inertia of", "kg m^2")
+        if inertia is None:
+            return None
     return Link(lname, number, points, mass, com, inertia, shape)
 
 
-def _shape(value: Any, path: tuple, ck: _Checker, ls: float) -> Shape | None:
+def _shape(value: Any, path: tuple, ck: _Checker, ls: float, unit: str) -> Shape | None:
     if not isinstance(value, dict) or len(value) != 1 or next(iter(value)) not in ("bar", "block"):
         ck.error(path, "must be {bar: {length, height, depth}} or {block: {width, height, depth}}")
         return None
@@ -299,10 +446,11 @@ def _shape(value: Any, path: tuple, ck: _Checker, ls: float) -> Shape | None:
     dims = ck.mapping(dims, path + (kind,), keys, required=keys)
     if dims is None or any(k not in dims for k in keys):
         return None
-    sizes = [ck.number(dims[k], path + (kind, k), positive=True) for k in keys]
+    sizes = [ck.number(dims[k], path + (kind, k), positive=True, scale=ls, unit=unit)
+             for k in keys]
     if any(v is None for v in sizes):
         return None
-    return Shape(kind, sizes[0] * ls, sizes[1] * ls, sizes[2] * ls)
+    return Shape(kind, sizes[0], sizes[1], sizes[2])
 
 
 def _link_points(lname: str, ground: dict[str, Vec], links: dict[str, Link]) -> dict[str, Vec]:
@@ -310,11 +458,12 @@ def _link_points(lname: str, ground: dict[str, Vec], links: dict[str, Link]) -> 
 
 
 def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, Link],
-            ls: float) -> list[Joint] | None:
-    if value is None:
+            ls: float, unit: str) -> list[Joint] | None:
+    if value is _ABSENT:
         return None
     if not isinstance(value, dict) or not value:
-        ck.error(("joints",), "must be a mapping of joint names to joint definitions")
+        ck.error(("joints",), "must be a mapping of joint names to joint definitions"
+                              + ("" if isinstance(value, dict) else f", got {_show(value)}"))
         return None
     joints = []
     for jname, body in value.items():
@@ -333,7 +482,11 @@ def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, L
         pair = body["links"]
         if (not isinstance(pair, list) or len(pair) != 2
                 or not all(isinstance(x, str) for x in pair)):
-            ck.error(path + ("links",), f"must be two link names [first, second], got {_show(pair)}")
+            ck.error(path + ("links",), f"must be two link names [first, second], got {_show(pair)}"
+                     + (" (quote a name that looks like a number, true/false or null)"
+                        if isinstance(pair, list) and len(pair) == 2 and any(
+                            x is None or isinstance(x, (bool, int, float)) for x in pair)
+                        else ""))
             continue
         ok = True
         for i, lname in enumerate(pair):
@@ -350,6 +503,9 @@ def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, L
         if jtype == "R":
             for i, lname in enumerate(pair):
                 if jname not in _link_points(lname, ground, links):
+                    if lname == GROUND and jname in ck.invalid_points:
+                        ok = False          # the ground point's own problem is reported
+                        continue
                     where = "ground points" if lname == GROUND else f"link '{lname}' points"
                     ck.error(path + ("links", i),
                              f"R joint '{jname}' needs a point named '{jname}' in {where}")
@@ -357,25 +513,25 @@ def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, L
             if ok:
                 joints.append(Joint(jname, "R", (pair[0], pair[1]), jname))
         else:
-            joint = _t_joint(jname, body, pair, path, ck, ground, links, ls)
+            joint = _t_joint(jname, body, pair, path, ck, ground, links, ls, unit)
             if joint is not None:
                 joints.append(joint)
-    ck.invalid_joints.update(str(name) for name in value if name not in {j.name for j in joints})
+    ck.invalid_joints.update(name for name in value if name not in {j.name for j in joints})
     return joints
 
 
 def _t_joint(jname: str, body: dict, pair: list, path: tuple, ck: _Checker,
-             ground: dict[str, Vec], links: dict[str, Link], ls: float) -> Joint | None:
+             ground: dict[str, Vec], links: dict[str, Link], ls: float,
+             unit: str) -> Joint | None:
     guide, slider = pair
     point = ck.name(body.get("point"), path + ("point",)) if "point" in body else None
     if point is not None and point not in _link_points(slider, ground, links):
         ck.error(path + ("point",), f"'{point}' is not a point of the slider '{slider}' "
                                     "(the second link of a T joint slides on the first)")
         point = None
-    line = body.get("line")
-    if line is None:
+    if "line" not in body:   # reported as a missing key
         return None
-    line = ck.mapping(line, path + ("line",), ("through", "direction"),
+    line = ck.mapping(body["line"], path + ("line",), ("through", "direction"),
                       required=("through", "direction"))
     if line is None or "through" not in line or "direction" not in line:
         return None
@@ -383,14 +539,15 @@ def _t_joint(jname: str, body: dict, pair: list, path: tuple, ck: _Checker,
     if isinstance(through_raw, str):
         pts = _link_points(guide, ground, links)
         if through_raw not in pts:
-            ck.error(path + ("line", "through"), f"'{through_raw}' is not a point of the guide "
-                                                 f"'{guide}'")
+            if not (guide == GROUND and through_raw in ck.invalid_points):
+                ck.error(path + ("line", "through"), f"'{through_raw}' is not a point of the "
+                                                     f"guide '{guide}'")
             through = None
         else:
             through, through_name = pts[through_raw], through_raw
     else:
-        through = _scaled(ck.vec2(through_raw, path + ("line", "through"),
-                                  "[x, y] or a point name"), ls)
+        through = ck.vec2(through_raw, path + ("line", "through"), "[x, y] or a point name",
+                          scale=ls, unit=unit)
     direction_raw = line["direction"]
     if isinstance(direction_raw, list):
         d = ck.vec2(direction_raw, path + ("line", "direction"), "[dx, dy] or an angle in degrees")
@@ -425,6 +582,10 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None) -> Driver | No
     if key == "rpm":
         rpm = speed
         omega = None if speed is None else speed * math.pi / 30.0
+        if omega is not None and not _in_range(omega):
+            ck.error(path + (key,), f"{_show(speed)} rpm is {omega:g} rad/s; numbers must lie "
+                                    f"{NUMBER_RANGE} in SI units too")
+            omega = None
     else:
         omega = speed
     alpha = ck.number(body["alpha"], path + ("alpha",)) if "alpha" in body else 0.0
@@ -459,7 +620,12 @@ def _sweep(value: Any, ck: _Checker) -> Sweep:
     if (vals["stop"] - vals["start"]) / vals["step"] > 100000:
         ck.error(("sweep", "step"), "gives more than 100000 angles; use a larger step")
         return Sweep()
-    return Sweep(**vals)
+    sweep = Sweep(**vals)
+    if len(sweep.angles()) == 0:   # stop - start below 1e-9 deg reads as "zero whole turns"
+        ck.error(("sweep", "stop"), f"gives no crank angle: stop must exceed start "
+                                    f"({vals['start']:g}) by more than 1e-9 degrees")
+        return Sweep()
+    return sweep
 
 
 def _angle_list(value: Any, path: tuple, ck: _Checker) -> tuple[float, ...]:
@@ -470,7 +636,8 @@ def _angle_list(value: Any, path: tuple, ck: _Checker) -> tuple[float, ...]:
     return tuple(v for v in out if v is not None) or (0.0,)
 
 
-def _assembly(value: Any, ck: _Checker, links: list[Link], ls: float) -> dict[str, Vec]:
+def _assembly(value: Any, ck: _Checker, links: list[Link], ls: float,
+              unit: str) -> dict[str, Vec]:
     if value is None:
         return {}
     if not isinstance(value, dict):
@@ -478,12 +645,12 @@ def _assembly(value: Any, ck: _Checker, links: list[Link], ls: float) -> dict[st
         return {}
     out = {}
     for pname, pv in value.items():
-        v = _scaled(ck.vec2(pv, ("assembly", pname)), ls)
+        v = ck.vec2(pv, ("assembly", pname), scale=ls, unit=unit)
         if not any(pname in l.points for l in links):
             if pname not in ck.invalid_points:
                 ck.error(("assembly", pname), f"'{pname}' is not a point of any moving link")
         elif v is not None:
-            out[str(pname)] = v
+            out[pname] = v
     return out
 
 
@@ -526,7 +693,9 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link]) -> list[Load]:
         req = ("link", "point") if kind == "force" else ("link",)
         if ck.mapping(item, path, allowed, required=req) is None or any(k not in item for k in req):
             continue
-        lname = item["link"]
+        lname = ck.name(item["link"], path + ("link",))
+        if lname is None:
+            continue
         if lname not in links:
             if lname not in ck.invalid_links:
                 ck.error(path + ("link",), f"unknown link '{lname}' (loads act on moving links: "
@@ -534,7 +703,9 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link]) -> list[Load]:
             continue
         point = None
         if kind == "force":
-            point = item["point"]
+            point = ck.name(item["point"], path + ("point",))
+            if point is None:
+                continue
             if point not in links[lname].points:
                 ck.error(path + ("point",), f"'{point}' is not a point of link '{lname}'")
                 continue
@@ -650,6 +821,25 @@ def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
             return f"'{q}': a link has {', '.join(LINK_QUANTITIES)}"
         return None
     return f"'{q}' names nothing: {usage}"
+
+
+def _zero_length(ck: _Checker, links: list[Link], joints: list[Joint]) -> None:
+    """A link whose pins (the points of its R joints) all coincide has zero length: it has no
+    direction, so the dyad holding it has no solution, and a crank of zero length turns
+    nothing. Pins may share a place as long as another pin of the link lies elsewhere (two
+    joints at one place make a compound hinge)."""
+    for link in links:
+        pins = [j.point for j in joints if j.type == "R" and link.name in j.links]
+        pins = list(dict.fromkeys(p for p in pins if p in link.points))
+        if len(pins) < 2:
+            continue
+        first = link.points[pins[0]]
+        if all(link.points[p] == first for p in pins[1:]):
+            a, b = pins[0], pins[1]
+            ck.error(("links", link.name, "points", b),
+                     f"link '{link.name}' has zero length: its joint points '{a}' and '{b}' are "
+                     "at the same place; a link's pins must be apart (did you mean another "
+                     "coordinate?)")
 
 
 def _structure(ck: _Checker, links: list[Link], joints: list[Joint]) -> None:

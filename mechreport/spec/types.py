@@ -106,7 +106,8 @@ class Sweep:
         span = self.stop - self.start
         n = int(math.floor(span / self.step + 1e-9))
         values = self.start + self.step * np.arange(n + 1)
-        whole_turn = abs(span - 360.0 * round(span / 360.0)) < 1e-9 and span > 0
+        turns = round(span / 360.0)
+        whole_turn = turns >= 1 and abs(span - 360.0 * turns) < 1e-9
         if whole_turn and abs(values[-1] - self.stop) < 1e-9:
             values = values[:-1]
         return values
