@@ -21,6 +21,7 @@ from .forces import METHODS, ForceContext, ForceResult, solve_forces
 from .kinematics import EPS, TRUST_RTOL, Flag, Kinematics, solve_kinematics
 from .linalg import SINGULAR_COND
 from .model import Mechanism, build_mechanism
+from .post import CycleUndefined, Review, Verdict, review_of, verdicts
 from .spec import Spec, load_spec
 
 DEFAULT_TOL = 1e-6
@@ -41,6 +42,9 @@ class Analysis:
     residuals: list[Residual]
     expectations: list[ExpectationResult]
     tol: float = DEFAULT_TOL
+    review: Review | None = None      # cycle quantities (whole-turn sweeps of a full-turn crank)
+    review_problem: str = ""          # why there is no review
+    verdicts: tuple[Verdict, ...] = ()
 
     @property
     def angles(self) -> np.ndarray:
@@ -60,6 +64,7 @@ class Analysis:
     def passed(self) -> bool:
         worst = self.worst
         return (all(e.ok for e in self.expectations)
+                and all(v.passed for v in self.verdicts)
                 and (worst is None or worst.relative <= self.tol)
                 and self.kinematics.n > 0)
 
@@ -84,8 +89,23 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> 
         forces = solve_forces(kin, methods)
     _require_finite(kin, forces)
     ctx = ForceContext(kin)
+    rev, why = _review(spec, kin, forces, ctx.loads)
+    values = rev.values if rev is not None else None
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces),
-                    residuals(ctx, forces), check_expectations(kin, forces, kin.flags), tol)
+                    residuals(ctx, forces),
+                    check_expectations(kin, forces, kin.flags, values, why), tol, rev, why,
+                    tuple(verdicts(spec.design, values, why)))
+
+
+def _review(spec: Spec, kin: Kinematics, forces, loads) -> tuple[Review | None, str]:
+    """The cycle quantities, or None and why they are undefined."""
+    if spec.cycle_problem() is not None:
+        return None, spec.cycle_problem()
+    ratings = {j: b.rating for j, b in spec.design.bearings.items()}
+    try:
+        return review_of(kin, forces, loads, spec.design.speed_fluctuation, ratings), ""
+    except CycleUndefined as exc:
+        return None, str(exc).split(": ", 1)[-1]
 
 
 def _force_flags(kin: Kinematics, forces: dict[str, ForceResult]) -> list[Flag]:

@@ -58,7 +58,8 @@ def batched_solve_cond(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.nda
         cond = np.sqrt(np.einsum("nij,nij->n", As, As)) * np.max(probe, axis=1)
     cond = np.where(np.isfinite(cond), cond, np.inf)
     cond[overflow] = np.nan
-    x = y[:, :, 0] / cs
+    with np.errstate(over="ignore", invalid="ignore"):
+        x = y[:, :, 0] / cs
     x[~(cond < SINGULAR_COND)] = np.nan
     return x, cond
 

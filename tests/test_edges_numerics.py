@@ -41,6 +41,8 @@ def slider_crank(at: str = "[45]", extra: str = "", expect: bool = False):
 
 # 1. non-finite results ---------------------------------------------------------------------
 
+@pytest.mark.filterwarnings("ignore:overflow:RuntimeWarning",
+                            "ignore:invalid value:RuntimeWarning")
 def test_non_finite_result_is_an_error_naming_quantity_and_angle():
     # the loader refuses such a mass; a Spec built in Python must still never pass
     spec = slider_crank()
@@ -51,6 +53,8 @@ def test_non_finite_result_is_an_error_naming_quantity_and_angle():
         analyse(spec)
 
 
+@pytest.mark.filterwarnings("ignore:overflow:RuntimeWarning",
+                            "ignore:invalid value:RuntimeWarning")
 def test_non_finite_gravity_is_an_error_not_a_pass():
     spec = dataclasses.replace(slider_crank(), gravity=(1e308, -1e308))
     with pytest.raises(AnalysisError, match=r"not finite numbers at \d+ deg"):

@@ -34,10 +34,17 @@ def kinematic_value(kin: Kinematics, quantity: str, k: int) -> float:
     return float({"omega": kin.omega, "alpha": kin.alpha}[attr][k, i])
 
 
-def check_expectations(kin: Kinematics, results: dict[str, ForceResult],
-                       flags) -> list[ExpectationResult]:
+def check_expectations(kin: Kinematics, results: dict[str, ForceResult], flags,
+                       cycle: dict[str, float] | None = None,
+                       cycle_why: str = "") -> list[ExpectationResult]:
+    """Every ``expect`` entry: instantaneous quantities against the kinematics or every force
+    method at their angle; cycle quantities (no angle) against ``cycle`` (the review's values,
+    from the reference method; None when undefined, because ``cycle_why``)."""
     out = []
     for e in kin.mechanism.spec.expect:
+        if e.angle is None:
+            out.append(_check_cycle(e, cycle, cycle_why))
+            continue
         k = kin.at(e.angle)
         if k is None:
             why = next((f.reason for f in flags if abs(f.angle - e.angle) < 1e-9),
@@ -63,3 +70,14 @@ def check_expectations(kin: Kinematics, results: dict[str, ForceResult],
                                  f"± {e.tol:.2g}, got {got:.10g} ({source})")
             out.append(ExpectationResult(e, source, got, ok, msg))
     return out
+
+
+def _check_cycle(e: Expectation, cycle: dict[str, float] | None, why: str) -> ExpectationResult:
+    got = None if cycle is None else cycle.get(e.quantity)
+    if got is None:
+        reason = why if cycle is None else "not defined for this mechanism"
+        return ExpectationResult(e, "cycle", None, False, f"{e.quantity} is undefined: {reason}")
+    ok = abs(got - e.value) <= e.tol
+    msg = "" if ok else (f"{e.quantity}: expected {e.value:.10g} ± {e.tol:.2g}, got {got:.10g} "
+                         "(over the cycle)")
+    return ExpectationResult(e, "cycle", got, ok, msg)

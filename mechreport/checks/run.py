@@ -19,7 +19,12 @@ def summary_line(path, result) -> str:
     flags = f", {len(result.flags)} angle(s) left out ({left_out(result.flags)})" \
         if result.flags else ""
     status = "PASS" if result.passed else "FAIL"
-    return (f"{status} {path}: {n_exp} expectation(s) ({n_checks} checks), {agree}, "
+    design = ""
+    if result.verdicts:
+        missed = sum(not v.passed for v in result.verdicts)
+        design = (f", {len(result.verdicts)} design verdict(s)"
+                  + (f" ({missed} missed)" if missed else ""))
+    return (f"{status} {path}: {n_exp} expectation(s) ({n_checks} checks){design}, {agree}, "
             f"largest residual {res:.1e} N / {resm:.1e} N·m{flags}")
 
 
@@ -60,6 +65,9 @@ def check_files(paths: list[Path], tol: float) -> int:
             print(f"  note: {note}")
         if not result.passed:
             failed += 1
+            for v in result.verdicts:
+                if not v.passed:
+                    print(f"  design verdict missed: {v.describe()}")
             for e in result.expectations:
                 if not e.ok:
                     print(f"  {e.message}")

@@ -64,17 +64,11 @@ class SweepPath:
         return off, grid[lo], grid[hi], w
 
 
-def whole_turn(spec: Spec) -> bool:
-    sw = spec.sweep
-    span = sw.stop - sw.start
-    return span > 0 and abs(span - 360.0 * round(span / 360.0)) < 1e-9 and round(span / 360) == 1
-
-
 def sweep_path(spec: Spec, analysed: np.ndarray, ref_angle: float) -> SweepPath:
     """The tracking grid and runs for the ``analysed`` angles [deg] (sorted, unique)."""
     analysed = np.asarray(analysed, float)
     grid = np.round(spec.sweep.angles(), 9)
-    periodic = whole_turn(spec)
+    periodic = spec.sweep.whole_turn
     ref_angle = round(float(ref_angle), 9)
     if periodic:   # the reference angle's place in the grid's turn
         start = float(grid[0])

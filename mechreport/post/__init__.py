@@ -3,14 +3,14 @@ mechanism does to its frame, bearing loads, transmission angles, balancing, and 
 quantities and verdicts of a design review. Nothing here draws or formats."""
 from .balance import Counterweight, counterweight
 from .bearings import BearingLoad, bearing_carrier, bearing_load, bearing_trace, rating_life_h
-from .cycle import Cycle, CycleUndefined, cycle_of, cycle_problem
+from .cycle import Cycle, CycleUndefined, cycle_of
 from .frame import FrameLoad, frame_load, inertia_force, joint_point, reference_method
-from .review import JOINT_UNITS, UNITS, Review, review, unit_of
+from .review import JOINT_UNITS, UNITS, Review, review, review_of, unit_of
+from .verdicts import Verdict, verdicts
 from .torque import Peak, TorqueStats, peak, torque_stats
 from .transmission import transmission_angles
 
 __all__ = ["Counterweight", "counterweight", "BearingLoad", "bearing_carrier", "bearing_load",
-           "bearing_trace", "rating_life_h", "Cycle", "CycleUndefined", "cycle_of",
-           "cycle_problem", "FrameLoad", "frame_load", "inertia_force", "joint_point",
-           "reference_method", "JOINT_UNITS", "UNITS", "Review", "review", "unit_of",
+           "bearing_trace", "rating_life_h", "Cycle", "CycleUndefined", "cycle_of", "FrameLoad", "frame_load", "inertia_force", "joint_point",
+           "reference_method", "JOINT_UNITS", "UNITS", "Review", "review", "review_of", "unit_of", "Verdict", "verdicts",
            "transmission_angles", "Peak", "TorqueStats", "peak", "torque_stats"]

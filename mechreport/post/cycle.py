@@ -13,8 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import MechreportError
-from ..kinematics.path import whole_turn
-from ..spec import GROUND, Spec
+from ..spec import Spec
 
 
 class CycleUndefined(MechreportError):
@@ -65,23 +64,11 @@ class Cycle:
         return np.concatenate([[0.0], np.cumsum((v[1:] + v[:-1]) / 2)]) * self.step
 
 
-def cycle_problem(spec: Spec) -> str | None:
-    """Why cycle quantities are undefined for ``spec`` (None when they are defined)."""
-    joint = spec.joint(spec.driver.joint)
-    if joint.type != "R" or GROUND not in joint.links:
-        return "cycle quantities need an R driver with ground (a crank)"
-    if not whole_turn(spec):
-        sw = spec.sweep
-        return (f"cycle quantities need a sweep over one whole turn of the crank; this one runs "
-                f"from {sw.start:g} to {sw.stop:g} deg")
-    return None
-
-
 def cycle_of(spec: Spec, analysed_angles: np.ndarray, reachable: bool = True) -> Cycle:
     """The cycle grid of ``spec`` and where each of its angles sits among ``analysed_angles``.
     Raises ``CycleUndefined`` when the sweep is not one whole turn of a crank, or when the
     crank cannot make a full turn (``reachable`` False)."""
-    why = cycle_problem(spec)
+    why = spec.cycle_problem()
     if why is None and not reachable:
         why = "cycle quantities need a crank that makes a full turn; this one locks"
     if why is not None:

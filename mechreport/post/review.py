@@ -1,7 +1,8 @@
 """Cycle quantities of a whole-turn analysis: the numbers a design review asks for.
 
-One owner for their names and units (``UNITS``): ``cycle.torque.max`` ... ``balance.*`` and
-per joint ``joint.J.f_max`` ... ``joint.J.life_h``. Everything is computed on the cycle grid
+Their names and units are owned by :mod:`mechreport.quantities` (``cycle.torque.max`` ...
+``balance.*``, per joint ``joint.J.f_max`` ... ``joint.J.life_h``). Everything is computed on
+the cycle grid
 (see :mod:`.cycle`) from the reference method's results; nothing here draws or formats.
 """
 from __future__ import annotations
@@ -15,29 +16,7 @@ from .bearings import BearingLoad, bearing_load
 from .cycle import Cycle, cycle_of
 from .frame import frame_load, inertia_force, reference_method
 from .transmission import transmission_angles
-
-UNITS = {
-    "cycle.torque.max": "N·m", "cycle.torque.min": "N·m", "cycle.torque.mean": "N·m",
-    "cycle.torque.rms": "N·m", "cycle.power.max": "W", "cycle.power.mean": "W",
-    "cycle.energy_fluctuation": "J", "cycle.flywheel_inertia": "kg·m^2",
-    "cycle.shaking.force_max": "N", "cycle.shaking.force_rms": "N",
-    "cycle.shaking.moment_max": "N·m", "cycle.transmission_angle.min": "deg",
-    "cycle.transmission_angle.max": "deg", "cycle.inertia_shaking.force_rms": "N",
-    "balance.counterweight.mr": "kg·m", "balance.counterweight.angle": "deg",
-    "balance.inertia_shaking.force_rms": "N",
-}
-JOINT_UNITS = {"f_max": "N", "f_mean": "N", "f_equivalent": "N", "life_h": "h"}
-
-
-def unit_of(quantity: str) -> str | None:
-    """The SI unit of a cycle quantity name, None if it is not one."""
-    if quantity in UNITS:
-        return UNITS[quantity]
-    parts = quantity.split(".")
-    if len(parts) == 3 and parts[0] == "joint" and parts[2] in JOINT_UNITS:
-        return JOINT_UNITS[parts[2]]
-    return None
-
+from ..quantities import CYCLE_UNITS as UNITS, JOINT_CYCLE_UNITS as JOINT_UNITS, unit_of
 
 @dataclass(frozen=True)
 class Review:
@@ -60,14 +39,22 @@ class Review:
 
 def review(analysis, speed_fluctuation: float | None = None,
            ratings: dict[str, float] | None = None) -> Review:
-    """Every cycle quantity of ``analysis``. Raises ``CycleUndefined`` (with the reason) when
-    the sweep is not one whole turn of a crank that turns fully. ``ratings``: dynamic load
-    rating [N] by joint name, for ``joint.J.life_h``."""
-    spec, kin = analysis.spec, analysis.kinematics
+    """Every cycle quantity of ``analysis`` (an Analysis). Raises ``CycleUndefined`` (with the
+    reason) when the sweep is not one whole turn of a crank that turns fully. ``ratings``:
+    dynamic load rating [N] by joint name, for ``joint.J.life_h``."""
+    return review_of(analysis.kinematics, analysis.forces, analysis.loads, speed_fluctuation,
+                     ratings)
+
+
+def review_of(kin, forces, loads, speed_fluctuation: float | None = None,
+              ratings: dict[str, float] | None = None) -> Review:
+    """:func:`review` from its parts: the kinematics, the force results by method and the
+    evaluated loads."""
+    spec = kin.mechanism.spec
     motion = kin.motion
     cyc = cycle_of(spec, kin.angles, motion is None or motion.full)
-    method = reference_method(analysis.forces)
-    res = analysis.forces[method]
+    method = reference_method(forces)
+    res = forces[method]
     omega = spec.driver.omega
     sample = lambda v: cyc.sample(v, kin.angles)   # noqa: E731 - one-line adapter
     torque = sample(res.driver_torque)
@@ -82,7 +69,7 @@ def review(analysis, speed_fluctuation: float | None = None,
     if speed_fluctuation:
         values["cycle.flywheel_inertia"] = (values["cycle.energy_fluctuation"]
                                             / (speed_fluctuation * omega ** 2))
-    frame = frame_load(kin, res, analysis.loads)
+    frame = frame_load(kin, res, loads)
     shaking = sample(np.stack([frame.fx, frame.fy], axis=1))
     f = np.hypot(shaking[:, 0], shaking[:, 1])
     values["cycle.shaking.force_max"] = float(np.max(f))

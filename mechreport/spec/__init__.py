@@ -1,6 +1,7 @@
 """Stage 1: load and validate a spec file into SI dataclasses."""
 from .loader import load_spec, parse_spec
-from .types import GROUND, Driver, Expectation, Joint, Line, Link, Load, Shape, Spec, Sweep
+from .types import (GROUND, BearingSpec, Design, Driver, Expectation, Joint, Line, Link, Load,
+                    Shape, Spec, Sweep)
 
-__all__ = ["load_spec", "parse_spec", "GROUND", "Driver", "Expectation", "Joint", "Line", "Link",
+__all__ = ["load_spec", "parse_spec", "GROUND", "BearingSpec", "Design", "Driver", "Expectation", "Joint", "Line", "Link",
            "Load", "Shape", "Spec", "Sweep"]

@@ -16,8 +16,9 @@ from pathlib import Path as FsPath
 from typing import Any
 
 from ..errors import Problem, SpecError
-from .types import (GROUND, Driver, Expectation, Joint, Line, Link, Load, Shape, Spec, Sweep,
-                    Vec)
+from ..quantities import CYCLE_UNITS, JOINT_CYCLE_UNITS, is_cycle
+from .types import (GROUND, BearingSpec, Design, Driver, Expectation, Joint, Line, Link, Load,
+                    Shape, Spec, Sweep, Vec)
 from .yaml_source import (MAX_DEPTH, MAX_FILE_BYTES, HugeInteger, Source, check_text, decode,
                           format_path, too_big)
 
@@ -39,7 +40,10 @@ __all__ = ["load_spec", "parse_spec", "LENGTH_UNITS", "MASS_UNITS", "NUMBER_MAX"
            "MAX_FILE_BYTES", "MAX_DEPTH", "MAX_PROBLEMS"]
 
 TOP_KEYS = ("mechreport", "name", "description", "units", "gravity", "ground", "links",
-            "joints", "driver", "sweep", "at", "assembly", "loads", "expect", "sheet")
+            "joints", "driver", "sweep", "at", "assembly", "loads", "expect", "sheet", "design")
+DESIGN_KEYS = ("speed_fluctuation", "motor", "bearings", "limits")
+MOTOR_KEYS = ("rated_torque", "peak_torque", "rated_power")
+LIMIT_KEYS = ("joint_force", "transmission_angle", "shaking_force")
 LINK_KEYS = ("points", "mass", "density", "com", "inertia", "shape")
 JOINT_KEYS = {"R": ("type", "links"), "T": ("type", "links", "point", "line")}
 POINT_QUANTITIES = ("x", "y", "vx", "vy", "ax", "ay")
@@ -305,6 +309,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     assembly = _assembly(top.get("assembly"), ck, links, length_scale, units["length"])
     loads = _loads(top.get("loads"), ck, {l.name: l for l in links})
     expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src)
+    design = _design(top.get("design"), ck, joints) if "design" in top else Design()
     sheet = top.get("sheet", False)
     if not isinstance(sheet, bool):
         ck.error(("sheet",), f"must be true or false, got {_show(sheet)}"
@@ -319,10 +324,84 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
 
     if ck.problems or name is None or driver is None or joints is None:
         return None
-    return Spec(file=ck.src.filename, name=name, description=description.strip(),
+    spec = Spec(file=ck.src.filename, name=name, description=description.strip(),
                 gravity=gravity, ground=ground, links=tuple(links), joints=tuple(joints),
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
-                expect=tuple(expect), sheet=sheet, units=units)
+                expect=tuple(expect), sheet=sheet, units=units, design=design)
+    _cycle_requests(spec, ck)
+    return None if ck.problems else spec
+
+
+def _design(value: Any, ck: _Checker, joints: list[Joint] | None) -> Design:
+    path = ("design",)
+    body = ck.mapping(value, path, DESIGN_KEYS)
+    if body is None:
+        return Design()
+    cs = (ck.number(body["speed_fluctuation"], path + ("speed_fluctuation",), positive=True)
+          if "speed_fluctuation" in body else None)
+    motor = _positive_table(body.get("motor"), path + ("motor",), MOTOR_KEYS, ck) \
+        if "motor" in body else {}
+    limits = _positive_table(body.get("limits"), path + ("limits",), LIMIT_KEYS, ck) \
+        if "limits" in body else {}
+    if limits.get("transmission_angle", 0) > 90:
+        ck.error(path + ("limits", "transmission_angle"), "must be at most 90 degrees (the "
+                 "transmission angle is folded into [0, 90])")
+    bearings: dict[str, BearingSpec] = {}
+    raw = body.get("bearings")
+    if "bearings" in body:
+        if not isinstance(raw, dict):
+            ck.error(path + ("bearings",), "must map joint names to {rating, life_h}")
+        else:
+            names = {j.name for j in joints or ()}
+            for jname, item in raw.items():
+                where = path + ("bearings", jname)
+                if joints is not None and jname not in names:
+                    if jname not in ck.invalid_joints:
+                        ck.error(where, f"no joint named '{jname}' (joints: "
+                                        f"{', '.join(sorted(names))})")
+                    continue
+                b = ck.mapping(item, where, ("rating", "life_h"), required=("rating",))
+                if b is None or "rating" not in b:
+                    continue
+                rating = ck.number(b["rating"], where + ("rating",), positive=True)
+                life = (ck.number(b["life_h"], where + ("life_h",), positive=True)
+                        if "life_h" in b else None)
+                if rating is not None and ("life_h" not in b or life is not None):
+                    bearings[jname] = BearingSpec(rating, life)
+    return Design(cs, motor, bearings, limits)
+
+
+def _positive_table(value: Any, path: tuple, keys: tuple[str, ...],
+                    ck: _Checker) -> dict[str, float]:
+    body = ck.mapping(value, path, keys)
+    out = {}
+    for key in keys:
+        if body is not None and key in body:
+            v = ck.number(body[key], path + (key,), positive=True)
+            if v is not None:
+                out[key] = v
+    return out
+
+
+def _cycle_requests(spec: Spec, ck: _Checker) -> None:
+    """Cycle quantities asked for (``design``, angle-less ``expect``) where none is defined,
+    or that need a design input the spec does not give, are errors."""
+    why = spec.cycle_problem()
+    asked = [(("expect", i), e.quantity) for i, e in enumerate(spec.expect) if e.angle is None]
+    if why is not None:
+        for path, quantity in asked:
+            ck.error(path, f"'{quantity}' is undefined: {why}")
+        if not spec.design.empty:
+            ck.error(("design",), f"the design review is undefined: {why}")
+        return
+    for path, quantity in asked:
+        if quantity == "cycle.flywheel_inertia" and not spec.design.speed_fluctuation:
+            ck.error(path, "'cycle.flywheel_inertia' needs design.speed_fluctuation (the "
+                           "coefficient of speed fluctuation Cs)")
+        parts = quantity.split(".")
+        if parts[0] == "joint" and parts[2] == "life_h" and parts[1] not in spec.design.bearings:
+            ck.error(path, f"'{quantity}' needs design.bearings.{parts[1]}.rating (the "
+                           "bearing's dynamic load rating C)")
 
 
 def _units(value: Any, ck: _Checker) -> tuple[float, float, dict[str, str]]:
@@ -679,6 +758,7 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link]) -> list[Load]:
         ck.error(("loads",), "must be a list of loads ({type: force|moment, link, ...})")
         return []
     loads = []
+    names: dict[str, int] = {}    # load name -> its index
     for i, item in enumerate(value):
         path = ("loads", i)
         if not isinstance(item, dict):
@@ -688,8 +768,9 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link]) -> list[Load]:
         kind = ck.choice(item.get("type"), path + ("type",), ("force", "moment"))
         if kind is None:
             continue
-        allowed = (("type", "link", "point", "value", "direction", "profile", "oppose")
-                   if kind == "force" else ("type", "link", "value", "profile", "oppose"))
+        allowed = (("type", "link", "point", "value", "direction", "profile", "oppose", "name",
+                    "reacts_on") if kind == "force"
+                   else ("type", "link", "value", "profile", "oppose", "name", "reacts_on"))
         req = ("link", "point") if kind == "force" else ("link",)
         if ck.mapping(item, path, allowed, required=req) is None or any(k not in item for k in req):
             continue
@@ -745,7 +826,19 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link]) -> list[Load]:
             continue
         if kind == "force" and has_profile and direction is None:
             continue
-        loads.append(Load(kind, lname, i, point, value_, direction, profile, oppose))
+        label = ck.name(item["name"], path + ("name",)) if "name" in item else f"load {i + 1}"
+        if label is not None and label in names:
+            ck.error(path + ("name",), f"'{label}' is the name of loads[{names[label]}] too: "
+                                       "load names must differ (they label the torque "
+                                       "breakdown)")
+            label = None
+        reacts = (ck.choice(item["reacts_on"], path + ("reacts_on",), (GROUND,))
+                  if "reacts_on" in item else None)
+        if label is None or ("reacts_on" in item and reacts is None):
+            continue
+        names[label] = i
+        loads.append(Load(kind, lname, i, point, value_, direction, profile, oppose,
+                          item.get("name"), reacts))
     return loads
 
 
@@ -761,18 +854,27 @@ def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | N
     for i, item in enumerate(value):
         path = ("expect", i)
         body = ck.mapping(item, path, ("angle", "quantity", "value", "tol"),
-                          required=("angle", "quantity", "value"))
-        if body is None or any(k not in body for k in ("angle", "quantity", "value")):
+                          required=("quantity", "value"))
+        if body is None or any(k not in body for k in ("quantity", "value")):
             continue
-        angle = ck.number(body["angle"], path + ("angle",))
-        target = ck.number(body["value"], path + ("value",))
-        tol = ck.number(body["tol"], path + ("tol",), positive=True) if "tol" in body else None
         quantity = body["quantity"]
         problem = _quantity_problem(quantity, links, joint_types, joints is not None, ck)
         if problem:
             ck.error(path + ("quantity",), problem)
             continue
-        if angle is None or target is None or ("tol" in body and tol is None):
+        cycle = isinstance(quantity, str) and is_cycle(quantity)
+        if cycle and "angle" in body:
+            ck.error(path + ("angle",), f"'{body['quantity']}' is a cycle quantity (one value "
+                                        "per turn): give it without an angle")
+            continue
+        if not cycle and "angle" not in body:
+            ck.error(path, "missing required key 'angle' (only cycle quantities such as "
+                           "cycle.torque.rms have none)")
+            continue
+        angle = ck.number(body["angle"], path + ("angle",)) if not cycle else None
+        target = ck.number(body["value"], path + ("value",))
+        tol = ck.number(body["tol"], path + ("tol",), positive=True) if "tol" in body else None
+        if (angle is None and not cycle) or target is None or ("tol" in body and tol is None):
             continue
         if tol is None:
             tol = 1e-4 * max(1.0, abs(target))
@@ -783,13 +885,18 @@ def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | N
 def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
                       joints_known: bool, ck: _Checker) -> str | None:
     """None if ``q`` names something, else a message saying what it should look like."""
-    usage = ("expected driver.torque, joint.J.fx|fy|f|moment|px|py, "
-             "point.P.x|y|vx|vy|ax|ay or link.L.angle|omega|alpha")
+    usage = ("expected driver.torque, joint.J.fx|fy|f|moment|px|py|f_max|f_mean|f_equivalent|"
+             "life_h, point.P.x|y|vx|vy|ax|ay, link.L.angle|omega|alpha, or a cycle quantity "
+             "(cycle.torque.rms, balance.counterweight.mr, ...; see docs/spec.md)")
     if not isinstance(q, str):
         return f"must be a quantity name ({usage}), got {_show(q)}"
     parts = q.split(".")
-    if q == "driver.torque":
+    if q == "driver.torque" or q in CYCLE_UNITS:
         return None
+    if q.startswith(("cycle.", "balance.")):
+        near = difflib.get_close_matches(q, list(CYCLE_UNITS), n=1)
+        hint = f"; did you mean '{near[0]}'?" if near else ""
+        return f"'{q}' is not a cycle quantity{hint}"
     if len(parts) != 3:
         return f"'{q}' names nothing: {usage}"
     kind, name, attr = parts
@@ -800,7 +907,8 @@ def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
             if name in ck.invalid_joints:
                 return None
             return f"'{q}': no joint named '{name}' (joints: {', '.join(joint_types)})"
-        allowed = R_QUANTITIES if joint_types[name] == "R" else T_QUANTITIES
+        allowed = (R_QUANTITIES if joint_types[name] == "R" else T_QUANTITIES) + \
+            tuple(JOINT_CYCLE_UNITS)
         if attr not in allowed:
             return f"'{q}': a {joint_types[name]} joint has {', '.join(allowed)}"
         return None

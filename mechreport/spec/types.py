@@ -102,13 +102,19 @@ class Sweep:
     stop: float = 360.0
     step: float = 1.0
 
+    @property
+    def whole_turn(self) -> bool:
+        """One whole turn: stop - start is 360 degrees (stop itself then repeats start)."""
+        span = self.stop - self.start
+        return abs(span - 360.0) < 1e-9
+
     def angles(self) -> np.ndarray:
         span = self.stop - self.start
         n = int(math.floor(span / self.step + 1e-9))
         values = self.start + self.step * np.arange(n + 1)
         turns = round(span / 360.0)
-        whole_turn = turns >= 1 and abs(span - 360.0 * turns) < 1e-9
-        if whole_turn and abs(values[-1] - self.stop) < 1e-9:
+        whole_turns = turns >= 1 and abs(span - 360.0 * turns) < 1e-9
+        if whole_turns and abs(values[-1] - self.stop) < 1e-9:
             values = values[:-1]
         return values
 
@@ -141,13 +147,39 @@ class Load:
 
 @dataclass(frozen=True)
 class Expectation:
-    """``quantity`` at crank ``angle`` [deg] must equal ``value`` within ``tol`` (absolute)."""
+    """``quantity`` at crank ``angle`` [deg] must equal ``value`` within ``tol`` (absolute);
+    ``angle`` is None for a cycle quantity (one value per turn)."""
 
-    angle: float
+    angle: float | None
     quantity: str
     value: float
     tol: float
     line: int | None = None
+
+
+@dataclass(frozen=True)
+class BearingSpec:
+    """A bearing at a joint: dynamic load ``rating`` C [N]; required ``life_h`` [h] or None."""
+
+    rating: float
+    life_h: float | None = None
+
+
+@dataclass(frozen=True)
+class Design:
+    """The design review's inputs: ``speed_fluctuation`` Cs (for the flywheel inertia),
+    ``motor`` limits (``rated_torque``, ``peak_torque`` [N m], ``rated_power`` [W]),
+    ``bearings`` by joint, and ``limits`` (``joint_force`` [N], ``transmission_angle`` [deg],
+    ``shaking_force`` [N]). Every given item except Cs is a verdict."""
+
+    speed_fluctuation: float | None = None
+    motor: dict[str, float] = field(default_factory=dict)
+    bearings: dict[str, BearingSpec] = field(default_factory=dict)
+    limits: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def empty(self) -> bool:
+        return not (self.speed_fluctuation or self.motor or self.bearings or self.limits)
 
 
 @dataclass(frozen=True)
@@ -169,6 +201,18 @@ class Spec:
     expect: tuple[Expectation, ...] = ()
     sheet: bool = False
     units: dict[str, str] = field(default_factory=lambda: {"length": "m", "mass": "kg"})
+    design: Design = field(default_factory=Design)
+
+    def cycle_problem(self) -> str | None:
+        """Why cycle quantities are undefined for this spec (None when the sweep is one whole
+        turn of a crank: an R driver with ground)."""
+        joint = self.joint(self.driver.joint)
+        if joint.type != "R" or GROUND not in joint.links:
+            return "cycle quantities need an R driver with ground (a crank)"
+        if not self.sweep.whole_turn:
+            return (f"cycle quantities need a sweep over one whole turn of the crank; this one "
+                    f"runs from {self.sweep.start:g} to {self.sweep.stop:g} deg")
+        return None
 
     def link(self, name: str) -> Link:
         for link in self.links:
@@ -207,7 +251,7 @@ class Spec:
 
     def analysed_angles(self) -> np.ndarray:
         """Sweep angles plus the reference and expectation angles, sorted, unique [deg]."""
-        extra = list(self.at) + [e.angle for e in self.expect]
+        extra = list(self.at) + [e.angle for e in self.expect if e.angle is not None]
         angles = np.concatenate([self.sweep.angles(), np.asarray(extra, float)])
         angles = np.unique(np.round(angles, 9))
         return angles

@@ -1,0 +1,97 @@
+"""Design verdicts: every item of a spec's ``design:`` compared with its cycle quantity.
+
+A verdict passes on equality. The margin is the fraction of the limit left over:
+(limit - value) / limit for an upper limit, (value - limit) / limit for a lower one.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..quantities import unit_of
+from ..spec import Design
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """``item`` the design key (``motor.rated_torque``, ``bearings.A.life_h`` ...) checked on
+    ``quantity`` (its ``value`` [SI, ``unit``]) against ``limit``; ``at_least`` for a lower
+    limit; ``where`` which joint set the value (joint_force); ``why`` when the value is
+    undefined (then the verdict fails)."""
+
+    item: str
+    quantity: str
+    value: float | None
+    limit: float
+    unit: str
+    at_least: bool = False
+    where: str = ""
+    why: str = ""
+
+    @property
+    def margin(self) -> float | None:
+        if self.value is None:
+            return None
+        gap = self.value - self.limit if self.at_least else self.limit - self.value
+        return gap / self.limit
+
+    @property
+    def passed(self) -> bool:
+        return self.value is not None and (self.value >= self.limit if self.at_least
+                                           else self.value <= self.limit)
+
+    def describe(self) -> str:
+        """One line: ``motor.rated_torque: cycle.torque.rms = 41.2 N·m > limit 40 N·m``."""
+        if self.value is None:
+            return f"{self.item}: {self.quantity} is undefined: {self.why}"
+        op = (">=" if self.passed else "<") if self.at_least else ("<=" if self.passed else ">")
+        where = f" (joint {self.where})" if self.where else ""
+        return (f"{self.item}: {self.quantity}{where} = {self.value:.6g} {self.unit} {op} "
+                f"limit {self.limit:.6g} {self.unit}")
+
+
+PEAK_TORQUE = "max |driver.torque|"
+
+
+def verdicts(design: Design, values: dict[str, float] | None, why: str = "") -> list[Verdict]:
+    """One verdict per design item, in the order motor, bearings, limits. ``values``: the
+    cycle quantities (None when undefined, with the reason ``why``)."""
+    rows: list[tuple[str, str, float, bool, str]] = []   # item, quantity, limit, at_least, where
+    v = values or {}
+    motor = design.motor
+    if "rated_torque" in motor:
+        rows.append(("motor.rated_torque", "cycle.torque.rms", motor["rated_torque"], False, ""))
+    if "peak_torque" in motor:
+        rows.append(("motor.peak_torque", PEAK_TORQUE, motor["peak_torque"], False, ""))
+    if "rated_power" in motor:
+        rows.append(("motor.rated_power", "cycle.power.max", motor["rated_power"], False, ""))
+    for joint, b in design.bearings.items():
+        if b.life_h is not None:
+            rows.append((f"bearings.{joint}.life_h", f"joint.{joint}.life_h", b.life_h, True, ""))
+    limits = design.limits
+    worst = max(((q.split(".")[1], x) for q, x in v.items() if q.endswith(".f_max")),
+                key=lambda jx: jx[1], default=(None, None))
+    if "joint_force" in limits:
+        rows.append(("limits.joint_force", "joint.*.f_max", limits["joint_force"], False,
+                     worst[0] or ""))
+    if "transmission_angle" in limits:
+        rows.append(("limits.transmission_angle", "cycle.transmission_angle.min",
+                     limits["transmission_angle"], True, ""))
+    if "shaking_force" in limits:
+        rows.append(("limits.shaking_force", "cycle.shaking.force_max", limits["shaking_force"],
+                     False, ""))
+    out = []
+    for item, quantity, limit, at_least, where in rows:
+        if values is None:
+            value, reason = None, why
+        elif quantity == PEAK_TORQUE:
+            value, reason = max(abs(v["cycle.torque.max"]), abs(v["cycle.torque.min"])), ""
+        elif quantity == "joint.*.f_max":
+            value, reason = worst[1], "" if worst[1] is not None else "no joint reaction"
+        else:
+            value = v.get(quantity)
+            reason = "" if value is not None else (
+                "the mechanism has no RRR group and no slider fed by a rod"
+                if "transmission" in quantity else "not computed")
+        unit = unit_of(quantity) or ("N·m" if quantity == PEAK_TORQUE else "N")
+        out.append(Verdict(item, quantity, value, limit, unit, at_least, where, reason))
+    return out

@@ -1,0 +1,45 @@
+"""Quantity names: the one place that says which names exist and what unit each has.
+
+Instantaneous quantities are values at an angle (``driver.torque``, ``joint.B.fx``,
+``point.C.vx``, ``link.rod.omega``); cycle quantities are one number per whole turn of the crank
+(``cycle.torque.rms``, ``joint.B.f_max``, ``balance.counterweight.mr``) and are given in
+``expect`` without an angle. Units are SI.
+"""
+from __future__ import annotations
+
+CYCLE_UNITS = {
+    "cycle.torque.max": "N·m", "cycle.torque.min": "N·m", "cycle.torque.mean": "N·m",
+    "cycle.torque.rms": "N·m", "cycle.power.max": "W", "cycle.power.mean": "W",
+    "cycle.energy_fluctuation": "J", "cycle.flywheel_inertia": "kg·m^2",
+    "cycle.shaking.force_max": "N", "cycle.shaking.force_rms": "N",
+    "cycle.shaking.moment_max": "N·m", "cycle.transmission_angle.min": "deg",
+    "cycle.transmission_angle.max": "deg", "cycle.inertia_shaking.force_rms": "N",
+    "balance.counterweight.mr": "kg·m", "balance.counterweight.angle": "deg",
+    "balance.inertia_shaking.force_rms": "N",
+}
+JOINT_CYCLE_UNITS = {"f_max": "N", "f_mean": "N", "f_equivalent": "N", "life_h": "h"}
+JOINT_UNITS = {"fx": "N", "fy": "N", "f": "N", "moment": "N·m", "px": "m", "py": "m"}
+POINT_UNITS = {"x": "m", "y": "m", "vx": "m/s", "vy": "m/s", "ax": "m/s^2", "ay": "m/s^2"}
+LINK_UNITS = {"angle": "deg", "omega": "rad/s", "alpha": "rad/s^2"}
+
+
+def is_cycle(quantity: str) -> bool:
+    """True for a cycle quantity name (``cycle.*``, ``balance.*``, ``joint.J.f_max`` ...)."""
+    if quantity in CYCLE_UNITS:
+        return True
+    parts = quantity.split(".")
+    return len(parts) == 3 and parts[0] == "joint" and parts[2] in JOINT_CYCLE_UNITS
+
+
+def unit_of(quantity: str) -> str | None:
+    """The SI unit of any quantity name; None if the name has no known shape."""
+    if quantity in CYCLE_UNITS:
+        return CYCLE_UNITS[quantity]
+    if quantity == "driver.torque":
+        return "N·m"
+    parts = quantity.split(".")
+    if len(parts) != 3:
+        return None
+    table = {"joint": {**JOINT_UNITS, **JOINT_CYCLE_UNITS}, "point": POINT_UNITS,
+             "link": LINK_UNITS}.get(parts[0], {})
+    return table.get(parts[2])
