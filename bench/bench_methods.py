@@ -19,7 +19,9 @@ import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
+from mechreport.analysis import analyse  # noqa: E402
 from mechreport.forces import METHODS, ForceContext  # noqa: E402
+from mechreport.post import review  # noqa: E402
 from mechreport.kinematics import solve_kinematics  # noqa: E402
 from mechreport.model import build_mechanism  # noqa: E402
 from mechreport.spec import Sweep, load_spec  # noqa: E402
@@ -53,7 +55,13 @@ def main() -> None:
     for name, module in METHODS.items():
         b, m = best_of(lambda: module.solve(ctx))
         print(f"{name:<28}{b / n * 1e6:>15.2f}{m / n * 1e6:>17.2f}")
-    cmd = [sys.executable, "-m", "mechreport.cli", "check", str(ROOT / "specs")]
+    a = analyse(spec)
+    post, post_m = best_of(lambda: review(a, 0.02))
+    print(f"{'post (cycle review)':<28}{post / n * 1e6:>15.2f}{post_m / n * 1e6:>17.2f}")
+    total, total_m = best_of(lambda: analyse(spec), repeat=3)
+    print(f"{'analyse (all, with post)':<28}{total / n * 1e6:>15.2f}{total_m / n * 1e6:>17.2f}")
+    print(f"post stage: {post / (total - post) * 100:.1f} % of the analysis without it")
+    cmd = [sys.executable, "-m", "mechreport", "check", str(ROOT / "specs")]
     walls = []
     for _ in range(3):
         t = time.perf_counter()
