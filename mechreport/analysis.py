@@ -56,6 +56,15 @@ class Analysis:
         moment (n,) [N m])."""
         return self.context.loads
 
+    def by_source(self, method: str | None = None) -> dict[str, dict[str, np.ndarray]]:
+        """Every unknown of ``method`` (default: the reference method) split by source:
+        ``{"inertia" | "gravity" | load name: {unknown: (n,)}}``; the parts sum to the
+        method's values (one extra solve with one right-hand side per source)."""
+        from .forces.sources import split_by_source
+        from .post import reference_method
+        return split_by_source(self.context, self.forces[method or
+                                                         reference_method(self.forces)])
+
     @property
     def worst(self) -> Agreement | None:
         return self.agreement[0] if self.agreement else None

@@ -33,7 +33,8 @@ class Review:
     bearings: dict[str, BearingLoad]
     transmission: dict[str, np.ndarray]
     counterweight: Counterweight
-    shaking: np.ndarray = field(repr=False)          # (N, 2) [N]
+    shaking: np.ndarray = field(repr=False)          # (N, 2) [N] on the frame
+    inertial: np.ndarray = field(repr=False)         # (N, 2) [N] sum of m a_C
     shaking_balanced: np.ndarray = field(repr=False)  # (N, 2) [N] inertial, with counterweight
 
 
@@ -103,4 +104,4 @@ def review_of(kin, forces, loads, speed_fluctuation: float | None = None,
         if b.life_h is not None:
             values[f"joint.{name}.life_h"] = b.life_h
     return Review(cyc, method, values, torque, energy, bearings, angles, cw, shaking,
-                  balanced)
+                  inertial, balanced)

@@ -18,6 +18,7 @@ from .text import kinematics_rows
 from ..forces import METHODS
 from ..spec import GROUND
 from .. import post as q
+from ..quantities import unit_of
 from .scene import Scene, build_scene
 
 DASH = "—"
@@ -89,6 +90,7 @@ class PolarSeries:
     carrier: str
     x: np.ndarray
     y: np.ndarray
+    equivalent: float | None = None    # cube-mean load over a turn [N], drawn as a circle
 
 
 @dataclass
@@ -105,6 +107,43 @@ class SweepData:
     joints: list[JointSeries]
     polar: list[PolarSeries]
     shaking: q.FrameLoad
+
+
+@dataclass
+class CycleData:
+    """Plot data over one turn on the cycle grid ``angles`` (N,) [deg], left-out angles filled
+    in: driver ``torque`` (N,) [N m] and its ``mean``; ``energy`` (N,) [J], the running
+    integral of torque minus mean; motor lines [N m] when given; ``sources`` the torque (N,)
+    [N m] of each source (they sum to ``torque``); ``transmission`` (N,) [deg] by dyad and its
+    lower limit; the inertial shaking force (N, 2) [N] without and with the counterweight."""
+
+    angles: np.ndarray
+    torque: np.ndarray
+    mean: float
+    energy: np.ndarray
+    rated_torque: float | None
+    peak_torque: float | None
+    sources: dict[str, np.ndarray]
+    transmission: dict[str, np.ndarray]
+    transmission_limit: float | None
+    inertial: np.ndarray
+    balanced: np.ndarray
+    interpolated: list[float]
+
+
+@dataclass
+class DesignSummary:
+    """The report's first section. ``verdicts`` rows (design item, checked quantity, value,
+    limit, margin, PASS/FAIL); ``values`` rows (cycle quantity, value, unit); ``problem`` why
+    there are no cycle quantities ("" when there are)."""
+
+    verdicts: list[list[str]]
+    values: list[list[str]]
+    counterweight: str
+    interpolated: str
+    problem: str
+    passed: bool
+    data: CycleData | None = None
 
 
 @dataclass
@@ -148,6 +187,7 @@ class ReportModel:
     residuals: list[list[str]]
     flags: list[list[str]]
     notes: list[str]
+    design: DesignSummary
     figures: dict[str, Figure]
     sweep: SweepData
     scenes: list[Scene]
@@ -297,8 +337,9 @@ def _sweep(analysis, ref: str, symbols, colors) -> SweepData:
     for j in spec.joints:
         if j.type == "R" and j.name in res.reactions:
             xy = q.bearing_trace(analysis.kinematics, res, j)
+            eq = analysis.review.bearings[j.name].f_equivalent if analysis.review else None
             polar.append(PolarSeries(j.name, symbols[j.name], colors[j.name],
-                                     q.bearing_carrier(j), xy[:, 0], xy[:, 1]))
+                                     q.bearing_carrier(j), xy[:, 0], xy[:, 1], eq))
     check = analysis.forces.get("power")
     return SweepData(analysis.angles, [float(a) for a in spec.at],
                      [f.angle for f in analysis.flags], METHODS[ref].TITLE, res.driver_torque,
@@ -505,8 +546,10 @@ def build_model(analysis, source: str | Path | None = None) -> ReportModel:
     sw = _sweep(analysis, ref, symbols, colors)
     power_text, power_json = _power_check(sw)
     header, rows = _csv(analysis)
+    design = _design(analysis)
     summary = _summary(analysis, sw, ref, status_line, power_json, symbols)
-    figures = _figures(sw, refs, ref)
+    summary["design"] = _design_json(analysis)
+    figures = _figures(sw, refs, ref) | _design_figures(design)
     shaking = {"force": _peak_text(q.peak(sw.angles, sw.shaking.f), "N"),
                "moment": _peak_text(q.peak(sw.angles, sw.shaking.m), "N·m")}
     sweep = spec.sweep
@@ -527,9 +570,91 @@ def build_model(analysis, source: str | Path | None = None) -> ReportModel:
         agreement=_agreement_rows(analysis), power_check=power_text,
         residuals=[[METHODS[r.method].TITLE, f"{r.force:.1e}", f"{r.moment:.1e}"]
                    for r in analysis.residuals],
-        flags=_flag_rows(analysis), notes=analysis.kinematics.notes(),
+        flags=_flag_rows(analysis), notes=analysis.kinematics.notes(), design=design,
         figures=figures, sweep=sw, scenes=scenes, csv_header=header, csv_rows=rows,
         summary=summary, index_row=_index_row(summary, stem))
+
+
+def _design(analysis) -> DesignSummary:
+    """Verdicts, cycle quantities, counterweight and the cycle's plot data."""
+    spec, rev = analysis.spec, analysis.review
+    verdict_rows = [[v.item, v.quantity.replace("joint.*.", "largest joint ")
+                     + (f" ({v.where})" if v.where else ""),
+                     f"{num(v.value)} {v.unit}" if v.value is not None else f"undefined: {v.why}",
+                     ("≥ " if v.at_least else "≤ ") + f"{num(v.limit)} {v.unit}",
+                     _margin(v), 
+                     "PASS" if v.passed else "FAIL"] for v in analysis.verdicts]
+    passed = all(v.passed for v in analysis.verdicts)
+    if rev is None:
+        return DesignSummary(verdict_rows, [], "", "", analysis.review_problem, passed)
+    values = [[name, num(value), unit_of(name) or ""] for name, value in rev.values.items()
+              if not name.startswith("joint.")]
+    cw = rev.counterweight
+    counter = (f"A point counterweight of m·r = {num(cw.mr, 4)} kg·m at "
+               f"{num(cw.angle, 4)}° from the crank's x-axis brings the RMS inertial shaking "
+               f"force from {num(cw.rms_before, 4)} N to {num(cw.rms_after, 4)} N."
+               if cw.mr > 0 else "The crank needs no counterweight: the inertial shaking "
+                                 "force has no component turning with it.")
+    interp = ""
+    if len(rev.cycle.interpolated):
+        interp = ("Left-out angles inside the cycle, interpolated from their neighbours for "
+                  "the cycle quantities: " + ", ".join(deg(a) for a in rev.cycle.interpolated)
+                  + " deg.")
+    k = analysis.kinematics
+    parts = {src: rev.cycle.sample(v["driver.torque"], k.angles)
+             for src, v in analysis.by_source(rev.method).items()}
+    data = CycleData(rev.cycle.angles, rev.torque, float(np.mean(rev.torque)), rev.energy,
+                     spec.design.motor.get("rated_torque"), spec.design.motor.get("peak_torque"),
+                     parts, rev.transmission, spec.design.limits.get("transmission_angle"),
+                     rev.inertial, rev.shaking_balanced,
+                     [float(a) for a in rev.cycle.interpolated])
+    return DesignSummary(verdict_rows, values, counter, interp, "", passed, data)
+
+
+def _margin(v) -> str:
+    """A verdict's margin: ``+24.1 %`` of the limit; ``value 537x limit`` when it is huge."""
+    if v.margin is None:
+        return DASH
+    if abs(v.margin) > 9.99:
+        ratio = v.value / v.limit if v.limit else float("inf")
+        return f"value {num(ratio, 3)}× limit"
+    return f"{v.margin * 100:+.1f} %"
+
+
+def _design_json(analysis) -> dict:
+    rev = analysis.review
+    out: dict = {"verdicts": [{"item": v.item, "quantity": v.quantity, "value": jnum(v.value),
+                               "limit": v.limit, "unit": v.unit, "lower_limit": v.at_least,
+                               "margin": jnum(v.margin), "passed": v.passed,
+                               "joint": v.where or None, "why": v.why or None}
+                              for v in analysis.verdicts],
+                 "cycle_undefined": analysis.review_problem or None}
+    if rev is not None:
+        out["cycle"] = {name: {"value": jnum(value), "unit": unit_of(name)}
+                        for name, value in rev.values.items()}
+        out["method"] = rev.method
+        out["interpolated_deg"] = [float(a) for a in rev.cycle.interpolated]
+    return out
+
+
+def _design_figures(design: DesignSummary) -> dict[str, Figure]:
+    if design.data is None:
+        return {}
+    figs = {"flywheel": Figure("flywheel", "Driver torque over one turn against its mean: the "
+                               "areas above (energy taken in) and below (given back) the mean "
+                               "line; the largest energy fluctuation ΔE, which the flywheel "
+                               "absorbs, lies between the two marked angles.", "flywheel"),
+            "breakdown": Figure("breakdown", "Driver torque by source over one turn: each "
+                                "source's share stacked (positive above zero, negative below); "
+                                "the line is the total.", "breakdown"),
+            "balance": Figure("balance", "Inertial shaking force (sum of m a_C) over one turn, "
+                              "without and with the best point counterweight on the crank.",
+                              "balance")}
+    if design.data.transmission:
+        figs["transmission"] = Figure("transmission", "Transmission angle of each group over "
+                                      "one turn (folded into 0-90°), with the design limit.",
+                                      "transmission")
+    return figs
 
 
 def _flag_rows(analysis) -> list[list[str]]:

@@ -136,6 +136,13 @@ def polar_figure(sw):
             x, y = np.append(x, ps.x[0]), np.append(y, ps.y[0])   # close the turn
         ax.plot(x, y, color=ps.color, lw=1.4)
         ax.plot([0], [0], "+", color="k", ms=8)
+        if ps.equivalent:
+            t = np.linspace(0, 2 * np.pi, 181)
+            ax.plot(ps.equivalent * np.cos(t), ps.equivalent * np.sin(t), color="0.35",
+                    lw=0.8, ls=(0, (3, 2)))
+            ax.annotate(f"equivalent {ps.equivalent:.4g} N", (0, -ps.equivalent),
+                        fontsize=6.2, color="0.3", xytext=(0, -8), textcoords="offset points",
+                        ha="center")
         for k in ref_idx:
             ax.plot([0, ps.x[k]], [0, ps.y[k]], color=ps.color, lw=0.7, alpha=0.7)
             ax.plot([ps.x[k]], [ps.y[k]], "o", color=ps.color, ms=3.5)
@@ -180,10 +187,121 @@ def shaking_figure(sw):
     return fig
 
 
+def _cycle_axis(ax, cd, label: bool = True) -> None:
+    """0-360 deg over one turn, interpolated (left-out) angles marked."""
+    ax.set_xlim(0, 360)
+    ax.set_xticks(np.arange(0, 361, 45))
+    if label:
+        ax.set_xlabel("crank angle φ [deg]")
+    for a in cd.interpolated:
+        ax.axvspan(a - 1.5, a + 1.5, color="0.5", alpha=0.25, lw=0)
+
+
+def flywheel_figure(cd):
+    """The classic flywheel diagram: torque against its mean, the energy areas shaded and the
+    largest fluctuation marked; motor rated (RMS) and peak torque when given."""
+    plt = pyplot()
+    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(WIDTH, 4.4), sharex=True,
+                                  gridspec_kw={"height_ratios": [3, 2]})
+    a, t, mean = cd.angles, cd.torque, cd.mean
+    ax.plot(a, t, color="#222222", lw=1.5, label="driver torque")
+    ax.axhline(mean, color="#0072B2", lw=1.0, ls="--", label=f"mean {mean:.4g} N·m")
+    ax.fill_between(a, t, mean, where=t >= mean, interpolate=True, color="#E69F00", alpha=0.35,
+                    lw=0, label="above the mean (energy in)")
+    ax.fill_between(a, t, mean, where=t < mean, interpolate=True, color="#56B4E9", alpha=0.35,
+                    lw=0, label="below the mean (energy out)")
+    for value, name, style in ((cd.rated_torque, "motor rated (RMS)", "-."),
+                               (cd.peak_torque, "motor peak", ":")):
+        if value:
+            ax.axhline(value, color="#CC79A7", lw=1.0, ls=style, label=f"{name} {value:.4g} N·m")
+            if name == "motor peak" and np.min(t) < 0:
+                ax.axhline(-value, color="#CC79A7", lw=1.0, ls=style)
+    ax.set_ylabel("torque [N·m]")
+    ax.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, frameon=False)
+    _cycle_axis(ax, cd, label=False)
+    e = cd.energy
+    hi, lo = int(np.argmax(e)), int(np.argmin(e))
+    ax2.plot(a, e, color="#009E73", lw=1.4)
+    ax2.plot([a[hi], a[lo]], [e[hi], e[lo]], "o", color="#D55E00", ms=4)
+    ax2.annotate("", xy=(a[lo], e[lo]), xytext=(a[lo], e[hi]),
+                 arrowprops={"arrowstyle": "<->", "color": "#D55E00", "lw": 1.0})
+    ax2.annotate(f"ΔE = {e[hi] - e[lo]:.4g} J", (a[lo], (e[hi] + e[lo]) / 2), fontsize=7.5,
+                 xytext=(6, 0), textcoords="offset points", color="#D55E00", va="center")
+    ax2.axhline(0, color="0.3", lw=0.5)
+    ax2.set_ylabel("∫(M − mean) dφ [J]")
+    _cycle_axis(ax2, cd)
+    fig.tight_layout(h_pad=0.6)
+    return fig
+
+
+SOURCE_COLORS = ["#0072B2", "#E69F00", "#009E73", "#CC79A7", "#56B4E9", "#D55E00", "#F0E442",
+                 "#000000"]
+
+
+def breakdown_figure(cd):
+    """Torque by source, stacked: positive parts above zero, negative parts below."""
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(WIDTH, 2.9))
+    a = cd.angles
+    up, down = np.zeros_like(a), np.zeros_like(a)
+    for k, (name, part) in enumerate(cd.sources.items()):
+        color = SOURCE_COLORS[k % len(SOURCE_COLORS)]
+        pos, neg = np.maximum(part, 0), np.minimum(part, 0)
+        ax.fill_between(a, up, up + pos, color=color, alpha=0.55, lw=0, label=name)
+        ax.fill_between(a, down, down + neg, color=color, alpha=0.55, lw=0)
+        up, down = up + pos, down + neg
+    ax.plot(a, cd.torque, color="#222222", lw=1.3, label="total")
+    ax.axhline(0, color="0.3", lw=0.6)
+    ax.set_ylabel("torque [N·m]")
+    ax.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=min(5, len(cd.sources) + 1),
+              frameon=False)
+    _cycle_axis(ax, cd)
+    return fig
+
+
+def transmission_figure(cd):
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(WIDTH, 2.5))
+    for k, (label, ta) in enumerate(cd.transmission.items()):
+        ax.plot(cd.angles, ta, color=SOURCE_COLORS[k % len(SOURCE_COLORS)], lw=1.4,
+                label=f"group {label}")
+    if cd.transmission_limit is not None:
+        ax.axhline(cd.transmission_limit, color="#D55E00", lw=1.0, ls="--",
+                   label=f"limit {cd.transmission_limit:g}°")
+    ax.set_ylim(0, 90)
+    ax.set_yticks(np.arange(0, 91, 15))
+    ax.set_ylabel("transmission angle [deg]")
+    ax.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, frameon=False)
+    _cycle_axis(ax, cd)
+    return fig
+
+
+def balance_figure(cd):
+    """Polar trace of the inertial shaking force without and with the counterweight."""
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(WIDTH * 0.55, WIDTH * 0.55))
+    for xy, name, color, style in ((cd.inertial, "without counterweight", "#0072B2", "-"),
+                                   (cd.balanced, "with counterweight", "#D55E00", "--")):
+        closed = np.vstack([xy, xy[:1]])
+        ax.plot(closed[:, 0], closed[:, 1], color=color, lw=1.3, ls=style, label=name)
+    ax.plot([0], [0], "+", color="k", ms=8)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x [N]")
+    ax.set_ylabel("y [N]")
+    ax.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=1, frameon=False)
+    return fig
+
+
 def write_plots(model, outdir: Path) -> list[Path]:
     """Every sweep figure of ``model`` into ``outdir`` (PNG and SVG)."""
     sw, figs = model.sweep, model.figures
     out = []
+    cd = model.design.data
+    if cd is not None:
+        for key, make in (("flywheel", flywheel_figure), ("breakdown", breakdown_figure),
+                          ("transmission", transmission_figure), ("balance", balance_figure)):
+            if key in figs:
+                out += save(make(cd), outdir, figs[key].stem)
     if len(sw.angles) == 0:
         return out
     makers = {"torque": torque_figure, "reactions": reactions_figure,
