@@ -14,8 +14,8 @@ from ..errors import AssemblyError
 from ..linalg import SINGULAR_COND, batched_solve, batched_solve_cond
 from ..model import Mechanism
 from ..spec import GROUND
-from .constraints import joint_blocks
-from .frames import perp, rotate
+from .frames import rotate
+from .groups import gamma, solve_newton_group, velocity_system
 from .path import SweepPath, sweep_path
 from .position import BranchChoice, dyad_candidates, track_branches
 from .result import Flag, Kinematics, Motion, PointState, motion_of
@@ -57,14 +57,14 @@ def _solve(mech: Mechanism, phi_deg: np.ndarray) -> Kinematics:
     problems: dict[int, tuple[str, str]] = {}   # angle index -> (kind, why it is left out)
     for k in np.flatnonzero(~np.isfinite(r[spec.links[-1].name][:, 0])):
         problems[int(k)] = _unreached(motion, float(phi_deg[k]), mech, r, int(k))
-    v, w, acc, al, conds = _rates(mech, np.radians(phi_deg), r, th, problems)
-    error = kinematic_error(conds, len(phi_deg))
+    v, w, acc, al, conds = _rates(mech, phi_deg * spec.driver.unit, r, th, problems)
+    error = kinematic_error([c for _, c in conds], len(phi_deg))
     for k in np.flatnonzero(error > TRUST_RTOL):
-        worst = max(range(len(conds)), key=lambda d: conds[d][k])
+        name, worst = max(conds, key=lambda c: c[1][k])
         problems.setdefault(int(k), (
             "near-singular",
-            f"near-singular: dyad {mech.dyads[worst].label} (condition {conds[worst][k]:.1e}); "
-            f"results would not be trustworthy to {TRUST_RTOL:g}"))
+            f"near-singular: {name} (condition {worst[k]:.1e}); results would not be "
+            f"trustworthy to {TRUST_RTOL:g}"))
     keep = np.ones(len(phi_deg), bool)
     keep[list(problems)] = False
     order = [GROUND] + [l.name for l in spec.links]
@@ -101,90 +101,122 @@ def _unreached(motion: Motion, angle: float, mech: Mechanism, r: dict,
     if lock is not None and not motion.contains(angle):
         return "unreachable", (f"not reachable from the assembly: the mechanism locks between "
                                f"{lock[0]:g} and {lock[1]:g} deg")
-    bad = next((d for d in mech.dyads if not np.isfinite(r[d.links[0]][k, 0])), None)
-    label = bad.label if bad is not None else "?"
-    return "cannot close", f"dyad {label} cannot close"
+    bad = next((g for g in mech.groups if not np.isfinite(r[g.links[-1]][k, 0])), None)
+    label = f"{bad.kind} {bad.label}" if bad is not None else "the mechanism"
+    return "cannot close", f"{label} cannot close"
 
 
 def _positions(mech: Mechanism, path: SweepPath):
     """Link-frame origins r (N, 2) and angles theta (N,) by link name over ``path.angles``,
-    dyad by dyad, each branch chosen at the first reference angle and followed along the
-    path's runs; NaN where not reached. Also the branch choices and the range of motion."""
+    group by group: the driver's link in closed form, dyads in closed form with their branch
+    chosen at the first reference angle and followed along the path's runs, other groups by
+    Newton-Raphson continued along the same runs; NaN where not reached. Also the branch
+    choices and the range of motion."""
     spec = mech.spec
-    phi_deg = path.angles
-    n, phi = len(phi_deg), np.radians(phi_deg)
-    ref_angle = spec.at[0]
-    crank = spec.link(spec.driver.link)
-    pivot = np.asarray(spec.ground[spec.driver.joint])
-    r = {GROUND: np.zeros((n, 2)), crank.name: pivot - rotate(crank.points[spec.driver.joint],
-                                                                phi)}
-    th = {GROUND: np.zeros(n), crank.name: phi}
+    value = path.angles * spec.driver.unit          # the driven coordinate [rad or m]
+    n = len(value)
+    r = {GROUND: np.zeros((n, 2))}
+    th = {GROUND: np.zeros(n)}
     branches: list[BranchChoice] = []
     runs = list(path.runs)
-    for dyad in mech.dyads:
-        cands = dyad_candidates(spec, dyad, {k: (r[k], th[k]) for k in r})
-        if not all(np.all(np.isfinite(c[link][0][path.ref])) for c in cands
-                   for link in dyad.links):
-            raise AssemblyError(
-                f"{spec.file}: the dyad {dyad.label} ({', '.join(dyad.links)}) cannot close at "
-                f"the first reference angle {ref_angle:g} deg; check link lengths and `at`")
-        chosen, choice, runs = track_branches(spec, dyad, cands, path, runs)
-        branches.append(choice)
+    scale = mechanism_size(spec)
+    for group in mech.groups:
+        known = {k: (r[k], th[k]) for k in r}
+        if group.driver is not None and len(group.links) == 1:
+            chosen = driver_pose(spec, value)
+        elif group.dyad is not None:
+            dyad = group.dyad
+            cands = dyad_candidates(spec, dyad, known)
+            if not all(np.all(np.isfinite(c[link][0][path.ref])) for c in cands
+                       for link in dyad.links):
+                raise AssemblyError(
+                    f"{spec.file}: the dyad {dyad.label} ({', '.join(dyad.links)}) cannot "
+                    f"close at the first reference angle {spec.at[0]:g} "
+                    f"{'deg' if spec.driver.kind == 'R' else spec.units['length']}; check "
+                    "link lengths and `at`")
+            chosen, choice, runs = track_branches(spec, dyad, cands, path, runs)
+            branches.append(choice)
+        else:
+            chosen, choice, runs = solve_newton_group(spec, group, known, path, runs, value,
+                                                      scale)
+            branches.append(choice)
         for link, (rr, tt) in chosen.items():
             r[link], th[link] = rr, tt
     return r, th, branches, motion_of(path, runs, spec.driver.omega)
 
 
-def _rates(mech: Mechanism, phi: np.ndarray, r: dict, th: dict,
+def mechanism_size(spec) -> float:
+    """A length scale of the mechanism [m]: the largest distance between its named points."""
+    pts = [np.asarray(p) for p in spec.ground.values()]
+    for link in spec.links:
+        loc = np.array(list(link.points.values()))
+        pts.append(np.ptp(loc, axis=0) if len(loc) > 1 else np.zeros(2))
+    return max(float(np.max(np.abs(np.array(pts)))) if pts else 0.0, 1e-9) * 2
+
+
+def driver_pose(spec, value: np.ndarray) -> dict:
+    """Pose of a driver link on ground, in closed form from the driven coordinate ``value``
+    (n,) [rad or m]: a crank turned to ``value``, or a slider pushed ``value`` along its line
+    (or a guide pushed so that its line carries the ground's point at that stroke)."""
+    d = spec.driver
+    joint = spec.joint(d.joint)
+    n = len(value)
+    link = spec.link(d.link)
+    if d.kind == "R":
+        pivot = np.asarray(spec.ground[joint.name])
+        return {d.link: (pivot - rotate(link.points[joint.name], value), value)}
+    u = np.asarray(joint.line.direction)
+    zero = np.zeros(n)
+    if joint.guide == GROUND:      # the slider moves along a line fixed to the frame
+        at = np.asarray(joint.line.through) + value[:, None] * u
+        return {d.link: (at - np.asarray(link.points[joint.point]), zero)}
+    point = np.asarray(spec.ground[joint.point])     # the frame carries the slider's point
+    through = np.asarray(joint.line.through)
+    return {d.link: (point - through - value[:, None] * u, zero)}
+
+
+def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
            problems: dict[int, tuple[str, str]]):
-    """Velocities and accelerations (origins and angular) by link name, dyad by dyad: each
-    dyad's 6x6 system J qdot = -J_known qdot_known, then J qddot = gamma - J_known qddot_known."""
+    """Velocities and accelerations (origins and angular) by link name, group by group: each
+    group's system J qdot = -J_known qdot_known (+ the driver's rate on its row), then
+    J qddot = gamma - J_known qddot_known (+ the driver's acceleration). Also each group's
+    condition numbers with its label (the driver's closed-form link has none)."""
     spec = mech.spec
-    n = len(phi)
-    crank = spec.link(spec.driver.link)
-    crank_s = rotate(crank.points[spec.driver.joint], phi)
-    w_d, a_d = spec.driver.omega, spec.driver.alpha
+    n = len(value)
     zeros2 = np.zeros((n, 2))
-    v = {GROUND: zeros2, crank.name: -w_d * perp(crank_s)}
-    w = {GROUND: np.zeros(n), crank.name: np.full(n, w_d)}
-    acc = {GROUND: zeros2, crank.name: -a_d * perp(crank_s) + w_d**2 * crank_s}
-    al = {GROUND: np.zeros(n), crank.name: np.full(n, a_d)}
+    v, w, acc, al = {GROUND: zeros2}, {GROUND: np.zeros(n)}, {GROUND: zeros2}, {GROUND: np.zeros(n)}
     finite = np.all(np.isfinite(np.stack([r[k][:, 0] for k in r])), axis=0)
     safe_th = {k: np.where(finite, t, 0.0) for k, t in th.items()}
     safe_r = {k: np.where(finite[:, None], x, 0.0) for k, x in r.items()}
-    conds = []
-    for dyad in mech.dyads:
-        i, j = dyad.links
-        A = np.zeros((n, 6, 6))
-        b_v, b_a = np.zeros((n, 6)), np.zeros((n, 6))
-        known_blocks = []
-        for row, joint in enumerate((*dyad.outer, dyad.inner)):
-            rows = slice(2 * row, 2 * row + 2)
-            blocks, _ = joint_blocks(spec, joint, safe_r, safe_th)
-            for link, blk in blocks.items():
-                if link in (i, j):
-                    col = 0 if link == i else 3
-                    A[:, rows, col:col + 3] = blk
-                else:
-                    known_blocks.append((rows, link, blk))
-                    qd = np.concatenate([v[link], w[link][:, None]], axis=1)
-                    b_v[:, rows] -= np.einsum("nij,nj->ni", blk, qd)
+    conds: list[tuple[str, np.ndarray]] = []
+    for group in mech.groups:
+        A, known, drow = velocity_system(spec, group, safe_r, safe_th)
+        b_v = np.zeros((n, A.shape[1]))
+        for rows, link, blk in known:
+            qd = np.concatenate([v[link], w[link][:, None]], axis=1)
+            b_v[:, rows] -= np.einsum("nij,nj->ni", blk, qd)
+        if drow is not None:
+            b_v[:, drow] += spec.driver.omega
         x, cond = batched_solve_cond(A, b_v)
         sing = ~(cond < SINGULAR_COND)
-        conds.append(np.where(finite, cond, np.inf))
+        if not (group.driver is not None and len(group.links) == 1):
+            conds.append((f"{group.kind} {group.label}", np.where(finite, cond, np.inf)))
         for k in np.flatnonzero(sing & finite):
-            problems.setdefault(int(k), ("singular",
-                                         f"dyad {dyad.label}: velocity equations singular"))
+            problems.setdefault(int(k), ("singular", f"{group.kind} {group.label}: velocity "
+                                                     "equations singular"))
         x = np.where(sing[:, None], 0.0, x)
-        v[i], w[i], v[j], w[j] = x[:, 0:2], x[:, 2], x[:, 3:5], x[:, 5]
-        for row, joint in enumerate((*dyad.outer, dyad.inner)):
-            b_a[:, 2 * row:2 * row + 2] += joint_blocks(spec, joint, safe_r, safe_th, v, w)[1]
-        for rows, link, blk in known_blocks:
+        for i, link in enumerate(group.links):
+            v[link], w[link] = x[:, 3 * i:3 * i + 2], x[:, 3 * i + 2]
+        b_a = gamma(spec, group, safe_r, safe_th, v, w)
+        for rows, link, blk in known:
             qdd = np.concatenate([acc[link], al[link][:, None]], axis=1)
             b_a[:, rows] -= np.einsum("nij,nj->ni", blk, qdd)
+        if drow is not None:
+            b_a[:, drow] += spec.driver.alpha
         x, _ = batched_solve(A, b_a)
         x = np.where(sing[:, None], 0.0, x)
-        acc[i], al[i], acc[j], al[j] = x[:, 0:2], x[:, 2], x[:, 3:5], x[:, 5]
+        for i, link in enumerate(group.links):
+            acc[link], al[link] = x[:, 3 * i:3 * i + 2], x[:, 3 * i + 2]
     return v, w, acc, al, conds
 
 

@@ -57,3 +57,62 @@ def joint_blocks(spec: Spec, joint: Joint, r: dict, th: dict, v=None, w=None):
         gamma[:, 1] = (dot((w[s] ** 2)[:, None] * s_p - (w[g] ** 2)[:, None] * s_l, n)
                        + 2 * w[g] * dot(edot, u) + w[g] ** 2 * dot(e, n))
     return blocks, gamma
+
+
+def joint_residual(spec: Spec, joint: Joint, r: dict, th: dict) -> np.ndarray:
+    """How far a joint is from closing (n, 2): an R joint's point gap [m]; a T joint's relative
+    angle [rad, wrapped] and the slider point's offset from the line [m]."""
+    if joint.type == "R":
+        a, b = joint.links
+        pa = r[a] + rotate(_pts(spec, a)[joint.name], th[a])
+        pb = r[b] + rotate(_pts(spec, b)[joint.name], th[b])
+        return pa - pb
+    e, u, _, _ = _slide(spec, joint, r, th)
+    return np.stack([_wrap(th[joint.slider] - th[joint.guide]), dot(e, perp(u))], axis=-1)
+
+
+def _wrap(angle: np.ndarray) -> np.ndarray:
+    return (angle + np.pi) % (2 * np.pi) - np.pi
+
+
+def _slide(spec: Spec, joint: Joint, r: dict, th: dict):
+    """T joint geometry: e (slider point minus the line's through point), the line's unit
+    direction u, and the rotated slider point and through point (each (n, 2))."""
+    g, s = joint.guide, joint.slider
+    u = rotate(joint.line.direction, th[g])
+    s_p = rotate(_pts(spec, s)[joint.point], th[s])
+    s_l = rotate(joint.line.through, th[g])
+    return (r[s] + s_p) - (r[g] + s_l), u, s_p, s_l
+
+
+def driver_row(spec: Spec, r: dict, th: dict, v=None, w=None):
+    """The driven coordinate's constraint q_d(q) = value: its current value (n,) [rad or m],
+    Jacobian blocks {link: (n, 3)} and, given velocities, gamma (n,) (the part of its second
+    time derivative not in J qddot). R with ground: the moving link's angle (the crank angle);
+    R between moving links: theta_second - theta_first; T: the stroke e . u."""
+    d = spec.driver
+    joint = spec.joint(d.joint)
+    n = next(iter(th.values())).shape[0]
+    if d.kind == "R":
+        a, b = joint.links
+        if d.crank:
+            moving = b if a == GROUND else a
+            blk = np.zeros((n, 3))
+            blk[:, 2] = 1.0
+            return th[moving], {moving: blk}, (np.zeros(n) if w is not None else None)
+        ba, bb = np.zeros((n, 3)), np.zeros((n, 3))
+        ba[:, 2], bb[:, 2] = -1.0, 1.0
+        return th[b] - th[a], {a: ba, b: bb}, (np.zeros(n) if w is not None else None)
+    g, s = joint.guide, joint.slider
+    e, u, s_p, s_l = _slide(spec, joint, r, th)
+    nrm = perp(u)
+    bs, bg = np.zeros((n, 3)), np.zeros((n, 3))
+    bs[:, :2], bg[:, :2] = u, -u
+    bs[:, 2] = dot(perp(s_p), u)
+    bg[:, 2] = -dot(perp(s_l), u) + dot(e, nrm)
+    gamma = None
+    if w is not None:
+        edot = v[s] + w[s][:, None] * perp(s_p) - v[g] - w[g][:, None] * perp(s_l)
+        gamma = (dot((w[s] ** 2)[:, None] * s_p - (w[g] ** 2)[:, None] * s_l, u)
+                 - 2 * w[g] * dot(edot, nrm) + w[g] ** 2 * dot(e, u))
+    return dot(e, u), {s: bs, g: bg}, gamma

@@ -169,7 +169,27 @@ class Kinematics:
                 if b.rule.startswith("undecided")]
         return out
 
-    def at(self, angle: float) -> int | None:
-        """Index of a crank angle among the analysed ones, None if left out."""
+    def index_of(self, angle: float) -> int | None:
+        """Index of a crank angle among the analysed (solved) ones; None if it was not
+        analysed or was left out. The lookup for code that tests presence."""
         hit = np.flatnonzero(np.abs(self.angles - angle) < 1e-9)
         return int(hit[0]) if hit.size else None
+
+    def at(self, angle: float) -> int:
+        """Index of a crank angle among the analysed ones, for indexing result arrays
+        (``res.driver_torque[kin.at(45)]``). Raises ``KeyError`` naming the reason and the
+        nearest analysed angles when ``angle`` was not analysed or was left out (an index of
+        None would silently select the whole array); :meth:`index_of` does not raise."""
+        k = self.index_of(angle)
+        if k is not None:
+            return k
+        why = next((f"it was left out: {f.reason}" for f in self.flags
+                    if abs(f.angle - angle) < 1e-9), "it was not analysed")
+        if self.n == 0:
+            raise KeyError(f"crank angle {angle:g} deg: {why}; no angle was solved")
+        order = np.argsort(np.abs(self.angles - angle), kind="stable")
+        below = [a for a in self.angles[order] if a < angle][:1]
+        above = [a for a in self.angles[order] if a > angle][:1]
+        near = " and ".join(f"{a:g}" for a in sorted(below + above))
+        raise KeyError(f"crank angle {angle:g} deg: {why}; nearest analysed angles: {near} "
+                       "deg (use index_of() to test whether an angle was analysed)")

@@ -4,25 +4,32 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..spec import GROUND, Joint, Spec
-from .dyads import Dyad, decompose
+from .dyads import Dyad
 from .graph import Loop, all_loops, cycle_basis
+from .groups import Group, decompose_groups
 
 
 @dataclass(frozen=True)
 class Mechanism:
-    """A validated spec with its structure: dyads in solving order and independent loops."""
+    """A validated spec with its structure: Assur groups in solving order (the driver's
+    first) and independent loops."""
 
     spec: Spec
-    dyads: tuple[Dyad, ...]
+    groups: tuple[Group, ...]
     loops: tuple[Loop, ...]
+
+    @property
+    def dyads(self) -> tuple[Dyad, ...]:
+        """The groups that are dyads (closed forms), in solving order."""
+        return tuple(g.dyad for g in self.groups if g.dyad is not None)
 
     def joints_of(self, link: str) -> list[Joint]:
         return [j for j in self.spec.joints if link in j.links]
 
 
 def build_mechanism(spec: Spec) -> Mechanism:
-    """Raises ``UnsupportedMechanism`` when the links do not split into dyads."""
-    return Mechanism(spec, decompose(spec), cycle_basis(spec))
+    """Raises ``UnsupportedMechanism`` when the links do not form Assur groups."""
+    return Mechanism(spec, decompose_groups(spec), cycle_basis(spec))
 
 
-__all__ = ["Mechanism", "build_mechanism", "Dyad", "Loop", "GROUND", "all_loops"]
+__all__ = ["Mechanism", "build_mechanism", "Dyad", "Group", "Loop", "GROUND", "all_loops"]

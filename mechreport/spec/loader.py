@@ -12,11 +12,13 @@ import difflib
 import math
 import os
 import re
+from dataclasses import replace
 from pathlib import Path as FsPath
 from typing import Any
 
 from ..errors import Problem, SpecError
 from ..quantities import CYCLE_UNITS, JOINT_CYCLE_UNITS, is_cycle
+from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Expectation, Joint, Line, Link, Load,
                     Shape, Spec, Sweep, Vec)
 from .yaml_source import (MAX_DEPTH, MAX_FILE_BYTES, HugeInteger, Source, check_text, decode,
@@ -40,7 +42,8 @@ __all__ = ["load_spec", "parse_spec", "LENGTH_UNITS", "MASS_UNITS", "NUMBER_MAX"
            "MAX_FILE_BYTES", "MAX_DEPTH", "MAX_PROBLEMS"]
 
 TOP_KEYS = ("mechreport", "name", "description", "units", "gravity", "ground", "links",
-            "joints", "driver", "sweep", "at", "assembly", "loads", "expect", "sheet", "design")
+            "joints", "driver", "sweep", "at", "assembly", "loads", "expect", "sheet", "design",
+            "report")
 DESIGN_KEYS = ("speed_fluctuation", "motor", "bearings", "limits")
 MOTOR_KEYS = ("rated_torque", "peak_torque", "rated_power")
 LIMIT_KEYS = ("joint_force", "transmission_angle", "shaking_force")
@@ -303,13 +306,25 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     link_names = {link.name for link in links}
     joints = _joints(top.get("joints", _ABSENT), ck, ground, {l.name: l for l in links},
                      length_scale, units["length"])
-    driver = _driver(top.get("driver"), ck, joints) if "driver" in top else None
+    driver = (_driver(top.get("driver"), ck, joints, length_scale) if "driver" in top
+              else None)
     sweep = _sweep(top.get("sweep"), ck)
     at = _angle_list(top.get("at"), ("at",), ck) if "at" in top else (sweep.start,)
     assembly = _assembly(top.get("assembly"), ck, links, length_scale, units["length"])
-    loads = _loads(top.get("loads"), ck, {l.name: l for l in links})
+    loads = _loads(top.get("loads"), ck, {l.name: l for l in links}, joints, ground,
+                   length_scale)
+    if driver is not None and driver.kind == "T":
+        if "sweep" not in top:
+            ck.error((), "a T driver needs a 'sweep': a plain range of strokes in the length "
+                         "unit, e.g. {start: 0, stop: 300, step: 5}")
+        sweep = replace(sweep, wraps=False)
+        for ld in loads:
+            if ld.profile is not None:
+                ck.error(("loads", ld.index, "profile"), "a profile is given over the crank "
+                                                          "angle: it needs an R driver")
     expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src)
     design = _design(top.get("design"), ck, joints) if "design" in top else Design()
+    report = _report(top.get("report"), ck, units) if "report" in top else ReportSettings()
     sheet = top.get("sheet", False)
     if not isinstance(sheet, bool):
         ck.error(("sheet",), f"must be true or false, got {_show(sheet)}"
@@ -327,7 +342,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     spec = Spec(file=ck.src.filename, name=name, description=description.strip(),
                 gravity=gravity, ground=ground, links=tuple(links), joints=tuple(joints),
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
-                expect=tuple(expect), sheet=sheet, units=units, design=design)
+                expect=tuple(expect), sheet=sheet, units=units, design=design,
+                report=report)
     _cycle_requests(spec, ck)
     return None if ck.problems else spec
 
@@ -643,11 +659,44 @@ def _t_joint(jname: str, body: dict, pair: list, path: tuple, ck: _Checker,
     return Joint(jname, "T", (guide, slider), point, Line(through, direction, through_name))
 
 
-def _driver(value: Any, ck: _Checker, joints: list[Joint] | None) -> Driver | None:
+def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
+            length_scale: float = 1.0) -> Driver | None:
+    """Any joint may drive: an R joint its relative angle (``rpm`` or ``omega``, ``alpha``), a
+    T joint its stroke (``speed``, ``accel`` in the length unit per s and s^2)."""
     path = ("driver",)
-    body = ck.mapping(value, path, ("joint", "rpm", "omega", "alpha"), required=("joint",))
+    body = ck.mapping(value, path, ("joint", "rpm", "omega", "alpha", "speed", "accel"),
+                      required=("joint",))
     if body is None or "joint" not in body:
         return None
+    jname = ck.name(body["joint"], path + ("joint",))
+    if joints is None or jname is None:
+        return None
+    joint = next((j for j in joints if j.name == jname), None)
+    if joint is None:
+        if jname not in ck.invalid_joints:
+            ck.error(path + ("joint",), f"unknown joint '{jname}' (joints: "
+                                        f"{', '.join(j.name for j in joints)})")
+        return None
+    a, b = joint.links
+    link = (b if a == GROUND else a) if GROUND in joint.links else b
+    if joint.type == "T":
+        wrong = [k for k in ("rpm", "omega", "alpha") if k in body]
+        for k in wrong:
+            ck.error(path + (k,), f"a T driver drives its stroke: give 'speed' (and 'accel') in "
+                                  f"the length unit per second, not '{k}'")
+        if "speed" not in body:
+            ck.error(path, "a T driver needs 'speed' (length unit per second, not zero)")
+            return None
+        speed = ck.number(body["speed"], path + ("speed",), nonzero=True, scale=length_scale)
+        accel = (ck.number(body["accel"], path + ("accel",), scale=length_scale)
+                 if "accel" in body else 0.0)
+        if speed is None or accel is None or wrong:
+            return None
+        return Driver(jname, link, speed, accel, None, "T", (a, b), length_scale)
+    for k in ("speed", "accel"):
+        if k in body:
+            ck.error(path + (k,), f"an R driver turns: give 'rpm' or 'omega' (and 'alpha'), "
+                                  f"not '{k}'")
     if ("rpm" in body) == ("omega" in body):
         ck.error(path, "give exactly one of 'rpm' or 'omega' (rad/s)")
         return None
@@ -655,7 +704,7 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None) -> Driver | No
     key = "rpm" if "rpm" in body else "omega"
     speed = ck.number(body[key], path + (key,))
     if speed == 0:
-        ck.error(path + (key,), "must not be zero: the sweep is kinetostatic (the crank turns "
+        ck.error(path + (key,), "must not be zero: the sweep is kinetostatic (the driver turns "
                                 "at this speed at every angle); the power balance needs it")
         speed = None
     if key == "rpm":
@@ -668,20 +717,9 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None) -> Driver | No
     else:
         omega = speed
     alpha = ck.number(body["alpha"], path + ("alpha",)) if "alpha" in body else 0.0
-    jname = ck.name(body["joint"], path + ("joint",))
-    if joints is None or jname is None or omega is None or alpha is None:
+    if omega is None or alpha is None or "speed" in body or "accel" in body:
         return None
-    joint = next((j for j in joints if j.name == jname), None)
-    if joint is None:
-        if jname not in ck.invalid_joints:
-            ck.error(path + ("joint",), f"unknown joint '{jname}' (joints: "
-                                        f"{', '.join(j.name for j in joints)})")
-        return None
-    if joint.type != "R" or GROUND not in joint.links:
-        ck.error(path + ("joint",), f"the driver joint '{jname}' must be an R joint with ground")
-        return None
-    crank = joint.links[1] if joint.links[0] == GROUND else joint.links[0]
-    return Driver(jname, crank, omega, alpha, rpm)
+    return Driver(jname, link, omega, alpha, rpm, "R", (a, b))
 
 
 def _sweep(value: Any, ck: _Checker) -> Sweep:
@@ -751,7 +789,8 @@ def _profile(value: Any, path: tuple, ck: _Checker) -> tuple[tuple[float, float]
     return tuple(pairs)
 
 
-def _loads(value: Any, ck: _Checker, links: dict[str, Link]) -> list[Load]:
+def _loads(value: Any, ck: _Checker, links: dict[str, Link], joints: list[Joint] | None = None,
+           ground: dict[str, Vec] | None = None, ls: float = 1.0) -> list[Load]:
     if value is None:
         return []
     if not isinstance(value, list):
@@ -765,8 +804,15 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link]) -> list[Load]:
             ck.error(path, f"must be a mapping like {{type: force, link, point, value}}, "
                            f"got {_show(item)}")
             continue
-        kind = ck.choice(item.get("type"), path + ("type",), ("force", "moment"))
+        kind = ck.choice(item.get("type"), path + ("type",),
+                         ("force", "moment", "spring", "damper", "torsion_spring"))
         if kind is None:
+            continue
+        if kind in ("spring", "damper", "torsion_spring"):
+            load = _element(kind, item, i, path, ck, links, joints, ground, names, ls)
+            if load is not None:
+                names[load.label] = i
+                loads.append(load)
             continue
         allowed = (("type", "link", "point", "value", "direction", "profile", "oppose", "name",
                     "reacts_on") if kind == "force"
@@ -840,6 +886,88 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link]) -> list[Load]:
         loads.append(Load(kind, lname, i, point, value_, direction, profile, oppose,
                           item.get("name"), reacts))
     return loads
+
+
+def _element(kind: str, item: dict, i: int, path: tuple, ck: _Checker, links: dict[str, Link],
+             joints: list[Joint] | None, ground: dict[str, Vec] | None, names: dict[str, int],
+             ls: float) -> Load | None:
+    """A spring, damper or torsion spring: machine elements whose force follows from the
+    kinematics (docs/spec.md, section 8)."""
+    if kind == "torsion_spring":
+        keys = ("type", "joint", "stiffness", "free_angle", "name")
+        body = ck.mapping(item, path, keys, required=("joint", "stiffness", "free_angle"))
+    else:
+        value_key = "stiffness" if kind == "spring" else "damping"
+        keys = ("type", "between", value_key, "name") + (("free_length",) if kind == "spring"
+                                                         else ())
+        body = ck.mapping(item, path, keys, required=keys[1:3] + (("free_length",)
+                                                                  if kind == "spring" else ()))
+    if body is None or any(k not in body for k in keys[1:3]):
+        return None
+    label = ck.name(item["name"], path + ("name",)) if "name" in item else f"load {i + 1}"
+    if label is not None and label in names:
+        ck.error(path + ("name",), f"'{label}' is the name of loads[{names[label]}] too: load "
+                                   "names must differ (they label the torque breakdown)")
+        return None
+    if kind == "torsion_spring":
+        jname = ck.name(body["joint"], path + ("joint",))
+        joint = next((j for j in joints or () if j.name == jname), None)
+        if jname is not None and joint is None and joints is not None:
+            if jname not in ck.invalid_joints:
+                ck.error(path + ("joint",), f"unknown joint '{jname}'")
+            return None
+        if joint is not None and joint.type != "R":
+            ck.error(path + ("joint",), f"a torsion spring sits at an R joint; '{jname}' is a "
+                                        "slider (T)")
+            return None
+        k = ck.number(body["stiffness"], path + ("stiffness",), positive=True)
+        a0 = ck.number(body["free_angle"], path + ("free_angle",))
+        if joint is None or k is None or a0 is None or label is None:
+            return None
+        moving = joint.links[1] if joint.links[1] != GROUND else joint.links[0]
+        return Load(kind, moving, i, name=item.get("name"), joint=jname, stiffness=k,
+                    free_angle=a0)
+    ends = body["between"]
+    where = path + ("between",)
+    if not (isinstance(ends, list) and len(ends) == 2 and all(
+            isinstance(e, list) and len(e) == 2 for e in ends)):
+        ck.error(where, f"must be two ends [[link, point], [link, point]], got {_show(ends)}")
+        return None
+    pairs = []
+    for e, (lname, pname) in enumerate(ends):
+        lname = ck.name(lname, where + (e, 0))
+        pname = ck.name(pname, where + (e, 1))
+        if lname is None or pname is None:
+            return None
+        if lname != GROUND and lname not in links:
+            if lname not in ck.invalid_links:
+                ck.error(where + (e, 0), f"unknown link '{lname}' (ground or a moving link: "
+                                         f"{', '.join(links)})")
+            return None
+        pts = (ground or {}) if lname == GROUND else links[lname].points
+        if pname not in pts:
+            ck.error(where + (e, 1), f"'{pname}' is not a point of "
+                                     f"{'the ground' if lname == GROUND else repr(lname)}")
+            return None
+        pairs.append((lname, pname))
+    if pairs[0][0] == pairs[1][0]:
+        ck.error(where, f"both ends are on '{pairs[0][0]}': a {kind} between two points of one "
+                        "link does nothing")
+        return None
+    moving = pairs[0][0] if pairs[0][0] != GROUND else pairs[1][0]
+    if kind == "spring":
+        k = ck.number(body["stiffness"], path + ("stiffness",), positive=True)
+        free = ck.number(body["free_length"], path + ("free_length",), scale=ls)
+        if k is None or free is None or free < 0 or label is None:
+            if free is not None and free < 0:
+                ck.error(path + ("free_length",), "must not be negative")
+            return None
+        return Load(kind, moving, i, name=item.get("name"), between=tuple(pairs), stiffness=k,
+                    free_length=free)
+    c = ck.number(body["damping"], path + ("damping",), positive=True)
+    if c is None or label is None:
+        return None
+    return Load(kind, moving, i, name=item.get("name"), between=tuple(pairs), damping=c)
 
 
 def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | None,
@@ -972,3 +1100,39 @@ def _structure(ck: _Checker, links: list[Link], joints: list[Joint]) -> None:
     if loose:
         ck.error(("links", loose[0]), f"not connected to the rest of the mechanism: "
                                       f"{', '.join(loose)}")
+
+
+REPORT_KEYS = ("units", "title", "project", "author", "revision")
+REPORT_TEXT_MAX = 200
+
+
+def _report(value: Any, ck: _Checker, units: dict[str, str]) -> ReportSettings:
+    """The ``report`` section: display units (lengths default to the spec's ``units.length``,
+    the rest to SI) and first-page metadata (docs/spec.md, section 16)."""
+    from ..units import UNIT_TABLES
+    body = ck.mapping(value, ("report",), REPORT_KEYS) if value is not None else {}
+    if body is None:
+        return ReportSettings()
+    shown = {"length": units.get("length", "m"), "force": "N", "moment": "N*m", "mass": "kg"}
+    if "units" in body:
+        given = ck.mapping(body["units"], ("report", "units"), tuple(UNIT_TABLES)) or {}
+        for key, table in UNIT_TABLES.items():
+            if key in given:
+                shown[key] = ck.choice(given[key], ("report", "units", key),
+                                       tuple(table)) or shown[key]
+    meta = {}
+    for key in REPORT_KEYS[1:]:
+        text = body.get(key, "")
+        if isinstance(text, int) and not isinstance(text, bool):
+            text = str(text)                     # revision: 2
+        if text is None:
+            text = ""
+        if not isinstance(text, str):
+            ck.error(("report", key), f"must be text, got {_show(text)} (quote it: '...')")
+            text = ""
+        elif len(text) > REPORT_TEXT_MAX or "\n" in text.strip():
+            ck.error(("report", key), f"must be one line of at most {REPORT_TEXT_MAX} "
+                                      "characters")
+            text = ""
+        meta[key] = " ".join(text.split())
+    return ReportSettings(units=shown, **meta)

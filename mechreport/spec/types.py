@@ -85,13 +85,41 @@ class Joint:
 
 @dataclass(frozen=True)
 class Driver:
-    """The crank: ``joint`` is an R joint with ground; ``omega`` [rad/s], ``alpha`` [rad/s^2]."""
+    """The driven joint ``joint`` between ``links`` (first, second).
+
+    R (``kind``): the driven coordinate is the relative angle of the second link to the first;
+    for a joint with ground, the moving link's x-axis angle (the crank angle), whichever link
+    is written first. ``omega`` [rad/s], ``alpha`` [rad/s^2]. T: the stroke of the slider's
+    point along the guide's line from its ``through`` point; ``omega`` holds the ``speed``
+    [m/s] and ``alpha`` the ``accel`` [m/s^2]. ``link`` is the driven link (the moving one for
+    a joint with ground, else the second). Sweep values are in degrees (R) or the spec's length
+    unit (T); ``unit`` is SI per sweep unit (rad per degree, or m per length unit)."""
 
     joint: str
     link: str
     omega: float
     alpha: float = 0.0
     rpm_given: float | None = None
+    kind: str = "R"
+    links: tuple[str, str] = (GROUND, "")
+    unit: float = math.pi / 180.0
+
+    @property
+    def crank(self) -> bool:
+        """An R joint with ground: the classic crank, whose angle is the sweep's."""
+        return self.kind == "R" and GROUND in self.links
+
+    @property
+    def quantity(self) -> str:
+        """The name of the driver's effort: ``driver.torque`` (R, N m) or ``driver.force``
+        (T, N: the force the first link exerts on the second along the line)."""
+        return "driver.torque" if self.kind == "R" else "driver.force"
+
+    @property
+    def coordinate(self) -> str:
+        """What the sweep axis is: ``crank angle``, ``relative angle`` or ``stroke``."""
+        return "crank angle" if self.crank else ("relative angle" if self.kind == "R"
+                                                 else "stroke")
 
 
 @dataclass(frozen=True)
@@ -101,19 +129,20 @@ class Sweep:
     start: float = 0.0
     stop: float = 360.0
     step: float = 1.0
+    wraps: bool = True     # an angle (False for a T driver's stroke: a plain range)
 
     @property
     def whole_turn(self) -> bool:
         """One whole turn: stop - start is 360 degrees (stop itself then repeats start)."""
         span = self.stop - self.start
-        return abs(span - 360.0) < 1e-9
+        return self.wraps and abs(span - 360.0) < 1e-9
 
     def angles(self) -> np.ndarray:
         span = self.stop - self.start
         n = int(math.floor(span / self.step + 1e-9))
         values = self.start + self.step * np.arange(n + 1)
         turns = round(span / 360.0)
-        whole_turns = turns >= 1 and abs(span - 360.0 * turns) < 1e-9
+        whole_turns = self.wraps and turns >= 1 and abs(span - 360.0 * turns) < 1e-9
         if whole_turns and abs(values[-1] - self.stop) < 1e-9:
             values = values[:-1]
         return values
@@ -126,7 +155,9 @@ class Load:
     Either a constant ``value`` or ``direction`` (unit, forces) with a ``profile`` of
     (crank angle [deg], magnitude) pairs, interpolated periodically. ``oppose`` is ``velocity``
     (forces) or ``rotation`` (moments). ``reacts_on`` ``ground``: the load's reaction acts on
-    the frame (left out of the shaking force)."""
+    the frame (left out of the shaking force). ``spring`` and ``damper`` act ``between`` two
+    (link, point) ends (either may be ground); a ``torsion_spring`` at an R ``joint``; their
+    ``link`` is the first moving link they act on."""
 
     kind: str
     link: str
@@ -138,6 +169,12 @@ class Load:
     oppose: str | None = None
     name: str | None = None
     reacts_on: str | None = None    # "ground": its reaction acts on the frame
+    between: tuple[tuple[str, str], tuple[str, str]] | None = None  # spring, damper ends
+    stiffness: float | None = None  # spring [N/m], torsion spring [N m/rad]
+    free_length: float | None = None  # spring [m]
+    damping: float | None = None    # damper [N s/m]
+    joint: str | None = None        # torsion spring: its R joint
+    free_angle: float | None = None  # torsion spring [deg]
 
     @property
     def label(self) -> str:
@@ -183,6 +220,19 @@ class Design:
 
 
 @dataclass(frozen=True)
+class ReportSettings:
+    """The spec's ``report`` section: display ``units`` (``length`` m|cm|mm|in, ``force``
+    N|kN|lbf, ``moment`` N*m|N*mm|kN*m|lbf*in, ``mass`` kg|g|lb; lengths default to the spec's
+    ``units.length``, the rest to SI) and the first page's metadata ("" when not given)."""
+
+    units: dict[str, str] = field(default_factory=dict)
+    title: str = ""
+    project: str = ""
+    author: str = ""
+    revision: str = ""
+
+
+@dataclass(frozen=True)
 class Spec:
     """A validated mechanism spec, SI throughout."""
 
@@ -202,6 +252,7 @@ class Spec:
     sheet: bool = False
     units: dict[str, str] = field(default_factory=lambda: {"length": "m", "mass": "kg"})
     design: Design = field(default_factory=Design)
+    report: "ReportSettings" = field(default_factory=lambda: ReportSettings())
 
     def cycle_problem(self) -> str | None:
         """Why cycle quantities are undefined for this spec (None when the sweep is one whole

@@ -1,0 +1,294 @@
+"""Equations of an Assur group over its links' frame coordinates q = (x, y, theta) per link,
+batched over angles: residuals and Jacobians (Newton-Raphson for groups without a closed form),
+and the rate systems J qdot = -J_known qdot_known and J qddot = gamma - J_known qddot_known of
+every group (dyads and the driver's own included).
+
+Columns follow ``group.links`` (3 per link); rows follow ``group.joints`` (2 per joint; the
+driver joint adds the row of its prescribed coordinate, see ``constraints.driver_row``).
+
+Groups with no closed form are assembled at the first reference angle by damped Newton from
+many starting poses (the assembly hints choose among the distinct solutions; without hints, the
+one whose joint points lie highest), then continued along the path's runs: chunks of angles at
+once, each guessed by extrapolating the last three solved poses along the travel and corrected
+by Newton; the chunk grows while it converges and shrinks when it does not. A run stops where
+Newton cannot follow the motion even one sample ahead: the group locks there.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import AssemblyError
+from ..linalg import batched_solve_cond
+from ..model import Group
+from ..spec import GROUND, Spec
+from .constraints import _wrap, driver_row, joint_blocks, joint_residual
+from .frames import rotate
+from .path import SweepPath
+from .position import BranchChoice, Poses, point_global
+
+STARTS = 96          # starting poses for the assembly at the first reference angle
+NEWTON_STEPS = 40    # iterations per solve at most
+CHUNK_MAX = 64       # angles per continuation chunk at most
+
+
+def rows(group: Group, driver: str) -> int:
+    return sum(3 if j.name == driver else 2 for j in group.joints)
+
+
+def equations(spec: Spec, group: Group, r: dict, th: dict, value=None):
+    """Residual F (n, 3k) and Jacobian J (n, 3k, 3k) of the group at poses ``r``, ``th``
+    (dicts over every link, (n, 2) and (n,)); ``value`` (n,) the driven coordinate [rad or m]
+    when the group holds the driver."""
+    links = group.links
+    col = {l: 3 * i for i, l in enumerate(links)}
+    n = next(iter(th.values())).shape[0]
+    m = 3 * len(links)
+    F, J = np.zeros((n, m)), np.zeros((n, m, m))
+    row = 0
+    for joint in group.joints:
+        F[:, row:row + 2] = joint_residual(spec, joint, r, th)
+        blocks, _ = joint_blocks(spec, joint, r, th)
+        for link, blk in blocks.items():
+            if link in col:
+                J[:, row:row + 2, col[link]:col[link] + 3] = blk
+        row += 2
+        if joint.name == group.driver:
+            now, dblocks, _ = driver_row(spec, r, th)
+            gap = now - value
+            F[:, row] = _wrap(gap) if spec.driver.kind == "R" else gap
+            for link, blk in dblocks.items():
+                if link in col:
+                    J[:, row, col[link]:col[link] + 3] = blk
+            row += 1
+    return F, J
+
+
+def velocity_system(spec: Spec, group: Group, r: dict, th: dict):
+    """The group's velocity matrix A (n, 3k, 3k), the blocks of known links [(rows, link,
+    (n, r, 3))] for the right-hand sides, and the driver row's index (None without one)."""
+    links = group.links
+    col = {l: 3 * i for i, l in enumerate(links)}
+    n = next(iter(th.values())).shape[0]
+    m = 3 * len(links)
+    A = np.zeros((n, m, m))
+    known, drow, row = [], None, 0
+    for joint in group.joints:
+        blocks, _ = joint_blocks(spec, joint, r, th)
+        for link, blk in blocks.items():
+            if link in col:
+                A[:, row:row + 2, col[link]:col[link] + 3] = blk
+            else:
+                known.append((slice(row, row + 2), link, blk))
+        row += 2
+        if joint.name == group.driver:
+            _, dblocks, _ = driver_row(spec, r, th)
+            for link, blk in dblocks.items():
+                if link in col:
+                    A[:, row, col[link]:col[link] + 3] = blk
+                else:
+                    known.append((slice(row, row + 1), link, blk[:, None, :]))
+            drow = row
+            row += 1
+    return A, known, drow
+
+
+def gamma(spec: Spec, group: Group, r: dict, th: dict, v: dict, w: dict) -> np.ndarray:
+    """The part of each constraint's second time derivative not in J qddot (n, 3k), from the
+    velocities ``v``, ``w`` of every link (the group's own included)."""
+    n = next(iter(th.values())).shape[0]
+    out = np.zeros((n, rows(group, group.driver or "")))
+    row = 0
+    for joint in group.joints:
+        out[:, row:row + 2] = joint_blocks(spec, joint, r, th, v, w)[1]
+        row += 2
+        if joint.name == group.driver:
+            out[:, row] = driver_row(spec, r, th, v, w)[2]
+            row += 1
+    return out
+
+
+# ------------------------------------------------------------------------ Newton groups
+
+def _poses(group: Group, q: np.ndarray, known: Poses, idx: np.ndarray) -> tuple[dict, dict]:
+    """Pose dicts at angle indices ``idx``: known links from ``known``, group links from q."""
+    r = {l: known[l][0][idx] for l in known}
+    th = {l: known[l][1][idx] for l in known}
+    for i, l in enumerate(group.links):
+        r[l] = q[:, 3 * i:3 * i + 2]
+        th[l] = q[:, 3 * i + 2]
+    return r, th
+
+
+def newton(spec: Spec, group: Group, q: np.ndarray, known: Poses, idx: np.ndarray,
+           value: np.ndarray | None, scale: float, steps: int = NEWTON_STEPS):
+    """Damped Newton-Raphson from ``q`` (m, 3k) at angle indices ``idx`` (m,); returns the
+    solution and where it converged (m,) bool: every residual (lengths [m], angles [rad])
+    below 1e-11 of ``scale`` (the mechanism's size)."""
+    q = q.copy()
+    tol = 1e-11 * scale      # lengths [m]; angle rows [rad] are held to the same number
+    done = np.zeros(len(q), bool)
+    for _ in range(steps):
+        r, th = _poses(group, q, known, idx)
+        F, J = equations(spec, group, r, th, None if value is None else value[idx])
+        done = np.max(np.abs(F), axis=1) <= tol
+        if done.all():
+            break
+        step, cond = batched_solve_cond(J, -F)
+        step = np.where(np.isfinite(step), step, 0.0)
+        # damping: no step moves a link by more than the mechanism's size, or turns it > 1 rad
+        big = np.max(np.abs(step) / np.where(np.arange(q.shape[1]) % 3 == 2, 1.0, scale),
+                     axis=1)
+        step *= np.minimum(1.0, 1.0 / np.maximum(big, 1e-300))[:, None]
+        q = np.where(done[:, None], q, q + step)
+    return q, done
+
+
+def assemble(spec: Spec, group: Group, known: Poses, path: SweepPath, value, scale: float,
+             rng_seed: int = 20261122):
+    """Every distinct assembly of the group at the first reference angle, by damped Newton
+    from ``STARTS`` starting poses: (solutions (s, 3k), the chosen one's index, the rule)."""
+    rng = np.random.default_rng(rng_seed)
+    ref = path.ref
+    k = len(group.links)
+    idx = np.full(STARTS, ref)
+    centre = _anchor_centre(spec, group, known, ref)
+    q0 = np.zeros((STARTS, 3 * k))
+    for i, link in enumerate(group.links):
+        theta = rng.uniform(-np.pi, np.pi, STARTS)
+        anchor = _anchor(spec, group, link, known, ref)
+        local = np.asarray(anchor[1] if anchor else (0.0, 0.0))
+        where = anchor[0] if anchor else centre + rng.normal(0, scale / 3, (STARTS, 2))
+        q0[:, 3 * i:3 * i + 2] = where - rotate(local, theta)
+        q0[:, 3 * i + 2] = theta
+    q, ok = newton(spec, group, q0, known, idx, value, scale, steps=80)
+    if not ok.any():
+        raise AssemblyError(
+            f"{spec.file}: the {group.class_name} {group.label} ({', '.join(group.links)}) "
+            f"cannot be assembled at the first reference angle {path.angles[ref]:g}; check "
+            "link lengths, `at` and the assembly hints")
+    sols = _distinct(spec, group, q[ok], known, ref, scale)
+    hints = {p: v for p, v in spec.assembly.items() if spec.point_owner(p) in group.links}
+    sig = np.stack([_points(spec, group, s, known, ref) for s in sols])
+    if hints:
+        err = np.zeros(len(sols))
+        for p, target in hints.items():
+            link = spec.point_owner(p)
+            i = group.links.index(link)
+            pos = sols[:, 3 * i:3 * i + 2] + rotate(spec.link(link).points[p], sols[:, 3 * i + 2])
+            err += np.sum((pos - np.asarray(target)) ** 2, axis=1)
+        pick = int(np.argmin(err))
+        rule = f"hint: {', '.join(hints)} (of {len(sols)} assemblies found)"
+    else:
+        pick = int(np.argmax(sig[:, 1::2].sum(axis=1)))
+        rule = (f"default: of the {len(sols)} assemblies found, the one whose points lie "
+                "highest (largest sum of y)")
+    return sols, pick, rule
+
+
+def _anchor(spec: Spec, group: Group, link: str, known: Poses, ref: int):
+    """(global point (2,), local point) of a pin joining ``link`` to a known link, if any."""
+    for j in group.joints:
+        if j.type == "R" and link in j.links:
+            other = j.links[1] if j.links[0] == link else j.links[0]
+            if other in known:
+                pts = spec.ground if other == GROUND else spec.link(other).points
+                at = point_global({other: (known[other][0][ref:ref + 1],
+                                           known[other][1][ref:ref + 1])}, other, pts[j.name])
+                return at[0], spec.link(link).points[j.name]
+    return None
+
+
+def _anchor_centre(spec: Spec, group: Group, known: Poses, ref: int) -> np.ndarray:
+    pts = [a[0] for l in group.links if (a := _anchor(spec, group, l, known, ref))]
+    return np.mean(pts, axis=0) if pts else np.zeros(2)
+
+
+def _points(spec: Spec, group: Group, q: np.ndarray, known: Poses, ref: int) -> np.ndarray:
+    """Global coordinates of every named point of the group's links, flattened (2P,)."""
+    out = []
+    for i, link in enumerate(group.links):
+        for p in spec.link(link).points.values():
+            out.append(q[3 * i:3 * i + 2] + rotate(p, np.array(q[3 * i + 2]))[..., :])
+    return np.concatenate(out)
+
+
+def _distinct(spec, group, sols, known, ref, scale) -> np.ndarray:
+    keep: list[np.ndarray] = []
+    sigs: list[np.ndarray] = []
+    for s in sols:
+        sig = _points(spec, group, s, known, ref)
+        if all(np.max(np.abs(sig - t)) > 1e-6 * scale for t in sigs):
+            keep.append(s)
+            sigs.append(sig)
+    order = np.lexsort(np.stack(sigs).T[::-1])   # a stable order, whatever the starts found
+    return np.stack(keep)[order]
+
+
+def continue_group(spec: Spec, group: Group, q_ref: np.ndarray, known: Poses, path: SweepPath,
+                   runs: list[np.ndarray], value, scale: float):
+    """The group's poses q (N, 3k) over ``path.angles`` followed from ``q_ref`` at the first
+    reference angle along each run (NaN where not reached), and the runs cut where it locks."""
+    N = len(path.angles)
+    q = np.full((N, q_ref.size), np.nan)
+    q[path.ref] = q_ref
+    reached = np.zeros(N, bool)
+    reached[path.ref] = True
+    cut = []
+    for run, travel in zip(runs, path.travel):
+        pos, chunk = 1, 4
+        while pos < len(run):
+            if reached[run[pos]]:          # the forward run already came round to here
+                pos += 1
+                continue
+            idx = run[pos:pos + chunk]
+            guess = _extrapolate(q[run[max(0, pos - 3):pos]], travel[max(0, pos - 3):pos],
+                                 travel[pos:pos + len(idx)])
+            sol, ok = newton(spec, group, guess, known, idx, value, scale)
+            good = _first_false(ok & np.all(np.isfinite(sol), axis=1))
+            if good:
+                q[idx[:good]] = sol[:good]
+                reached[idx[:good]] = True
+                pos += good
+                chunk = min(CHUNK_MAX, chunk * 2) if good == len(idx) else max(1, good)
+            elif chunk > 1:
+                chunk = max(1, chunk // 4)
+            else:
+                break                       # cannot follow even one sample ahead: a lock
+        cut.append(run[:pos])
+    off, lo, hi, w = path.off_grid_neighbours()
+    if off.size:
+        ok_n = reached[lo] & reached[hi]
+        if ok_n.any():
+            guess = (1 - w[ok_n])[:, None] * q[lo[ok_n]] + w[ok_n][:, None] * q[hi[ok_n]]
+            sol, ok = newton(spec, group, guess, known, off[ok_n], value, scale)
+            q[off[ok_n][ok]] = sol[ok]
+    return q, cut
+
+
+def _extrapolate(q_prev: np.ndarray, t_prev: np.ndarray, t_new: np.ndarray) -> np.ndarray:
+    """Lagrange extrapolation of the last (up to three) solved poses to travels ``t_new``."""
+    m = len(t_prev)
+    out = np.zeros((len(t_new), q_prev.shape[1]))
+    for i in range(m):
+        wgt = np.ones(len(t_new))
+        for j in range(m):
+            if j != i:
+                wgt *= (t_new - t_prev[j]) / (t_prev[i] - t_prev[j])
+        out += wgt[:, None] * q_prev[i]
+    return out
+
+
+def _first_false(mask: np.ndarray) -> int:
+    bad = np.flatnonzero(~mask)
+    return int(bad[0]) if bad.size else len(mask)
+
+
+def solve_newton_group(spec: Spec, group: Group, known: Poses, path: SweepPath,
+                       runs: list[np.ndarray], value, scale: float):
+    """Poses of a group with no closed form over ``path.angles`` (NaN where not reached), how
+    its assembly was chosen, and the runs cut where it locks."""
+    sols, pick, rule = assemble(spec, group, known, path, value, scale)
+    q, runs = continue_group(spec, group, sols[pick], known, path, runs, value, scale)
+    poses = {l: (q[:, 3 * i:3 * i + 2], q[:, 3 * i + 2]) for i, l in enumerate(group.links)}
+    name = f"{group.label} ({', '.join(group.links)})"
+    return poses, BranchChoice(name, group.class_name, pick + 1, rule), runs

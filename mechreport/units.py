@@ -1,0 +1,154 @@
+"""Display units and the one number formatter of every report, plot, sheet and terminal table.
+
+Results are computed and stored in SI (results.csv and summary.json stay SI, with the unit in
+every column name or field). What a person reads goes through :class:`Display`: values are
+converted to the spec's ``report.units`` (docs/spec.md, section 16) and printed by
+:func:`fmt` with ``SIG_DIGITS`` significant digits, never as ``-0``; a value whose magnitude is
+below round-off of its quantity's scale (``ZERO_RTOL`` times the largest value of that kind in
+the analysis) prints as ``0``.
+
+Kinds of quantity (the ``kind`` argument): ``length``, ``velocity``, ``acceleration``,
+``force``, ``moment``, ``mass``, ``mass_length`` (a counterweight's m r), ``inertia`` (kg·m²,
+always SI, as written in a spec), ``energy`` (J), ``power`` (W), ``angle`` (deg), ``omega``
+(rad/s), ``alpha`` (rad/s²), ``time`` (h), ``ratio`` (no unit).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+#: significant digits of every number a person reads (reports, plots, index, terminal)
+SIG_DIGITS = 4
+#: solution sheets are worked equations checked by hand against the textbook: more digits,
+#: so that their sums balance to the book's rounding (same formatter otherwise)
+SHEET_DIGITS = 6
+#: a value below this fraction of its quantity's scale is round-off: printed (and stored) as 0
+ZERO_RTOL = 1e-9
+DASH = "—"
+
+#: display unit -> size in SI (m, N, N m, kg)
+LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254}
+FORCE_UNITS = {"N": 1.0, "kN": 1000.0, "lbf": 4.4482216152605}
+MOMENT_UNITS = {"N*m": 1.0, "N*mm": 0.001, "kN*m": 1000.0, "lbf*in": 4.4482216152605 * 0.0254}
+MASS_UNITS = {"kg": 1.0, "g": 0.001, "lb": 0.45359237}
+UNIT_TABLES = {"length": LENGTH_UNITS, "force": FORCE_UNITS, "moment": MOMENT_UNITS,
+               "mass": MASS_UNITS}
+
+
+def pretty(unit: str) -> str:
+    """``N*m`` -> ``N·m`` (how a unit is printed)."""
+    return unit.replace("*", "·")
+
+
+def fmt(x, digits: int = SIG_DIGITS, scale: float | None = None) -> str:
+    """``x`` to ``digits`` significant digits: ``5747``, ``155.3``, ``0.04330`` printed as
+    ``0.0433``, ``1.25e-05``; "—" for None or NaN; ``0`` (never ``-0``) for zero, for a value
+    that rounds to zero, and for ``|x| <= ZERO_RTOL * scale`` (round-off of its quantity)."""
+    if x is None:
+        return DASH
+    x = float(x)
+    if not math.isfinite(x):
+        return DASH
+    if x == 0 or (scale is not None and abs(x) <= ZERO_RTOL * abs(scale)):
+        return "0"
+    mag = abs(x)
+    exp = math.floor(math.log10(mag))
+    rounded = round(x, digits - 1 - exp)
+    if rounded == 0:
+        return "0"
+    if abs(rounded) >= 10 ** (exp + 1):            # 9.9996 -> 10.00
+        exp += 1
+    if -4 <= exp < 6:
+        decimals = max(digits - 1 - exp, 0)
+        s = f"{rounded:.{decimals}f}"
+        if "." in s:
+            s = s.rstrip("0").rstrip(".")
+    else:
+        s = f"{x:.{digits - 1}e}"
+        mant, e = s.split("e")
+        if "." in mant:
+            mant = mant.rstrip("0").rstrip(".")
+        s = f"{mant}e{int(e):+03d}"
+    return "0" if s in ("-0", "0") else s
+
+
+def clean(x: float, scale: float | None = None) -> float:
+    """``x`` with round-off of its quantity (``|x| <= ZERO_RTOL * scale``) and -0 made 0."""
+    x = float(x)
+    if x == 0 or (scale is not None and abs(x) <= ZERO_RTOL * abs(scale)):
+        return 0.0
+    return x
+
+
+@dataclass(frozen=True)
+class Display:
+    """How values are shown: the unit of each base kind (keys of ``report.units``), and the
+    scale [SI] of each kind of quantity in this analysis (for the round-off rule)."""
+
+    length: str = "m"
+    force: str = "N"
+    moment: str = "N*m"
+    mass: str = "kg"
+    scales: dict = field(default_factory=dict, compare=False)
+
+    # ------------------------------------------------------------------ units
+    def factor(self, kind: str) -> float:
+        """SI value x factor = displayed value."""
+        L = LENGTH_UNITS[self.length]
+        return {"length": 1 / L, "velocity": 1 / L, "acceleration": 1 / L,
+                "force": 1 / FORCE_UNITS[self.force], "moment": 1 / MOMENT_UNITS[self.moment],
+                "mass": 1 / MASS_UNITS[self.mass],
+                "mass_length": 1 / (MASS_UNITS[self.mass] * L)}.get(kind, 1.0)
+
+    def unit(self, kind: str) -> str:
+        """The printed unit of ``kind`` ("" for a ratio)."""
+        L = self.length
+        return {"length": L, "velocity": f"{L}/s", "acceleration": f"{L}/s²",
+                "force": self.force, "moment": pretty(self.moment), "mass": self.mass,
+                "mass_length": f"{self.mass}·{L}", "inertia": "kg·m²", "energy": "J",
+                "power": "W", "angle": "deg", "omega": "rad/s", "alpha": "rad/s²",
+                "time": "h", "ratio": ""}[kind]
+
+    def value(self, x, kind: str):
+        """``x`` [SI] (a number or an array) in display units."""
+        return x * self.factor(kind) if x is not None else None
+
+    # --------------------------------------------------------------- numbers
+    def num(self, x, kind: str, digits: int = SIG_DIGITS) -> str:
+        """``x`` [SI] converted and formatted, without its unit."""
+        if x is None:
+            return DASH
+        scale = self.scales.get(kind)
+        f = self.factor(kind)
+        return fmt(float(x) * f, digits, None if scale is None else scale * f)
+
+    def q(self, x, kind: str, digits: int = SIG_DIGITS) -> str:
+        """``x`` [SI] converted, formatted, with its unit: ``155.3 N``, ``0.0433 m``."""
+        text = self.num(x, kind, digits)
+        unit = self.unit(kind)
+        return text if text == DASH or not unit else f"{text} {unit}"
+
+    def head(self, label: str, kind: str) -> str:
+        """A column heading with the unit: ``x [mm]``."""
+        unit = self.unit(kind)
+        return f"{label} [{unit}]" if unit else label
+
+    def with_scales(self, scales: dict) -> "Display":
+        return Display(self.length, self.force, self.moment, self.mass, dict(scales))
+
+    def describe(self) -> str:
+        """``lengths in mm, forces in kN, moments in N·m, masses in g``."""
+        return (f"lengths in {self.length}, forces in {self.force}, moments in "
+                f"{pretty(self.moment)}, masses in {self.mass}")
+
+
+#: kind of each SI unit as written in quantity tables (``mechreport.quantities``)
+KIND_OF_UNIT = {"m": "length", "m/s": "velocity", "m/s^2": "acceleration", "N": "force",
+                "N·m": "moment", "kg": "mass", "kg·m": "mass_length", "kg·m^2": "inertia",
+                "J": "energy", "W": "power", "deg": "angle", "rad/s": "omega",
+                "rad/s^2": "alpha", "h": "time"}
+
+
+def kind_of(si_unit: str | None) -> str:
+    """The kind of quantity measured in ``si_unit`` (``ratio`` when unknown)."""
+    return KIND_OF_UNIT.get(si_unit or "", "ratio")
