@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: report test check bench clean
+.PHONY: report test check bench bench-build clean
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -24,6 +24,9 @@ check: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python bench/bench_methods.py
+
+bench-build: $(STAMP)
+	$(BIN)/python bench/bench_build.py
 
 clean:
 	rm -rf out/* $(VENV)

@@ -164,14 +164,15 @@ def _require_angles(kin: Kinematics) -> Kinematics:
     kinds: dict[str, list[float]] = {}
     for f in kin.flags:
         kinds.setdefault(f.reason, []).append(f.angle)
-    why = "; ".join(f"{reason} ({_angles(a)})" for reason, a in list(kinds.items())[:3])
+    why = "; ".join(f"{reason} ({_angles(a, spec.axis_unit)})"
+                    for reason, a in list(kinds.items())[:3])
     more = f"; and {len(kinds) - 3} more reason(s)" if len(kinds) > 3 else ""
     raise AnalysisError(f"{spec.file}: no angle of the sweep can be analysed: {why}{more}")
 
 
-def _angles(angles: list[float]) -> str:
+def _angles(angles: list[float], unit: str = "deg") -> str:
     shown = ", ".join(f"{a:g}" for a in angles[:4])
-    return f"{shown} deg" + (f" and {len(angles) - 4} more" if len(angles) > 4 else "")
+    return f"{shown} {unit}" + (f" and {len(angles) - 4} more" if len(angles) > 4 else "")
 
 
 def _require_finite_inputs(ctx: ForceContext) -> None:
@@ -207,7 +208,8 @@ def _require_finite(kin: Kinematics, forces: dict[str, ForceResult]) -> None:
         if not ok.all():
             k = int(np.flatnonzero(~ok.reshape(len(kin.angles), -1).all(axis=1))[0])
             raise AnalysisError(
-                f"{spec.file}: {what} is not a finite number at {kin.angles[k]:g} deg: the "
+                f"{spec.file}: {what} is not a finite number at {kin.angles[k]:g} "
+                f"{spec.axis_unit}: the "
                 "inputs are beyond what double precision can represent (check masses, "
                 "lengths, speeds, gravity and loads)")
 

@@ -72,6 +72,7 @@ def spec_files(args: list[str]) -> list[Path]:
 def _cmd_validate(ns: argparse.Namespace) -> int:
     from .kinematics import solve_kinematics
     from .model import build_mechanism
+    from .report.text import branch_lines
     from .spec import load_spec
 
     paths = spec_files(ns.specs)
@@ -94,6 +95,8 @@ def _cmd_validate(ns: argparse.Namespace) -> int:
             continue
         note = f" ({len(kin.flags)} reference angle(s) left out)" if kin.flags else ""
         print(f"{path}: OK{note}")
+        for text in branch_lines(kin):
+            print(f"  branch: {text}")
         for text in kin.notes():
             print(f"  note: {text}")
     return 1 if failed else 0
@@ -102,7 +105,7 @@ def _cmd_validate(ns: argparse.Namespace) -> int:
 def _cmd_kin(ns: argparse.Namespace) -> int:
     from .kinematics import solve_kinematics
     from .model import build_mechanism
-    from .report.text import kinematics_table
+    from .report.text import branch_lines, kinematics_table
     from .spec import load_spec
 
     try:
@@ -117,6 +120,9 @@ def _cmd_kin(ns: argparse.Namespace) -> int:
         print_traceback_if_debug()
         return 1
     print(kinematics_table(kin))
+    print()
+    for text in branch_lines(kin):
+        print(f"branch: {text}")
     for flag in kin.flags:
         print(f"crank angle {flag.angle:g} deg left out: {flag.reason}")
     for text in kin.notes():
@@ -126,13 +132,18 @@ def _cmd_kin(ns: argparse.Namespace) -> int:
 
 def _cmd_check(ns: argparse.Namespace) -> int:
     from .checks.run import check_files
-    return check_files(spec_files(ns.specs), ns.tol)
+    return check_files(spec_files(ns.specs), ns.tol, junit=ns.junit)
 
 
 def _cmd_build(ns: argparse.Namespace) -> int:
     from .report.build import build_files
     return build_files(spec_files(ns.specs), Path(ns.out), jobs=ns.jobs, sheet=ns.sheet,
-                       exact=ns.exact, wait=ns.wait)
+                       exact=ns.exact, wait=ns.wait, force=ns.force, quiet=ns.quiet)
+
+
+def _cmd_diff(ns: argparse.Namespace) -> int:
+    from .diff import diff_command
+    return diff_command(Path(ns.old), Path(ns.new), ns.rtol)
 
 
 # ------------------------------------------------------------------- argument checks
@@ -182,10 +193,12 @@ into the same OUT take turns (OUT/.mechreport.lock)."""
 
 
 def main(argv: list[str] | None = None) -> int:
+    from . import __version__
     parser = argparse.ArgumentParser(
         prog="mechreport",
         description="Dynamic force analysis of planar linkages from YAML specs.")
-    sub = parser.add_subparsers(dest="command", required=True)
+    parser.add_argument("--version", action="version", version=f"mechreport {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
 
     p = sub.add_parser("validate", help="load specs and assemble them at their reference angles",
                        description="Load specs and assemble them at their reference angles. "
@@ -206,6 +219,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("specs", nargs="+", metavar="SPEC|DIR")
     p.add_argument("--tol", type=_number_above_0, default=1e-6,
                    help="largest relative disagreement between methods (default 1e-6)")
+    p.add_argument("--junit", metavar="FILE",
+                   help="also write JUnit XML to FILE: one test suite per spec, one test case "
+                   "per check, expectation and design verdict")
     p.set_defaults(func=_cmd_check)
 
     p = sub.add_parser("build", help="write Markdown and PDF reports",
@@ -221,9 +237,29 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--wait", type=_seconds, default=120.0, metavar="SECONDS",
                    help="how long to wait for another build writing to the same output "
                    "folder (default 120)")
+    p.add_argument("--force", action="store_true",
+                   help="rebuild every spec, even one whose report is up to date (same spec "
+                   "bytes, path, options and mechreport version)")
+    p.add_argument("-q", "--quiet", action="store_true",
+                   help="print nothing but failures")
     p.set_defaults(func=_cmd_build)
 
+    p = sub.add_parser("diff", help="compare two builds' summary.json files",
+                       description="Compare the summary.json files of two build folders and "
+                       "print the quantities that changed beyond the tolerance as a Markdown "
+                       "table (for a pull-request comment). Exit status 1 when anything "
+                       "changed (a quantity, a status or verdict, a spec added or removed), "
+                       "0 when nothing did, 2 on a usage error.")
+    p.add_argument("old", metavar="OLD_OUT")
+    p.add_argument("new", metavar="NEW_OUT")
+    p.add_argument("--rtol", type=_number_above_0, default=1e-6,
+                   help="relative tolerance (default 1e-6: what every printed value promises)")
+    p.set_defaults(func=_cmd_diff)
+
     ns = parser.parse_args(argv)
+    if getattr(ns, "func", None) is None:           # bare `mechreport`
+        parser.print_help()
+        return 0
     try:
         return ns.func(ns)
     except SpecError as exc:

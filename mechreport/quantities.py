@@ -37,9 +37,17 @@ def unit_of(quantity: str) -> str | None:
         return CYCLE_UNITS[quantity]
     if quantity == "driver.torque":
         return "N·m"
+    if quantity == "driver.force":
+        return "N"
     parts = quantity.split(".")
     if len(parts) != 3:
         return None
     table = {"joint": {**JOINT_UNITS, **JOINT_CYCLE_UNITS}, "point": POINT_UNITS,
              "link": LINK_UNITS}.get(parts[0], {})
     return table.get(parts[2])
+
+
+def unit_kind(quantity: str) -> str:
+    """``moment`` for quantities in N·m (torques, couples), else ``force``: agreement scales
+    compare like with like."""
+    return "moment" if unit_of(quantity) == "N·m" else "force"

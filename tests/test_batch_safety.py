@@ -263,7 +263,7 @@ def test_swap_leaves_only_this_runs_files(batch):
 def test_files_and_folders_follow_the_umask(batch):
     folder = batch["out"] / "x"
     assert stat.S_IMODE((folder / "report.md").stat().st_mode) == 0o640
-    assert stat.S_IMODE((folder / "figures" / "torque.png").stat().st_mode) == 0o640
+    assert stat.S_IMODE((folder / "figures" / "torque.svg").stat().st_mode) == 0o640
     assert stat.S_IMODE(folder.stat().st_mode) == 0o750
     assert stat.S_IMODE((folder / "figures").stat().st_mode) == 0o750
 

@@ -31,8 +31,13 @@ def test_check_reports_failed_expectation_and_exits_1(tmp_path):
     assert out.returncode == 1
     lines = out.stdout.splitlines()
     assert lines[0].startswith(f"FAIL {bad}")
-    assert any("driver.torque at 45 deg: expected 150 ± 0.015, got 151.4924" in l
-               for l in lines)
+    # each failed expectation once (not once per method), with expected, computed,
+    # difference, tolerance and the methods
+    failed = [l for l in lines if "expectation failed: driver.torque at 45 deg" in l]
+    assert len(failed) == 1, lines
+    assert ("expected 150 N·m, computed 151.49 N·m, difference 1.49 N·m, tolerance "
+            "±0.015 N·m (Newton-Euler, D'Alembert, Dyad (Assur groups), Contour, Power "
+            "balance)") in failed[0]
     assert any(l.startswith(f"PASS {good}") for l in lines)   # the batch goes on
 
 

@@ -129,5 +129,5 @@ def test_check_fails_naming_every_missed_verdict():
     missed = [l.strip() for l in out.stdout.splitlines() if "design verdict missed" in l]
     assert [m.split(": ")[1] for m in missed] == ["motor.rated_torque", "motor.rated_power",
                                                   "bearings.D.life_h", "limits.shaking_force"]
-    assert "cycle.torque.rms = 2.27821 N·m > limit 2 N·m" in missed[0]
+    assert "cycle.torque.rms = 2.278 N·m > limit 2 N·m" in missed[0]
     assert "8 design verdict(s) (4 missed)" in out.stdout

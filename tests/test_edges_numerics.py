@@ -113,7 +113,7 @@ def test_a_sweep_shorter_than_round_off_keeps_its_angle():
 def test_4_6_near_90_deg_every_value_is_flagged_or_trustworthy_to_1e_6(offset, side):
     phi = 90 + side * offset
     a = analyse(slider_crank(at=f"[45, {phi!r}]"))
-    k = a.kinematics.at(phi)
+    k = a.kinematics.index_of(phi)
     if k is None:
         (flag,) = [f for f in a.flags if abs(f.angle - phi) < 1e-9]
         assert flag.kind == "near-singular" and "near-singular" in flag.reason
@@ -131,7 +131,7 @@ def test_parallelogram_change_points_flagged_or_trustworthy_to_1e_6(offset, base
     for phi in (base + offset, base - offset):
         a = analyse(parse_spec(PARALLELOGRAM.replace("at: [30]", f"at: [30, {phi % 360!r}]"),
                                "parallelogram.yaml"))
-        k = a.kinematics.at(phi % 360)
+        k = a.kinematics.index_of(phi % 360)
         if k is None:
             assert any(f.kind == "near-singular" for f in a.flags
                        if abs(f.angle - phi % 360) < 1e-9)

@@ -94,7 +94,7 @@ def assert_close(got, want, tol, what):
 
 def test_point_velocities_are_derivatives_of_positions(sweeps):
     s = sweeps
-    h = math.radians(H1)
+    h = H1 * s.spec.driver.unit
     tol = 1e-7 * abs(s.w) * s.length_scale()
     for link, p in s.points():
         plus, minus = s.shifted[H1].named_point(p, link), s.shifted[-H1].named_point(p, link)
@@ -104,7 +104,7 @@ def test_point_velocities_are_derivatives_of_positions(sweeps):
 
 def test_point_accelerations_are_derivatives_of_velocities(sweeps):
     s = sweeps
-    h = math.radians(H1)
+    h = H1 * s.spec.driver.unit
     tol = 1e-7 * s.w**2 * s.length_scale()
     for link, p in s.points():
         here = s.kin.named_point(p, link)
@@ -117,7 +117,7 @@ def test_point_accelerations_are_derivatives_of_velocities(sweeps):
 
 def test_point_accelerations_are_second_derivatives_of_positions(sweeps):
     s = sweeps
-    h = math.radians(H2)
+    h = H2 * s.spec.driver.unit
     tol = 1e-5 * s.w**2 * s.length_scale()
     for link, p in s.points():
         here = s.kin.named_point(p, link)
@@ -130,7 +130,7 @@ def test_point_accelerations_are_second_derivatives_of_positions(sweeps):
 def test_link_rates_are_derivatives_of_link_angles(sweeps):
     s = sweeps
     th0 = s.kin.theta
-    h1, h2 = math.radians(H1), math.radians(H2)
+    h1, h2 = H1 * s.spec.driver.unit, H2 * s.spec.driver.unit
     d1 = wrap(s.shifted[H1].theta - s.shifted[-H1].theta) / (2 * h1)
     assert_close(s.kin.omega, s.w * d1, 1e-7 * abs(s.w), "omega from theta")
     dw = (s.shifted[H1].omega - s.shifted[-H1].omega) / (2 * h1)
@@ -143,15 +143,38 @@ def test_link_rates_are_derivatives_of_link_angles(sweeps):
 
 
 def test_driver_state(sweeps):
+    """The driven coordinate follows the sweep at the driver's rate: a crank's angle, the
+    relative angle of an R joint between moving links, or a T joint's stroke."""
     s = sweeps
-    k = s.spec.number(s.spec.driver.link)
-    assert_close(wrap(s.kin.theta[:, k] - np.radians(s.kin.angles)), 0, 1e-12, "crank angle")
-    assert_close(s.kin.omega[:, k], s.w, 1e-12, "crank omega")
-    assert_close(s.kin.alpha[:, k], s.al, 1e-12, "crank alpha")
-    pivot = s.kin.named_point(s.spec.driver.joint, s.spec.driver.link)
-    assert_close(pivot.r, np.broadcast_to(s.spec.ground[s.spec.driver.joint], pivot.r.shape),
-                 1e-12, "crank pivot")
-    assert_close(pivot.v, 0, 1e-12, "crank pivot velocity")
+    d = s.spec.driver
+    kin = s.kin
+    value = kin.angles * d.unit
+    if d.kind == "R":
+        a, b = (s.spec.number(l) for l in d.links)
+        k = b if d.links[0] == GROUND else a if d.crank else b
+        base = 0 if d.crank else a
+        sign = 1.0
+        rel = wrap(sign * (kin.theta[:, k] - (kin.theta[:, base] if base else 0)) - value)
+        assert_close(rel, 0, 1e-12, "driven angle")
+        w = kin.omega[:, k] - (kin.omega[:, base] if base else 0)
+        al = kin.alpha[:, k] - (kin.alpha[:, base] if base else 0)
+        assert_close(w, s.w, 1e-12, "driven omega")
+        assert_close(al, s.al, 1e-12, "driven alpha")
+        if d.crank:
+            pivot = kin.named_point(d.joint, d.link)
+            assert_close(pivot.r, np.broadcast_to(s.spec.ground[d.joint], pivot.r.shape),
+                         1e-12, "crank pivot")
+            assert_close(pivot.v, 0, 1e-12, "crank pivot velocity")
+        return
+    joint = s.spec.joint(d.joint)
+    g = s.spec.number(joint.guide)
+    u = np.stack([np.cos(kin.theta[:, g]), np.sin(kin.theta[:, g])], axis=1) @ np.array(
+        [[joint.line.direction[0], joint.line.direction[1]],
+         [-joint.line.direction[1], joint.line.direction[0]]])
+    through = kin.point(joint.guide, joint.line.through)
+    slider = kin.named_point(joint.point, joint.slider)
+    L = max(s.length_scale(), 1.0)
+    assert_close(np.einsum("ni,ni->n", slider.r - through.r, u), value, 1e-9 * L, "stroke")
 
 
 # -- joint constraints -----------------------------------------------------------------------
@@ -219,7 +242,7 @@ def test_no_nan_and_every_angle_accounted_for(sweeps):
     assert solved | flagged == set(np.round(s.spec.analysed_angles(), 9))
     assert kin.n > 0.9 * len(s.spec.analysed_angles()), kin.flags
     for ref in s.spec.at:       # reference angles are analysed (unless flagged)
-        assert kin.at(ref) is not None or round(ref, 9) in flagged
+        assert kin.index_of(ref) is not None or round(ref, 9) in flagged
 
 
 def test_explicit_angles_follow_the_sweep_branch(sweeps):
@@ -228,7 +251,7 @@ def test_explicit_angles_follow_the_sweep_branch(sweeps):
     pick = s.full.angles[:: max(1, s.full.n // 7)]
     for a in pick:
         one = solve_kinematics(s.mech, [a])
-        k = s.full.at(a)
+        k = s.full.index_of(a)
         assert one.angles.tolist() == [a]
         assert np.max(np.abs(one.r[0] - s.full.r[k])) < 1e-12, a
         assert np.max(np.abs(wrap(one.theta[0] - s.full.theta[k]))) < 1e-12, a

@@ -48,7 +48,7 @@ def rate_of_angle(d, dd, ddd):
 
 def tool_value(spec, kin, quantity: str, angle: float) -> float:
     """The solver's value of a kinematic ``expect`` quantity (point.* or link.*)."""
-    k = kin.at(angle)
+    k = kin.index_of(angle)
     assert k is not None, f"{angle} deg was left out: {kin.flags}"
     kind, name, attr = quantity.split(".")
     if kind == "point":

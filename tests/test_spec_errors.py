@@ -8,6 +8,7 @@ line numbers do not move when the shipped specs change). Expected line numbers c
 from __future__ import annotations
 
 import math
+import re
 import subprocess
 import sys
 from dataclasses import fields, is_dataclass
@@ -392,17 +393,26 @@ def test_duplicate_point_in_flow_mapping():
 
 # -- structure: driver, mobility, connectivity ---------------------------------------------
 
-def test_driver_joint_not_on_ground():
-    text = edit(BASE, "driver: {joint: A,", "driver: {joint: B,")
-    p = only_problem(text)
-    assert str(p) == (f"{FILE}:{line_of(text, 'driver:')}: driver.joint: the driver joint 'B' "
-                      "must be an R joint with ground")
+def test_driver_may_be_any_joint():
+    """Any joint may drive (format additions): an R joint between moving links drives their
+    relative angle; a T joint its stroke, with speed and accel in the length unit."""
+    spec = parse_spec(edit(BASE, "driver: {joint: A,", "driver: {joint: B,"), FILE)
+    assert (spec.driver.kind, spec.driver.links, spec.driver.link) == ("R", ("crank", "rod"),
+                                                                        "rod")
+    assert spec.driver.quantity == "driver.torque" and not spec.driver.crank
+    text = re.sub(r"driver: \{joint: A, [^}]*\}", "driver: {joint: C_T, speed: 0.5, accel: 0.1}",
+                  BASE)
+    text = text.split("expect:")[0]
+    spec = parse_spec(text, FILE)
+    assert (spec.driver.kind, spec.driver.omega, spec.driver.alpha) == ("T", 0.5, 0.1)
+    assert spec.driver.quantity == "driver.force" and not spec.sweep.wraps
 
 
-def test_driver_joint_must_be_revolute():
+def test_t_driver_takes_speed_not_rpm():
     text = edit(BASE, "driver: {joint: A,", "driver: {joint: C_T,")
     p = only_problem(text)
-    assert_problem(p, line_of(text, "driver:"), "driver.joint", "must be an R joint with ground")
+    assert_problem(p, line_of(text, "driver:"), "driver.omega",
+                   "a T driver drives its stroke: give 'speed'")
 
 
 def test_mobility_too_high():
@@ -785,17 +795,14 @@ driver: {joint: A, rpm: 60}
 """
 
 
-@pytest.mark.parametrize("text, group", [
-    (TRIAD, "b1, b2, b3, tern"),
-    (STEPHENSON_III, "T2, c1, c2, T1"),
+@pytest.mark.parametrize("text, groups", [
+    (TRIAD, [("driver", ("crank",)), ("triad (class III)", ("b1", "b2", "b3", "tern"))]),
+    (STEPHENSON_III, [("driver", ("crank",)), ("class IV group", ("T2", "c1", "c2", "T1"))]),
 ], ids=["class-III-triad", "stephenson-III"])
-def test_structure_without_dyads_is_unsupported(text, group):
+def test_structures_without_dyads_split_into_larger_assur_groups(text, groups):
     spec = parse_spec(text, FILE)          # passes Gruebler: 3 x 5 - 2 x 7 = 1, connected
-    with pytest.raises(UnsupportedMechanism) as info:
-        build_mechanism(spec)
-    assert str(info.value) == (
-        f"{FILE}: links {group} do not split into dyads (groups of two links and three joints "
-        "attached to known links); this mechanism is not supported")
+    mech = build_mechanism(spec)
+    assert [(g.class_name, g.links) for g in mech.groups] == groups
 
 
 def test_reference_angle_that_cannot_close_raises_assembly_error():
@@ -839,10 +846,10 @@ def test_cli_validate_bad_spec(tmp_path, repo_root):
 
 @pytest.mark.parametrize("text, fragment", [
     (edit(BASE, "    mass: 2\n", "    mass: 2: kg\n"), "malformed YAML"),
-    (TRIAD, "do not split into dyads"),
+    (edit(BASE, "driver: {joint: A,", "driver: {joint: C_T,"), "a T driver drives its stroke"),
     (edit(edit(BASE, "C: [1, 0]}\n    mass: 2", "C: [0.5, 0]}\n    mass: 2"), "at: [45]",
           "at: [90]"), "cannot close at the first reference angle 90 deg"),
-], ids=["malformed-yaml", "no-dyads", "cannot-close"])
+], ids=["malformed-yaml", "t-driver-with-rpm", "cannot-close"])
 def test_cli_validate_reports_errors_without_traceback(tmp_path, repo_root, text, fragment):
     bad = tmp_path / "bad.yaml"
     bad.write_text(text, encoding="utf-8")

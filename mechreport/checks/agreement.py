@@ -13,12 +13,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..forces import ForceResult
+from ..quantities import unit_kind
 
 SCALE_FLOOR = 1e-3
 
 
 def _kind(quantity: str) -> str:
-    return "moment" if quantity.endswith(".moment") or quantity == "driver.torque" else "force"
+    return unit_kind(quantity)
 
 
 @dataclass(frozen=True)

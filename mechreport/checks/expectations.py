@@ -41,16 +41,18 @@ def check_expectations(kin: Kinematics, results: dict[str, ForceResult], flags,
     method at their angle; cycle quantities (no angle) against ``cycle`` (the review's values,
     from the reference method; None when undefined, because ``cycle_why``)."""
     out = []
-    for e in kin.mechanism.spec.expect:
+    spec = kin.mechanism.spec
+    for e in spec.expect:
         if e.angle is None:
             out.append(_check_cycle(e, cycle, cycle_why))
             continue
-        k = kin.at(e.angle)
+        k = kin.index_of(e.angle)
         if k is None:
             why = next((f.reason for f in flags if abs(f.angle - e.angle) < 1e-9),
                        "not analysed")
             out.append(ExpectationResult(e, "-", None, False,
-                                         f"crank angle {e.angle:g} deg is left out: {why}"))
+                                         f"{spec.driver.coordinate} {e.angle:g} {spec.axis_unit} is left "
+                                         f"out: {why}"))
             continue
         if e.quantity.startswith(("point.", "link.")):
             sources = {"kinematics": kinematic_value(kin, e.quantity, k)}
@@ -63,10 +65,11 @@ def check_expectations(kin: Kinematics, results: dict[str, ForceResult], flags,
         for source, got in sources.items():
             if not np.isfinite(got):
                 out.append(ExpectationResult(e, source, None, False,
-                                             f"{e.quantity} is undefined at {e.angle:g} deg"))
+                                             f"{e.quantity} is undefined at {e.angle:g} "
+                                             f"{spec.axis_unit}"))
                 continue
             ok = abs(got - e.value) <= e.tol
-            msg = "" if ok else (f"{e.quantity} at {e.angle:g} deg: expected {e.value:.10g} "
+            msg = "" if ok else (f"{e.quantity} at {e.angle:g} {spec.axis_unit}: expected {e.value:.10g} "
                                  f"± {e.tol:.2g}, got {got:.10g} ({source})")
             out.append(ExpectationResult(e, source, got, ok, msg))
     return out

@@ -20,6 +20,9 @@ def force_term(act: Action, d: np.ndarray, side: str = "rhs") -> Term | None:
     """Projection of a force action on direction ``d`` (n, 2); None for couples."""
     if act.kind != "force":
         return None
+    if act.direction is not None:      # one unknown magnitude along a known direction
+        return Term(act, act.sign * np.einsum("ni,ni->n", act.direction, d)[:, None],
+                    np.zeros(d.shape[0]), side, direction=d)
     if act.unknowns:
         return Term(act, act.sign * d, np.zeros(d.shape[0]), side, direction=d)
     return Term(act, np.zeros((d.shape[0], 0)), np.einsum("ni,ni->n", act.value, d), side,
@@ -33,6 +36,9 @@ def moment_term(act: Action, about: np.ndarray, n: int, side: str = "rhs") -> Te
             return Term(act, np.full((n, 1), act.sign), np.zeros(n), side)
         return Term(act, np.zeros((n, 0)), np.asarray(act.value, float), side)
     lever = act.at - about
+    if act.direction is not None:
+        return Term(act, act.sign * cross(lever, act.direction)[:, None], np.zeros(n), side,
+                    lever=lever)
     if act.unknowns:
         coeffs = act.sign * np.stack([-lever[:, 1], lever[:, 0]], axis=1)
         return Term(act, coeffs, np.zeros(n), side, lever=lever)

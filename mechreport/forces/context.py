@@ -15,11 +15,12 @@ import numpy as np
 
 from ..kinematics import Kinematics
 from ..model import Mechanism
+from ..kinematics.frames import rotate
 from ..spec import GROUND, Joint
 from .equations import Action
 from .loads import AppliedLoad, evaluate_loads
 
-DRIVER_TORQUE = "driver.torque"
+DRIVER_TORQUE = "driver.torque"   # an R driver's unknown; a T driver's is "driver.force"
 
 
 def reaction_unknowns(joint: Joint) -> tuple[str, ...]:
@@ -110,25 +111,47 @@ class ForceContext:
     def load_actions(self, link: str) -> list[Action]:
         acts = []
         for ld in self.loads:
-            if ld.load.link != link:
+            if ld.link != link:
                 continue
             if ld.force is not None:
-                at = self.kin.named_point(ld.load.point, link).r
-                acts.append(Action(ld.symbol, "force", "load", link, at, ld.load.point,
+                at = self.kin.named_point(ld.point, link).r
+                acts.append(Action(ld.symbol, "force", "load", link, at, ld.point,
                                    value=ld.force))
             else:
                 acts.append(Action(ld.symbol, "couple", "load", link, value=ld.moment))
         return acts
 
-    def driver_action(self) -> Action:
-        return Action("M", "couple", "driver", self.spec.driver.link,
-                      unknowns=(DRIVER_TORQUE,))
+    @property
+    def driver_unknown(self) -> str:
+        """``driver.torque`` (R driver) or ``driver.force`` (T driver)."""
+        return self.spec.driver.quantity
+
+    def driver_actions(self, link: str) -> list[Action]:
+        """The driver's effort as it acts on ``link``: a crank's motor torque M on the
+        moving link; for an R driver between moving links, M on the second and -M on the
+        first (the motor sits on the first); for a T driver, the push F along the line at the
+        slider's point, +F on the second link and -F on the first."""
+        d = self.spec.driver
+        if link not in d.links:
+            return []
+        unknown = (self.driver_unknown,)
+        if d.crank:
+            return [Action("M", "couple", "driver", link, unknowns=unknown)] \
+                if link == d.link else []
+        sign = 1.0 if link == d.links[1] else -1.0
+        if d.kind == "R":
+            return [Action("M", "couple", "driver", link, unknowns=unknown, sign=sign)]
+        joint = self.spec.joint(d.joint)
+        u = rotate(joint.line.direction, self.kin.theta[:, self.num(joint.guide)])
+        return [Action("Fd", "force", "driver", link, self.joint_points[joint.name],
+                       joint.point, unknowns=unknown, sign=sign, direction=u)]
 
     def actions_on(self, bodies, *, inertia: bool, exclude=()) -> list[Action]:
         """Every external action on the free body made of ``bodies`` (moving links): reactions
         of joints that cross its boundary, gravity, loads, the driver torque, and (d'Alembert)
-        the inertia forces and couples. Joints inside the body cancel and are left out, and so
-        are the joints named in ``exclude`` (those an equation is written to eliminate)."""
+        the inertia forces and couples. Joints inside the body cancel and are left out (the
+        driver too, when both its links are inside), and so are the joints named in
+        ``exclude`` (those an equation is written to eliminate)."""
         body = set(bodies)
         acts: list[Action] = []
         for j in self.spec.joints:
@@ -137,11 +160,12 @@ class ForceContext:
             inside = [l for l in j.links if l in body]
             if len(inside) == 1:
                 acts.extend(self.reaction(j, inside[0]))
+        inner_driver = set(self.spec.driver.links) <= body   # its two sides cancel
         for link in bodies:
             if inertia:
                 acts.extend(self.inertia_actions(link))
             acts.append(self.gravity_action(link))
             acts.extend(self.load_actions(link))
-            if link == self.spec.driver.link:
-                acts.append(self.driver_action())
+            if not inner_driver:
+                acts.extend(self.driver_actions(link))
         return acts

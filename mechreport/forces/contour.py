@@ -21,13 +21,15 @@ E, D_T, D on 0-3-4-5-0; then C, B_T, B, A). Nothing depends on the order of the 
 """
 from __future__ import annotations
 
+from itertools import combinations
+
 import numpy as np
 
 from ..errors import UnsupportedMechanism
 from ..model import Loop, all_loops
 from ..spec import GROUND, Joint
 from .builders import force_equation, moment_equation, normal_constraint, sliding_direction
-from .context import DRIVER_TORQUE, ForceContext, reaction_unknowns
+from .context import ForceContext, reaction_unknowns
 from .equations import Equation, Step
 from .result import ForceResult, run_steps
 
@@ -78,26 +80,31 @@ def _rank(rows: np.ndarray) -> np.ndarray:
     return np.sum(s > RANK_RTOL * top, axis=1)
 
 
-def _try_joint(ctx: ForceContext, loop: Loop, joint: Joint, known: set[str],
-               probes: np.ndarray) -> Step | None:
-    """Enough independent equations along ``loop`` for ``joint``'s unknowns, or None.
-
-    Candidates are tried in the text's order (alternately along paths I and II); a candidate
-    is taken first only where it adds rank at every probe angle, then, for what is still
-    missing, where it adds rank at most of them (independent except at isolated angles, which
-    the solve then flags)."""
-    unknowns = list(reaction_unknowns(joint))
-    if joint.name == ctx.spec.driver.joint:
-        unknowns.append(DRIVER_TORQUE)
-    chosen: list[Equation] = [normal_constraint(ctx, joint)] if joint.type == "T" else []
+def _candidates(ctx: ForceContext, loop: Loop, joint: Joint, unknowns: list[str],
+                known: set[str], cache: dict) -> list[Equation]:
+    """The equations along ``loop`` cut at ``joint``, in the text's order (alternately along
+    paths I and II), that involve ``unknowns`` and nothing else not yet known."""
     x = [j.name for j in loop.joints].index(joint.name)
     paths = [list(_path(loop, x, True)), list(_path(loop, x, False))]
-    candidates = []
+    out = []
     for w, body in (p[k] for k in range(max(map(len, paths))) for p in paths if k < len(p)):
-        eq = _equation(ctx, w, body)
+        key = (w.name, tuple(body))
+        if key not in cache:
+            cache[key] = _equation(ctx, w, body)
+        eq = cache[key]
         needed = set(eq.unknown_names())
         if needed & set(unknowns) and needed <= set(unknowns) | known:
-            candidates.append(eq)
+            out.append(eq)
+    return out
+
+
+def _select(unknowns: list[str], chosen: list[Equation], candidates: list[Equation],
+            probes: np.ndarray) -> list[Equation] | None:
+    """Independent equations for ``unknowns`` from ``candidates``, after ``chosen``: a
+    candidate is taken first only where it adds rank at every probe angle, then, for what is
+    still missing, where it adds rank at most of them (independent except at isolated angles,
+    which the solve then flags). None if there are not enough."""
+    chosen = list(chosen)
     rank = _rank(np.stack([_rows(e, unknowns, probes) for e in chosen], axis=1)) if chosen \
         else np.zeros(len(probes), int)
     for share in (1.0, 0.5):
@@ -111,9 +118,47 @@ def _try_joint(ctx: ForceContext, loop: Loop, joint: Joint, known: set[str],
             if np.mean(new > rank) >= share and np.mean(new > rank) > 0:
                 chosen.append(eq)
                 rank = new
-    if len(chosen) < len(unknowns):
+    return chosen if len(chosen) == len(unknowns) else None
+
+
+def _unknowns(ctx: ForceContext, joints) -> list[str]:
+    out = [u for j in joints for u in reaction_unknowns(j)]
+    if any(j.name == ctx.spec.driver.joint for j in joints):
+        out.append(ctx.driver_unknown)
+    return out
+
+
+def _try_joint(ctx: ForceContext, loop: Loop, joint: Joint, known: set[str],
+               probes: np.ndarray, cache: dict) -> Step | None:
+    """Enough independent equations along ``loop`` for ``joint``'s unknowns, or None."""
+    unknowns = _unknowns(ctx, [joint])
+    start = [normal_constraint(ctx, joint)] if joint.type == "T" else []
+    chosen = _select(unknowns, start, _candidates(ctx, loop, joint, unknowns, known, cache),
+                     probes)
+    if chosen is None:
         return None
     return Step(f"Joint {joint.name} (loop {loop.label(ctx.spec)})", unknowns, chosen,
+                tuple(sorted({b for e in chosen for b in e.bodies})))
+
+
+def _try_joints(ctx: ForceContext, joints, loops: list[Loop], known: set[str],
+                probes: np.ndarray, cache: dict) -> Step | None:
+    """Several joints whose reactions no loop isolates one by one (the interior joints of a
+    triad or larger Assur group), solved together from the equations along every loop cut at
+    any of them."""
+    unknowns = _unknowns(ctx, joints)
+    start = [normal_constraint(ctx, j) for j in joints if j.type == "T"]
+    candidates: list[Equation] = []
+    for joint in joints:
+        for loop in (l for l in loops if joint.name in {j.name for j in l.joints}):
+            for eq in _candidates(ctx, loop, joint, unknowns, known, cache):
+                if not any(eq is c for c in candidates):
+                    candidates.append(eq)
+    chosen = _select(unknowns, start, candidates, probes)
+    if chosen is None:
+        return None
+    names = ", ".join(j.name for j in joints)
+    return Step(f"Joints {names} (together: no loop isolates one of them)", unknowns, chosen,
                 tuple(sorted({b for e in chosen for b in e.bodies})))
 
 
@@ -164,21 +209,29 @@ def solve(ctx: ForceContext) -> ForceResult:
     known: set[str] = set()
     solved: set[str] = set()
     steps: list[Step] = []
+    cache: dict = {}
     order = sorted(spec.joints, key=lambda j: j.name, reverse=True)
-    progress = True
-    while progress and len(solved) < len(order):
-        progress = False
-        for joint in (j for j in order if j.name not in solved):
-            for loop in (l for l in loops if joint.name in {j.name for j in l.joints}):
-                step = _try_joint(ctx, loop, joint, known, probes)
-                if step is not None:
-                    steps.append(step)
-                    solved.add(joint.name)
-                    known.update(step.unknowns)
-                    progress = True
-                    break
-            if progress:
+
+    def take(step: Step, joints) -> None:
+        steps.append(step)
+        solved.update(j.name for j in joints)
+        known.update(step.unknowns)
+
+    while len(solved) < len(order):
+        todo = [j for j in order if j.name not in solved]
+        step = next(((s, [j]) for j in todo for loop in loops
+                     if j.name in {x.name for x in loop.joints}
+                     and (s := _try_joint(ctx, loop, j, known, probes, cache)) is not None),
+                    None)
+        for size in range(2, len(todo) + 1):
+            if step is not None:
                 break
+            step = next(((s, list(js)) for js in combinations(todo, size)
+                         if (s := _try_joints(ctx, js, loops, known, probes, cache))
+                         is not None), None)
+        if step is None:
+            break
+        take(*step)
     for joint in (j for j in order if j.name not in solved):
         step = _bridge_step(ctx, joint, known)   # a joint on no loop (a lone crank)
         if step is not None:

@@ -10,7 +10,7 @@ together as one system, with F . Delta = 0 for each T joint.
 from __future__ import annotations
 
 from .builders import force_equation, moment_equation, normal_constraint
-from .context import DRIVER_TORQUE, ForceContext, reaction_unknowns
+from .context import ForceContext, reaction_unknowns
 from .equations import Step
 from .result import ForceResult, run_steps
 
@@ -35,7 +35,7 @@ def solve(ctx: ForceContext) -> ForceResult:
         equations.append(force_equation(ctx, [link.name], acts, "y"))
         equations.append(moment_equation(ctx, [link.name], acts, moment_centre(ctx, link.name)))
     equations += [normal_constraint(ctx, j) for j in spec.joints if j.type == "T"]
-    unknowns = [u for j in spec.joints for u in reaction_unknowns(j)] + [DRIVER_TORQUE]
+    unknowns = [u for j in spec.joints for u in reaction_unknowns(j)] + [ctx.driver_unknown]
     step = Step("D'Alembert equilibrium of every moving link", unknowns, equations,
                 tuple(l.name for l in spec.links))
     return run_steps(NAME, ctx, [step])

@@ -11,12 +11,16 @@ d'Alembert loads and the reactions already found on its later neighbours:
 2. the interior reaction from link i's force balance (F32 = -F12 - Fin2 - G2), with, for an
    interior slider, link i's moment about the slider point for the couple;
 3. the driver link last: F01 and the torque M from its forces and moment about the pivot.
+
+Generalised to Assur groups of any class (the "Assur-group method"): a group with no closed
+form, or a driver group of several links, is one system of its links' d'Alembert equations for
+the reactions of all its joints; groups are taken from the last back to the driver's.
 """
 from __future__ import annotations
 
-from ..model import Dyad
+from ..model import Dyad, Group
 from .builders import force_equation, moment_equation, normal_constraint, sliding_direction
-from .context import DRIVER_TORQUE, ForceContext, reaction_unknowns
+from .context import ForceContext, reaction_unknowns
 from .equations import Step
 from .result import ForceResult, run_steps
 
@@ -58,19 +62,45 @@ def _inner_step(ctx: ForceContext, dyad: Dyad) -> Step:
                 eqs, (i,))
 
 
-def _driver_step(ctx: ForceContext) -> Step:
-    drv = ctx.spec.driver
-    joint = ctx.spec.joint(drv.joint)
-    acts = ctx.actions_on([drv.link], inertia=True)
-    eqs = [force_equation(ctx, [drv.link], acts, "x"), force_equation(ctx, [drv.link], acts, "y"),
-           moment_equation(ctx, [drv.link], acts, joint.point)]
-    return Step(f"Driver link {drv.link}", list(reaction_unknowns(joint)) + [DRIVER_TORQUE], eqs,
-                (drv.link,))
+def _driver_step(ctx: ForceContext, group: Group) -> Step:
+    """The driver's link last (textbook 4.73-4.75 for a crank): its forces and its moments
+    about the driver joint give that joint's reaction and the driver's effort."""
+    link = group.links[0]
+    joint = ctx.spec.joint(ctx.spec.driver.joint)
+    acts = ctx.actions_on([link], inertia=True)
+    eqs = [force_equation(ctx, [link], acts, "x"), force_equation(ctx, [link], acts, "y"),
+           moment_equation(ctx, [link], acts, joint.point, at=ctx.joint_points[joint.name])]
+    eqs += [normal_constraint(ctx, j) for j in group.joints if j.type == "T"]
+    unknowns = [u for j in group.joints for u in reaction_unknowns(j)] + [ctx.driver_unknown]
+    return Step(f"Driver link {link}", unknowns, eqs, (link,))
+
+
+def _group_step(ctx: ForceContext, group: Group) -> Step:
+    """A group with no closed form (or a driver group of several links): every link's
+    d'Alembert equations (forces x and y, moments about its centre of mass) and F . Delta = 0
+    for each slider, solved together for the reactions of all the group's joints (and the
+    driver's effort)."""
+    eqs = []
+    for link in group.links:
+        acts = ctx.actions_on([link], inertia=True)
+        s = ctx.links[link]
+        eqs += [force_equation(ctx, [link], acts, "x"), force_equation(ctx, [link], acts, "y"),
+                moment_equation(ctx, [link], acts, f"C{s.number}", at=s.r)]
+    eqs += [normal_constraint(ctx, j) for j in group.joints if j.type == "T"]
+    unknowns = [u for j in group.joints for u in reaction_unknowns(j)]
+    if group.driver is not None:
+        unknowns.append(ctx.driver_unknown)
+    name = group.class_name
+    return Step(f"{name[0].upper()}{name[1:]} {group.label}", unknowns, eqs, group.links)
 
 
 def solve(ctx: ForceContext) -> ForceResult:
     steps = []
-    for dyad in reversed(ctx.mech.dyads):
-        steps += [_outer_step(ctx, dyad), _inner_step(ctx, dyad)]
-    steps.append(_driver_step(ctx))
+    for group in reversed(ctx.mech.groups):
+        if group.dyad is not None:
+            steps += [_outer_step(ctx, group.dyad), _inner_step(ctx, group.dyad)]
+        elif group.driver is not None and len(group.links) == 1:
+            steps.append(_driver_step(ctx, group))
+        else:
+            steps.append(_group_step(ctx, group))
     return run_steps(NAME, ctx, steps)

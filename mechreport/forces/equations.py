@@ -27,8 +27,9 @@ class Action:
 
     ``symbol`` follows the textbook (F12 = force of link 1 on link 2, Fin2, G2, Min2, M).
     Forces: ``at`` (n, 2) is the application point [m], named ``at_name``. Unknown actions carry
-    ``unknowns`` (joint.B.fx, joint.B.fy / joint.C_T.moment / driver.torque) times ``sign``;
-    known ones carry ``value``: (n, 2) [N] for forces, (n,) [N m] for couples.
+    ``unknowns`` (joint.B.fx, joint.B.fy / joint.C_T.moment / driver.torque) times ``sign``; a
+    force of one unknown magnitude (driver.force) acts along ``direction`` (n, 2). Known ones
+    carry ``value``: (n, 2) [N] for forces, (n,) [N m] for couples.
     """
 
     symbol: str
@@ -40,6 +41,7 @@ class Action:
     unknowns: tuple[str, ...] = ()
     sign: float = 1.0
     value: np.ndarray | None = None
+    direction: np.ndarray | None = None   # (n, 2) for a force of one unknown magnitude
 
 
 @dataclass(frozen=True)

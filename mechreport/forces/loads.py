@@ -1,7 +1,10 @@
 """Applied loads evaluated over the sweep: constant or profile values, and the oppose rules.
 
 - force ``oppose: velocity``: F = -sign(v_P . F0) F0, zero where |v_P . F0/|F0|| < 1e-9 m/s;
-- moment ``oppose: rotation``: M = -sign(omega) |M0|, zero where |omega| < 1e-9 rad/s.
+- moment ``oppose: rotation``: M = -sign(omega) |M0|, zero where |omega| < 1e-9 rad/s;
+- spring: tension k (L - L0) pulls its two ends together; damper: c dL/dt along the line,
+  resisting extension; torsion spring: k (theta_rel - a0), wrapped to [-180, 180) deg, resists
+  the second link's rotation relative to the first, equal and opposite on the two links.
 Profiles interpolate linearly in the crank angle mod 360, wrapping from the last point to the
 first point plus 360 (textbook: F_ext = -sign(v_C) 100 i, M_5ext = -sign(omega_5) 100 k).
 """
@@ -19,11 +22,16 @@ SPEED_EPS = 1e-9   # [m/s] and [rad/s]
 
 @dataclass(frozen=True)
 class AppliedLoad:
-    """A load over the sweep: ``force`` (n, 2) [N] at ``point`` of ``link``, or ``moment`` (n,)
-    [N m]. ``symbol`` is its textbook-style name (F3ext, M5ext)."""
+    """A load over the sweep as it acts on one link: ``force`` (n, 2) [N] at ``point`` of
+    ``link``, or ``moment`` (n,) [N m]. ``symbol`` is its textbook-style name (F3ext, M5ext;
+    Fk3 for a spring on link 3, Fc for a damper, Mk for a torsion spring). A spring, damper or
+    torsion spring gives one AppliedLoad per end; an end on ``ground`` acts on the frame (only
+    the shaking force reads it)."""
 
     load: Load
     symbol: str
+    link: str
+    point: str | None = None
     force: np.ndarray | None = None
     moment: np.ndarray | None = None
 
@@ -40,37 +48,68 @@ def _profile(profile, angles_deg: np.ndarray) -> np.ndarray:
     return np.interp(np.mod(angles_deg, 360.0), xp, fp, period=360.0)
 
 
+BASES = {"force": "F{}ext", "moment": "M{}ext", "spring": "Fk{}", "damper": "Fc{}",
+         "torsion_spring": "Mk{}"}
+
+
 def evaluate_loads(kin: Kinematics) -> list[AppliedLoad]:
+    """Every load over the analysed angles, one AppliedLoad per link it acts on."""
     spec = kin.mechanism.spec
-    counts: dict[tuple[str, str], int] = {}
+    parts: list[tuple[Load, str, str | None, np.ndarray | None, np.ndarray | None]] = []
     for load in spec.loads:
-        key = (load.kind, load.link)
-        counts[key] = counts.get(key, 0) + 1
-    seen: dict[tuple[str, str], int] = {}
+        parts.extend(_evaluate(kin, load))
+    counts: dict[str, int] = {}
+    for load, link, *_ in parts:
+        base = BASES[load.kind].format(spec.number(link))
+        counts[base] = counts.get(base, 0) + 1
+    seen: dict[str, int] = {}
     out = []
-    for load in spec.loads:
-        num = spec.number(load.link)
-        key = (load.kind, load.link)
-        seen[key] = seen.get(key, 0) + 1
-        base = f"F{num}ext" if load.kind == "force" else f"M{num}ext"
-        symbol = base if counts[key] == 1 else f"{base},{seen[key]}"
-        if load.kind == "force":
-            if load.value is not None:
-                f0 = np.broadcast_to(np.asarray(load.value, float), (kin.n, 2)).copy()
-            else:
-                f0 = _profile(load.profile, kin.angles)[:, None] * np.asarray(load.direction)
-            if load.oppose == "velocity":
-                v = kin.named_point(load.point, load.link).v
-                mag = np.hypot(f0[:, 0], f0[:, 1])
-                along = np.einsum("ni,ni->n", v, f0) / np.where(mag > 0, mag, 1.0)
-                sign = np.where(np.abs(along) < SPEED_EPS, 0.0, -np.sign(along))
-                f0 = sign[:, None] * f0
-            out.append(AppliedLoad(load, symbol, force=f0))
-        else:
-            m0 = (np.full(kin.n, float(load.value)) if load.value is not None
-                  else _profile(load.profile, kin.angles))
-            if load.oppose == "rotation":
-                w = kin.omega[:, num]
-                m0 = np.where(np.abs(w) < SPEED_EPS, 0.0, -np.sign(w)) * np.abs(m0)
-            out.append(AppliedLoad(load, symbol, moment=m0))
+    for load, link, point, force, moment in parts:
+        base = BASES[load.kind].format(spec.number(link))
+        seen[base] = seen.get(base, 0) + 1
+        symbol = base if counts[base] == 1 else f"{base},{seen[base]}"
+        out.append(AppliedLoad(load, symbol, link, point, force, moment))
     return out
+
+
+def _evaluate(kin: Kinematics, load: Load):
+    """(load, link, point, force, moment) for each link the load acts on."""
+    spec = kin.mechanism.spec
+    if load.kind in ("spring", "damper"):
+        (la, pa), (lb, pb) = load.between
+        A, B = kin.named_point(pa, la), kin.named_point(pb, lb)
+        d = B.r - A.r
+        length = np.hypot(d[:, 0], d[:, 1])
+        u = d / np.where(length > 0, length, 1.0)[:, None]
+        if load.kind == "spring":     # tension k (L - L0) pulls the two ends together
+            pull = load.stiffness * (length - load.free_length)
+        else:                         # c dL/dt resists extension
+            pull = load.damping * np.einsum("ni,ni->n", B.v - A.v, u)
+        f = pull[:, None] * u         # on end A, toward B; -f on end B
+        return [(load, la, pa, f, None), (load, lb, pb, -f, None)]
+    if load.kind == "torsion_spring":  # k (theta_rel - a0) resists the second link's turn
+        joint = spec.joint(load.joint)
+        a, b = joint.links
+        rel = kin.theta[:, spec.number(b)] - kin.theta[:, spec.number(a)]
+        delta = (rel - np.radians(load.free_angle) + np.pi) % (2 * np.pi) - np.pi
+        m = load.stiffness * delta
+        return [(load, b, None, None, -m), (load, a, None, None, m)]
+    num = spec.number(load.link)
+    if load.kind == "force":
+        if load.value is not None:
+            f0 = np.broadcast_to(np.asarray(load.value, float), (kin.n, 2)).copy()
+        else:
+            f0 = _profile(load.profile, kin.angles)[:, None] * np.asarray(load.direction)
+        if load.oppose == "velocity":
+            v = kin.named_point(load.point, load.link).v
+            mag = np.hypot(f0[:, 0], f0[:, 1])
+            along = np.einsum("ni,ni->n", v, f0) / np.where(mag > 0, mag, 1.0)
+            sign = np.where(np.abs(along) < SPEED_EPS, 0.0, -np.sign(along))
+            f0 = sign[:, None] * f0
+        return [(load, load.link, load.point, f0, None)]
+    m0 = (np.full(kin.n, float(load.value)) if load.value is not None
+          else _profile(load.profile, kin.angles))
+    if load.oppose == "rotation":
+        w = kin.omega[:, num]
+        m0 = np.where(np.abs(w) < SPEED_EPS, 0.0, -np.sign(w)) * np.abs(m0)
+    return [(load, load.link, None, None, m0)]

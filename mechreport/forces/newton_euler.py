@@ -11,7 +11,7 @@ unknowns); we solve for the couple about the slider's point instead (linear), an
 from __future__ import annotations
 
 from .builders import newton_euler_equations, normal_constraint
-from .context import DRIVER_TORQUE, ForceContext, reaction_unknowns
+from .context import ForceContext, reaction_unknowns
 from .equations import Step
 from .result import ForceResult, run_steps
 
@@ -26,7 +26,7 @@ def solve(ctx: ForceContext) -> ForceResult:
     for link in spec.links:
         equations += newton_euler_equations(ctx, link.name)
     equations += [normal_constraint(ctx, j) for j in spec.joints if j.type == "T"]
-    unknowns = [u for j in spec.joints for u in reaction_unknowns(j)] + [DRIVER_TORQUE]
+    unknowns = [u for j in spec.joints for u in reaction_unknowns(j)] + [ctx.driver_unknown]
     step = Step("Newton-Euler equations of every moving link", unknowns, equations,
                 tuple(l.name for l in spec.links))
     return run_steps(NAME, ctx, [step])

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .context import DRIVER_TORQUE, ForceContext
-from .equations import Equation, Step, Term
+from .context import ForceContext
+from .equations import Action, Equation, Step, Term
 from .result import ForceResult, run_steps
 
 NAME = "power"
@@ -22,16 +22,20 @@ SECTION = "(independent check)"
 def power_equation(ctx: ForceContext) -> Equation:
     n = ctx.n
     terms = []
-    driver = ctx.driver_action()
-    w1 = ctx.links[ctx.spec.driver.link].omega
-    terms.append(Term(driver, w1[:, None].copy(), np.zeros(n), rate=w1))
+    # the driver's power: its effort times the driven coordinate's rate (constant: rad/s for
+    # an R driver, relative to its first link; m/s for a T driver)
+    rate = np.full(n, ctx.spec.driver.omega)
+    driver = next(a for link in ctx.spec.driver.links for a in ctx.driver_actions(link))
+    driver = Action(driver.symbol, driver.kind, "driver", ctx.spec.driver.link,
+                    unknowns=driver.unknowns)
+    terms.append(Term(driver, rate[:, None].copy(), np.zeros(n), rate=rate))
     for link in ctx.spec.links:
         s = ctx.links[link.name]
         for act in ctx.inertia_actions(link.name) + [ctx.gravity_action(link.name)] + \
                 ctx.load_actions(link.name):
             if act.kind == "force":  # inertia and weight act at the centre of mass
                 v = s.v if act.category != "load" else \
-                    ctx.kin.named_point(act.at_name, link.name).v
+                    ctx.kin.named_point(act.at_name, link.name).v   # loads: their own point
                 terms.append(Term(act, np.zeros((n, 0)), np.einsum("ni,ni->n", act.value, v),
                                   rate=v))
             else:
@@ -41,6 +45,6 @@ def power_equation(ctx: ForceContext) -> Equation:
 
 
 def solve(ctx: ForceContext) -> ForceResult:
-    step = Step("Power balance of the whole mechanism", [DRIVER_TORQUE], [power_equation(ctx)],
+    step = Step("Power balance of the whole mechanism", [ctx.driver_unknown], [power_equation(ctx)],
                 tuple(l.name for l in ctx.spec.links))
     return run_steps(NAME, ctx, [step])

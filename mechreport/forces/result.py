@@ -42,8 +42,10 @@ class JointReaction:
 class ForceResult:
     """One method's joint reactions and driver torque at every analysed angle.
 
-    ``angles`` (n,) crank angles [deg]; ``driver_torque`` (n,) [N m], the moment the driver
-    applies to the crank, CCW positive; ``reactions`` by joint name (empty for ``power``);
+    ``angles`` (n,) values of the sweep coordinate [deg or length unit]; ``driver_torque``
+    (n,) the driver's effort named ``driver_quantity``: the torque [N m] an R driver applies
+    (CCW positive), or the force [N] a T driver's first link exerts on its second along the
+    line; ``reactions`` by joint name (empty for ``power``);
     ``steps`` the labelled systems the method solved, in order; ``singular`` (n,) bool;
     ``cond`` (n,) the product of the steps' condition numbers (later steps take earlier steps'
     results as data, so their errors multiply): relative errors of the inputs grow by at most
@@ -56,10 +58,12 @@ class ForceResult:
     steps: tuple[Step, ...]
     singular: np.ndarray
     cond: np.ndarray | None = None
+    driver_quantity: str = "driver.torque"   # "driver.force" for a T driver
 
     def quantity(self, name: str) -> np.ndarray | None:
-        """A result quantity by its ``expect`` name, e.g. ``joint.B.fx`` or ``driver.torque``."""
-        if name == "driver.torque":
+        """A result quantity by its ``expect`` name, e.g. ``joint.B.fx`` or ``driver.torque``
+        (``driver.force`` for a T driver)."""
+        if name == self.driver_quantity:
             return self.driver_torque
         parts = name.split(".")
         if len(parts) == 3 and parts[0] == "joint" and parts[1] in self.reactions:
@@ -68,7 +72,7 @@ class ForceResult:
 
     def values(self) -> dict[str, np.ndarray]:
         """Every unknown by name (joint.J.fx/fy/moment, driver.torque)."""
-        out = {"driver.torque": self.driver_torque}
+        out = {self.driver_quantity: self.driver_torque}
         for r in self.reactions.values():
             out[f"joint.{r.joint}.fx"] = r.fx
             out[f"joint.{r.joint}.fy"] = r.fy
@@ -97,8 +101,9 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
                 t = np.where(np.abs(s) > 1e-12 * scale, m / s, np.nan)
             p = ctx.joint_points[j.name] + t[:, None] * u
             reactions[j.name] = JointReaction(j.name, "T", fx, fy, m, p[:, 0], p[:, 1])
-    return ForceResult(method, ctx.kin.angles, reactions, values["driver.torque"], tuple(steps),
-                       singular, cond)
+    quantity = ctx.spec.driver.quantity
+    return ForceResult(method, ctx.kin.angles, reactions, values[quantity], tuple(steps),
+                       singular, cond, quantity)
 
 
 def run_steps(method: str, ctx, steps) -> ForceResult:

@@ -37,7 +37,7 @@ def split_by_source(ctx: ForceContext, res: ForceResult) -> dict[str, dict[str, 
     ``joint.J.fx`` ...): inertia first, then gravity, then each load in spec order. The sum
     over sources equals ``res.values()``."""
     names = load_names(ctx)
-    sources = [INERTIA, GRAVITY] + [ld.name for ld in ctx.loads]
+    sources = list(dict.fromkeys([INERTIA, GRAVITY] + [ld.name for ld in ctx.loads]))
     col = {s: k for k, s in enumerate(sources)}
     n, S = ctx.n, len(sources)
     known: dict[str, np.ndarray] = {}            # unknown -> (n, S) parts

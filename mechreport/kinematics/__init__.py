@@ -100,7 +100,7 @@ def _unreached(motion: Motion, angle: float, mech: Mechanism, r: dict,
     lock = motion.nearest_lock(angle)
     if lock is not None and not motion.contains(angle):
         return "unreachable", (f"not reachable from the assembly: the mechanism locks between "
-                               f"{lock[0]:g} and {lock[1]:g} deg")
+                               f"{lock[0]:g} and {lock[1]:g} {motion.unit}")
     bad = next((g for g in mech.groups if not np.isfinite(r[g.links[-1]][k, 0])), None)
     label = f"{bad.kind} {bad.label}" if bad is not None else "the mechanism"
     return "cannot close", f"{label} cannot close"
@@ -131,9 +131,8 @@ def _positions(mech: Mechanism, path: SweepPath):
                        for link in dyad.links):
                 raise AssemblyError(
                     f"{spec.file}: the dyad {dyad.label} ({', '.join(dyad.links)}) cannot "
-                    f"close at the first reference angle {spec.at[0]:g} "
-                    f"{'deg' if spec.driver.kind == 'R' else spec.units['length']}; check "
-                    "link lengths and `at`")
+                    f"close at the first reference angle {spec.at[0]:g} {spec.axis_unit}; "
+                    "check link lengths and `at`")
             chosen, choice, runs = track_branches(spec, dyad, cands, path, runs)
             branches.append(choice)
         else:
@@ -142,7 +141,7 @@ def _positions(mech: Mechanism, path: SweepPath):
             branches.append(choice)
         for link, (rr, tt) in chosen.items():
             r[link], th[link] = rr, tt
-    return r, th, branches, motion_of(path, runs, spec.driver.omega)
+    return r, th, branches, motion_of(path, runs, spec.driver.omega, spec.axis_unit)
 
 
 def mechanism_size(spec) -> float:
@@ -191,10 +190,7 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
     conds: list[tuple[str, np.ndarray]] = []
     for group in mech.groups:
         A, known, drow = velocity_system(spec, group, safe_r, safe_th)
-        b_v = np.zeros((n, A.shape[1]))
-        for rows, link, blk in known:
-            qd = np.concatenate([v[link], w[link][:, None]], axis=1)
-            b_v[:, rows] -= np.einsum("nij,nj->ni", blk, qd)
+        b_v = -_known_part(known, v, w, (n, A.shape[1]))
         if drow is not None:
             b_v[:, drow] += spec.driver.omega
         x, cond = batched_solve_cond(A, b_v)
@@ -207,10 +203,8 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
         x = np.where(sing[:, None], 0.0, x)
         for i, link in enumerate(group.links):
             v[link], w[link] = x[:, 3 * i:3 * i + 2], x[:, 3 * i + 2]
-        b_a = gamma(spec, group, safe_r, safe_th, v, w)
-        for rows, link, blk in known:
-            qdd = np.concatenate([acc[link], al[link][:, None]], axis=1)
-            b_a[:, rows] -= np.einsum("nij,nj->ni", blk, qdd)
+        b_a = gamma(spec, group, safe_r, safe_th, v, w) - _known_part(known, acc, al,
+                                                                     (n, A.shape[1]))
         if drow is not None:
             b_a[:, drow] += spec.driver.alpha
         x, _ = batched_solve(A, b_a)
@@ -218,6 +212,15 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
         for i, link in enumerate(group.links):
             acc[link], al[link] = x[:, 3 * i:3 * i + 2], x[:, 3 * i + 2]
     return v, w, acc, al, conds
+
+
+def _known_part(known: list, lin: dict, ang: dict, shape: tuple[int, int]) -> np.ndarray:
+    """J_known qdot_known (or qddot): the known links' blocks times their rates (n, rows)."""
+    out = np.zeros(shape)
+    for rows, link, blk in known:
+        q = np.concatenate([lin[link], ang[link][:, None]], axis=1)
+        out[:, rows] += np.einsum("nij,nj->ni", blk, q)
+    return out
 
 
 __all__ = ["solve_kinematics", "Kinematics", "PointState", "Flag", "BranchChoice", "Motion",

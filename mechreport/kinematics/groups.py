@@ -29,6 +29,7 @@ from .position import BranchChoice, Poses, point_global
 STARTS = 96          # starting poses for the assembly at the first reference angle
 NEWTON_STEPS = 40    # iterations per solve at most
 CHUNK_MAX = 64       # angles per continuation chunk at most
+COARSE = 360         # samples of a run followed one chunk after another; the rest at once
 
 
 def rows(group: Group, driver: str) -> int:
@@ -120,27 +121,51 @@ def _poses(group: Group, q: np.ndarray, known: Poses, idx: np.ndarray) -> tuple[
 
 
 def newton(spec: Spec, group: Group, q: np.ndarray, known: Poses, idx: np.ndarray,
-           value: np.ndarray | None, scale: float, steps: int = NEWTON_STEPS):
+           value: np.ndarray | None, scale: float, steps: int = NEWTON_STEPS,
+           patience: int | None = None):
     """Damped Newton-Raphson from ``q`` (m, 3k) at angle indices ``idx`` (m,); returns the
     solution and where it converged (m,) bool: every residual (lengths [m], angles [rad])
-    below 1e-11 of ``scale`` (the mechanism's size)."""
+    below 1e-13 of ``scale`` (the mechanism's size); converged rows are then polished by one
+    more step. With ``patience``, it gives up once no further row has converged for that
+    many iterations (for many starting poses, some of which never converge)."""
     q = q.copy()
-    tol = 1e-11 * scale      # lengths [m]; angle rows [rad] are held to the same number
+    tol = 1e-13 * scale      # lengths [m]; angle rows [rad] are held to the same number
     done = np.zeros(len(q), bool)
+    best, since = 0, 0
     for _ in range(steps):
-        r, th = _poses(group, q, known, idx)
-        F, J = equations(spec, group, r, th, None if value is None else value[idx])
+        F, J = _equations_at(spec, group, q, known, idx, value)
         done = np.max(np.abs(F), axis=1) <= tol
         if done.all():
             break
-        step, cond = batched_solve_cond(J, -F)
-        step = np.where(np.isfinite(step), step, 0.0)
-        # damping: no step moves a link by more than the mechanism's size, or turns it > 1 rad
-        big = np.max(np.abs(step) / np.where(np.arange(q.shape[1]) % 3 == 2, 1.0, scale),
-                     axis=1)
-        step *= np.minimum(1.0, 1.0 / np.maximum(big, 1e-300))[:, None]
-        q = np.where(done[:, None], q, q + step)
+        count = int(done.sum())
+        best, since = (count, 0) if count > best else (best, since + 1)
+        if patience is not None and best and since >= patience:
+            break
+        q = np.where(done[:, None], q, q + _damped_step(J, F, q.shape[1], scale))
+    for _ in range(1):       # quadratic convergence: one more step reaches round-off
+        if not done.any():
+            break
+        F, J = _equations_at(spec, group, q[done], known, idx[done], value)
+        q[done] += _damped_step(J, F, q.shape[1], scale)
     return q, done
+
+
+def _equations_at(spec: Spec, group: Group, q: np.ndarray, known: Poses, idx: np.ndarray,
+                  value):
+    r, th = _poses(group, q, known, idx)
+    return equations(spec, group, r, th, None if value is None else value[idx])
+
+
+def _damped_step(J: np.ndarray, F: np.ndarray, width: int, scale: float) -> np.ndarray:
+    """The Newton step -J^-1 F, shortened so that no link moves by more than the mechanism's
+    size or turns by more than 1 rad (zero where J is singular)."""
+    try:                 # Newton needs no condition estimate: the plain LU solve
+        step = np.linalg.solve(J, -F[..., None])[..., 0]
+    except np.linalg.LinAlgError:    # an exactly singular pose: the careful solver
+        step, _ = batched_solve_cond(J, -F)
+    step = np.where(np.isfinite(step), step, 0.0)
+    big = np.max(np.abs(step) / np.where(np.arange(width) % 3 == 2, 1.0, scale), axis=1)
+    return step * np.minimum(1.0, 1.0 / np.maximum(big, 1e-300))[:, None]
 
 
 def assemble(spec: Spec, group: Group, known: Poses, path: SweepPath, value, scale: float,
@@ -160,7 +185,7 @@ def assemble(spec: Spec, group: Group, known: Poses, path: SweepPath, value, sca
         where = anchor[0] if anchor else centre + rng.normal(0, scale / 3, (STARTS, 2))
         q0[:, 3 * i:3 * i + 2] = where - rotate(local, theta)
         q0[:, 3 * i + 2] = theta
-    q, ok = newton(spec, group, q0, known, idx, value, scale, steps=80)
+    q, ok = newton(spec, group, q0, known, idx, value, scale, steps=80, patience=8)
     if not ok.any():
         raise AssemblyError(
             f"{spec.file}: the {group.class_name} {group.label} ({', '.join(group.links)}) "
@@ -227,7 +252,12 @@ def _distinct(spec, group, sols, known, ref, scale) -> np.ndarray:
 def continue_group(spec: Spec, group: Group, q_ref: np.ndarray, known: Poses, path: SweepPath,
                    runs: list[np.ndarray], value, scale: float):
     """The group's poses q (N, 3k) over ``path.angles`` followed from ``q_ref`` at the first
-    reference angle along each run (NaN where not reached), and the runs cut where it locks."""
+    reference angle along each run (NaN where not reached), and the runs cut where it locks.
+
+    Long runs go in two levels: a coarse subset of the run (at most ``COARSE`` samples) is
+    followed first; every sample between solved coarse ones is then solved at once from the
+    interpolated poses; near a lock, and wherever that fails, the run is followed sample by
+    sample."""
     N = len(path.angles)
     q = np.full((N, q_ref.size), np.nan)
     q[path.ref] = q_ref
@@ -235,25 +265,25 @@ def continue_group(spec: Spec, group: Group, q_ref: np.ndarray, known: Poses, pa
     reached[path.ref] = True
     cut = []
     for run, travel in zip(runs, path.travel):
-        pos, chunk = 1, 4
-        while pos < len(run):
-            if reached[run[pos]]:          # the forward run already came round to here
-                pos += 1
-                continue
-            idx = run[pos:pos + chunk]
-            guess = _extrapolate(q[run[max(0, pos - 3):pos]], travel[max(0, pos - 3):pos],
-                                 travel[pos:pos + len(idx)])
-            sol, ok = newton(spec, group, guess, known, idx, value, scale)
-            good = _first_false(ok & np.all(np.isfinite(sol), axis=1))
-            if good:
-                q[idx[:good]] = sol[:good]
-                reached[idx[:good]] = True
-                pos += good
-                chunk = min(CHUNK_MAX, chunk * 2) if good == len(idx) else max(1, good)
-            elif chunk > 1:
-                chunk = max(1, chunk // 4)
+        pos = 1
+        stride = max(1, len(run) // COARSE)
+        if stride > 1:
+            sub = np.arange(0, len(run), stride)
+            got = _follow(spec, group, q, reached, run[sub], travel[sub], 1, known, value, scale)
+            last = int(sub[got - 1])
+            fine = np.setdiff1d(np.arange(1, last + 1), sub)
+            fine = fine[~reached[run[fine]]]
+            if fine.size:
+                solved = sub[:got]
+                guess = np.stack([np.interp(travel[fine], travel[solved], q[run[solved], c])
+                                  for c in range(q.shape[1])], axis=1)
+                sol, ok = newton(spec, group, guess, known, run[fine], value, scale)
+                q[run[fine[ok]]] = sol[ok]
+                reached[run[fine[ok]]] = True
+                pos = int(fine[~ok][0]) if (~ok).any() else last + 1
             else:
-                break                       # cannot follow even one sample ahead: a lock
+                pos = last + 1
+        pos = _follow(spec, group, q, reached, run, travel, pos, known, value, scale)
         cut.append(run[:pos])
     off, lo, hi, w = path.off_grid_neighbours()
     if off.size:
@@ -263,6 +293,36 @@ def continue_group(spec: Spec, group: Group, q_ref: np.ndarray, known: Poses, pa
             sol, ok = newton(spec, group, guess, known, off[ok_n], value, scale)
             q[off[ok_n][ok]] = sol[ok]
     return q, cut
+
+
+def _follow(spec: Spec, group: Group, q: np.ndarray, reached: np.ndarray, run: np.ndarray,
+            travel: np.ndarray, pos: int, known: Poses, value, scale: float) -> int:
+    """Follow ``run`` from its sample ``pos`` (those before it solved) in chunks: each guessed
+    by extrapolating the last three solved poses along the travel, corrected by Newton; the
+    chunk grows while it converges and shrinks when it does not. Returns where it stopped
+    (the run's length, or the first sample it could not reach: a lock). Writes ``q`` and
+    ``reached``."""
+    chunk = 4
+    while pos < len(run):
+        if reached[run[pos]]:          # solved already (the forward run came round to here)
+            pos += 1
+            continue
+        idx = run[pos:pos + chunk]
+        idx = idx[:_first_false(~reached[idx])]
+        guess = _extrapolate(q[run[max(0, pos - 3):pos]], travel[max(0, pos - 3):pos],
+                             travel[pos:pos + len(idx)])
+        sol, ok = newton(spec, group, guess, known, idx, value, scale)
+        good = _first_false(ok & np.all(np.isfinite(sol), axis=1))
+        if good:
+            q[idx[:good]] = sol[:good]
+            reached[idx[:good]] = True
+            pos += good
+            chunk = min(CHUNK_MAX, chunk * 2) if good == len(idx) else max(1, good)
+        elif chunk > 1:
+            chunk = max(1, chunk // 4)
+        else:
+            break                       # cannot follow even one sample ahead: a lock
+    return pos
 
 
 def _extrapolate(q_prev: np.ndarray, t_prev: np.ndarray, t_new: np.ndarray) -> np.ndarray:

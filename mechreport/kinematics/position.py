@@ -177,7 +177,7 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
         n1, c1 = t_line(spec, oj, j, known, thj)
         n2, c2 = t_line(spec, inner, j, known, thj)
         out.append({i: (ri, thj), j: (_solve2(n1, c1, n2, c2), thj)})
-    else:  # pragma: no cover - decompose() rejects TTT
+    else:  # pragma: no cover - decompose_groups() rejects TTT
         raise ValueError(kind)
     return out
 
@@ -264,9 +264,10 @@ def _pick_branch(spec: Spec, dyad: Dyad, cands: list[Poses], sig: list[np.ndarra
             taken = cands[0] if default == 1 else cands[1]
             pos = point_global(taken, p_link, spec.link(p_link).points[p_name])[k]
             pos = np.where(np.abs(pos) < 1e-9 * size, 0.0, pos) + 0.0   # no round-off, no -0
-            where = (f"; on it, at {path.angles[k]:g} deg, {p_name} is at "
+            where = (f"; on it, at {path.angles[k]:g} {spec.axis_unit}, {p_name} is at "
                      f"({pos[0]:.6g}, {pos[1]:.6g}) m")
-        why = (f"no hint can decide at {path.angles[ref]:g} deg, where both branches meet "
+        why = (f"no hint can decide at {path.angles[ref]:g} {spec.axis_unit}, where both "
+               "branches meet "
                f"(a singular position); took the default: {DEFAULT_BRANCH_RULES[kind]}{where}. "
                "Choose a first reference angle away from it to choose the branch")
         return default, "undecided: " + why

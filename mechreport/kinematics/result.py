@@ -37,6 +37,7 @@ class Motion:
     locks: tuple[tuple[float, float], ...]
     periodic: bool
     start: float = 0.0   # the sweep's start: wrapped angles are shown in [start, start + 360)
+    unit: str = "deg"    # the sweep coordinate's unit (a stroke's length unit for a T driver)
 
     def _wrap(self, a: float) -> float:
         return self.start + (a - self.start) % 360.0 if self.periodic else a
@@ -61,17 +62,18 @@ class Motion:
         """One sentence for users, None when the whole sweep is reachable."""
         if self.full:
             return None
-        locks = " and ".join(f"between {self._wrap(a):g} and {self._wrap(b):g} deg"
+        u = self.unit
+        locks = " and ".join(f"between {self._wrap(a):g} and {self._wrap(b):g} {u}"
                              for a, b in self.locks)
         if self.periodic:
             return (f"the driver cannot make a full turn: the mechanism locks {locks}; range "
                     f"of motion {self.high - self.low:g} deg, from {self._wrap(self.low):g} to "
                     f"{self._wrap(self.high):g} deg")
-        return (f"only {self.low:g} to {self.high:g} deg can be reached from the assembly: the "
+        return (f"only {self.low:g} to {self.high:g} {u} can be reached from the assembly: the "
                 f"mechanism locks {locks}")
 
 
-def motion_of(path, runs, omega: float) -> Motion:
+def motion_of(path, runs, omega: float, unit: str = "deg") -> Motion:
     """The range of motion from the ``runs`` of a SweepPath after they were cut at locks."""
     ref = float(path.angles[path.ref])
     ends, locks, full = [], [], []
@@ -84,7 +86,7 @@ def motion_of(path, runs, omega: float) -> Motion:
             locks.append((min(a, b), max(a, b)))
     whole_turn = path.periodic and full[0]
     return Motion(whole_turn or all(full), min(ends), max(ends), tuple(locks), path.periodic,
-                  float(np.min(path.angles[path.on_grid])))
+                  float(np.min(path.angles[path.on_grid])), unit)
 
 
 @dataclass(frozen=True)

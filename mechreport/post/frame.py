@@ -45,8 +45,9 @@ class FrameLoad:
 def frame_load(kin: Kinematics, res: ForceResult, loads=()) -> FrameLoad:
     """Shaking force and moment from method ``res``'s reactions: every joint with ground (for
     [ground, X] the frame receives -F, for [X, ground] +F; T couples likewise), the motor's
-    reaction torque -M, and the reaction -F (or -M) of each load that ``reacts_on: ground``
-    (``loads``: the analysis' AppliedLoads). Weights reach the frame through the joints."""
+    reaction torque -M, the reaction -F (or -M) of each load that ``reacts_on: ground``, and
+    the frame end of every spring, damper and torsion spring anchored on ground (``loads``: the
+    analysis' AppliedLoads). Weights reach the frame through the joints."""
     spec = kin.mechanism.spec
     pivot = joint_point(kin, spec.joint(spec.driver.joint))
     n = kin.n
@@ -62,14 +63,18 @@ def frame_load(kin: Kinematics, res: ForceResult, loads=()) -> FrameLoad:
         if r.moment is not None:
             m = m + sign * r.moment
     for ld in loads:
-        if ld.load.reacts_on != GROUND:
+        if ld.link == GROUND:            # a spring, damper or torsion spring's frame end
+            sign = 1.0
+        elif ld.load.reacts_on == GROUND:  # the frame takes the load's reaction
+            sign = -1.0
+        else:
             continue
         if ld.force is not None:
-            at = kin.named_point(ld.load.point, ld.load.link).r
-            fx, fy = fx - ld.force[:, 0], fy - ld.force[:, 1]
-            m = m - cross(at - pivot, ld.force)
+            at = kin.named_point(ld.point, ld.link).r
+            fx, fy = fx + sign * ld.force[:, 0], fy + sign * ld.force[:, 1]
+            m = m + sign * cross(at - pivot, ld.force)
         else:
-            m = m - ld.moment
+            m = m + sign * ld.moment
     return FrameLoad(fx, fy, m)
 
 

@@ -1,7 +1,7 @@
 """``mechreport build``: one report folder per spec, in parallel, and a batch index.
 
-    OUT/<name>/report.md, report.pdf, results.csv, summary.json, figures/*.png|svg
-    OUT/index.md, OUT/index.pdf
+    OUT/<name>/report.md, report.pdf, results.csv, summary.json, figures/*.svg
+    OUT/index.md, OUT/index.pdf, OUT/index.csv, OUT/index.json
 
 Folder names, the lock on ``OUT`` and the whole-folder swap are described in
 :mod:`mechreport.report.outdir`. One failing spec is reported (stderr, and a FAIL row with its
@@ -35,10 +35,36 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, handled like Ctrl-C."""
 
 
+def build_key(path: Path, sheet: bool, exact: bool) -> dict:
+    """What decides whether a report is up to date: the spec's bytes (SHA-256), its path, the
+    mechreport version and the options that change the output."""
+    from .. import __version__
+    from .model import spec_sha256
+    return {"spec": str(path), "spec_sha256": spec_sha256(path),
+            "mechreport_version": __version__, "sheet": bool(sheet), "exact": bool(exact)}
+
+
+def up_to_date(out: Path, name: str, key: dict) -> dict | None:
+    """The summary of ``out/name`` when it was built from the same ``key`` and its files are
+    all there (then the spec need not be built again); None otherwise."""
+    import json
+    folder = Path(out) / name
+    try:
+        summary = json.loads((folder / "summary.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if not isinstance(summary, dict) or summary.get("build") != key or not key["spec_sha256"]:
+        return None
+    if not all((folder / f).is_file() for f in ("report.md", "report.pdf", "results.csv")):
+        return None
+    return summary
+
+
 def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = False,
-              exact: bool = False) -> dict:
+              exact: bool = False, stage=None) -> dict:
     """Analyse ``path`` and write its report into ``folder`` (a private folder inside
-    ``out``, later renamed to ``out/name``); the run's row.
+    ``out``, later renamed to ``out/name``); the run's row. ``stage(i, n, what)`` is called
+    before each stage (progress for long single specs).
 
     Raises whatever the analysis or rendering raises (see :func:`build_safe`)."""
     from ..analysis import analyse
@@ -47,23 +73,42 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
     from .plots import write_plots
     from .render import write_report
 
+    stage = stage or (lambda i, n, what: None)
+    from ..spec import load_spec
+
     path, folder = Path(path), od.inside(out, folder)
-    analysis = analyse(path)
-    model = build_model(analysis, path)
+    key = build_key(path, sheet, exact)
+    spec = load_spec(path)
+    do_sheet = sheet or spec.sheet
+    n = 4 if do_sheet else 3
+    stage(1, n, "analysing")
+    analysis = analyse(spec)
+    model = build_model(analysis, path, sha256=key["spec_sha256"])
+    model.summary["build"] = key
     model.stem, model.index_row = name, _index_row(model.summary, name)
+    stage(2, n, "figures")
     write_plots(model, folder / "figures")
     write_drawings(model, folder / "figures")
+    stage(3, n, "report (Markdown, PDF, CSV, JSON)")
     write_report(model, folder)
-    if sheet or analysis.spec.sheet:
+    if do_sheet:
         from .sheet import write_sheet
+        stage(4, n, "solution sheet")
         write_sheet(analysis, folder, exact=exact)
     for written in folder.rglob("*"):                   # nothing escaped the folder
         od.inside(folder, written)
     return dict(model.index_row, folder=name)
 
 
+def _stage_printer(label: str):
+    """Stage lines on stderr for a single spec: ``[1/4] specs/x.yaml: analysing``."""
+    def stage(i: int, n: int, what: str) -> None:
+        print(f"[{i}/{n}] {label}: {what}", file=sys.stderr, flush=True)
+    return stage
+
+
 def build_safe(path: str, out: str, name: str, sheet: bool, exact: bool,
-               owner: int | None = None) -> dict:
+               owner: int | None = None, stages: bool = False) -> dict:
     """:func:`build_one` into ``OUT/.tmp-<name>-<owner>`` that never raises an Exception: a
     failure becomes a row with ``ok`` False and the error ``message`` (the private folder is
     then removed). Adds ``seconds`` and ``tmp``. (Top-level so worker processes can run it.)"""
@@ -73,7 +118,8 @@ def build_safe(path: str, out: str, name: str, sheet: bool, exact: bool,
     tmp = None
     try:
         tmp = od.make_tmp_dir(Path(out), name, owner)
-        row = build_one(Path(path), Path(out), name, tmp, sheet, exact)
+        row = build_one(Path(path), Path(out), name, tmp, sheet, exact,
+                        _stage_printer(str(path)) if stages else None)
         row["tmp"] = str(tmp)
     except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the batch
         if tmp is not None:
@@ -96,27 +142,39 @@ def _failure(path, name: str, message: str) -> dict:
 
 
 class Progress:
-    """A one-line bar on a terminal; plain lines otherwise (both on stderr)."""
+    """``[n/N]`` progress on stderr: a one-line bar on a terminal, plain lines otherwise.
+    ``quiet``: only failures are printed."""
 
-    def __init__(self, total: int, stream=None):
+    def __init__(self, total: int, stream=None, quiet: bool = False):
         self.total, self.done = total, 0
         self.stream = stream or sys.stderr
-        self.tty = hasattr(self.stream, "isatty") and self.stream.isatty()
+        self.quiet = quiet
+        self.tty = (not quiet) and hasattr(self.stream, "isatty") and self.stream.isatty()
 
     def update(self, row: dict) -> None:
         self.done += 1
         spec, secs = row["spec"], row.get("seconds", 0.0)
+        n = f"[{self.done}/{self.total}]"
         if not row["ok"]:
             self._clear()
-            print(f"FAIL {spec}: {row['message']}", file=self.stream)
+            print(f"{n} FAIL {spec}: {row['message']}", file=self.stream)
             if row.get("traceback"):
                 print(row["traceback"].rstrip(), file=self.stream)
         elif row.get("status") == "FAIL":
             self._clear()
-            print(f"built {spec} ({secs:.1f} s), but its check FAILED: see "
+            what = f"built {spec} ({secs:.1f} s)"
+            if row.get("skipped"):
+                what = f"{spec} unchanged (not rebuilt)"
+            print(f"{n} {what}, but its check FAILED: see "
                   f"{row.get('folder', '?')}/report.md", file=self.stream)
+        elif self.quiet:
+            pass
         elif not self.tty:
-            print(f"built {spec} ({secs:.1f} s)", file=self.stream)
+            if row.get("skipped"):
+                print(f"{n} unchanged {spec}: not rebuilt (--force rebuilds it)",
+                      file=self.stream)
+            else:
+                print(f"{n} built {spec} ({secs:.1f} s)", file=self.stream)
         if self.tty:
             width = 30
             fill = int(width * self.done / max(self.total, 1))
@@ -187,13 +245,14 @@ def _sigterm_as_interrupt():
 
 
 def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, exact: bool,
-         finish) -> None:
+         finish, stages: bool = False) -> None:
     """Build each ``(i, path, name)`` of ``todo``; ``finish(i, row)`` is called in this
-    process as each one ends (in completion order)."""
+    process as each one ends (in completion order). ``stages``: print each stage of a spec
+    (for a build of one spec)."""
     owner = os.getpid()
     if jobs <= 1 or len(todo) <= 1:
         for i, p, name in todo:
-            finish(i, build_safe(str(p), str(out), name, sheet, exact, owner))
+            finish(i, build_safe(str(p), str(out), name, sheet, exact, owner, stages))
         return
     # fresh interpreters: forking a process whose Typst/BLAS threads are running can
     # deadlock the child (seen under pytest, after a report was typeset in-process)
@@ -255,13 +314,37 @@ def _write_index(out: Path, failures: dict[str, dict]) -> None:
     write_index(index_rows(out, failures), out)
 
 
+INDEX_FIELDS = ("folder", "name", "spec", "status", "peak_torque_N_m", "peak_torque_angle_deg",
+                "rms_torque_N_m", "peak_driver_force_N", "rms_driver_force_N",
+                "largest_bearing_load_N", "largest_bearing_joint",
+                "mean_power_W", "worst_disagreement", "verdicts_passed", "verdicts_total",
+                "failed_verdicts", "failed_expectations", "spec_sha256", "mechreport_version",
+                "message")
+
+
+def index_records(rows: list[dict]) -> list[dict]:
+    """index.csv / index.json records: one per spec, SI, the unit in each field name."""
+    out = []
+    for r in rows:
+        data = r.get("data") or {}
+        rec = {"folder": r.get("stem") or r.get("folder"), "name": r.get("name"),
+               "spec": r.get("spec"), "status": r.get("status", "FAIL"),
+               **{k: data.get(k) for k in INDEX_FIELDS if k in data},
+               "message": r.get("message") or ""}
+        out.append({k: rec.get(k) for k in INDEX_FIELDS})
+    return out
+
+
 # -------------------------------------------------------------------------------- batch
 
 def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bool = False,
-                exact: bool = False, wait: float = DEFAULT_WAIT) -> int:
+                exact: bool = False, wait: float = DEFAULT_WAIT, force: bool = False,
+                quiet: bool = False) -> int:
     """Build every spec in ``paths`` into ``out`` and rewrite the index; exit code 0 if all
     built and passed their checks, 1 otherwise. ``jobs``: parallel processes (default: the
-    number of cores); ``wait``: seconds to wait for another build writing to ``out``.
+    number of cores); ``wait``: seconds to wait for another build writing to ``out``. A spec
+    whose report in ``out`` was built from the same bytes, path, options and mechreport
+    version is not built again unless ``force``. ``quiet``: no progress, only failures.
 
     Raises :class:`~mechreport.report.outdir.OutputError` if ``out`` cannot be used, and
     KeyboardInterrupt (or :class:`Terminated`) if interrupted: then the workers are stopped,
@@ -276,7 +359,7 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
     start = time.perf_counter()
     with _sigterm_as_interrupt(), od.OutputLock(out).acquire(wait):
         od.clean_leftovers(out)
-        progress = Progress(len(paths))
+        progress = Progress(len(paths), quiet=quiet)
         failures: dict[str, dict] = {}
         rows: list[dict] = [{} for _ in paths]
 
@@ -300,10 +383,23 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
             why = od.occupied(out, name)      # not a report folder: never replaced
             if why:
                 finish(i, dict(_failure(path, name, why), seconds=0.0))
+                continue
+            same = None if force else up_to_date(out, name, build_key(path, sheet, exact))
+            if same is not None:
+                from .model import _index_row
+                try:
+                    row = dict(_index_row(same, name), folder=name, spec=str(path),
+                               skipped=True, seconds=0.0)
+                except (KeyError, TypeError, ValueError, IndexError):
+                    todo.append((i, path, name))
+                    continue
+                progress.update(row)
+                rows[i] = row
             else:
                 todo.append((i, path, name))
         try:
-            _run(todo, out, min(jobs, max(len(todo), 1)), sheet, exact, finish)
+            _run(todo, out, min(jobs, max(len(todo), 1)), sheet, exact, finish,
+                 stages=len(paths) == 1 and not quiet)
         except KeyboardInterrupt as exc:
             progress.close()
             for name in names:
@@ -325,9 +421,12 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
         except MechreportError as exc:
             print(f"error: index: {exc}", file=sys.stderr)
             return 1
-    built = len(rows) - len(failed)
+    skipped = sum(1 for r in rows if r.get("skipped"))
+    built = len(rows) - len(failed) - skipped
     note = (f"; {len(check_failed)} failed {'its' if len(check_failed) == 1 else 'their'} "
             "check" if check_failed else "")
-    print(f"{built} of {len(rows)} report(s) built in {out} "
-          f"({time.perf_counter() - start:.1f} s){note}", file=sys.stderr)
+    unchanged = f", {skipped} unchanged (not rebuilt; --force rebuilds)" if skipped else ""
+    if not quiet:
+        print(f"{built} of {len(rows)} report(s) built in {out}{unchanged} "
+              f"({time.perf_counter() - start:.1f} s){note}", file=sys.stderr)
     return 1 if failed or check_failed else 0

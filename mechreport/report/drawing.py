@@ -1,6 +1,10 @@
 """Draw a :class:`~mechreport.report.scene.Scene`: links, pins, sliders and guides, ground
 hatching, point labels, load and reaction arrows, couples. Geometry comes from the scene
-(global coordinates [m]); this module only draws."""
+(global coordinates [m]); this module only draws, in the report's display units.
+
+Links are stacked so that the driver (the crank) is drawn on top of every other link, bars
+over blocks over plates. Labels (points, arrows, couples) are placed one by one at the first
+of several candidate spots that overlaps nothing already drawn or labelled."""
 from __future__ import annotations
 
 import math
@@ -8,76 +12,224 @@ from pathlib import Path
 
 import numpy as np
 
+from ..units import fmt
 from .plots import WIDTH, pyplot, save
 
 LINK_FILL = ["#dbe6f4", "#f6e3cf", "#dcefdc", "#f3dada", "#e7def0", "#ece3dc", "#f7e1ef"]
 ARROW_LEN = 0.26        # longest arrow as a fraction of the mechanism's extent
 ARROW_MIN = 0.05        # shortest drawn (non-zero) arrow, same unit
+AX_FRACTION = 0.70      # the drawing's share of the figure width (the legend has the rest)
+
+
+def _segments(ax, segs, lw: float, zorder: float) -> None:
+    """Many short black strokes as one artist (hatching: one collection draws much faster
+    than a line each)."""
+    from matplotlib.collections import LineCollection
+    if segs:
+        ax.add_collection(LineCollection(segs, colors="k", linewidths=lw, zorder=zorder),
+                          autolim=False)
 
 
 def _ground_symbol(ax, x: float, y: float, size: float) -> None:
     """A fixed pivot: a triangle under the pin and a hatched base."""
     tri = np.array([[x, y], [x - size * 0.6, y - size], [x + size * 0.6, y - size]])
-    ax.fill(tri[:, 0], tri[:, 1], facecolor="white", edgecolor="k", lw=1.0, zorder=3)
+    ax.fill(tri[:, 0], tri[:, 1], facecolor="white", edgecolor="k", lw=1.0, zorder=3.5)
     base_y = y - size
-    ax.plot([x - size, x + size], [base_y, base_y], color="k", lw=1.2, zorder=3)
-    for t in np.linspace(-size, size * 0.8, 6):
-        ax.plot([x + t, x + t - size * 0.3], [base_y, base_y - size * 0.35], color="k",
-                lw=0.7, zorder=3)
+    _segments(ax, [[(x - size, base_y), (x + size, base_y)]], 1.2, 3.5)
+    _segments(ax, [[(x + t, base_y), (x + t - size * 0.3, base_y - size * 0.35)]
+                   for t in np.linspace(-size, size * 0.8, 6)], 0.7, 3.5)
 
 
-def _guide(ax, p0, p1, on_ground: bool, normal, size: float) -> None:
+def _guide(ax, p0, p1, on_ground: bool, normal, offset: float) -> None:
     p0, p1, nrm = np.asarray(p0), np.asarray(p1), np.asarray(normal)
     if not on_ground:
         ax.plot(*np.stack([p0, p1]).T, color="0.35", lw=0.8, ls=(0, (6, 3)), zorder=1)
         return
-    hatch = 0.4 * size if size < 0.1 * np.linalg.norm(p1 - p0) else 0.04 * np.linalg.norm(p1 - p0)
+    length = np.linalg.norm(p1 - p0)
+    hatch = min(0.35 * offset, 0.03 * length) if offset > 0 else 0.03 * length
+    u = (p1 - p0) / length
+    walls, ticks = [], []
     for side in (-1, 1):
-        off = side * nrm * size
+        off = side * nrm * offset
         a, b = p0 + off, p1 + off
-        ax.plot(*np.stack([a, b]).T, color="k", lw=1.0, zorder=1)
-        for t in np.linspace(0.03, 0.97, 14):
+        walls.append([tuple(a), tuple(b)])
+        for t in np.linspace(0.02, 0.98, 16):
             q = a + t * (b - a)
-            tip = q + side * nrm * hatch - (b - a) / np.linalg.norm(b - a) * hatch * 0.7
-            ax.plot([q[0], tip[0]], [q[1], tip[1]], color="k", lw=0.6, zorder=1)
+            tip = q + side * nrm * hatch - u * hatch * 0.7
+            ticks.append([tuple(q), tuple(tip)])
+    _segments(ax, walls, 1.0, 1)
+    _segments(ax, ticks, 0.6, 1)
 
 
-def _arrows(ax, scene, extent: float) -> list:
-    """Draw the force arrows (common scale: the largest is ARROW_LEN of the extent); the
-    legend handles, one per arrow, carrying the magnitudes."""
-    from matplotlib.lines import Line2D
+class Labels:
+    """Greedy label placement in display space: each label takes the first candidate offset
+    whose box overlaps no obstacle (pins, arrow shafts, earlier labels), else the least bad."""
+
+    def __init__(self, ax, fontsize: float = 7.5):
+        self.ax, self.fs = ax, fontsize
+        self.boxes: list[tuple[float, float, float, float]] = []
+        fig = ax.figure
+        self.pt = fig.dpi / 72.0              # display units per point
+
+    def block(self, x: float, y: float, r_pt: float = 4.0) -> None:
+        """An obstacle: a square of half-size ``r_pt`` points around data point (x, y)."""
+        px, py = self.ax.transData.transform((x, y))
+        r = r_pt * self.pt
+        self.boxes.append((px - r, py - r, px + r, py + r))
+
+    def block_segment(self, a, b, r_pt: float = 2.5) -> None:
+        for t in np.linspace(0.0, 1.0, 8):
+            self.block(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), r_pt)
+
+    def _box(self, px, py, w, h, ha, va):
+        x0 = px if ha == "left" else (px - w if ha == "right" else px - w / 2)
+        y0 = py if va == "bottom" else (py - h if va == "top" else py - h / 2)
+        return (x0, y0, x0 + w, y0 + h)
+
+    @staticmethod
+    def _overlap(a, b) -> float:
+        dx = min(a[2], b[2]) - max(a[0], b[0])
+        dy = min(a[3], b[3]) - max(a[1], b[1])
+        return dx * dy if dx > 0 and dy > 0 else 0.0
+
+    def place(self, text: str, x: float, y: float, color: str = "k", bold: bool = False,
+              prefer=None, fontsize: float | None = None) -> None:
+        fs = fontsize or self.fs
+        w = (0.62 if bold else 0.58) * fs * len(text) * self.pt + 2 * self.pt
+        h = 1.15 * fs * self.pt
+        px, py = self.ax.transData.transform((x, y))
+        d = 5.0
+        cands = [(d, d, "left", "bottom"), (-d, d, "right", "bottom"), (d, -d, "left", "top"),
+                 (-d, -d, "right", "top"), (0, 1.6 * d, "center", "bottom"),
+                 (0, -1.6 * d, "center", "top"), (1.6 * d, 0, "left", "center"),
+                 (-1.6 * d, 0, "right", "center"), (2.6 * d, 2.6 * d, "left", "bottom"),
+                 (-2.6 * d, 2.6 * d, "right", "bottom"), (2.6 * d, -2.6 * d, "left", "top"),
+                 (-2.6 * d, -2.6 * d, "right", "top")]
+        if prefer is not None:
+            cands.sort(key=lambda c: -(c[0] * prefer[0] + c[1] * prefer[1]))
+        best, best_score = None, math.inf
+        for dx, dy, ha, va in cands:
+            box = self._box(px + dx * self.pt, py + dy * self.pt, w, h, ha, va)
+            score = sum(self._overlap(box, b) for b in self.boxes)
+            if score < best_score:
+                best, best_score = (dx, dy, ha, va, box), score
+            if score == 0:
+                break
+        dx, dy, ha, va, box = best
+        self.boxes.append(box)
+        self.ax.annotate(text, (x, y), xytext=(dx, dy), textcoords="offset points",
+                         fontsize=fs, color=color, ha=ha, va=va, zorder=9,
+                         fontweight="bold" if bold else "normal", annotation_clip=False)
+
+
+def _arrow_geometry(scene, extent: float):
+    """(arrow, magnitude, start, tip) of each drawn arrow; common scale: the largest is
+    ARROW_LEN of the extent."""
     mags = [math.hypot(*a.f) for a in scene.arrows]
     top = max(mags, default=0.0)
-    handles, tips = [], []
+    out = []
     for a, mag in zip(scene.arrows, mags):
-        label = f"{a.label} = {mag:.4g} N" + (" (load)" if a.kind == "load" else "")
-        handles.append(Line2D([], [], color=a.color, lw=2, marker=">", ms=5, label=label))
         if top <= 0 or mag < 1e-9 * top:
+            out.append((a, mag, None, None))
             continue
         length = max(mag * ARROW_LEN * extent / top, ARROW_MIN * extent)
         d = np.asarray(a.f) / mag * length
-        x, y = a.at
-        tips.append((x + d[0], y + d[1]))
-        ax.annotate("", xy=tips[-1], xytext=(x, y), zorder=6,
+        start = np.asarray(a.at, float)
+        out.append((a, mag, start, start + d))
+    return out
+
+
+def _links(ax, scene) -> None:
+    """Plates under blocks under bars; the driver link above all of them."""
+    for s in scene.shapes:
+        xy = np.asarray(s.xy)
+        fill = LINK_FILL[(s.number - 1) % len(LINK_FILL)]
+        top = 0.6 if s.link == scene.driver else 0.0
+        if s.kind == "line":
+            ax.plot(xy[:, 0], xy[:, 1], color="k", lw=3, solid_capstyle="round",
+                    zorder=2.2 + top)
+            continue
+        z = {"plate": 1.5, "block": 2.0, "bar": 2.2}[s.kind] + top + 0.01 * s.number
+        ax.fill(xy[:, 0], xy[:, 1], facecolor=fill, edgecolor="k", lw=1.0, zorder=z,
+                alpha=0.8 if s.kind == "plate" else 0.92)
+        if s.kind != "plate":
+            c = xy.mean(axis=0)
+            ax.text(c[0], c[1], str(s.number), fontsize=6.5, ha="center", va="center",
+                    color="0.25", zorder=z + 0.005)
+
+
+def _bounds(scene, arrows) -> tuple[np.ndarray, np.ndarray]:
+    pts = [p for s in scene.shapes for p in s.xy]
+    for p0, p1, *_ in scene.guides:
+        pts += [p0, p1]
+    pts += [(x, y) for x, y, _ in scene.pins]
+    pts += [tuple(t) for *_, t in arrows if t is not None]
+    xy = np.asarray(pts, float) if pts else np.zeros((1, 2))
+    return xy.min(axis=0), xy.max(axis=0)
+
+
+def draw_scene(scene, d=None, title: str | None = None):
+    """A matplotlib figure of ``scene`` (equal axes, no frame), with a legend of the forces
+    and couples (values in display units) on the right."""
+    from matplotlib.lines import Line2D
+
+    pyplot()                                   # the report's style
+    F = d.unit("force") if d is not None else "N"
+    M = d.unit("moment") if d is not None else "N·m"
+    fv = (lambda x: d.num(x, "force")) if d is not None else fmt
+    mv = (lambda x: d.num(x, "moment")) if d is not None else fmt
+    ext = scene.extent
+    arrows = _arrow_geometry(scene, ext)
+    lo, hi = _bounds(scene, arrows)
+    span = np.maximum(hi - lo, 1e-9)
+    pad = 0.1 * max(span) + 0.05 * ext
+    lo, hi = lo - pad, hi + pad
+    span = hi - lo
+    ax_w = WIDTH * (AX_FRACTION - 0.01)
+    height = float(np.clip(ax_w * span[1] / span[0] + 0.35, 2.4, 4.3))
+    ax_h = height * (1 - 0.02) - 0.3
+    # widen the data range along one axis so that one unit is as long in x as in y
+    want = ax_w / ax_h
+    mid = (lo + hi) / 2
+    if span[0] / span[1] < want:
+        span = np.array([span[1] * want, span[1]])
+    else:
+        span = np.array([span[0], span[0] / want])
+    lo, hi = mid - span / 2, mid + span / 2
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=(WIDTH, height))
+    ax = fig.add_axes((0.01, 0.02, AX_FRACTION - 0.01, ax_h / height))
+    ax.set_xlim(lo[0], hi[0])
+    ax.set_ylim(lo[1], hi[1])
+    ax.set_aspect("equal", adjustable="box")
+    ax.axis("off")
+    ax.apply_aspect()
+    labels = Labels(ax)
+
+    _links(ax, scene)
+    for p0, p1, on_ground, normal, offset in scene.guides:
+        _guide(ax, p0, p1, on_ground, normal, offset)
+    for x, y, on_ground in scene.pins:
+        if on_ground:
+            _ground_symbol(ax, x, y, 0.04 * ext)
+        ax.plot([x], [y], "o", ms=5, mfc="white", mec="k", mew=1.2, zorder=4)
+        labels.block(x, y, 4.0)
+    handles = []
+    for a, mag, start, tip in arrows:
+        load = a.kind == "load"
+        handles.append(Line2D([], [], color=a.color, lw=2, marker=">", ms=5,
+                              label=f"{a.label} = {fv(mag)} {F}" + (" (load)" if load else "")))
+        if tip is None:
+            continue
+        ax.annotate("", xy=tuple(tip), xytext=tuple(start), zorder=6,
                     arrowprops=dict(arrowstyle="-|>", color=a.color, lw=1.6,
                                     mutation_scale=10, shrinkA=0, shrinkB=0))
-        ux, uy = d / length
-        ax.annotate(a.label, tips[-1], fontsize=7, color=a.color, zorder=7,
-                    xytext=(5 * ux, 5 * uy), textcoords="offset points",
-                    ha="left" if ux >= -0.3 else "right", va="bottom" if uy >= 0 else "top")
-    if tips:
-        ax.update_datalim(np.asarray(tips))
-    return handles
-
-
-def _couples(ax, scene, extent: float) -> list:
-    """Draw each couple as an arc arrow about its point; legend handles with the values."""
-    from matplotlib.lines import Line2D
-    r = 0.06 * extent
-    handles = []
+        labels.block_segment(start + 0.25 * (tip - start), tip)
+    r = 0.06 * ext
+    couple_spots = []
     for c in scene.couples:
         handles.append(Line2D([], [], color=c.color, lw=1.1, marker="$\\circlearrowleft$",
-                              ms=7, label=f"{c.label} = {c.value:.4g} N·m"))
+                              ms=7, label=f"{c.label} = {mv(c.value)} {M}"))
         if abs(c.value) < 1e-12:
             continue
         x, y = c.at
@@ -89,71 +241,34 @@ def _couples(ax, scene, extent: float) -> list:
                     xytext=(x + r * np.cos(th[-4]), y + r * np.sin(th[-4])), zorder=5,
                     arrowprops=dict(arrowstyle="-|>", color=c.color, lw=1.1,
                                     mutation_scale=9, shrinkA=0, shrinkB=0))
-        ax.annotate(c.label, (x + r * 0.75, y - r * 0.75), fontsize=7, color=c.color,
-                    ha="left", va="top", zorder=7)
-    return handles
-
-
-def _links(ax, scene) -> None:
-    for s in scene.shapes:
-        xy = np.asarray(s.xy)
-        fill = LINK_FILL[(s.number - 1) % len(LINK_FILL)]
-        if s.kind == "line":
-            ax.plot(xy[:, 0], xy[:, 1], color="k", lw=3, solid_capstyle="round", zorder=2)
-            continue
-        z = {"plate": 1.5, "bar": 2, "block": 2.5}[s.kind]
-        ax.fill(xy[:, 0], xy[:, 1], facecolor=fill, edgecolor="k", lw=1.0, zorder=z,
-                alpha=0.8 if s.kind == "plate" else 1.0)
-        if s.kind != "plate":
-            c = xy.mean(axis=0)
-            ax.text(c[0], c[1], str(s.number), fontsize=6.5, ha="center", va="center",
-                    color="0.25", zorder=z + 0.1)
-
-
-def _figsize(scene) -> tuple[float, float]:
-    """Width fixed to the text width; height from the mechanism's aspect, within limits."""
-    xs = [p[0] for s in scene.shapes for p in s.xy] or [0.0, 1.0]
-    ys = [p[1] for s in scene.shapes for p in s.xy] or [0.0, 1.0]
-    aspect = (max(ys) - min(ys) + 0.3 * scene.extent) / (max(xs) - min(xs) + 0.3 * scene.extent)
-    return WIDTH, float(np.clip(0.68 * WIDTH * aspect, 2.6, 5.6))
-
-
-def draw_scene(scene):
-    """A matplotlib figure of ``scene`` (equal axes, no frame), with a legend of the forces
-    and couples (values) on the right."""
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=_figsize(scene))
-    ext = scene.extent
-    _links(ax, scene)
-    for p0, p1, on_ground, normal, offset in scene.guides:
-        _guide(ax, p0, p1, on_ground, normal, offset)
-    for x, y, on_ground in scene.pins:
-        if on_ground:
-            _ground_symbol(ax, x, y, 0.04 * ext)
-        ax.plot([x], [y], "o", ms=5, mfc="white", mec="k", mew=1.2, zorder=4)
-    placed: list[tuple[float, float]] = []
+        for t in th[::5]:
+            labels.block(x + r * math.cos(t), y + r * math.sin(t), 2.5)
+        couple_spots.append((c, x + r * 0.8, y - r * 0.8))
+    # point labels first (they name the drawing), then arrows, then couples
+    merged: dict[tuple, list[str]] = {}
     for x, y, text in scene.labels:
-        dup = sum(1 for px, py in placed if math.hypot(px - x, py - y) < 0.02 * ext)
-        placed.append((x, y))
-        ax.annotate(text, (x, y), xytext=(-6 - 10 * dup, 4), textcoords="offset points",
-                    fontsize=8.5, fontweight="bold", ha="right", zorder=8)
-    handles = _arrows(ax, scene, ext) + _couples(ax, scene, ext)
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.autoscale_view()
-    ax.margins(0.08)
-    ax.axis("off")
-    ax.set_title(f"φ = {scene.angle:g}°", loc="left")
+        key = (round(x / ext, 4), round(y / ext, 4))
+        merged.setdefault(key, [x, y, []])[2].append(text)
+    for x, y, names in merged.values():
+        labels.place("/".join(names), x, y, bold=True, fontsize=8.5, prefer=(-1, 1))
+    for a, mag, start, tip in arrows:
+        if tip is not None:
+            u = (tip - start) / max(np.linalg.norm(tip - start), 1e-300)
+            labels.place(a.label, tip[0], tip[1], color=a.color, prefer=(u[0], u[1]))
+    for c, x, y in couple_spots:
+        labels.place(c.label, x, y, color=c.color, prefer=(1, -1))
+    ax.set_title(title or f"φ = {scene.angle:g}°", loc="left")
     if handles:
-        ax.legend(handles=handles, loc="center left", bbox_to_anchor=(1.0, 0.5),
-                  fontsize=7.5, frameon=False, handlelength=1.8)
-    fig.tight_layout()
+        fig.legend(handles=handles, loc="center left", bbox_to_anchor=(AX_FRACTION, 0.5),
+                   fontsize=7.5, frameon=False, handlelength=1.8)
     return fig
 
 
 def write_drawings(model, outdir: Path) -> list[Path]:
-    """One drawing per solved reference angle, PNG and SVG."""
+    """One drawing per solved reference angle, SVG."""
     out = []
-    figs = [r.drawing for r in model.refs if r.drawing is not None]
-    for fig_spec, scene in zip(figs, model.scenes):
-        out += save(draw_scene(scene), outdir, fig_spec.stem)
+    refs = [r for r in model.refs if r.drawing is not None]
+    for r, scene in zip(refs, model.scenes):
+        title = f"φ = {r.angle}°" if model.coord_unit == "°" else r.title
+        out += save(draw_scene(scene, model.display, title), outdir, r.drawing.stem)
     return out

@@ -2,67 +2,76 @@
 
 Markdown and Typst templates, results.csv, summary.json, the plots and the drawings all read a
 :class:`ReportModel`; none of them computes mechanics. Printed values are strings already
-formatted (undefined values print as "—"); the plot data are float arrays (n,) over the
-analysed crank angles [deg]. Units: SI throughout (m, kg, s, N, N m, W).
+formatted by the one formatter (:mod:`mechreport.units`) in the spec's display units
+(``report.units``; undefined values print as "—"); the plot data are float arrays (n,) over
+the analysed crank angles [deg], in SI, converted by the plots through ``model.display``.
+results.csv and summary.json are SI, with the unit in every column name or field.
 """
 from __future__ import annotations
 
+import datetime as _dt
+import hashlib
 import math
+import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from .text import kinematics_rows
-from ..forces import METHODS
-from ..spec import GROUND
+from .. import __version__
 from .. import post as q
+from ..forces import METHODS
 from ..quantities import unit_of
+from ..spec import GROUND
+from ..units import DASH, SIG_DIGITS, ZERO_RTOL, Display, clean, fmt, kind_of
 from .scene import Scene, build_scene
+from .text import kinematics_rows
 
-DASH = "—"
-#: one colour per joint, in spec order, across every figure (matplotlib's tab10)
-PALETTE = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
-           "#7f7f7f", "#bcbd22", "#17becf"]
+#: one colour per joint, in spec order, across every figure: Okabe & Ito's colour-blind-safe
+#: palette and Tol's (black is kept for loads, wine for the driver torque: scene.MOMENT_COLOR)
+PALETTE = ["#0072B2", "#E69F00", "#009E73", "#CC79A7", "#56B4E9", "#D55E00", "#999933",
+           "#44AA99", "#332288", "#117733"]
+#: how far either side of a left-out angle values are treated as near-singular: they are
+#: reported, but do not set a plot's scale (in sweep steps, at least this many degrees)
+NEAR_STEPS = 5
 
 
-def num(x, digits: int = 6) -> str:
-    """``x`` to ``digits`` significant figures; "—" for None/NaN; "0" below 1e-9."""
-    if x is None or not math.isfinite(float(x)):
-        return DASH
-    x = float(x)
-    if abs(x) < 1e-9:
-        return "0"
-    return f"{x:.{digits}g}"
+def num(x, digits: int = SIG_DIGITS) -> str:
+    """``x`` (already in the unit it is shown in) by the one formatter; "—" for None/NaN."""
+    return fmt(x, digits)
 
 
 def deg(x: float) -> str:
-    """A crank angle [deg] as printed: ``45``, ``12.5``."""
-    return f"{float(x):g}"
+    """A crank angle [deg] as printed: ``45``, ``12.5`` (angles are inputs: shown exactly)."""
+    s = f"{float(x):g}"
+    return "0" if s == "-0" else s
 
 
-def jnum(x) -> float | None:
-    """A float for JSON: None where undefined."""
-    return None if x is None or not math.isfinite(float(x)) else float(x)
+def jnum(x, scale: float | None = None) -> float | None:
+    """A float for JSON (SI, round-off of its quantity's ``scale`` made 0): None where
+    undefined."""
+    if x is None or not math.isfinite(float(x)):
+        return None
+    return clean(float(x), scale)
 
 
 @dataclass
 class Figure:
-    """A figure file pair ``<stem>.png`` (Markdown) and ``<stem>.svg`` (PDF) under
-    ``figures/``, with its caption."""
+    """A figure ``figures/<stem>.svg`` (vector: the PDF and the Markdown report show the same
+    file), with its caption."""
 
     stem: str
     caption: str
-    kind: str                     # drawing|torque|reactions|polar|shaking
-
-    @property
-    def png(self) -> str:
-        return f"figures/{self.stem}.png"
+    kind: str                     # drawing|torque|reactions|polar|shaking|flywheel|...
 
     @property
     def svg(self) -> str:
         return f"figures/{self.stem}.svg"
+
+    @property
+    def path(self) -> str:
+        return self.svg
 
 
 @dataclass
@@ -95,7 +104,9 @@ class PolarSeries:
 
 @dataclass
 class SweepData:
-    """Plot data over the analysed angles ``angles`` (n,) [deg]."""
+    """Plot data over the analysed angles ``angles`` (n,) [deg]. ``near`` (n,) marks angles
+    within ``near_deg`` of a left-out angle (near-singular: shown, but not used to scale a
+    plot)."""
 
     angles: np.ndarray
     ref_angles: list[float]
@@ -107,6 +118,12 @@ class SweepData:
     joints: list[JointSeries]
     polar: list[PolarSeries]
     shaking: q.FrameLoad
+    near: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))
+    near_deg: float = 0.0
+    effort: str = "moment"              # the driver's effort: a torque, or a force (T driver)
+    effort_label: str = "driver torque M"
+    xlabel: str = "crank angle φ [deg]"
+    xrange: tuple | None = None         # (start, stop) of a sweep that is not one whole turn
 
 
 @dataclass
@@ -134,8 +151,9 @@ class CycleData:
 @dataclass
 class DesignSummary:
     """The report's first section. ``verdicts`` rows (design item, checked quantity, value,
-    limit, margin, PASS/FAIL); ``values`` rows (cycle quantity, value, unit); ``problem`` why
-    there are no cycle quantities ("" when there are)."""
+    limit, margin, PASS/FAIL); ``values`` rows (meaning, cycle quantity, value with unit);
+    ``bearings`` rows (joint, peak, mean, equivalent load, L10 life);
+    ``problem`` why there are no cycle quantities ("" when there are)."""
 
     verdicts: list[list[str]]
     values: list[list[str]]
@@ -144,6 +162,7 @@ class DesignSummary:
     problem: str
     passed: bool
     data: CycleData | None = None
+    bearings: list[list[str]] = field(default_factory=list)   # joint, max, mean, equiv., L10
 
 
 @dataclass
@@ -158,6 +177,30 @@ class RefAngle:
     reactions: list[list[str]] = field(default_factory=list)
     vectors: list[str] = field(default_factory=list)
     drawing: Figure | None = None
+    title: str = ""          # "Crank angle 45°", "Stroke 300 mm"
+    anchor: str = ""         # its Markdown heading anchor
+
+
+@dataclass
+class Meta:
+    """Traceability and the spec's ``report`` metadata, as printed."""
+
+    title: str
+    project: str
+    author: str
+    revision: str
+    date: str
+    version: str
+    sha256: str
+    units: str
+
+    def rows(self) -> list[list[str]]:
+        """(label, value) rows for the first page; empty metadata left out."""
+        rows = [["Project", self.project], ["Revision", self.revision],
+                ["Author", self.author]]
+        rows = [r for r in rows if r[1]]
+        return rows + [["Date", self.date], ["mechreport", self.version],
+                       ["Spec SHA-256", self.sha256], ["Units", self.units]]
 
 
 @dataclass
@@ -174,6 +217,7 @@ class ReportModel:
     methods: list[list[str]]
     links: list[list[str]]
     joints: list[list[str]]
+    branches: list[list[str]]
     driver: str
     loads: list[str]
     gravity: str
@@ -186,7 +230,9 @@ class ReportModel:
     power_check: str
     residuals: list[list[str]]
     flags: list[list[str]]
+    left_out: str
     notes: list[str]
+    failures: list[list[str]]
     design: DesignSummary
     figures: dict[str, Figure]
     sweep: SweepData
@@ -195,10 +241,77 @@ class ReportModel:
     csv_rows: list[list[str]]
     summary: dict
     index_row: dict
+    meta: Meta
+    display: Display
+    heads: dict[str, str]
+    effort: str = "driver torque M"
+    coord: str = "crank angle"
+    coord_unit: str = "°"
 
     @property
     def method_names(self) -> list[str]:
         return [m[1] for m in self.methods]
+
+
+# ------------------------------------------------------------------------ traceability
+
+def build_time() -> _dt.datetime:
+    """Now, or ``SOURCE_DATE_EPOCH`` (reproducible builds) when it is set, in UTC."""
+    epoch = os.environ.get("SOURCE_DATE_EPOCH", "").strip()
+    if epoch:
+        try:
+            return _dt.datetime.fromtimestamp(int(epoch), _dt.timezone.utc)
+        except (ValueError, OverflowError, OSError):
+            pass
+    return _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0)
+
+
+def spec_sha256(path) -> str:
+    """SHA-256 of the spec file's bytes ("" when there is no file)."""
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    except (OSError, ValueError, TypeError):
+        return ""
+
+
+def display_of(analysis) -> Display:
+    """The spec's display units with the scales [SI] of this analysis (round-off rule)."""
+    units = dict(analysis.spec.report.units) or {}
+    units.setdefault("length", analysis.spec.units.get("length", "m"))
+    return Display(units.get("length", "m"), units.get("force", "N"),
+                   units.get("moment", "N*m"), units.get("mass", "kg"), _scales(analysis))
+
+
+def _top(*arrays) -> float:
+    vals = [float(np.max(np.abs(a))) for a in arrays if a is not None and np.size(a)]
+    vals = [v for v in vals if math.isfinite(v)]
+    return max(vals, default=0.0) or 1.0
+
+
+def _scales(analysis) -> dict[str, float]:
+    """Largest magnitude [SI] of each kind of quantity in the analysis: a value below
+    ``ZERO_RTOL`` of it is round-off."""
+    kin, spec = analysis.kinematics, analysis.spec
+    pts = [kin.named_point(p, o) for p, o in spec.named_points()]
+    coms = [kin.com(l.name) for l in spec.links]
+    forces, moments = [], []
+    for res in analysis.forces.values():
+        moments.append(res.driver_torque)
+        for r in res.reactions.values():
+            forces += [r.fx, r.fy]
+            if r.moment is not None:
+                moments.append(r.moment)
+    for ld in analysis.loads:
+        (forces if ld.force is not None else moments).append(
+            ld.force if ld.force is not None else ld.moment)
+    ground = [np.asarray(list(spec.ground.values()), float)] if spec.ground else []
+    return {"length": _top(*[p.r for p in pts], *ground),
+            "velocity": _top(*[p.v for p in pts], *[c.v for c in coms]),
+            "acceleration": _top(*[p.a for p in pts], *[c.a for c in coms]),
+            "force": _top(*forces), "moment": _top(*moments),
+            "omega": _top(kin.omega), "alpha": _top(kin.alpha), "angle": 360.0,
+            "mass": _top(np.array([l.mass for l in spec.links])),
+            "inertia": _top(np.array([l.inertia for l in spec.links]))}
 
 
 # --------------------------------------------------------------------------- spec summary
@@ -208,29 +321,33 @@ def _symbols(spec) -> dict[str, str]:
     return {j.name: spec.symbol(*j.links) for j in spec.joints}
 
 
-def _link_rows(spec) -> list[list[str]]:
+def _xy(d: Display, p) -> str:
+    return f"({d.num(p[0], 'length')}, {d.num(p[1], 'length')})"
+
+
+def _link_rows(spec, d: Display) -> list[list[str]]:
     rows = [["0", GROUND, DASH, DASH, DASH, "frame: " + ", ".join(
-        f"{n} ({num(x)}, {num(y)})" for n, (x, y) in spec.ground.items())]]
+        f"{n} {_xy(d, p)}" for n, p in spec.ground.items())]]
     for ln in spec.links:
         s = ln.shape
-        shape = (f"{s.kind} {num(s.length)} × {num(s.height)} × {num(s.depth)} m" if s
-                 else DASH)
-        pts = ", ".join(f"{n} ({num(x)}, {num(y)})" for n, (x, y) in ln.points.items())
-        rows.append([str(ln.number), ln.name, num(ln.mass), num(ln.inertia),
-                     f"({num(ln.com[0])}, {num(ln.com[1])})", f"{shape}; points {pts}"])
+        shape = (f"{s.kind} {d.num(s.length, 'length')} × {d.num(s.height, 'length')} × "
+                 f"{d.num(s.depth, 'length')}" if s else "no shape")
+        pts = ", ".join(f"{n} {_xy(d, p)}" for n, p in ln.points.items())
+        rows.append([str(ln.number), ln.name, d.num(ln.mass, "mass"),
+                     d.num(ln.inertia, "inertia"), _xy(d, ln.com), f"{shape}; points {pts}"])
     return rows
 
 
-def _joint_rows(spec, symbols, colors) -> list[list[str]]:
+def _joint_rows(spec, symbols, d: Display) -> list[list[str]]:
     rows = []
     for j in spec.joints:
         a, b = j.links
         links = f"{a} ({spec.number(a)}) → {b} ({spec.number(b)})"
         if j.type == "T":
-            d = j.line.direction
-            through = j.line.through_name or f"({num(j.line.through[0])}, {num(j.line.through[1])})"
+            u = j.line.direction
+            through = j.line.through_name or _xy(d, j.line.through)
             where = (f"slider point {j.point} on the line through {through}, direction "
-                     f"{num(math.degrees(math.atan2(d[1], d[0])))} deg in {a}'s frame")
+                     f"{fmt(math.degrees(math.atan2(u[1], u[0])))} deg in {a}'s frame")
         else:
             where = f"pin at {j.point}"
         rows.append([j.name, "pin (R)" if j.type == "R" else "slider (T)", links,
@@ -238,137 +355,236 @@ def _joint_rows(spec, symbols, colors) -> list[list[str]]:
     return rows
 
 
-def _load_texts(spec) -> list[str]:
+def _branch_rows(kin) -> list[list[str]]:
+    """(dyad, type, how its assembly branch was chosen) per dyad, in solving order."""
+    return [[b.dyad, b.kind, _branch_text(b.rule)] for b in kin.branches]
+
+
+def _branch_text(rule: str) -> str:
+    if rule == "unique":
+        return "one solution only: no choice"
+    if rule.startswith("hint"):
+        return f"chosen by the assembly hint ({rule.split(':', 1)[1].strip()})"
+    return rule
+
+
+def _load_texts(spec, d: Display) -> list[str]:
     out = []
     for ld in spec.loads:
-        unit = "N" if ld.kind == "force" else "N·m"
+        kind = "force" if ld.kind == "force" else "moment"
+        unit = d.unit(kind)
         if ld.value is not None:
-            val = (f"({num(ld.value[0])}, {num(ld.value[1])}) {unit}" if ld.kind == "force"
-                   else f"{num(ld.value)} {unit}")
+            val = (f"({d.num(ld.value[0], kind)}, {d.num(ld.value[1], kind)}) {unit}"
+                   if ld.kind == "force" else f"{d.num(ld.value, kind)} {unit}")
+        elif ld.profile is not None:
+            prof = ", ".join(f"{deg(a)}°: {d.num(v, kind)}" for a, v in ld.profile)
+            u = (f" along ({fmt(ld.direction[0])}, {fmt(ld.direction[1])})"
+                 if ld.direction else "")
+            val = f"profile [{prof}] {unit}{u}"
         else:
-            prof = ", ".join(f"{deg(a)}°: {num(v)}" for a, v in ld.profile)
-            d = f" along ({num(ld.direction[0])}, {num(ld.direction[1])})" if ld.direction else ""
-            val = f"profile [{prof}] {unit}{d}"
+            val = _element_text(ld, d)
         at = f" at {ld.point}" if ld.point else ""
         opp = f", opposing its {ld.oppose}" if ld.oppose else ""
-        out.append(f"{ld.kind} on {ld.link}{at}: {val}{opp}")
+        name = f"{ld.label}: " if getattr(ld, "label", "") else ""
+        out.append(f"{name}{ld.kind.replace('_', ' ')} on {ld.link}{at}: {val}{opp}")
     return out
+
+
+def _element_text(ld, d: Display) -> str:
+    """A spring, damper or torsion spring: its ends and constants (SI per unit of the
+    constant: N/m, N·s/m, N·m/rad)."""
+    parts = []
+    ends = getattr(ld, "between", None)
+    if ends:
+        parts.append("between " + " and ".join(f"{p} of {l}" for l, p in ends))
+    if getattr(ld, "joint", None):
+        parts.append(f"at joint {ld.joint}")
+    k = getattr(ld, "stiffness", None)
+    if k is not None:
+        parts.append(f"k = {fmt(k)} {'N·m/rad' if ld.kind == 'torsion_spring' else 'N/m'}")
+    if getattr(ld, "free_length", None) is not None:
+        parts.append(f"free length {d.q(ld.free_length, 'length')}")
+    if getattr(ld, "free_angle", None) is not None:
+        parts.append(f"free angle {fmt(ld.free_angle)}°")
+    if getattr(ld, "damping", None) is not None:
+        parts.append(f"c = {fmt(ld.damping)} N·s/m")
+    return ", ".join(parts) or DASH
 
 
 def _driver_text(spec) -> str:
     d = spec.driver
+    if getattr(d, "kind", "R") != "R":
+        return f"joint {d.joint} drives {d.link} along its line at {fmt(d.omega)} m/s"
     rpm = d.rpm_given if d.rpm_given is not None else d.omega * 30 / math.pi
-    return (f"joint {d.joint} turns {d.link} at ω = {num(d.omega)} rad/s ({num(rpm)} rpm), "
-            f"α = {num(d.alpha)} rad/s²")
+    return (f"joint {d.joint} turns {d.link} at ω = {fmt(d.omega)} rad/s ({fmt(rpm)} rpm), "
+            f"α = {fmt(d.alpha)} rad/s²")
 
 
 # --------------------------------------------------------------------- reference angles
 
-def _kin_tables(kin, k: int) -> tuple[list[list[str]], list[list[str]]]:
-    return kinematics_rows(kin, k, num)
-
-
-def _reaction_rows(spec, forces, symbols, k: int) -> list[list[str]]:
+def _reaction_rows(spec, forces, symbols, k: int, d: Display) -> list[list[str]]:
     rows = []
+    F, M, L = d.unit("force"), d.unit("moment"), d.unit("length")
     for j in spec.joints:
         sym = symbols[j.name]
-        comps = [("fx", f"{sym} x [N]"), ("fy", f"{sym} y [N]"), ("f", f"|{sym}| [N]")]
+        comps = [("fx", f"{sym} x [{F}]", "force"), ("fy", f"{sym} y [{F}]", "force"),
+                 ("f", f"|{sym}| [{F}]", "force")]
         if j.type == "T":
-            comps += [("moment", f"M{sym[1:]} [N·m]"), ("px", "at x [m]"), ("py", "at y [m]")]
-        for attr, label in comps:
+            comps += [("moment", f"M{sym[1:]} [{M}]", "moment"),
+                      ("px", f"at x [{L}]", "length"), ("py", f"at y [{L}]", "length")]
+        for attr, label, kind in comps:
             vals = []
             for res in forces.values():
                 r = res.reactions.get(j.name)
                 v = r.component(attr) if r is not None else None
-                vals.append(num(v[k]) if v is not None else DASH)
+                vals.append(d.num(v[k], kind) if v is not None else DASH)
             rows.append([j.name, label, *vals])
-    rows.append(["driver", "M [N·m]", *(num(r.driver_torque[k]) for r in forces.values())])
+    kind = effort_of(spec)[0]
+    rows.append(["driver", f"{'F' if kind == 'force' else 'M'} [{d.unit(kind)}]",
+                 *(d.num(r.driver_torque[k], kind) for r in forces.values())])
     return rows
 
 
-def _vectors(spec, res, symbols, k: int) -> list[str]:
+def _vectors(spec, res, symbols, k: int, d: Display) -> list[str]:
     out = []
+    F, M = d.unit("force"), d.unit("moment")
     for j in spec.joints:
         r = res.reactions.get(j.name)
         if r is None:
             continue
-        fy = float(r.fy[k])
-        sign = "-" if num(fy).startswith("-") else "+"
-        text = (f"{j.name}: {symbols[j.name]} = {num(r.fx[k])} i {sign} "
-                f"{num(abs(fy))} j N, |{symbols[j.name]}| = {num(r.f[k])} N")
+        fy = d.num(r.fy[k], "force")
+        sign, fy = ("-", fy[1:]) if fy.startswith("-") else ("+", fy)
+        text = (f"{j.name}: {symbols[j.name]} = {d.num(r.fx[k], 'force')} i {sign} "
+                f"{fy} j {F}, |{symbols[j.name]}| = {d.num(r.f[k], 'force')} {F}")
         if r.moment is not None:
-            text += f", M{symbols[j.name][1:]} = {num(r.moment[k])} N·m"
+            text += f", M{symbols[j.name][1:]} = {d.num(r.moment[k], 'moment')} {M}"
         out.append(text)
-    out.append(f"driver torque M = {num(res.driver_torque[k])} N·m")
+    kind, label, _, _ = effort_of(spec)
+    out.append(f"{label} = {d.num(res.driver_torque[k], kind)} {d.unit(kind)}")
     return out
 
 
-def _ref_angles(analysis, ref: str, symbols, colors) -> tuple[list[RefAngle], list[Scene]]:
+def _ref_angles(analysis, ref: str, symbols, colors, d: Display
+                ) -> tuple[list[RefAngle], list[Scene]]:
     kin, spec = analysis.kinematics, analysis.spec
     refs, scenes = [], []
+    _, _, coord, unit = effort_of(spec)
     for angle in spec.at:
-        k = kin.at(angle)
+        title = f"{coord[0].upper()}{coord[1:]} {deg(angle)}{unit}"
+        anchor = re.sub(r"[^a-z0-9 _-]", "", title.lower()).replace(" ", "-")
+        k = kin.index_of(angle)
         if k is None:
             why = next((f.reason for f in analysis.flags if abs(f.angle - angle) < 1e-9),
                        "not analysed")
-            refs.append(RefAngle(deg(angle), why))
+            refs.append(RefAngle(deg(angle), why, title=title, anchor=anchor))
             continue
-        pts, links = _kin_tables(kin, k)
+        pts, links = kinematics_rows(kin, k, d)
         stem = f"drawing_{deg(angle).replace('.', 'p').replace('-', 'm')}"
-        fig = Figure(stem, f"The mechanism at φ = {deg(angle)}°: joint reactions "
+        fig = Figure(stem, f"The mechanism at {coord} {deg(angle)}{unit}: joint reactions "
                      f"(first link on second, {METHODS[ref].TITLE}, coloured per joint), "
-                     "applied loads (black) and the driver torque.", "drawing")
+                     "applied loads (black) and the driver torque M (wine red); arrow lengths "
+                     "to one scale, values in the legend.", "drawing")
         refs.append(RefAngle(deg(angle), None, pts, links,
-                             _reaction_rows(spec, analysis.forces, symbols, k),
-                             _vectors(spec, analysis.forces[ref], symbols, k), fig))
+                             _reaction_rows(spec, analysis.forces, symbols, k, d),
+                             _vectors(spec, analysis.forces[ref], symbols, k, d), fig,
+                             title, anchor))
         scenes.append(build_scene(analysis, analysis.forces[ref], k, colors, symbols))
     return refs, scenes
 
 
 # ------------------------------------------------------------------------ sweep results
 
+def near_mask(angles: np.ndarray, flagged, step: float) -> tuple[np.ndarray, float]:
+    """Angles within ``NEAR_STEPS`` sweep steps (at least 2 degrees) of a left-out angle, and
+    that width [deg]."""
+    angles = np.asarray(angles, float)
+    width = max(NEAR_STEPS * float(step), 2.0)
+    if not len(flagged) or not len(angles):
+        return np.zeros(len(angles), bool), width
+    f = np.asarray(sorted(flagged), float)
+    d = np.abs(angles[:, None] - f[None, :]) % 360.0
+    d = np.minimum(d, 360.0 - d)                      # circular: 359 is next to 0
+    return (d.min(axis=1) <= width + 1e-9), width
+
+
 def _sweep(analysis, ref: str, symbols, colors) -> SweepData:
     res = analysis.forces[ref]
-    spec = analysis.spec
+    spec, kin = analysis.spec, analysis.kinematics
     joints = [JointSeries(j.name, symbols[j.name], j.type, colors[j.name], r.fx, r.fy, r.f,
                           r.moment)
               for j in spec.joints if (r := res.reactions.get(j.name)) is not None]
     polar = []
     for j in spec.joints:
         if j.type == "R" and j.name in res.reactions:
-            xy = q.bearing_trace(analysis.kinematics, res, j)
-            eq = analysis.review.bearings[j.name].f_equivalent if analysis.review else None
+            try:
+                xy = q.bearing_trace(kin, res, j)
+            except Exception:  # noqa: BLE001 - a joint post cannot trace is not drawn
+                continue
+            eq = None
+            if analysis.review is not None and j.name in analysis.review.bearings:
+                eq = analysis.review.bearings[j.name].f_equivalent
             polar.append(PolarSeries(j.name, symbols[j.name], colors[j.name],
                                      q.bearing_carrier(j), xy[:, 0], xy[:, 1], eq))
     check = analysis.forces.get("power")
-    return SweepData(analysis.angles, [float(a) for a in spec.at],
-                     [f.angle for f in analysis.flags], METHODS[ref].TITLE, res.driver_torque,
+    flagged = [f.angle for f in analysis.flags]
+    near, width = near_mask(analysis.angles, flagged, spec.sweep.step)
+    kind, label, coord, unit = effort_of(spec)
+    whole = spec.sweep.whole_turn and unit == "°"
+    return SweepData(analysis.angles, [float(a) for a in spec.at], flagged,
+                     METHODS[ref].TITLE, res.driver_torque,
                      None if check is None or check is res else check.driver_torque,
-                     q.torque_stats(res, analysis.kinematics.omega[:, analysis.kinematics.index(
-                         analysis.spec.driver.link)]), joints, polar,
-                     q.frame_load(analysis.kinematics, res, analysis.loads))
+                     q.torque_stats(res, kin.omega[:, kin.index(spec.driver.link)]), joints,
+                     polar, q.frame_load(kin, res, analysis.loads), near, width, kind, label,
+                     f"{coord} [{'deg' if unit == '°' else unit.strip()}]",
+                     None if whole else (float(spec.sweep.start), float(spec.sweep.stop)))
 
 
-def _peak_text(p: q.Peak | None, unit: str) -> str:
-    return DASH if p is None else f"{num(p.value)} {unit} at {deg(p.angle)}°"
+def effort_of(spec) -> tuple[str, str, str, str]:
+    """(kind, label, coordinate, unit suffix) of the driver: a crank's torque over the crank
+    angle in degrees, or a T driver's force over its stroke in the spec's length unit."""
+    d = spec.driver
+    if getattr(d, "kind", "R") == "T":
+        return "force", "driver force F", "stroke", " " + spec.units.get("length", "m")
+    coord = getattr(d, "coordinate", "crank angle")
+    return "moment", "driver torque M", coord, "°"
 
 
-def _torque_texts(st: q.TorqueStats | None) -> dict[str, str]:
+def _peak_text(p: q.Peak | None, kind: str, d: Display) -> str:
+    return DASH if p is None else f"{d.q(p.value, kind)} at {deg(p.angle)}°"
+
+
+def _torque_texts(st: q.TorqueStats | None, d: Display, kind: str = "moment",
+                  unit: str = "°") -> dict[str, str]:
     if st is None:
         return {k: DASH for k in ("mean", "rms", "peak", "low", "high", "power")}
-    return {"mean": f"{num(st.mean)} N·m", "rms": f"{num(st.rms)} N·m",
-            "peak": _peak_text(st.peak, "N·m"), "low": _peak_text(st.low, "N·m"),
-            "high": _peak_text(st.high, "N·m"), "power": f"{num(st.power)} W"}
+
+    def at(p):
+        return DASH if p is None else f"{d.q(p.value, kind)} at {deg(p.angle)}{unit}"
+    return {"mean": d.q(st.mean, kind), "rms": d.q(st.rms, kind), "peak": at(st.peak),
+            "low": at(st.low), "high": at(st.high), "power": d.q(st.power, "power")}
 
 
-def _bearing_rows(sw: SweepData) -> list[list[str]]:
+def far_peak(sw: SweepData, values: np.ndarray) -> q.Peak | None:
+    """Peak away from left-out angles (None when every angle is near one)."""
+    far = ~sw.near if len(sw.near) == len(values) else np.ones(len(values), bool)
+    if not far.any():
+        return None
+    return q.peak(sw.angles[far], np.asarray(values)[far])
+
+
+def _bearing_rows(sw: SweepData, d: Display) -> list[list[str]]:
     rows = []
     for js in sw.joints:
-        pk = q.peak(sw.angles, js.f)
+        pk, fp = q.peak(sw.angles, js.f), far_peak(sw, js.f)
         kind = "pin" if js.type == "R" else "slider"
-        rows.append([js.name, js.symbol, kind, num(pk.value) if pk else DASH,
-                     deg(pk.angle) if pk else DASH,
-                     num(float(np.sqrt(np.mean(js.f**2)))) if len(js.f) else DASH])
+        near = DASH
+        if pk is not None and fp is not None and pk.angle != fp.angle:
+            near = f"{d.num(pk.value, 'force')} at {deg(pk.angle)}°"
+        top = fp or pk
+        rows.append([js.name, js.symbol, kind, d.num(top.value, "force") if top else DASH,
+                     deg(top.angle) if top else DASH,
+                     d.num(float(np.sqrt(np.mean(js.f**2))), "force") if len(js.f) else DASH,
+                     near])
     return rows
 
 
@@ -381,68 +597,156 @@ def _largest_load(sw: SweepData) -> tuple[str, q.Peak] | None:
     return best
 
 
-def _unit(quantity: str) -> str:
-    return "N·m" if quantity.endswith(".moment") or quantity == "driver.torque" else "N"
+def _kind(quantity: str) -> str:
+    return kind_of(unit_of(quantity) or "N")
 
 
-def _agreement_rows(analysis) -> list[list[str]]:
-    return [[a.quantity, f"{a.relative:.1e}", f"{a.absolute:.1e} {_unit(a.quantity)}",
+def _diag(x: float, kind: str, d: Display) -> str:
+    """A diagnostic (a disagreement, a residual): 2 digits, in display units, never zeroed
+    as round-off (round-off is what it measures)."""
+    return f"{fmt(d.value(x, kind), 2)} {d.unit(kind)}"
+
+
+def _agreement_rows(analysis, d: Display) -> list[list[str]]:
+    return [[a.quantity, fmt(a.relative, 2), _diag(a.absolute, _kind(a.quantity), d),
              f"{METHODS[a.methods[0]].TITLE} vs {METHODS[a.methods[1]].TITLE}", deg(a.angle),
              str(a.n_methods)] for a in analysis.agreement]
 
 
-def _power_check(sw: SweepData) -> tuple[str, dict | None]:
+def _power_check(sw: SweepData, d: Display) -> tuple[str, dict | None]:
     if sw.torque_check is None or len(sw.torque) == 0:
         return "The power balance was not solved.", None
     diff = np.abs(sw.torque_check - sw.torque)
     k = int(np.argmax(diff))
     scale = max(float(np.max(np.abs(sw.torque))), 1e-300)
     text = (f"Power balance (M ω = Σ of the power of every other action) against "
-            f"{sw.method_title}: largest torque difference {diff[k]:.1e} N·m "
-            f"({diff[k] / scale:.1e} of the peak torque) at {deg(sw.angles[k])}°.")
-    return text, {"max_abs": jnum(diff[k]), "relative": jnum(diff[k] / scale),
+            f"{sw.method_title}: largest torque difference {_diag(diff[k], 'moment', d)} "
+            f"({fmt(diff[k] / scale, 2)} of the peak torque) at {deg(sw.angles[k])}°.")
+    return text, {"max_abs_N_m": jnum(diff[k]), "relative": jnum(diff[k] / scale),
                   "angle_deg": float(sw.angles[k])}
+
+
+# ------------------------------------------------------------------- failed expectations
+
+def failures(analysis) -> list[dict]:
+    """Each failing ``expect`` entry once (not once per method): quantity, angle, expected,
+    computed, difference, tolerance [SI], unit, the methods that computed it (or why there is
+    no value)."""
+    groups: dict[tuple, list] = {}
+    for e in analysis.expectations:
+        key = (e.expect.angle, e.expect.quantity, e.expect.value)
+        groups.setdefault(key, []).append(e)
+    out = []
+    for (angle, quantity, value), results in groups.items():
+        bad = [e for e in results if not e.ok]
+        if not bad:
+            continue
+        tol = bad[0].expect.tol
+        got = [e for e in bad if e.got is not None]
+        worst = max(got, key=lambda e: abs(e.got - value), default=None)
+        methods = [e.source for e in bad if e.got is not None]
+        out.append({
+            "quantity": quantity, "angle_deg": angle, "expected": value,
+            "computed": None if worst is None else worst.got,
+            "difference": None if worst is None else worst.got - value,
+            "tolerance": tol, "unit": unit_of(quantity) or "",
+            "methods": methods, "line": bad[0].expect.line,
+            "why": "" if worst is not None else bad[0].message})
+    return out
+
+
+def _digits_for(value: float, diff: float | None) -> int:
+    """Enough significant digits to see ``diff`` in ``value`` (the one formatter's digits at
+    least, at most 12)."""
+    if diff is None or diff == 0 or not value:
+        return SIG_DIGITS
+    return int(min(12, max(SIG_DIGITS, math.ceil(math.log10(abs(value) / abs(diff))) + 2)))
+
+
+def failure_rows(fails: list[dict]) -> list[list[str]]:
+    """Table rows (quantity, angle, expected, computed, difference, tolerance, method), SI as
+    the spec's ``expect`` writes them."""
+    from ..forces import METHODS as _M
+    rows = []
+    for f in fails:
+        unit = f["unit"].replace("^2", "²")
+        u = f" {unit}" if unit else ""
+        angle = DASH if f["angle_deg"] is None else f"{deg(f['angle_deg'])}"
+        if f["computed"] is None:
+            rows.append([f["quantity"], angle, fmt(f["expected"]) + u, DASH, DASH,
+                         fmt(f["tolerance"], 2) + u, f["why"]])
+            continue
+        digits = _digits_for(f["expected"], f["difference"])
+        methods = ", ".join(_M[m].TITLE if m in _M else m for m in f["methods"])
+        rows.append([f["quantity"], angle, fmt(f["expected"], digits) + u,
+                     fmt(f["computed"], digits) + u, f"{fmt(f['difference'], 3)}{u}",
+                     "±" + fmt(f["tolerance"], 2) + u, methods])
+    return rows
+
+
+def failure_line(f: dict) -> str:
+    """One line for the terminal: ``driver.torque at 45 deg: expected 151.5 N·m, computed
+    151.49 N·m, difference -0.0076 N·m, tolerance ±0.0001 N·m (Newton-Euler, ...)``."""
+    row = failure_rows([f])[0]
+    where = f" at {row[1]} deg" if f["angle_deg"] is not None else ""
+    if f["computed"] is None:
+        return f"{f['quantity']}{where}: expected {row[2]}: {f['why']}"
+    return (f"{f['quantity']}{where}: expected {row[2]}, computed {row[3]}, difference "
+            f"{row[4]}, tolerance {row[5]} ({row[6]})")
 
 
 # ---------------------------------------------------------------------------- csv / json
 
-def _csv_columns(analysis) -> tuple[list[str], list[np.ndarray]]:
-    """Column names and (n,) arrays over the analysed (solved) angles."""
+def _csv_columns(analysis) -> tuple[list[str], list[np.ndarray], list[float]]:
+    """Column names, (n,) arrays over the analysed (solved) angles and each column's scale
+    (the largest value of its kind: round-off below ``ZERO_RTOL`` of it is written as 0)."""
     kin, spec = analysis.kinematics, analysis.spec
-    names, cols = [], []
+    sc = _scales(analysis)
+    names, cols, scales = [], [], []
+
+    def add(name, arr, kind):
+        names.append(name)
+        cols.append(arr)
+        scales.append(sc.get(kind))
+
     for ln in spec.links:
         i = ln.number
-        names += [f"{ln.name}.theta [deg]", f"{ln.name}.omega [rad/s]",
-                  f"{ln.name}.alpha [rad/s^2]"]
-        cols += [kin.angle_deg(ln.name), kin.omega[:, i], kin.alpha[:, i]]
+        add(f"{ln.name}.theta [deg]", kin.angle_deg(ln.name), "angle")
+        add(f"{ln.name}.omega [rad/s]", kin.omega[:, i], "omega")
+        add(f"{ln.name}.alpha [rad/s^2]", kin.alpha[:, i], "alpha")
     for p, owner in spec.named_points():
         s = kin.named_point(p, owner)
-        for lab, arr, unit in (("x", s.r[:, 0], "m"), ("y", s.r[:, 1], "m"),
-                               ("vx", s.v[:, 0], "m/s"), ("vy", s.v[:, 1], "m/s"),
-                               ("ax", s.a[:, 0], "m/s^2"), ("ay", s.a[:, 1], "m/s^2")):
-            names.append(f"{p}.{lab} [{unit}]")
-            cols.append(arr)
+        for lab, arr, unit, kind in (("x", s.r[:, 0], "m", "length"),
+                                     ("y", s.r[:, 1], "m", "length"),
+                                     ("vx", s.v[:, 0], "m/s", "velocity"),
+                                     ("vy", s.v[:, 1], "m/s", "velocity"),
+                                     ("ax", s.a[:, 0], "m/s^2", "acceleration"),
+                                     ("ay", s.a[:, 1], "m/s^2", "acceleration")):
+            add(f"{p}.{lab} [{unit}]", arr, kind)
     for m, res in analysis.forces.items():
-        names.append(f"{m}.driver.torque [N m]")
-        cols.append(res.driver_torque)
+        add(f"{m}.driver.torque [N m]", res.driver_torque, "moment")
         for j in spec.joints:
             r = res.reactions.get(j.name)
             if r is None:
                 continue
-            for attr, unit in (("fx", "N"), ("fy", "N"), ("moment", "N m"), ("px", "m"),
-                               ("py", "m")):
+            for attr, unit, kind in (("fx", "N", "force"), ("fy", "N", "force"),
+                                     ("moment", "N m", "moment"), ("px", "m", "length"),
+                                     ("py", "m", "length")):
                 v = getattr(r, attr)
                 if v is not None:
-                    names.append(f"{m}.joint.{j.name}.{attr} [{unit}]")
-                    cols.append(v)
-    return names, cols
+                    add(f"{m}.joint.{j.name}.{attr} [{unit}]", v, kind)
+    return names, cols, scales
 
 
 def _csv(analysis) -> tuple[list[str], list[list[str]]]:
     """One row per analysed crank angle; left-out angles keep their row, with the reason in
-    ``flag`` and empty cells; undefined values (NaN) are empty cells."""
-    names, cols = _csv_columns(analysis)
+    ``flag`` and empty cells; undefined values (NaN) are empty cells; round-off is 0."""
+    names, cols, scales = _csv_columns(analysis)
     data = np.column_stack(cols) if cols else np.zeros((analysis.kinematics.n, 0))
+    if cols:                                  # round-off of each column's kind -> 0, no -0
+        tol = ZERO_RTOL * np.array([s if s is not None else 0.0 for s in scales])
+        with np.errstate(invalid="ignore"):
+            data = np.where(np.abs(data) <= tol, 0.0, data) + 0.0
     reasons = {round(f.angle, 9): f.reason for f in analysis.flags}
     solved = {round(float(a), 9): k for k, a in enumerate(analysis.angles)}
     angles = sorted(set(solved) | set(reasons))
@@ -450,88 +754,181 @@ def _csv(analysis) -> tuple[list[str], list[list[str]]]:
     for a in angles:
         k = solved.get(a)
         cells = ([""] * len(names) if k is None else
-                 [f"{v:.10g}" if math.isfinite(v) else "" for v in data[k]])
-        rows.append([f"{a:g}", reasons.get(a, ""), *cells])
+                 [f"{v:.10g}" if math.isfinite(v) else "" for v in data[k].tolist()])
+        rows.append([deg(a), reasons.get(a, ""), *cells])
     return ["crank_angle [deg]", "flag", *names], rows
 
 
-def _peak_json(p: q.Peak | None) -> dict | None:
-    return None if p is None else {"value": jnum(p.value), "angle_deg": p.angle}
+def _peak_json(p: q.Peak | None, unit: str, scale: float | None = None) -> dict | None:
+    return None if p is None else {"value": jnum(p.value, scale), "unit": unit,
+                                   "angle_deg": p.angle}
 
 
 def _summary(analysis, sw: SweepData, ref: str, status_line: str, power: dict | None,
-             symbols) -> dict:
+             symbols, meta: Meta, fails: list[dict], sc: dict) -> dict:
     st = sw.stats
+    F, M = sc["force"], sc["moment"]
+    EU, ES = ("N", F) if sw.effort == "force" else ("N·m", M)   # a T driver pushes
     largest = _largest_load(sw)
     refs = {}
     for angle in analysis.spec.at:
-        k = analysis.kinematics.at(angle)
+        k = analysis.kinematics.index_of(angle)
         if k is None:
             continue
         refs[deg(angle)] = {
-            "driver_torque": {m: jnum(r.driver_torque[k]) for m, r in analysis.forces.items()},
-            "reactions": {j: {m: {"fx": jnum(r.reactions[j].fx[k]),
-                                  "fy": jnum(r.reactions[j].fy[k])}
+            "driver_torque": {m: jnum(r.driver_torque[k], ES)
+                              for m, r in analysis.forces.items()},
+            "reactions": {j: {m: {"fx": jnum(r.reactions[j].fx[k], F),
+                                  "fy": jnum(r.reactions[j].fy[k], F)}
                               for m, r in analysis.forces.items() if j in r.reactions}
-                          for j in symbols}}
+                          for j in symbols},
+            "units": {"driver_torque": EU, "reactions": "N"}}
     w = analysis.worst
+    cycle = analysis.review.values if analysis.review is not None else {}
     return {
-        "spec": analysis.spec.file, "name": analysis.spec.name,
+        "mechreport_version": meta.version, "spec": analysis.spec.file,
+        "spec_sha256": meta.sha256, "date": meta.date,
+        "name": analysis.spec.name, "title": meta.title or analysis.spec.name,
+        "project": meta.project or None, "author": meta.author or None,
+        "revision": meta.revision or None,
         "status": "PASS" if analysis.passed else "FAIL", "check": status_line,
+        "failures": fails,
         "reference_method": ref, "n_angles": int(analysis.kinematics.n),
-        "units": {"force": "N", "torque": "N m", "power": "W", "angle": "deg"},
+        "units": {"force": "N", "torque": "N·m", "moment": "N·m", "power": "W",
+                  "length": "m", "angle": "deg", "note": "summary.json and results.csv are SI"},
         "driver_torque": None if st is None else {
-            "mean": st.mean, "rms": st.rms, "peak": _peak_json(st.peak),
-            "min": _peak_json(st.low), "max": _peak_json(st.high)},
-        "mean_power": None if st is None else st.power,
-        "reactions": {js.name: {"symbol": js.symbol, "peak": _peak_json(q.peak(sw.angles, js.f)),
-                                "fx_peak": _peak_json(q.peak(sw.angles, js.fx)),
-                                "fy_peak": _peak_json(q.peak(sw.angles, js.fy))}
+            "unit": EU, "mean": jnum(st.mean, ES), "rms": jnum(st.rms, ES),
+            "peak": _peak_json(st.peak, EU, ES), "min": _peak_json(st.low, EU, ES),
+            "max": _peak_json(st.high, EU, ES)},
+        "driver_effort": "force" if EU == "N" else "torque",
+        "mean_power": None if st is None else {"value": jnum(st.power), "unit": "W"},
+        "reactions": {js.name: {"symbol": js.symbol, "unit": "N",
+                                "peak": _peak_json(q.peak(sw.angles, js.f), "N", F),
+                                "peak_away_from_left_out": _peak_json(far_peak(sw, js.f),
+                                                                      "N", F),
+                                "rms": jnum(float(np.sqrt(np.mean(js.f ** 2))), F)
+                                if len(js.f) else None,
+                                "fx_peak": _peak_json(q.peak(sw.angles, js.fx), "N", F),
+                                "fy_peak": _peak_json(q.peak(sw.angles, js.fy), "N", F)}
                       for js in sw.joints},
         "largest_bearing_load": None if largest is None else {
-            "joint": largest[0], **_peak_json(largest[1])},
-        "shaking": {"force_peak": _peak_json(q.peak(sw.angles, sw.shaking.f)),
-                    "moment_peak": _peak_json(q.peak(sw.angles, sw.shaking.m))},
+            "joint": largest[0], **_peak_json(largest[1], "N", F)},
+        "shaking": {"force_peak": _peak_json(q.peak(sw.angles, sw.shaking.f), "N", F),
+                    "moment_peak": _peak_json(q.peak(sw.angles, sw.shaking.m), "N·m", M)},
         "reference_angles": refs,
+        "branches": [{"dyad": b.dyad, "type": b.kind, "rule": b.rule}
+                     for b in analysis.kinematics.branches],
         "agreement": {
             "worst": None if w is None else {"quantity": w.quantity, "relative": w.relative,
                                              "absolute": w.absolute,
+                                             "unit": unit_of(w.quantity) or "N",
                                              "methods": list(w.methods), "angle_deg": w.angle},
             "quantities": [{"quantity": a.quantity, "relative": a.relative,
-                            "absolute": a.absolute, "methods": list(a.methods),
+                            "absolute": a.absolute, "unit": unit_of(a.quantity) or "N",
+                            "methods": list(a.methods),
                             "angle_deg": a.angle} for a in analysis.agreement]},
         "power_balance": power,
-        "residuals": [{"method": r.method, "force": r.force, "moment": r.moment}
+        "residuals": [{"method": r.method, "force_N": r.force, "moment_N_m": r.moment}
                       for r in analysis.residuals],
         "flags": [{"angle_deg": f.angle, "kind": f.kind, "reason": f.reason}
                   for f in analysis.flags],
+        "near_singular_deg": sw.near_deg,
         "notes": analysis.kinematics.notes(),
+        "quantities": _quantities(sw, st, cycle, sc, EU),
     }
 
 
+def _quantities(sw: SweepData, st, cycle: dict, sc: dict, effort_unit: str = "N·m") -> dict:
+    """Every key figure by name -> {value [SI], unit}: what ``mechreport diff`` compares and
+    the index lists."""
+    out: dict[str, dict] = {}
+
+    def put(name, value, unit, kind=None, angle=None):
+        if value is None:
+            return
+        entry = {"value": jnum(value, sc.get(kind) if kind else None), "unit": unit}
+        if angle is not None:
+            entry["angle_deg"] = float(angle)
+        out[name] = entry
+
+    if st is not None:
+        name, kind = (("driver.force", "force") if effort_unit == "N"
+                      else ("driver.torque", "moment"))
+        put(f"{name}.mean", st.mean, effort_unit, kind)
+        put(f"{name}.rms", st.rms, effort_unit, kind)
+        put(f"{name}.peak", st.peak.value, effort_unit, kind, st.peak.angle)
+        put("driver.power.mean", st.power, "W")
+    for js in sw.joints:
+        pk = q.peak(sw.angles, js.f)
+        if pk is not None:
+            put(f"joint.{js.name}.f.peak", pk.value, "N", "force", pk.angle)
+            put(f"joint.{js.name}.f.rms", float(np.sqrt(np.mean(js.f ** 2))), "N", "force")
+    sh = q.peak(sw.angles, sw.shaking.f)
+    if sh is not None:
+        put("shaking.force.peak", sh.value, "N", "force", sh.angle)
+    shm = q.peak(sw.angles, sw.shaking.m)
+    if shm is not None:
+        put("shaking.moment.peak", shm.value, "N·m", "moment", shm.angle)
+    for name, value in cycle.items():
+        unit = unit_of(name) or ""
+        put(name, value, unit, kind_of(unit))
+    return out
+
+
 def _index_row(model_summary: dict, stem: str) -> dict:
+    """One index row (index.md/pdf/csv/json) from a report's summary.json."""
     s = model_summary
-    t = s["driver_torque"] or {}
-    big = s["largest_bearing_load"]
-    w = s["agreement"]["worst"]
+    t = s.get("driver_torque") or {}
+    big = s.get("largest_bearing_load")
+    w = (s.get("agreement") or {}).get("worst")
+    verdicts = ((s.get("design") or {}).get("verdicts")) or []
+    failed = [v["item"] for v in verdicts if not v.get("passed")]
+    power = s.get("mean_power")
+    power_value = power.get("value") if isinstance(power, dict) else power
+
+    def si(x, unit):
+        return f"{fmt(x)} {unit}" if x is not None else DASH
+
+    peak = t.get("peak") if t else None
+    eu = t.get("unit", "N·m") if t else "N·m"
     return {
         "stem": stem, "spec": s["spec"], "name": s["name"], "ok": True,
         "status": s["status"],
-        "peak": _peak_text(q.Peak(t["peak"]["value"], t["peak"]["angle_deg"]), "N·m")
-        if t.get("peak") else DASH,
-        "rms": f"{num(t['rms'])} N·m" if t else DASH,
-        "bearing": (f"{num(big['value'])} N ({big['joint']}, {deg(big['angle_deg'])}°)"
+        "peak": (f"{si(peak['value'], eu)} at {deg(peak['angle_deg'])}"
+                 f"{'°' if eu != 'N' else ''}" if peak else DASH),
+        "rms": si(t.get("rms"), eu) if t else DASH,
+        "bearing": (f"{si(big['value'], 'N')} ({big['joint']}, {deg(big['angle_deg'])}°)"
                     if big else DASH),
-        "power": f"{num(s['mean_power'])} W" if s["mean_power"] is not None else DASH,
-        "worst": f"{w['relative']:.1e} ({w['quantity']})" if w else DASH,
+        "power": si(power_value, "W") if power_value is not None else DASH,
+        "worst": f"{fmt(w['relative'], 2)} ({w['quantity']})" if w else DASH,
+        "verdicts": (f"{len(verdicts) - len(failed)}/{len(verdicts)} passed"
+                     if verdicts else DASH),
+        "failed_verdicts": failed,
+        "failures": len(s.get("failures") or []),
         "report_md": f"{stem}/report.md", "report_pdf": f"{stem}/report.pdf",
         "message": "",
+        "data": {"peak_torque_N_m": peak["value"] if peak and eu != "N" else None,
+                 "peak_torque_angle_deg": peak["angle_deg"] if peak and eu != "N" else None,
+                 "rms_torque_N_m": t.get("rms") if t and eu != "N" else None,
+                 "peak_driver_force_N": peak["value"] if peak and eu == "N" else None,
+                 "rms_driver_force_N": t.get("rms") if t and eu == "N" else None,
+                 "largest_bearing_load_N": big["value"] if big else None,
+                 "largest_bearing_joint": big["joint"] if big else None,
+                 "mean_power_W": power_value,
+                 "worst_disagreement": w["relative"] if w else None,
+                 "verdicts_passed": len(verdicts) - len(failed),
+                 "verdicts_total": len(verdicts),
+                 "failed_verdicts": failed,
+                 "failed_expectations": len(s.get("failures") or []),
+                 "spec_sha256": s.get("spec_sha256"),
+                 "mechreport_version": s.get("mechreport_version")},
     }
 
 
 # ------------------------------------------------------------------------------ entry
 
-def build_model(analysis, source: str | Path | None = None) -> ReportModel:
+def build_model(analysis, source: str | Path | None = None, sha256: str | None = None,
+                when: _dt.datetime | None = None) -> ReportModel:
     """The report model of ``analysis``; ``source`` is the spec path shown in the report."""
     from ..checks.run import summary_line
 
@@ -539,20 +936,30 @@ def build_model(analysis, source: str | Path | None = None) -> ReportModel:
     source = str(source if source is not None else spec.file)
     stem = Path(source).stem
     ref = q.reference_method(analysis.forces)
+    d = display_of(analysis)
     symbols = _symbols(spec)
     colors = {j.name: PALETTE[i % len(PALETTE)] for i, j in enumerate(spec.joints)}
+    when = when or build_time()
+    rs = spec.report
+    meta = Meta(rs.title, rs.project, rs.author, rs.revision,
+                when.strftime("%Y-%m-%d %H:%M UTC"), __version__,
+                sha256 if sha256 is not None else spec_sha256(source), d.describe())
     status_line = summary_line(source, analysis)
-    refs, scenes = _ref_angles(analysis, ref, symbols, colors)
+    refs, scenes = _ref_angles(analysis, ref, symbols, colors, d)
     sw = _sweep(analysis, ref, symbols, colors)
-    power_text, power_json = _power_check(sw)
+    power_text, power_json = _power_check(sw, d)
     header, rows = _csv(analysis)
-    design = _design(analysis)
-    summary = _summary(analysis, sw, ref, status_line, power_json, symbols)
+    design = _design(analysis, d)
+    fails = failures(analysis)
+    summary = _summary(analysis, sw, ref, status_line, power_json, symbols, meta, fails,
+                       d.scales)
     summary["design"] = _design_json(analysis)
-    figures = _figures(sw, refs, ref) | _design_figures(design)
-    shaking = {"force": _peak_text(q.peak(sw.angles, sw.shaking.f), "N"),
-               "moment": _peak_text(q.peak(sw.angles, sw.shaking.m), "N·m")}
+    figures = _figures(sw, refs, ref, d) | _design_figures(design)
+    shaking = {"force": _peak_text(q.peak(sw.angles, sw.shaking.f), "force", d),
+               "moment": _peak_text(q.peak(sw.angles, sw.shaking.m), "moment", d)}
     sweep = spec.sweep
+    heads = {k: d.unit(k) for k in ("length", "velocity", "acceleration", "force", "moment",
+                                    "mass", "inertia")}
     return ReportModel(
         stem=stem, source=source, name=spec.name,
         description=[p.strip() for p in spec.description.strip().split("\n\n") if p.strip()],
@@ -560,39 +967,82 @@ def build_model(analysis, source: str | Path | None = None) -> ReportModel:
         method_title=METHODS[ref].TITLE,
         methods=[[name, m.TITLE, m.SECTION] for name, m in METHODS.items()
                  if name in analysis.forces],
-        links=_link_rows(spec), joints=_joint_rows(spec, symbols, colors),
-        driver=_driver_text(spec), loads=_load_texts(spec),
-        gravity=f"({num(spec.gravity[0])}, {num(spec.gravity[1])}) m/s²",
-        sweep_text=(f"{deg(sweep.start)}° to {deg(sweep.stop)}° in steps of "
-                    f"{deg(sweep.step)}°: {analysis.kinematics.n} angles solved, "
-                    f"{len(analysis.flags)} left out"),
-        refs=refs, torque=_torque_texts(sw.stats), bearings=_bearing_rows(sw), shaking=shaking,
-        agreement=_agreement_rows(analysis), power_check=power_text,
-        residuals=[[METHODS[r.method].TITLE, f"{r.force:.1e}", f"{r.moment:.1e}"]
-                   for r in analysis.residuals],
-        flags=_flag_rows(analysis), notes=analysis.kinematics.notes(), design=design,
+        links=_link_rows(spec, d), joints=_joint_rows(spec, symbols, d),
+        branches=_branch_rows(analysis.kinematics),
+        driver=_driver_text(spec), loads=_load_texts(spec, d),
+        gravity=f"({fmt(spec.gravity[0])}, {fmt(spec.gravity[1])}) m/s²",
+        sweep_text=(f"{effort_of(spec)[2]} {deg(sweep.start)}{effort_of(spec)[3]} to "
+                    f"{deg(sweep.stop)}{effort_of(spec)[3]} in steps of "
+                    f"{deg(sweep.step)}{effort_of(spec)[3]}: {analysis.kinematics.n} "
+                    f"positions solved, {len(analysis.flags)} left out"),
+        refs=refs, torque=_torque_texts(sw.stats, d, sw.effort, effort_of(spec)[3]),
+        bearings=_bearing_rows(sw, d), effort=sw.effort_label,
+        coord=effort_of(spec)[2], coord_unit=effort_of(spec)[3],
+        shaking=shaking, agreement=_agreement_rows(analysis, d), power_check=power_text,
+        residuals=[[METHODS[r.method].TITLE, fmt(d.value(r.force, "force"), 2),
+                    fmt(d.value(r.moment, "moment"), 2)] for r in analysis.residuals],
+        flags=_flag_rows(analysis), left_out=_left_out_text(analysis, sw, d),
+        notes=analysis.kinematics.notes(), failures=failure_rows(fails), design=design,
         figures=figures, sweep=sw, scenes=scenes, csv_header=header, csv_rows=rows,
-        summary=summary, index_row=_index_row(summary, stem))
+        summary=summary, index_row=_index_row(summary, stem), meta=meta, display=d,
+        heads=heads)
 
 
-def _design(analysis) -> DesignSummary:
+def _left_out_text(analysis, sw: SweepData, d: Display) -> str:
+    """One paragraph for the first page: which angles were left out and why, and which
+    values lie near them (shown, but not used to scale the plots)."""
+    if not analysis.flags:
+        return "none: every angle of the sweep was solved and is trustworthy."
+    rows = _flag_rows(analysis)
+    shown = "; ".join(f"{a}°: {why}" for a, why in rows[:3])
+    more = f"; and {len(rows) - 3} more (see Left-out angles)" if len(rows) > 3 else ""
+    text = (f"{len(analysis.flags)} angle(s) left out of every table, plot and cycle "
+            f"quantity (values there cannot be trusted to 1e-6): {shown}{more}.")
+    jumps = []
+    for js in sw.joints:
+        pk, fp = q.peak(sw.angles, js.f), far_peak(sw, js.f)
+        if pk is not None and fp is not None and abs(pk.value) > 1.25 * abs(fp.value):
+            jumps.append((abs(pk.value), js.name, pk))
+    if jumps:
+        _, name, pk = max(jumps, key=lambda t: t[0])
+        text += (f" Within {deg(sw.near_deg)}° of them the reactions rise steeply (up to "
+                 f"{d.q(pk.value, 'force')} at joint {name}, {deg(pk.angle)}°): such values "
+                 "are listed, but the plots are scaled to the rest of the turn and mark them.")
+    return text
+
+
+def _design(analysis, d: Display) -> DesignSummary:
     """Verdicts, cycle quantities, counterweight and the cycle's plot data."""
     spec, rev = analysis.spec, analysis.review
-    verdict_rows = [[v.item, v.quantity.replace("joint.*.", "largest joint ")
-                     + (f" ({v.where})" if v.where else ""),
-                     f"{num(v.value)} {v.unit}" if v.value is not None else f"undefined: {v.why}",
-                     ("≥ " if v.at_least else "≤ ") + f"{num(v.limit)} {v.unit}",
-                     _margin(v), 
-                     "PASS" if v.passed else "FAIL"] for v in analysis.verdicts]
+    verdict_rows = []
+    for v in analysis.verdicts:
+        kind = kind_of(v.unit)
+        value = (d.q(v.value, kind) if v.value is not None else f"undefined: {v.why}")
+        verdict_rows.append([v.item, v.quantity.replace("joint.*.", "largest joint ")
+                             + (f" ({v.where})" if v.where else ""), value,
+                             ("≥ " if v.at_least else "≤ ") + d.q(v.limit, kind),
+                             _margin(v), "PASS" if v.passed else "FAIL"])
     passed = all(v.passed for v in analysis.verdicts)
     if rev is None:
         return DesignSummary(verdict_rows, [], "", "", analysis.review_problem, passed)
-    values = [[name, num(value), unit_of(name) or ""] for name, value in rev.values.items()
-              if not name.startswith("joint.")]
+    values = []
+    for name, value in rev.values.items():
+        if name.startswith("joint."):
+            continue
+        kind = kind_of(unit_of(name))
+        values.append([MEANING.get(name, name), name, d.q(value, kind)])
+    bearings: dict[str, list[str]] = {}
+    attrs = ["f_max", "f_mean", "f_equivalent", "life_h"]
+    for name, value in rev.values.items():       # per joint: bearing loads and lives
+        if name.startswith("joint."):
+            _, joint, attr = name.split(".", 2)
+            row = bearings.setdefault(joint, [joint] + [DASH] * len(attrs))
+            if attr in attrs:
+                row[1 + attrs.index(attr)] = d.num(value, kind_of(unit_of(name)))
     cw = rev.counterweight
-    counter = (f"A point counterweight of m·r = {num(cw.mr, 4)} kg·m at "
-               f"{num(cw.angle, 4)}° from the crank's x-axis brings the RMS inertial shaking "
-               f"force from {num(cw.rms_before, 4)} N to {num(cw.rms_after, 4)} N."
+    counter = (f"A point counterweight of m·r = {d.q(cw.mr, 'mass_length')} at "
+               f"{fmt(cw.angle)}° from the crank's x-axis brings the RMS inertial shaking "
+               f"force from {d.q(cw.rms_before, 'force')} to {d.q(cw.rms_after, 'force')}."
                if cw.mr > 0 else "The crank needs no counterweight: the inertial shaking "
                                  "force has no component turning with it.")
     interp = ""
@@ -608,17 +1058,40 @@ def _design(analysis) -> DesignSummary:
                      parts, rev.transmission, spec.design.limits.get("transmission_angle"),
                      rev.inertial, rev.shaking_balanced,
                      [float(a) for a in rev.cycle.interpolated])
-    return DesignSummary(verdict_rows, values, counter, interp, "", passed, data)
+    return DesignSummary(verdict_rows, values, counter, interp, "", passed, data,
+                         list(bearings.values()))
+
+
+#: what each cycle quantity means, for the Design summary table
+MEANING = {
+    "cycle.torque.max": "largest driver torque", "cycle.torque.min": "smallest driver torque",
+    "cycle.torque.mean": "mean driver torque", "cycle.torque.rms": "RMS driver torque",
+    "cycle.power.max": "peak driver power", "cycle.power.mean": "mean driver power",
+    "cycle.energy_fluctuation": "energy fluctuation ΔE",
+    "cycle.flywheel_inertia": "flywheel inertia for Cs",
+    "cycle.shaking.force_max": "peak shaking force",
+    "cycle.shaking.force_rms": "RMS shaking force",
+    "cycle.shaking.moment_max": "peak shaking moment",
+    "cycle.transmission_angle.min": "smallest transmission angle",
+    "cycle.transmission_angle.max": "largest transmission angle",
+    "cycle.inertia_shaking.force_rms": "RMS inertial shaking force",
+    "balance.counterweight.mr": "best counterweight m·r",
+    "balance.counterweight.angle": "its angle from the crank",
+    "balance.inertia_shaking.force_rms": "RMS inertial shaking, balanced",
+    "f_max": "peak bearing load", "f_mean": "mean bearing load",
+    "f_equivalent": "equivalent (cube-mean) load", "life_h": "L10 rating life",
+}
 
 
 def _margin(v) -> str:
-    """A verdict's margin: ``+24.1 %`` of the limit; ``value 537x limit`` when it is huge."""
+    """A verdict's margin: ``+24.1 %`` of the limit; ``value 537× limit`` when it is huge."""
     if v.margin is None:
         return DASH
     if abs(v.margin) > 9.99:
         ratio = v.value / v.limit if v.limit else float("inf")
-        return f"value {num(ratio, 3)}× limit"
-    return f"{v.margin * 100:+.1f} %"
+        return f"value {fmt(ratio, 3)}× limit"
+    text = f"{v.margin * 100:+.1f} %"
+    return "0.0 %" if text in ("+0.0 %", "-0.0 %") else text
 
 
 def _design_json(analysis) -> dict:
@@ -673,7 +1146,7 @@ def _flag_rows(analysis) -> list[list[str]]:
             for _, a, b, n, why in runs]
 
 
-def _figures(sw: SweepData, refs: list[RefAngle], ref: str) -> dict[str, Figure]:
+def _figures(sw: SweepData, refs: list[RefAngle], ref: str, d: Display) -> dict[str, Figure]:
     title = METHODS[ref].TITLE
     figs: dict[str, Figure] = {}
     for r in refs:
@@ -681,18 +1154,23 @@ def _figures(sw: SweepData, refs: list[RefAngle], ref: str) -> dict[str, Figure]
             figs[r.drawing.stem] = r.drawing
     if len(sw.angles) == 0:
         return figs
-    figs |= {"torque": Figure("torque", f"Driver torque over a turn ({title}); mean and peak "
-                             "marked, left-out angles shaded.", "torque"),
-            "reactions": Figure("reactions", f"Joint reactions (first link on second, "
-                                f"{title}): magnitude and global components.", "reactions"),
-            "shaking": Figure("shaking", "Shaking force (resultant of the reactions on the "
-                              "frame) and shaking moment about the driver pivot, including "
-                              "the driver's reaction torque.", "shaking")}
+    near = (f" Hatched: within {deg(sw.near_deg)}° of a left-out angle (near-singular; not "
+            "used for the scale, values beyond it are marked at the edge)."
+            if sw.flagged else "")
+    figs |= {"torque": Figure("torque", f"Driver torque over the sweep ({title}); mean and "
+                              f"peak marked, left-out angles in grey.{near}", "torque"),
+             "reactions": Figure("reactions", f"Magnitude of each joint's reaction over the "
+                                 f"sweep ({title}; components are in results.csv), left-out "
+                                 f"angles in grey.{near}", "reactions"),
+             "shaking": Figure("shaking", "Shaking force (resultant of the reactions on the "
+                               "frame) and shaking moment about the driver pivot, including "
+                               f"the driver's reaction torque.{near}", "shaking")}
     if not sw.joints:
         del figs["reactions"]
     if sw.polar:
         figs["polar"] = Figure("polar", "Polar load diagrams of the pins: the tip of the "
                                "reaction (first link on second) over a turn, in the frame of "
-                               "the link named under each plot (ground: global frame); "
-                               "dots mark the reference angles.", "polar")
+                               "the link named above each plot (ground: global frame); "
+                               "dots mark the reference angles, the dashed circle the "
+                               "equivalent (cube-mean) load.", "polar")
     return figs

@@ -16,11 +16,35 @@ class RenderError(MechreportError):
     """The Typst compiler rejected a generated document (a bug in a template)."""
 
 
+def figure_fonts() -> list[str]:
+    """The folder of matplotlib's DejaVu fonts (the figures' SVG text is set in DejaVu Sans),
+    when matplotlib is installed; no system fonts are ever used."""
+    try:
+        import matplotlib
+    except ImportError:      # pragma: no cover - a dependency
+        return []
+    import os
+    folder = os.path.join(matplotlib.get_data_path(), "fonts", "ttf")
+    return [folder] if os.path.isdir(folder) else []
+
+
+def source_date_epoch() -> int | None:
+    """``SOURCE_DATE_EPOCH`` (reproducible builds: the PDF's creation date) or None."""
+    import os
+    try:
+        value = int(os.environ.get("SOURCE_DATE_EPOCH", "").strip())
+    except ValueError:
+        return None
+    return value if value >= 0 else None
+
+
 def compile_typst(source: str, out_pdf: Path, root: Path) -> Path:
     """Compile ``source`` to ``out_pdf``; images are resolved relative to ``root`` (the
-    folder the source would live in). Written atomically."""
+    folder the source would live in). Written atomically. With ``SOURCE_DATE_EPOCH`` set the
+    PDF carries that date, so the same input gives the same bytes."""
     try:
-        pdf = typst.compile(source.encode("utf-8"), root=str(root), ignore_system_fonts=True)
+        pdf = typst.compile(source.encode("utf-8"), root=str(root), ignore_system_fonts=True,
+                            font_paths=figure_fonts(), timestamp=source_date_epoch())
     except typst.TypstError as exc:
         raise RenderError(f"{out_pdf}: Typst could not typeset the report: {exc}") from None
     return atomic_write_bytes(Path(out_pdf), pdf)

@@ -62,8 +62,31 @@ def write_report(model, outdir: Path) -> list[Path]:
 
 
 def write_index(rows: list[dict], out: Path, title: str = "mechreport batch") -> list[Path]:
-    """OUT/index.md and OUT/index.pdf: one row per spec (failed ones carry their message)."""
+    """OUT/index.md, index.pdf, index.csv and index.json: one row per spec (failed ones carry
+    their message); the CSV and JSON are SI with the unit in each field name, for CI."""
+    from .. import __version__
+    from .build import INDEX_FIELDS, index_records
+    from .model import build_time
+
     out = Path(out)
-    md = atomic_write_text(out / "index.md", render("index.md.j2", rows=rows, title=title))
-    pdf = compile_typst(render("index.typ.j2", rows=rows, title=title), out / "index.pdf", out)
-    return [md, pdf]
+    when = build_time().strftime("%Y-%m-%d %H:%M UTC")
+    records = index_records(rows)
+    csv_rows = [[_csv_cell(r[k]) for k in INDEX_FIELDS] for r in records]
+    files = [atomic_write_text(out / "index.csv", csv_text(list(INDEX_FIELDS), csv_rows)),
+             atomic_write_text(out / "index.json", json.dumps(
+                 {"mechreport_version": __version__, "date": when, "specs": records},
+                 indent=2, allow_nan=False) + "\n")]
+    ctx = dict(rows=rows, title=title, version=__version__, date=when)
+    files.append(atomic_write_text(out / "index.md", render("index.md.j2", **ctx)))
+    files.append(compile_typst(render("index.typ.j2", **ctx), out / "index.pdf", out))
+    return files
+
+
+def _csv_cell(value) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, list):
+        return " ".join(str(v) for v in value)
+    if isinstance(value, float):
+        return f"{value:.10g}"
+    return str(value)

@@ -10,6 +10,8 @@ from ..forces import ForceResult
 from ..kinematics.frames import rotate
 from ..spec import GROUND
 
+#: the driver torque's colour (no joint's reaction has it)
+MOMENT_COLOR = "#882255"
 BAR_MIN = 0.022     # bar width at least this fraction of the drawing's extent
 BLOCK_MIN = 0.07    # block sides at least this fraction of the extent
 
@@ -57,6 +59,7 @@ class Scene:
     labels: list = field(default_factory=list)        # (x, y, text)
     arrows: list = field(default_factory=list)
     couples: list = field(default_factory=list)
+    driver: str = ""                                  # the driver link, drawn on top
 
 
 def _point_positions(kin, k: int) -> dict[str, tuple]:
@@ -94,8 +97,7 @@ def _link_shapes(kin, k: int, extent: float) -> list[Shape2D]:
             out.append(Shape2D(link.name, link.number, "bar",
                                _to_global(kin, k, link.number, box)))
         elif s is not None or len(local) == 1:
-            w = max(s.length if s else 0.0, BLOCK_MIN * extent) / 2
-            h = max(s.height if s else 0.0, BLOCK_MIN * extent * 0.7) / 2
+            w, h = block_half(s, extent)
             box = np.array([[-w, -h], [w, -h], [w, h], [-w, h]])
             out.append(Shape2D(link.name, link.number, "block",
                                _to_global(kin, k, link.number, box)))
@@ -105,7 +107,18 @@ def _link_shapes(kin, k: int, extent: float) -> list[Shape2D]:
     return out
 
 
+def block_half(shape, extent: float) -> tuple[float, float]:
+    """Half width (along the link's x-axis) and half height of a block as drawn [m]: its
+    shape, enlarged to stay visible in a drawing of ``extent``."""
+    w = max(shape.length if shape is not None else 0.0, BLOCK_MIN * extent) / 2
+    h = max(shape.height if shape is not None else 0.0, BLOCK_MIN * extent * 0.7) / 2
+    return w, h
+
+
 def _guides(kin, k: int, pts: dict, extent: float) -> list:
+    """Each T joint's guide: a line along the slider's travel over the sweep (plus the block),
+    with walls (on ground) at the block's half-extent across the line: its height for a block
+    sliding along its x-axis (not its length)."""
     spec = kin.mechanism.spec
     out = []
     for j in spec.joints:
@@ -113,14 +126,28 @@ def _guides(kin, k: int, pts: dict, extent: float) -> list:
             continue
         g = spec.number(j.guide)
         u = rotate(np.asarray(j.line.direction, float), kin.theta[k, g])
+        normal = np.array([-u[1], u[0]])
         p = np.asarray(pts[j.point])
-        shape = spec.link(j.slider).shape
-        size = max(shape.length, shape.height) / 2 if shape and shape.kind == "block" else 0.0
-        size = max(size, BLOCK_MIN * extent / 2)
-        half = max(0.25 * extent, 2.5 * size)
-        normal = (float(-u[1]), float(u[0]))
-        out.append((tuple(p - half * u), tuple(p + half * u), j.guide == GROUND, normal,
-                    1.05 * size))
+        slider = spec.link(j.slider) if j.slider != GROUND else None
+        shape = slider.shape if slider is not None else None
+        drawn_block = slider is not None and (
+            (shape is not None and shape.kind == "block") or len(slider.points) == 1)
+        across = along = BLOCK_MIN * extent / 2
+        if drawn_block:
+            w, h = block_half(shape, extent)
+            # the slider's frame is parallel to the guide's: the line's direction in it
+            d = np.asarray(j.line.direction, float)
+            across = abs(d[1]) * w + abs(d[0]) * h
+            along = abs(d[0]) * w + abs(d[1]) * h
+        travel = np.zeros(1)
+        if slider is not None and j.guide == GROUND:
+            path = kin.named_point(j.point, j.slider).r
+            travel = (path - p) @ u
+        lo = min(float(np.min(travel)) - along, -0.25 * extent)
+        hi = max(float(np.max(travel)) + along, 0.25 * extent)
+        out.append((tuple(p + lo * u), tuple(p + hi * u), j.guide == GROUND,
+                    (float(normal[0]), float(normal[1])), across * 1.04 if drawn_block
+                    else across))
     return out
 
 
@@ -145,13 +172,22 @@ def build_scene(analysis, res: ForceResult, k: int, colors: dict[str, str],
         sc.arrows.append(Arrow(at, (float(r.fx[k]), float(r.fy[k])), symbols[j.name],
                                "reaction", colors[j.name]))
     for ld in ctx.loads:
+        if ld.link == GROUND:            # a spring or damper's frame end: drawn on its link
+            continue
         if ld.force is not None:
-            at = tuple(map(float, kin.named_point(ld.load.point, ld.load.link).r[k]))
+            at = tuple(map(float, kin.named_point(ld.point, ld.link).r[k]))
             sc.arrows.append(Arrow(at, tuple(map(float, ld.force[k])), ld.symbol, "load",
                                    "#000000"))
         else:
-            c = tuple(map(float, kin.com(ld.load.link).r[k]))
+            c = tuple(map(float, kin.com(ld.link).r[k]))
             sc.couples.append(Couple(c, float(ld.moment[k]), ld.symbol, "#000000"))
     pivot = tuple(map(float, ctx.joint_points[spec.driver.joint][k]))
-    sc.couples.append(Couple(pivot, float(res.driver_torque[k]), "M", "#b00000"))
+    sc.driver = spec.driver.link
+    if spec.driver.kind == "R":
+        sc.couples.append(Couple(pivot, float(res.driver_torque[k]), "M", MOMENT_COLOR))
+    else:                                 # the actuator's push along its line
+        joint = spec.joint(spec.driver.joint)
+        u = rotate(joint.line.direction, kin.theta[k, spec.number(joint.guide)])
+        push = float(res.driver_torque[k]) * np.asarray(u)
+        sc.arrows.append(Arrow(pivot, tuple(map(float, push)), "Fd", "driver", MOMENT_COLOR))
     return sc

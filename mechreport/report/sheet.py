@@ -24,6 +24,7 @@ from ..forces import METHODS
 from ..forces.context import DRIVER_TORQUE
 from ..forces.equations import Equation as FEquation
 from ..forces.equations import Step, Term
+from ..spec import GROUND
 from .files import atomic_write_text
 from .pdf import compile_typst, typst_escape
 from .sheet_math import (Equation, Expr, Num, Op, Paren, Point, Raw, RVec, Sym, fmt, math)
@@ -107,6 +108,7 @@ class AngleModel:
     actions: list = field(default_factory=list)
     loads: list = field(default_factory=list)
     methods: list = field(default_factory=list)
+    shown: list = field(default_factory=list)     # results in the report's units (rows)
 
 
 @dataclass
@@ -120,6 +122,7 @@ class SheetModel:
     conventions: list
     t_note: str
     angles: list
+    units: str = ""               # the report's display units, when they are not SI
 
 
 # ------------------------------------------------------------------------------ symbols
@@ -204,7 +207,9 @@ class Names:
 
     def __init__(self, spec):
         self.spec = spec
-        self.sym: dict[str, Sym] = {DRIVER_TORQUE: Sym("M", py_name="M")}
+        # the driver's effort: the torque M (R driver) or the actuator's push Fd (T driver)
+        self.sym: dict[str, Sym] = {DRIVER_TORQUE: Sym("M", py_name="M"),
+                                    "driver.force": Sym("F", "d", py_name="Fd")}
         self.vec: dict[str, str] = {}
         for j in spec.joints:
             force = spec.symbol(*j.links)
@@ -372,7 +377,7 @@ def _numeric(eq: FEquation, k: int, step_unknowns: set, known: dict, names: Name
             if u in step_unknowns and u not in used:
                 used.append(u)
         co = t.coeffs[k] * a.sign          # coefficients on the action's own components
-        if a.kind == "couple":
+        if a.kind == "couple" or len(a.unknowns) == 1:   # one scalar unknown: M, M03, Fd
             c = float(co[0])
             if abs(c) <= tol:
                 continue
@@ -588,7 +593,7 @@ def _step_model(number: int, step: Step, k: int, known: dict, origin: dict, name
             a = t.action
             if not a.unknowns or a.symbol in seen:
                 continue
-            if a.sign < 0:
+            if a.sign < 0 and a.category == "reaction":
                 jn = a.unknowns[0].split(".")[1]
                 seen.add(a.symbol)
                 pairs.append((Equation([Expr().add(1, vec_sym(a.symbol)),
@@ -634,12 +639,14 @@ def _method_model(name: str, result, k: int, names: Names, ctx, exact, torques: 
         for u in step.unknowns:
             origin[u] = i
     m = float(result.driver_torque[k])
-    torque = Equation([Expr().add(1, names[DRIVER_TORQUE]), scalar_expr(m, NM_)])
+    effort = result.driver_quantity
+    torque = Equation([Expr().add(1, names[effort]),
+                       scalar_expr(m, NM_ if effort == DRIVER_TORQUE else N_)])
     tex = None
     if exact:
         c = exact(m)
         if c is not None:
-            tex = Equation([Expr().add(1, names[DRIVER_TORQUE]), Expr().add(1, exact.atom(c))])
+            tex = Equation([Expr().add(1, names[effort]), Expr().add(1, exact.atom(c))])
     check = []
     if name == "power":
         for other, mo in torques.items():
@@ -661,9 +668,9 @@ def _vec(v) -> str:
     return f"({fmt(v[0])}, {fmt(v[1])})"
 
 
-def _angle_model(analysis, angle: float, names: Names, exact) -> AngleModel:
+def _angle_model(analysis, angle: float, names: Names, exact, display=None) -> AngleModel:
     kin, ctx, spec = analysis.kinematics, analysis.context, analysis.spec
-    k = kin.at(angle)
+    k = kin.index_of(angle)
     if k is None:
         reasons = [f.reason for f in analysis.flags if abs(f.angle - angle) < 1e-9]
         return AngleModel(angle, skipped="; ".join(reasons) or "left out of the analysis")
@@ -686,21 +693,41 @@ def _angle_model(analysis, angle: float, names: Names, exact) -> AngleModel:
             continue
         seen.add(j.point)
         am.points.append([j.point, _vec(ctx.joint_points[j.name][k])])
+    elements = {"spring": "spring force k (L - L0) along its line",
+                "damper": "damper force c dL/dt along its line",
+                "torsion_spring": "torsion spring couple k (theta_rel - a0)"}
     for ld in ctx.loads:
         load = ld.load
-        link = spec.link(load.link)
+        if ld.link == GROUND:            # a spring or damper's frame end acts on the frame
+            continue
+        link = spec.link(ld.link)
         if ld.force is not None:
-            v = kin.named_point(load.point, load.link).v[k]
-            rule = (f"opposes the velocity of {load.point}, v = {_vec(v)} m/s"
-                    if load.oppose == "velocity" else "as given")
-            am.loads.append([ld.symbol, f"{link.number} ({link.name})", load.point or "",
+            v = kin.named_point(ld.point, ld.link).v[k]
+            rule = (f"opposes the velocity of {ld.point}, v = {_vec(v)} m/s"
+                    if load.oppose == "velocity" else elements.get(load.kind, "as given"))
+            am.loads.append([ld.symbol, f"{link.number} ({link.name})", ld.point or "",
                              f"{_vec(ld.force[k])} N", rule])
         else:
             w = kin.omega[k, link.number]
             rule = (f"opposes the rotation of link {link.number}, omega = {fmt(w)} rad/s"
-                    if load.oppose == "rotation" else "as given")
+                    if load.oppose == "rotation" else elements.get(load.kind, "as given"))
             am.loads.append([ld.symbol, f"{link.number} ({link.name})", "",
                              f"{fmt(ld.moment[k])} N·m", rule])
+    if display is not None:
+        from ..post import reference_method
+        ref = analysis.forces[reference_method(analysis.forces)]
+        F, M = display.unit("force"), display.unit("moment")
+        for j in spec.joints:
+            r = ref.reactions.get(j.name)
+            if r is None:
+                continue
+            sym = spec.symbol(*j.links)
+            am.shown.append([sym, f"{display.num(r.fx[k], 'force')} {F}",
+                             f"{display.num(r.fy[k], 'force')} {F}",
+                             f"{display.num(r.f[k], 'force')} {F}",
+                             f"{display.num(r.moment[k], 'moment')} {M}"
+                             if r.moment is not None else ""])
+        am.shown.append(["M (driver)", "", "", "", f"{display.num(ref.driver_torque[k], 'moment')} {M}"])
     torques = {}
     for name in METHODS:
         res = analysis.forces.get(name)
@@ -748,10 +775,14 @@ def build_sheet(analysis, exact: bool = False) -> SheetModel:
          "angle are left out; values found in an earlier step are substituted), then the "
          "unknowns found. Numbers have 6 significant digits; SI units (m, kg, s, N, N·m)."],
     ]
-    angles = [_angle_model(analysis, float(a), names, ex) for a in spec.at]
+    from .model import display_of
+    display = display_of(analysis)
+    si = (display.length, display.force, display.moment, display.mass) == ("m", "N", "N*m", "kg")
+    angles = [_angle_model(analysis, float(a), names, ex, None if si else display)
+              for a in spec.at]
     return SheetModel(spec.name, str(spec.file), spec.description.strip(), exact, link_names,
                       joints, conventions, T_NOTE if any(j.type == "T" for j in spec.joints)
-                      else "", angles)
+                      else "", angles, "" if si else display.describe())
 
 
 # ------------------------------------------------------------------------------ rendering

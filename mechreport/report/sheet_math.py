@@ -15,14 +15,16 @@ WIDTH = 78            # plain-text characters per displayed line before breaking
 
 
 def fmt(x: float, zero: float = ZERO) -> str:
-    """6 significant digits, never ``-0``, ``e`` notation for very small/large magnitudes."""
+    """The one number formatter (:func:`mechreport.units.fmt`) with the sheets' digits
+    (``SHEET_DIGITS``: worked equations must balance to the textbook's rounding): never
+    ``-0``, ``e`` notation for very small/large magnitudes, 0 below ``zero``."""
+    from ..units import SHEET_DIGITS, fmt as number
     x = float(x)
     if not _m.isfinite(x):
         return "nan"
     if abs(x) < zero:
         return "0"
-    s = f"{x:.6g}"
-    return "0" if s in ("-0", "0") else s
+    return number(x, SHEET_DIGITS)
 
 
 # --------------------------------------------------------------------------- atoms

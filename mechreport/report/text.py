@@ -1,7 +1,8 @@
-"""Plain-text tables for the terminal."""
+"""Plain-text tables for the terminal (numbers by the one formatter, :mod:`mechreport.units`)."""
 from __future__ import annotations
 
 from ..kinematics import Kinematics
+from ..units import Display
 
 
 def _table(header: list[str], rows: list[list[str]]) -> str:
@@ -13,33 +14,61 @@ def _table(header: list[str], rows: list[list[str]]) -> str:
     return "\n".join(out)
 
 
-def _f(x: float) -> str:
-    return f"{x:.6g}" if abs(x) >= 1e-12 else "0"
+def kin_display(kin: Kinematics) -> Display:
+    """SI units (what ``expect`` entries are written in), with this sweep's scales so that
+    round-off prints as 0."""
+    import numpy as np
+
+    spec = kin.mechanism.spec
+    pts = [kin.named_point(p, o) for p, o in spec.named_points()]
+
+    def top(arrs):
+        vals = [float(np.max(np.abs(a))) for a in arrs if np.size(a)]
+        return max(vals, default=0.0) or 1.0
+
+    return Display(scales={"length": top([p.r for p in pts]), "velocity": top([p.v for p in pts]),
+                           "acceleration": top([p.a for p in pts] + [kin.com(l.name).a
+                                                                     for l in spec.links]),
+                           "omega": top([kin.omega]), "alpha": top([kin.alpha]),
+                           "angle": 360.0})
 
 
-def kinematics_rows(kin: Kinematics, k: int, fmt=_f) -> tuple[list[list[str]], list[list[str]]]:
+def kinematics_rows(kin: Kinematics, k: int, d: Display | None = None
+                    ) -> tuple[list[list[str]], list[list[str]]]:
     """Rows at angle index ``k``: points (name (link), x, y, vx, vy, ax, ay) and links
-    (number name, angle [deg], omega, alpha, a_C x, a_C y), numbers formatted by ``fmt``."""
+    (number name, angle [deg], omega, alpha, a_C x, a_C y), in the units of ``d``."""
+    d = d or kin_display(kin)
     spec = kin.mechanism.spec
     points = []
     for name, owner in spec.named_points():
         s = kin.named_point(name, owner)
-        points.append([f"{name} ({owner})", *(fmt(v) for v in (*s.r[k], *s.v[k], *s.a[k]))])
+        points.append([f"{name} ({owner})", d.num(s.r[k, 0], "length"),
+                       d.num(s.r[k, 1], "length"), d.num(s.v[k, 0], "velocity"),
+                       d.num(s.v[k, 1], "velocity"), d.num(s.a[k, 0], "acceleration"),
+                       d.num(s.a[k, 1], "acceleration")])
     links = []
     for link in spec.links:
         i = link.number
         c = kin.com(link.name)
-        links.append([f"{i} {link.name}", fmt(kin.angle_deg(link.name)[k]), fmt(kin.omega[k, i]),
-                      fmt(kin.alpha[k, i]), fmt(c.a[k, 0]), fmt(c.a[k, 1])])
+        links.append([f"{i} {link.name}", d.num(kin.angle_deg(link.name)[k], "angle"),
+                      d.num(kin.omega[k, i], "omega"), d.num(kin.alpha[k, i], "alpha"),
+                      d.num(c.a[k, 0], "acceleration"), d.num(c.a[k, 1], "acceleration")])
     return points, links
+
+
+def branch_lines(kin: Kinematics) -> list[str]:
+    """``dyad B_R C_R C_T (rod, slider) [RRT]: hint: C`` per dyad: which assembly branch each
+    took and why (docs/spec.md, section 7)."""
+    return [f"dyad {b.dyad} [{b.kind}]: {b.rule}" for b in kin.branches]
 
 
 def kinematics_table(kin: Kinematics) -> str:
     """Points (x, y, vx, vy, ax, ay) and links (angle, omega, alpha) at each angle of ``kin``."""
     spec = kin.mechanism.spec
+    d = kin_display(kin)
     blocks = []
     for k, angle in enumerate(kin.angles):
-        rows, lrows = kinematics_rows(kin, k)
+        rows, lrows = kinematics_rows(kin, k, d)
         pts = _table(["point", "x [m]", "y [m]", "vx [m/s]", "vy [m/s]", "ax [m/s^2]",
                       "ay [m/s^2]"], rows)
         lks = _table(["link", "angle [deg]", "omega [rad/s]", "alpha [rad/s^2]",

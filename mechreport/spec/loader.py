@@ -322,7 +322,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
             if ld.profile is not None:
                 ck.error(("loads", ld.index, "profile"), "a profile is given over the crank "
                                                           "angle: it needs an R driver")
-    expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src)
+    expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src, driver=driver)
     design = _design(top.get("design"), ck, joints) if "design" in top else Design()
     report = _report(top.get("report"), ck, units) if "report" in top else ReportSettings()
     sheet = top.get("sheet", False)
@@ -685,7 +685,8 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
             ck.error(path + (k,), f"a T driver drives its stroke: give 'speed' (and 'accel') in "
                                   f"the length unit per second, not '{k}'")
         if "speed" not in body:
-            ck.error(path, "a T driver needs 'speed' (length unit per second, not zero)")
+            if not wrong:
+                ck.error(path, "a T driver needs 'speed' (length unit per second, not zero)")
             return None
         speed = ck.number(body["speed"], path + ("speed",), nonzero=True, scale=length_scale)
         accel = (ck.number(body["accel"], path + ("accel",), scale=length_scale)
@@ -971,7 +972,7 @@ def _element(kind: str, item: dict, i: int, path: tuple, ck: _Checker, links: di
 
 
 def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | None,
-            src_lines: Source) -> list[Expectation]:
+            src_lines: Source, driver: Driver | None = None) -> list[Expectation]:
     if value is None:
         return []
     if not isinstance(value, list):
@@ -986,7 +987,8 @@ def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | N
         if body is None or any(k not in body for k in ("quantity", "value")):
             continue
         quantity = body["quantity"]
-        problem = _quantity_problem(quantity, links, joint_types, joints is not None, ck)
+        problem = _quantity_problem(quantity, links, joint_types, joints is not None, ck,
+                                    driver)
         if problem:
             ck.error(path + ("quantity",), problem)
             continue
@@ -1011,7 +1013,8 @@ def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | N
 
 
 def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
-                      joints_known: bool, ck: _Checker) -> str | None:
+                      joints_known: bool, ck: _Checker,
+                      driver: Driver | None = None) -> str | None:
     """None if ``q`` names something, else a message saying what it should look like."""
     usage = ("expected driver.torque, joint.J.fx|fy|f|moment|px|py|f_max|f_mean|f_equivalent|"
              "life_h, point.P.x|y|vx|vy|ax|ay, link.L.angle|omega|alpha, or a cycle quantity "
@@ -1019,7 +1022,11 @@ def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
     if not isinstance(q, str):
         return f"must be a quantity name ({usage}), got {_show(q)}"
     parts = q.split(".")
-    if q == "driver.torque" or q in CYCLE_UNITS:
+    if q in ("driver.torque", "driver.force") or q in CYCLE_UNITS:
+        if driver is not None and q.startswith("driver.") and q != driver.quantity:
+            article = "an" if driver.kind == "R" else "a"
+            return (f"'{q}': the driver joint '{driver.joint}' is {article} {driver.kind} "
+                    f"joint, whose effort is {driver.quantity}")
         return None
     if q.startswith(("cycle.", "balance.")):
         near = difflib.get_close_matches(q, list(CYCLE_UNITS), n=1)

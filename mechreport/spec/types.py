@@ -254,6 +254,11 @@ class Spec:
     design: Design = field(default_factory=Design)
     report: "ReportSettings" = field(default_factory=lambda: ReportSettings())
 
+    @property
+    def axis_unit(self) -> str:
+        """The sweep coordinate's unit as written: ``deg``, or the length unit of a stroke."""
+        return "deg" if self.driver.kind == "R" else self.units["length"]
+
     def cycle_problem(self) -> str | None:
         """Why cycle quantities are undefined for this spec (None when the sweep is one whole
         turn of a crank: an R driver with ground)."""

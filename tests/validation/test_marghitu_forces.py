@@ -85,7 +85,7 @@ def test_4_6_3_dyad_printed_decimals(slider_crank):
 def test_4_6_singular_positions_flagged(slider_crank):
     """ERRATA: with AB = BC the mechanism is singular at 90 and 270 deg (slider at A)."""
     assert [f.angle for f in slider_crank.flags] == [90.0, 270.0]
-    assert slider_crank.kinematics.at(90) is None
+    assert slider_crank.kinematics.index_of(90) is None
 
 
 # Section 4.7.1-4.7.3 results at phi = 30 deg, printed to 6 significant digits.
