@@ -482,8 +482,10 @@ def _ref_angles(analysis, ref: str, symbols, colors, d: Display
         stem = f"drawing_{deg(angle).replace('.', 'p').replace('-', 'm')}"
         fig = Figure(stem, f"The mechanism at {coord} {deg(angle)}{unit}: joint reactions "
                      f"(first link on second, {METHODS[ref].TITLE}, coloured per joint), "
-                     "applied loads (black) and the driver torque M (wine red); arrow lengths "
-                     "to one scale, values in the legend.", "drawing")
+                     "applied loads (black) and the driver's "
+                     + ("torque M" if spec.driver.kind == "R" else "push Fd along its line")
+                     + " (wine red); arrow lengths to one scale, values in the legend.",
+                     "drawing")
         refs.append(RefAngle(deg(angle), None, pts, links,
                              _reaction_rows(spec, analysis.forces, symbols, k, d),
                              _vectors(spec, analysis.forces[ref], symbols, k, d), fig,
