@@ -84,12 +84,7 @@ def verdict_line(v) -> str:
     """A missed design verdict by the one formatter: ``motor.rated_torque: cycle.torque.rms =
     2.278 N·m > limit 2 N·m``."""
     from ..units import fmt
-    if v.value is None:
-        return f"{v.item}: {v.quantity} is undefined: {v.why}"
-    op = (">=" if v.passed else "<") if v.at_least else ("<=" if v.passed else ">")
-    where = f" (joint {v.where})" if v.where else ""
-    return (f"{v.item}: {v.quantity}{where} = {fmt(v.value)} {v.unit} {op} limit "
-            f"{fmt(v.limit)} {v.unit}")
+    return v.describe(fmt)
 
 
 def problems(result, tol: float) -> list[str]:

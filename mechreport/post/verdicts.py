@@ -39,14 +39,15 @@ class Verdict:
         return self.value is not None and (self.value >= self.limit if self.at_least
                                            else self.value <= self.limit)
 
-    def describe(self) -> str:
-        """One line: ``motor.rated_torque: cycle.torque.rms = 41.2 N·m > limit 40 N·m``."""
+    def describe(self, fmt=lambda x: f"{x:.6g}") -> str:
+        """One line: ``motor.rated_torque: cycle.torque.rms = 41.2 N·m > limit 40 N·m``;
+        numbers by ``fmt``."""
         if self.value is None:
             return f"{self.item}: {self.quantity} is undefined: {self.why}"
         op = (">=" if self.passed else "<") if self.at_least else ("<=" if self.passed else ">")
         where = f" (joint {self.where})" if self.where else ""
-        return (f"{self.item}: {self.quantity}{where} = {self.value:.6g} {self.unit} {op} "
-                f"limit {self.limit:.6g} {self.unit}")
+        return (f"{self.item}: {self.quantity}{where} = {fmt(self.value)} {self.unit} {op} "
+                f"limit {fmt(self.limit)} {self.unit}")
 
 
 PEAK_TORQUE = "max |driver.torque|"
