@@ -144,3 +144,17 @@ def test_groups_are_named_in_the_report_model():
     a = analyse(TRIAD)
     assert [b.kind for b in a.kinematics.branches] == ["triad (class III)"]
     assert a.kinematics.branches[0].rule.startswith("default: of the 2 assemblies found")
+
+
+def test_springs_dampers_and_torsion_springs_are_drawn_as_elements():
+    from mechreport.report.drawing import draw_scene
+    from mechreport.report.scene import build_scene
+    a = analyse(ROOT / "specs" / "spring_loaded_slider_crank.yaml")
+    k = a.kinematics.index_of(30)
+    names = {j.name: j.name for j in a.spec.joints}
+    scene = build_scene(a, a.forces["newton_euler"], k, {j: "#000000" for j in names}, names)
+    kinds = [e[0] for e in scene.elements]
+    assert kinds == ["spring", "damper", "torsion_spring"]
+    S = a.kinematics.named_point("S", "ground").r[k]
+    assert scene.elements[0][1] == pytest.approx(tuple(S))
+    draw_scene(scene)                   # zig-zag, dashpot beside it, spiral: draws

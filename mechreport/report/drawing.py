@@ -158,8 +158,43 @@ def _links(ax, scene) -> None:
                     color="0.25", zorder=z + 0.005)
 
 
+def _element(ax, kind: str, p0, p1, size: float, color: str = "0.3") -> None:
+    """A spring as a zig-zag, a damper as a dashpot (piston in a cylinder) between ``p0`` and
+    ``p1``; a torsion spring as a spiral around its joint. ``size`` [m] sets their width."""
+    p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
+    if kind == "torsion_spring":
+        t = np.linspace(0, 3 * np.pi, 80)
+        rad = size * (0.35 + 0.65 * t / t[-1])
+        ax.plot(p0[0] + rad * np.cos(t), p0[1] + rad * np.sin(t), color=color, lw=0.9,
+                zorder=3.5)
+        return
+    d = p1 - p0
+    length = float(np.hypot(*d))
+    if length == 0:
+        return
+    u = d / length
+    n = np.array([-u[1], u[0]])
+    at = lambda s, w=0.0: p0 + s * d + w * size * n   # noqa: E731 - a point along the element
+    if kind == "spring":
+        ts = np.linspace(0.2, 0.8, 13)
+        zig = [at(0)] + [at(t, 0 if i in (0, 12) else (1 if i % 2 else -1))
+                         for i, t in enumerate(ts)] + [at(1)]
+        xy = np.array(zig)
+        ax.plot(xy[:, 0], xy[:, 1], color=color, lw=1.0, zorder=3.5)
+        return
+    if kind == "link":                         # a plain connector
+        ax.plot([p0[0], p1[0]], [p0[1], p1[1]], color=color, lw=1.0, zorder=3.5)
+        return
+    segs = [(at(0), at(0.5)), (at(0.5, -0.8), at(0.5, 0.8)),          # rod and piston
+            (at(0.35, -1), at(0.65, -1)), (at(0.35, 1), at(0.65, 1)),  # cylinder walls
+            (at(0.65, -1), at(0.65, 1)), (at(0.65), at(1))]            # its end, the far rod
+    for a, b in segs:
+        ax.plot([a[0], b[0]], [a[1], b[1]], color=color, lw=1.0, zorder=3.5)
+
+
 def _bounds(scene, arrows) -> tuple[np.ndarray, np.ndarray]:
     pts = [p for s in scene.shapes for p in s.xy]
+    pts += [p for _, p0, p1 in scene.elements for p in (p0, p1)]
     for p0, p1, *_ in scene.guides:
         pts += [p0, p1]
     pts += [(x, y) for x, y, _ in scene.pins]
@@ -207,6 +242,19 @@ def draw_scene(scene, d=None, title: str | None = None):
     labels = Labels(ax)
 
     _links(ax, scene)
+    size = 0.025 * ext
+    shared: dict = {}                          # elements between the same two points
+    for kind, p0, p1 in scene.elements:
+        key = frozenset((tuple(np.round(p0, 9)), tuple(np.round(p1, 9))))
+        k = shared[key] = shared.get(key, -1) + 1
+        if k and p0 != p1:                     # side by side, not on top of each other
+            along = np.subtract(p1, p0) / max(math.hypot(*np.subtract(p1, p0)), 1e-300)
+            shift = ((k + 1) // 2 * (1 if k % 2 else -1) * 3 * size
+                     * np.array([-along[1], along[0]]))
+            _element(ax, "link", p0, np.add(p0, shift), size)       # short connectors
+            _element(ax, "link", p1, np.add(p1, shift), size)
+            p0, p1 = tuple(np.add(p0, shift)), tuple(np.add(p1, shift))
+        _element(ax, kind, p0, p1, size)
     for p0, p1, on_ground, normal, offset in scene.guides:
         _guide(ax, p0, p1, on_ground, normal, offset)
     for x, y, on_ground in scene.pins:

@@ -60,6 +60,8 @@ class Scene:
     arrows: list = field(default_factory=list)
     couples: list = field(default_factory=list)
     driver: str = ""                                  # the driver link, drawn on top
+    elements: list = field(default_factory=list)      # (kind, p0, p1): spring, damper ends;
+                                                      # a torsion spring at its joint (p0 = p1)
 
 
 def _point_positions(kin, k: int) -> dict[str, tuple]:
@@ -164,6 +166,13 @@ def build_scene(analysis, res: ForceResult, k: int, colors: dict[str, str],
             sc.pins.append((*pts[j.point], GROUND in j.links))
     sc.guides = _guides(kin, k, pts, extent)
     sc.labels = [(x, y, name) for name, (x, y) in pts.items()]
+    for ld in spec.loads:
+        if ld.kind in ("spring", "damper"):
+            ends = [tuple(map(float, kin.named_point(p, l).r[k])) for l, p in ld.between]
+            sc.elements.append((ld.kind, *ends))
+        elif ld.kind == "torsion_spring":
+            at = tuple(map(float, kin.named_point(ld.joint, spec.joint(ld.joint).links[1]).r[k]))
+            sc.elements.append((ld.kind, at, at))
     for j in spec.joints:
         r = res.reactions.get(j.name)
         if r is None:
