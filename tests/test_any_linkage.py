@@ -158,3 +158,16 @@ def test_springs_dampers_and_torsion_springs_are_drawn_as_elements():
     S = a.kinematics.named_point("S", "ground").r[k]
     assert scene.elements[0][1] == pytest.approx(tuple(S))
     draw_scene(scene)                   # zig-zag, dashpot beside it, spiral: draws
+
+
+def test_report_power_of_a_t_driver_is_force_times_stroke_speed():
+    """Mean input power = mean(force) x speed (50 mm/s), not force x a link's omega; the
+    index gives peaks at strokes in mm."""
+    from mechreport.report.model import build_model
+    a = analyse(ROOT / "specs" / "hydraulic_boom.yaml")
+    model = build_model(a)
+    power = model.summary["mean_power"]
+    power = power["value"] if isinstance(power, dict) else power
+    force = a.forces["newton_euler"].driver_torque
+    assert power == pytest.approx(float(np.mean(force)) * 0.05, rel=1e-12)
+    assert model.index_row["peak"].endswith(" mm") and "°" not in model.index_row["bearing"]

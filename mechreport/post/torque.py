@@ -38,7 +38,8 @@ class TorqueStats:
 
 
 def torque_stats(res: ForceResult, omega: np.ndarray) -> TorqueStats | None:
-    """Statistics of ``res.driver_torque``; ``omega`` (n,) the driver's speed [rad/s]."""
+    """Statistics of ``res.driver_torque`` (the driver's effort); ``omega`` (n,) the driven
+    coordinate's rate [rad/s, or m/s for a T driver], so that ``power`` is effort x rate [W]."""
     t = np.asarray(res.driver_torque, float)
     if len(t) == 0:
         return None

@@ -125,6 +125,11 @@ class SweepData:
     xlabel: str = "crank angle φ [deg]"
     xrange: tuple | None = None         # (start, stop) of a sweep that is not one whole turn
 
+    @property
+    def at_unit(self) -> str:
+        """What follows a sweep value in text: ``°``, or `` mm`` for a stroke."""
+        return "°" if self.xlabel.endswith("[deg]") else " " + self.xlabel.rsplit("[", 1)[1][:-1]
+
 
 @dataclass
 class CycleData:
@@ -535,7 +540,7 @@ def _sweep(analysis, ref: str, symbols, colors) -> SweepData:
     return SweepData(analysis.angles, [float(a) for a in spec.at], flagged,
                      METHODS[ref].TITLE, res.driver_torque,
                      None if check is None or check is res else check.driver_torque,
-                     q.torque_stats(res, kin.omega[:, kin.index(spec.driver.link)]), joints,
+                     q.torque_stats(res, np.full(kin.n, spec.driver.omega)), joints,
                      polar, q.frame_load(kin, res, analysis.loads), near, width, kind, label,
                      f"{coord} [{'deg' if unit == '°' else unit.strip()}]",
                      None if whole else (float(spec.sweep.start), float(spec.sweep.stop)))
@@ -551,8 +556,8 @@ def effort_of(spec) -> tuple[str, str, str, str]:
     return "moment", "driver torque M", coord, "°"
 
 
-def _peak_text(p: q.Peak | None, kind: str, d: Display) -> str:
-    return DASH if p is None else f"{d.q(p.value, kind)} at {deg(p.angle)}°"
+def _peak_text(p: q.Peak | None, kind: str, d: Display, unit: str = "°") -> str:
+    return DASH if p is None else f"{d.q(p.value, kind)} at {deg(p.angle)}{unit}"
 
 
 def _torque_texts(st: q.TorqueStats | None, d: Display, kind: str = "moment",
@@ -581,7 +586,7 @@ def _bearing_rows(sw: SweepData, d: Display) -> list[list[str]]:
         kind = "pin" if js.type == "R" else "slider"
         near = DASH
         if pk is not None and fp is not None and pk.angle != fp.angle:
-            near = f"{d.num(pk.value, 'force')} at {deg(pk.angle)}°"
+            near = f"{d.num(pk.value, 'force')} at {deg(pk.angle)}{sw.at_unit}"
         top = fp or pk
         rows.append([js.name, js.symbol, kind, d.num(top.value, "force") if top else DASH,
                      deg(top.angle) if top else DASH,
@@ -789,6 +794,7 @@ def _summary(analysis, sw: SweepData, ref: str, status_line: str, power: dict | 
     cycle = analysis.review.values if analysis.review is not None else {}
     return {
         "mechreport_version": meta.version, "spec": analysis.spec.file,
+        "axis_unit": analysis.spec.axis_unit,
         "spec_sha256": meta.sha256, "date": meta.date,
         "name": analysis.spec.name, "title": meta.title or analysis.spec.name,
         "project": meta.project or None, "author": meta.author or None,
@@ -893,13 +899,13 @@ def _index_row(model_summary: dict, stem: str) -> dict:
 
     peak = t.get("peak") if t else None
     eu = t.get("unit", "N·m") if t else "N·m"
+    at = "°" if s.get("axis_unit", "deg") == "deg" else " " + s["axis_unit"]
     return {
         "stem": stem, "spec": s["spec"], "name": s["name"], "ok": True,
         "status": s["status"],
-        "peak": (f"{si(peak['value'], eu)} at {deg(peak['angle_deg'])}"
-                 f"{'°' if eu != 'N' else ''}" if peak else DASH),
+        "peak": (f"{si(peak['value'], eu)} at {deg(peak['angle_deg'])}{at}" if peak else DASH),
         "rms": si(t.get("rms"), eu) if t else DASH,
-        "bearing": (f"{si(big['value'], 'N')} ({big['joint']}, {deg(big['angle_deg'])}°)"
+        "bearing": (f"{si(big['value'], 'N')} ({big['joint']}, {deg(big['angle_deg'])}{at})"
                     if big else DASH),
         "power": si(power_value, "W") if power_value is not None else DASH,
         "worst": f"{fmt(w['relative'], 2)} ({w['quantity']})" if w else DASH,
@@ -957,8 +963,8 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
                        d.scales)
     summary["design"] = _design_json(analysis)
     figures = _figures(sw, refs, ref, d) | _design_figures(design)
-    shaking = {"force": _peak_text(q.peak(sw.angles, sw.shaking.f), "force", d),
-               "moment": _peak_text(q.peak(sw.angles, sw.shaking.m), "moment", d)}
+    shaking = {"force": _peak_text(q.peak(sw.angles, sw.shaking.f), "force", d, sw.at_unit),
+               "moment": _peak_text(q.peak(sw.angles, sw.shaking.m), "moment", d, sw.at_unit)}
     sweep = spec.sweep
     heads = {k: d.unit(k) for k in ("length", "velocity", "acceleration", "force", "moment",
                                     "mass", "inertia")}
