@@ -968,6 +968,7 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
     sweep = spec.sweep
     heads = {k: d.unit(k) for k in ("length", "velocity", "acceleration", "force", "moment",
                                     "mass", "inertia")}
+    heads["axis"] = spec.axis_unit          # deg, or a stroke's length unit
     return ReportModel(
         stem=stem, source=source, name=spec.name,
         description=[p.strip() for p in spec.description.strip().split("\n\n") if p.strip()],
@@ -1165,7 +1166,8 @@ def _figures(sw: SweepData, refs: list[RefAngle], ref: str, d: Display) -> dict[
     near = (f" Hatched: within {deg(sw.near_deg)}° of a left-out angle (near-singular; not "
             "used for the scale, values beyond it are marked at the edge)."
             if sw.flagged else "")
-    figs |= {"torque": Figure("torque", f"Driver torque over the sweep ({title}); mean and "
+    effort = "Driver torque" if sw.effort == "moment" else "Driver force"
+    figs |= {"torque": Figure("torque", f"{effort} over the sweep ({title}); mean and "
                               f"peak marked, left-out angles in grey.{near}", "torque"),
              "reactions": Figure("reactions", f"Magnitude of each joint's reaction over the "
                                  f"sweep ({title}; components are in results.csv), left-out "
