@@ -190,7 +190,8 @@ def _require_finite_inputs(ctx: ForceContext) -> None:
         if not ok.all():
             k = int(np.flatnonzero(~ok)[0])
             raise AnalysisError(
-                f"{file}: {what} is not a finite number at {ctx.kin.angles[k]:g} deg: the "
+                f"{file}: {what} is not a finite number at {ctx.kin.angles[k]:g} "
+                f"{ctx.spec.axis_unit}: the "
                 "inputs are beyond what double precision can represent (check masses, "
                 "lengths, speeds, gravity and loads)")
 

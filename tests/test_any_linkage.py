@@ -171,3 +171,55 @@ def test_report_power_of_a_t_driver_is_force_times_stroke_speed():
     force = a.forces["newton_euler"].driver_torque
     assert power == pytest.approx(float(np.mean(force)) * 0.05, rel=1e-12)
     assert model.index_row["peak"].endswith(" mm") and "°" not in model.index_row["bearing"]
+
+
+def test_newton_group_error_estimate_does_not_depend_on_size():
+    """The boom in mm and the same numbers in m (1000 times larger): same condition, same
+    estimated error, same flags (angle rows and coordinates made dimensionless)."""
+    text = (ROOT / "specs" / "hydraulic_boom.yaml").read_text()
+    small = analyse(parse_spec(text, "mm.yaml"))
+    large = analyse(parse_spec(text.replace("units: {length: mm, mass: kg}",
+                                            "units: {length: m, mass: kg}"), "m.yaml"))
+    np.testing.assert_allclose(large.kinematics.error, small.kinematics.error, rtol=1e-6)
+    assert [f.angle for f in large.flags] == [f.angle for f in small.flags]
+
+
+def test_frame_load_is_the_mechanism_momentum_balance(spec_path):
+    """What the frame receives, from the reactions (post.frame_load), equals minus what it
+    gives the mechanism, from the momentum balance alone: sum of weights and loads (a
+    spring's frame end included) minus the sum of m a_C (force), and their moments minus
+    those of m a_C and I alpha (moment about the frame load's point). Holds for cranks,
+    drivers between links and linear actuators."""
+    from mechreport.kinematics.frames import cross
+    from mechreport.post import frame_load
+    a = analyse(spec_path)
+    kin, spec = a.kinematics, a.spec
+    res = a.forces["newton_euler"]
+    frame = frame_load(kin, res, a.loads)
+    d = spec.driver
+    pivot = (kin.named_point(d.joint, d.link).r if d.crank else np.zeros((kin.n, 2)))
+    force = np.zeros((kin.n, 2))
+    moment = np.zeros(kin.n)
+    g = np.asarray(spec.gravity)
+    for link in spec.links:
+        c = kin.com(link.name)
+        k = link.number
+        net = link.mass * g - link.mass * c.a
+        force += net
+        moment += cross(c.r - pivot, net) - link.inertia * kin.alpha[:, k]
+    for ld in a.loads:
+        if ld.load.reacts_on == "ground":
+            continue        # on a moving link, its reaction on the frame: they cancel
+        # a load on a moving link reaches the frame through the joints; a spring's or
+        # damper's frame end pushes the frame directly: either way it counts once
+        if ld.force is not None:
+            at = kin.named_point(ld.point, ld.link).r
+            force += ld.force
+            moment += cross(at - pivot, ld.force)
+        else:
+            moment += ld.moment
+    scale = max(1.0, float(np.max(np.abs(force))))
+    np.testing.assert_allclose(np.stack([frame.fx, frame.fy], axis=1), force, rtol=0,
+                               atol=1e-9 * scale)
+    mscale = max(1.0, float(np.max(np.abs(moment))))
+    np.testing.assert_allclose(frame.m, moment, rtol=0, atol=1e-9 * mscale)

@@ -44,17 +44,21 @@ class Sweeps:
         base = full.angles
         keep = np.ones(len(base), bool)
         where = {}
+        # a stroke's step [length unit] 10x the angle's [deg]: a 0.01 mm second difference
+        # of a metre-sized boom is all rounding (eps / h^2)
+        self.step = 1.0 if mech.spec.driver.kind == "R" else 10.0
         for h in SHIFTS:
-            k = solve_kinematics(mech, base + h)
-            pos = np.clip(np.searchsorted(k.angles, np.round(base + h, 9)), 0, k.n - 1)
-            keep &= np.abs(k.angles[pos] - (base + h)) < 1e-9
+            k = solve_kinematics(mech, base + h * self.step)
+            pos = np.clip(np.searchsorted(k.angles, np.round(base + h * self.step, 9)), 0,
+                          k.n - 1)
+            keep &= np.abs(k.angles[pos] - (base + h * self.step)) < 1e-9
             where[h] = (k, pos)
         assert keep.sum() >= len(base) - 4, f"{(~keep).sum()} angles lost their neighbours"
         self.full = full
         self.kin = _rows(full, np.flatnonzero(keep))
         self.shifted = {h: _rows(k, pos[keep]) for h, (k, pos) in where.items()}
         for h, k in self.shifted.items():
-            assert np.allclose(k.angles, self.kin.angles + h, atol=1e-9, rtol=0)
+            assert np.allclose(k.angles, self.kin.angles + h * self.step, atol=1e-9, rtol=0)
         self.w = self.spec.driver.omega
         self.al = self.spec.driver.alpha
 
@@ -94,7 +98,7 @@ def assert_close(got, want, tol, what):
 
 def test_point_velocities_are_derivatives_of_positions(sweeps):
     s = sweeps
-    h = H1 * s.spec.driver.unit
+    h = H1 * s.step * s.spec.driver.unit
     tol = 1e-7 * abs(s.w) * s.length_scale()
     for link, p in s.points():
         plus, minus = s.shifted[H1].named_point(p, link), s.shifted[-H1].named_point(p, link)
@@ -104,7 +108,7 @@ def test_point_velocities_are_derivatives_of_positions(sweeps):
 
 def test_point_accelerations_are_derivatives_of_velocities(sweeps):
     s = sweeps
-    h = H1 * s.spec.driver.unit
+    h = H1 * s.step * s.spec.driver.unit
     tol = 1e-7 * s.w**2 * s.length_scale()
     for link, p in s.points():
         here = s.kin.named_point(p, link)
@@ -117,7 +121,7 @@ def test_point_accelerations_are_derivatives_of_velocities(sweeps):
 
 def test_point_accelerations_are_second_derivatives_of_positions(sweeps):
     s = sweeps
-    h = H2 * s.spec.driver.unit
+    h = H2 * s.step * s.spec.driver.unit
     tol = 1e-5 * s.w**2 * s.length_scale()
     for link, p in s.points():
         here = s.kin.named_point(p, link)
@@ -130,7 +134,7 @@ def test_point_accelerations_are_second_derivatives_of_positions(sweeps):
 def test_link_rates_are_derivatives_of_link_angles(sweeps):
     s = sweeps
     th0 = s.kin.theta
-    h1, h2 = H1 * s.spec.driver.unit, H2 * s.spec.driver.unit
+    h1, h2 = H1 * s.step * s.spec.driver.unit, H2 * s.step * s.spec.driver.unit
     d1 = wrap(s.shifted[H1].theta - s.shifted[-H1].theta) / (2 * h1)
     assert_close(s.kin.omega, s.w * d1, 1e-7 * abs(s.w), "omega from theta")
     dw = (s.shifted[H1].omega - s.shifted[-H1].omega) / (2 * h1)

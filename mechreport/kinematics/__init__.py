@@ -15,7 +15,8 @@ from ..linalg import SINGULAR_COND, batched_solve, batched_solve_cond
 from ..model import Mechanism
 from ..spec import GROUND
 from .frames import rotate
-from .groups import gamma, solve_newton_group, velocity_system
+from .constraints import mechanism_size
+from .groups import gamma, row_scale, solve_newton_group, velocity_system
 from .path import SweepPath, sweep_path
 from .position import BranchChoice, dyad_candidates, track_branches
 from .result import Flag, Kinematics, Motion, PointState, motion_of
@@ -144,15 +145,6 @@ def _positions(mech: Mechanism, path: SweepPath):
     return r, th, branches, motion_of(path, runs, spec.driver.omega, spec.axis_unit)
 
 
-def mechanism_size(spec) -> float:
-    """A length scale of the mechanism [m]: the largest distance between its named points."""
-    pts = [np.asarray(p) for p in spec.ground.values()]
-    for link in spec.links:
-        loc = np.array(list(link.points.values()))
-        pts.append(np.ptp(loc, axis=0) if len(loc) > 1 else np.zeros(2))
-    return max(float(np.max(np.abs(np.array(pts)))) if pts else 0.0, 1e-9) * 2
-
-
 def driver_pose(spec, value: np.ndarray) -> dict:
     """Pose of a driver link on ground, in closed form from the driven coordinate ``value``
     (n,) [rad or m]: a crank turned to ``value``, or a slider pushed ``value`` along its line
@@ -188,12 +180,22 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
     safe_th = {k: np.where(finite, t, 0.0) for k, t in th.items()}
     safe_r = {k: np.where(finite[:, None], x, 0.0) for k, x in r.items()}
     conds: list[tuple[str, np.ndarray]] = []
+    size = mechanism_size(spec)
     for group in mech.groups:
         A, known, drow = velocity_system(spec, group, safe_r, safe_th)
         b_v = -_known_part(known, v, w, (n, A.shape[1]))
         if drow is not None:
             b_v[:, drow] += spec.driver.omega
+        # a Newton group's system made dimensionless (angle rows as lengths, x and y columns
+        # times the mechanism's size): the same solution, a condition number independent of
+        # the mechanism's size (dyads keep the form their error estimate was calibrated in)
+        newton = group.dyad is None and len(group.links) > 1
+        rs = row_scale(spec, group, size) if newton else np.ones(A.shape[1])
+        cs = np.tile([size, size, 1.0], len(group.links)) if newton else np.ones(A.shape[1])
+        A = A * rs[:, None] * cs            # dimensionless: x = cs * (solution)
+        b_v = b_v * rs
         x, cond = batched_solve_cond(A, b_v)
+        x = x * cs
         sing = ~(cond < SINGULAR_COND)
         if not (group.driver is not None and len(group.links) == 1):
             conds.append((f"{group.kind} {group.label}", np.where(finite, cond, np.inf)))
@@ -207,7 +209,8 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
                                                                      (n, A.shape[1]))
         if drow is not None:
             b_a[:, drow] += spec.driver.alpha
-        x, _ = batched_solve(A, b_a)
+        x, _ = batched_solve(A, b_a * rs)
+        x = x * cs
         x = np.where(sing[:, None], 0.0, x)
         for i, link in enumerate(group.links):
             acc[link], al[link] = x[:, 3 * i:3 * i + 2], x[:, 3 * i + 2]

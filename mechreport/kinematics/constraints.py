@@ -116,3 +116,12 @@ def driver_row(spec: Spec, r: dict, th: dict, v=None, w=None):
         gamma = (dot((w[s] ** 2)[:, None] * s_p - (w[g] ** 2)[:, None] * s_l, u)
                  - 2 * w[g] * dot(edot, nrm) + w[g] ** 2 * dot(e, u))
     return dot(e, u), {s: bs, g: bg}, gamma
+
+
+def mechanism_size(spec) -> float:
+    """A length scale of the mechanism [m]: the largest distance between its named points."""
+    pts = [np.asarray(p) for p in spec.ground.values()]
+    for link in spec.links:
+        loc = np.array(list(link.points.values()))
+        pts.append(np.ptp(loc, axis=0) if len(loc) > 1 else np.zeros(2))
+    return max(float(np.max(np.abs(np.array(pts)))) if pts else 0.0, 1e-9) * 2

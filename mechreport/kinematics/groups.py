@@ -36,10 +36,23 @@ def rows(group: Group, driver: str) -> int:
     return sum(3 if j.name == driver else 2 for j in group.joints)
 
 
-def equations(spec: Spec, group: Group, r: dict, th: dict, value=None):
+def row_scale(spec: Spec, group: Group, scale: float) -> np.ndarray:
+    """(3k,) factors that turn the group's angle rows (a slider's relative angle, an R
+    driver's angle) into lengths, times the mechanism's size ``scale`` [m]: then every row is a
+    length, the condition number does not change with the mechanism's size, and one length
+    tolerance serves every row."""
+    out = []
+    for joint in group.joints:
+        out += [scale, 1.0] if joint.type == "T" else [1.0, 1.0]
+        if joint.name == group.driver:
+            out.append(scale if spec.driver.kind == "R" else 1.0)
+    return np.asarray(out)
+
+
+def equations(spec: Spec, group: Group, r: dict, th: dict, value=None, scale: float = 1.0):
     """Residual F (n, 3k) and Jacobian J (n, 3k, 3k) of the group at poses ``r``, ``th``
     (dicts over every link, (n, 2) and (n,)); ``value`` (n,) the driven coordinate [rad or m]
-    when the group holds the driver."""
+    when the group holds the driver. Angle rows are multiplied by ``scale`` (``row_scale``)."""
     links = group.links
     col = {l: 3 * i for i, l in enumerate(links)}
     n = next(iter(th.values())).shape[0]
@@ -61,7 +74,8 @@ def equations(spec: Spec, group: Group, r: dict, th: dict, value=None):
                 if link in col:
                     J[:, row, col[link]:col[link] + 3] = blk
             row += 1
-    return F, J
+    rs = row_scale(spec, group, scale)
+    return F * rs, J * rs[:, None]
 
 
 def velocity_system(spec: Spec, group: Group, r: dict, th: dict):
@@ -133,7 +147,7 @@ def newton(spec: Spec, group: Group, q: np.ndarray, known: Poses, idx: np.ndarra
     done = np.zeros(len(q), bool)
     best, since = 0, 0
     for _ in range(steps):
-        F, J = _equations_at(spec, group, q, known, idx, value)
+        F, J = _equations_at(spec, group, q, known, idx, value, scale)
         done = np.max(np.abs(F), axis=1) <= tol
         if done.all():
             break
@@ -145,15 +159,15 @@ def newton(spec: Spec, group: Group, q: np.ndarray, known: Poses, idx: np.ndarra
     for _ in range(1):       # quadratic convergence: one more step reaches round-off
         if not done.any():
             break
-        F, J = _equations_at(spec, group, q[done], known, idx[done], value)
+        F, J = _equations_at(spec, group, q[done], known, idx[done], value, scale)
         q[done] += _damped_step(J, F, q.shape[1], scale)
     return q, done
 
 
 def _equations_at(spec: Spec, group: Group, q: np.ndarray, known: Poses, idx: np.ndarray,
-                  value):
+                  value, scale: float):
     r, th = _poses(group, q, known, idx)
-    return equations(spec, group, r, th, None if value is None else value[idx])
+    return equations(spec, group, r, th, None if value is None else value[idx], scale)
 
 
 def _damped_step(J: np.ndarray, F: np.ndarray, width: int, scale: float) -> np.ndarray:

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..forces import ForceResult
 from ..kinematics import Kinematics
-from ..kinematics.frames import cross
+from ..kinematics.frames import cross, rotate
 from ..spec import GROUND, Joint
 
 
@@ -30,7 +30,8 @@ def joint_point(kin: Kinematics, joint: Joint) -> np.ndarray:
 @dataclass(frozen=True)
 class FrameLoad:
     """Resultant force ``fx``, ``fy`` (n,) [N] the mechanism exerts on the frame, and its
-    moment ``m`` (n,) [N m] about the driver's ground pivot (CCW positive)."""
+    moment ``m`` (n,) [N m] about the crank's ground pivot (CCW positive; about the frame's
+    origin for other drivers)."""
 
     fx: np.ndarray
     fy: np.ndarray
@@ -44,14 +45,25 @@ class FrameLoad:
 
 def frame_load(kin: Kinematics, res: ForceResult, loads=()) -> FrameLoad:
     """Shaking force and moment from method ``res``'s reactions: every joint with ground (for
-    [ground, X] the frame receives -F, for [X, ground] +F; T couples likewise), the motor's
-    reaction torque -M, the reaction -F (or -M) of each load that ``reacts_on: ground``, and
+    [ground, X] the frame receives -F, for [X, ground] +F; T couples likewise), a crank motor's
+    reaction torque -M (a T driver on a frame guide: its push back on the frame; a driver
+    between moving links reacts on them, not on the frame), the reaction -F (or -M) of each load that ``reacts_on: ground``, and
     the frame end of every spring, damper and torsion spring anchored on ground (``loads``: the
     analysis' AppliedLoads). Weights reach the frame through the joints."""
     spec = kin.mechanism.spec
-    pivot = joint_point(kin, spec.joint(spec.driver.joint))
+    d = spec.driver
     n = kin.n
-    fx, fy, m = np.zeros(n), np.zeros(n), -np.asarray(res.driver_torque, float)
+    pivot = joint_point(kin, spec.joint(d.joint)) if d.crank else np.zeros((n, 2))
+    fx, fy, m = np.zeros(n), np.zeros(n), np.zeros(n)
+    if d.crank:                       # the motor's stator takes -M
+        m = m - np.asarray(res.driver_torque, float)
+    elif d.kind == "T" and GROUND in d.links:   # the actuator pushes the frame back
+        joint = spec.joint(d.joint)
+        u = rotate(joint.line.direction, kin.theta[:, kin.index(joint.guide)])
+        sign = 1.0 if d.links[1] == GROUND else -1.0
+        f = sign * np.asarray(res.driver_torque, float)[:, None] * u
+        fx, fy = fx + f[:, 0], fy + f[:, 1]
+        m = m + cross(joint_point(kin, joint) - pivot, f)
     for joint in spec.joints:
         if GROUND not in joint.links or joint.name not in res.reactions:
             continue

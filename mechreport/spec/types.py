@@ -268,6 +268,10 @@ class Spec:
         if not self.sweep.whole_turn:
             return (f"cycle quantities need a sweep over one whole turn of the crank; this one "
                     f"runs from {self.sweep.start:g} to {self.sweep.stop:g} deg")
+        per_turn = 360.0 / self.sweep.step
+        if abs(per_turn - round(per_turn)) > 1e-6:
+            return (f"cycle quantities need a sweep step that divides the turn evenly; "
+                    f"{self.sweep.step:g} deg gives {per_turn:.4g} steps per turn")
         return None
 
     def link(self, name: str) -> Link:
