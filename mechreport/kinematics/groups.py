@@ -24,7 +24,7 @@ from ..spec import GROUND, Spec
 from .constraints import _wrap, driver_row, joint_blocks, joint_residual
 from .frames import rotate
 from .path import SweepPath
-from .position import BranchChoice, Poses, point_global
+from .position import BranchChoice, Poses, _first_false, point_global
 
 STARTS = 96          # starting poses for the assembly at the first reference angle
 NEWTON_STEPS = 40    # iterations per solve at most
@@ -350,11 +350,6 @@ def _extrapolate(q_prev: np.ndarray, t_prev: np.ndarray, t_new: np.ndarray) -> n
                 wgt *= (t_new - t_prev[j]) / (t_prev[i] - t_prev[j])
         out += wgt[:, None] * q_prev[i]
     return out
-
-
-def _first_false(mask: np.ndarray) -> int:
-    bad = np.flatnonzero(~mask)
-    return int(bad[0]) if bad.size else len(mask)
 
 
 def solve_newton_group(spec: Spec, group: Group, known: Poses, path: SweepPath,

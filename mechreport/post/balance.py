@@ -8,7 +8,7 @@ over the cycle is linear least squares in c: c = -sum(conj(u) S) / sum(|u|^2).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -23,6 +23,7 @@ class Counterweight:
     angle: float
     rms_before: float
     rms_after: float
+    balanced: np.ndarray | None = field(default=None, repr=False)   # (N, 2) [N], with it
 
 
 def counterweight(inertia_force: np.ndarray, crank_theta: np.ndarray, omega: float,
@@ -40,4 +41,5 @@ def counterweight(inertia_force: np.ndarray, crank_theta: np.ndarray, omega: flo
     if angle <= -180.0:
         angle += 360.0
     return Counterweight(float(abs(c)), angle, before,
-                         float(np.sqrt(np.mean(np.abs(after) ** 2))))
+                         float(np.sqrt(np.mean(np.abs(after) ** 2))),
+                         np.stack([after.real, after.imag], axis=1))

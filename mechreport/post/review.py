@@ -88,9 +88,7 @@ def review_of(kin, forces, loads, speed_fluctuation: float | None = None,
     values["balance.counterweight.mr"] = cw.mr
     values["balance.counterweight.angle"] = cw.angle
     values["balance.inertia_shaking.force_rms"] = cw.rms_after
-    c = cw.mr * np.exp(1j * np.radians(cw.angle))
-    added = c * np.exp(1j * crank) * (1j * spec.driver.alpha - omega ** 2)
-    balanced = inertial + np.stack([added.real, added.imag], axis=1)
+    balanced = cw.balanced
     rpm = abs(omega) * 30.0 / np.pi
     bearings = {}
     for name, r in res.reactions.items():
