@@ -88,16 +88,17 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> 
         spec = load_spec(spec)
     mech = build_mechanism(spec)
     kin = _require_angles(solve_kinematics(mech))
-    _require_finite_inputs(ForceContext(kin))
-    forces = solve_forces(kin, methods)
+    ctx = ForceContext(kin)                 # one per kinematics: its loads evaluated once
+    _require_finite_inputs(ctx)
+    forces = solve_forces(kin, methods, ctx)
     extra = _force_flags(kin, forces)
     if extra:
         bad = np.isin(np.round(kin.angles, 9), np.round([f.angle for f in extra], 9))
         kin = _require_angles(kin.take(~bad, tuple(sorted(kin.flags + tuple(extra),
                                                             key=lambda f: f.angle))))
-        forces = solve_forces(kin, methods)
+        ctx = ForceContext(kin)
+        forces = solve_forces(kin, methods, ctx)
     _require_finite(kin, forces)
-    ctx = ForceContext(kin)
     rev, why = _review(spec, kin, forces, ctx.loads)
     values = rev.values if rev is not None else None
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces),

@@ -15,13 +15,15 @@ METHODS: dict[str, ModuleType] = {m.NAME: m for m in (newton_euler, dalembert, d
                                                       power)}
 
 
-def solve_forces(kin: Kinematics, methods=None) -> dict[str, ForceResult]:
-    """Run the named methods (default: all) on one kinematics; results by method name."""
+def solve_forces(kin: Kinematics, methods=None,
+                 ctx: ForceContext | None = None) -> dict[str, ForceResult]:
+    """Run the named methods (default: all) on one kinematics; results by method name.
+    ``ctx``: the kinematics' ForceContext, if the caller has built it already."""
     names = list(METHODS) if methods is None else list(methods)
     unknown = [m for m in names if m not in METHODS]
     if unknown:
         raise ValueError(f"unknown method(s) {', '.join(unknown)}; valid: {', '.join(METHODS)}")
-    ctx = ForceContext(kin)
+    ctx = ForceContext(kin) if ctx is None else ctx
     return {name: METHODS[name].solve(ctx) for name in names}
 
 

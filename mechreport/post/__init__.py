@@ -5,7 +5,8 @@ from .balance import Counterweight, counterweight
 from .bearings import BearingLoad, bearing_carrier, bearing_load, bearing_trace, rating_life_h
 from .cycle import Cycle, CycleUndefined, cycle_of
 from .frame import FrameLoad, frame_load, inertia_force, joint_point, reference_method
-from .review import JOINT_UNITS, UNITS, Review, review, review_of, unit_of
+from ..quantities import CYCLE_UNITS as UNITS, JOINT_CYCLE_UNITS as JOINT_UNITS, unit_of
+from .review import Review, review, review_of
 from .verdicts import Verdict, verdicts
 from .torque import Peak, TorqueStats, peak, torque_stats
 from .transmission import transmission_angles

@@ -16,12 +16,11 @@ from .bearings import BearingLoad, bearing_load
 from .cycle import Cycle, cycle_of
 from .frame import frame_load, inertia_force, reference_method
 from .transmission import transmission_angles
-from ..quantities import CYCLE_UNITS as UNITS, JOINT_CYCLE_UNITS as JOINT_UNITS, unit_of
 
 @dataclass(frozen=True)
 class Review:
-    """Cycle quantities of one analysis. ``values`` by quantity name [SI, see ``UNITS``];
-    ``torque``, ``energy`` (N,) [N m, J] over ``cycle.angles`` (energy: running integral of
+    """Cycle quantities of one analysis. ``values`` by quantity name [SI; the units are in
+    ``mechreport.quantities``]; ``torque``, ``energy`` (N,) [N m, J] over ``cycle.angles`` (energy: running integral of
     torque minus its mean); ``bearings`` by joint; ``transmission`` (N,) [deg] per dyad;
     ``counterweight``; ``method`` the method the forces came from."""
 

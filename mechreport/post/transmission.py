@@ -26,7 +26,6 @@ def transmission_angles(kin: Kinematics) -> dict[str, np.ndarray]:
     - RRT / TRR (a slider fed by a rod): the angle between the rod (outer pin to interior pin)
       and the guide's normal.
     Other groups have none."""
-    spec = kin.mechanism.spec
     out: dict[str, np.ndarray] = {}
     for dyad in kin.mechanism.dyads:
         kind = dyad.kind
