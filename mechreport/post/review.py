@@ -20,9 +20,10 @@ from .transmission import transmission_angles
 @dataclass(frozen=True)
 class Review:
     """Cycle quantities of one analysis. ``values`` by quantity name [SI; the units are in
-    ``mechreport.quantities``]; ``torque``, ``energy`` (N,) [N m, J] over ``cycle.angles`` (energy: running integral of
-    torque minus its mean); ``bearings`` by joint; ``transmission`` (N,) [deg] per dyad;
-    ``counterweight``; ``method`` the method the forces came from."""
+    ``mechreport.quantities``]; ``torque``, ``energy`` (N,) [N m, J] over ``cycle.angles``
+    (energy: running integral of torque minus its mean); ``bearings`` by joint;
+    ``transmission`` (N,) [deg] per dyad; ``counterweight``; ``method`` the method the forces
+    came from."""
 
     cycle: Cycle
     method: str
