@@ -1,4 +1,10 @@
-"""The one batched linear solver: every kinematic and force system, all angles at once."""
+"""The one batched linear solver: every kinematic and force system, all angles at once.
+
+Systems are stored angle-last, ``(m, m, n)``: builders write whole rows of coefficients over
+the angle axis contiguously, and the equilibration's row and column maxima reduce over long
+contiguous runs instead of short last axes (measured 6-10x faster for 6x6 and 17x17 than the
+angle-first layout). LAPACK then solves each angle's matrix from a view.
+"""
 from __future__ import annotations
 
 import numpy as np
@@ -6,78 +12,109 @@ import numpy as np
 SINGULAR_COND = 1e10  # equilibrated condition number above which an angle is flagged singular
 
 
+class Equilibrated:
+    """A batch of square systems ``At`` (m, m, n), rows and columns scaled once to a largest
+    entry of 1 (which makes the condition number independent of units); solve any number of
+    right-hand sides with it.
+
+    ``solve_cond`` also estimates the condition number of the equilibrated matrix as
+    ||A||_F * max_k ||A^-1 z_k|| / ||z_k|| with two fixed random probes z_k solved alongside
+    b (a randomised estimate, within a small factor of ||A||_2 ||A^-1||_2, at the cost of one
+    solve rather than an SVD): inf where exactly singular, NaN where A or b is not finite (an
+    input that overflowed, or a pose that could not be solved). Singular angles get NaN."""
+
+    def __init__(self, At: np.ndarray):
+        m, _, n = At.shape
+        self.m, self.n = m, n
+        absA = np.abs(At)
+        rs = absA.max(axis=1)                  # (m, n)
+        rs[rs == 0] = 1.0
+        absA /= rs[:, None, :]
+        cs = absA.max(axis=0)                  # (m, n)
+        cs[cs == 0] = 1.0
+        As = At / rs[:, None, :]
+        As /= cs[None, :, :]
+        # non-finite input (a pose that could not be solved) is singular, never a LAPACK error
+        self.overflow = ~np.isfinite(As).all(axis=(0, 1))
+        if self.overflow.any():
+            As[:, :, self.overflow] = np.eye(m)[:, :, None]
+        self.rs, self.cs, self.As = rs.T, cs.T, As
+        self.exact = np.zeros(n, bool)         # exactly singular (a zero pivot), found on solve
+
+    def _solve(self, rhs: np.ndarray) -> np.ndarray:
+        """LAPACK on every angle: rhs (n, m, k) -> (n, m, k); bad angles inf."""
+        lhs = self.As.transpose(2, 0, 1)
+        try:
+            y = np.linalg.solve(lhs, rhs)
+        except np.linalg.LinAlgError:  # an exactly singular angle: LU finds a zero pivot
+            self.exact |= np.linalg.det(lhs) == 0
+            self.As[:, :, self.exact] = np.eye(self.m)[:, :, None]
+            y = np.linalg.solve(self.As.transpose(2, 0, 1), rhs)
+        y[self.overflow | self.exact] = np.inf
+        return y
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """x (n, m) for b (n, m); NaN where the system is not finite or exactly singular.
+        For angles already known to be regular (no condition estimate)."""
+        if self.m == 0:
+            return np.zeros((self.n, 0))
+        y = self._solve((b / self.rs)[:, :, None])[:, :, 0]
+        with np.errstate(over="ignore", invalid="ignore"):
+            x = y / self.cs
+        x[self.overflow | self.exact | ~np.isfinite(b).all(axis=1)] = np.nan
+        return x
+
+    def solve_cond(self, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """x (n, m) and the condition number estimate (n,) for b (n, m)."""
+        n, m = self.n, self.m
+        if m == 0:
+            return np.zeros((n, 0)), np.ones(n)
+        rhs = np.empty((n, m, 3))
+        rhs[:, :, 0] = b / self.rs
+        rhs[:, :, 1:] = _PROBES[:m]
+        overflow = self.overflow | ~np.isfinite(rhs[:, :, 0]).all(axis=1)
+        rhs[overflow, :, 0] = 0.0
+        y = self._solve(rhs)
+        y[overflow] = np.inf
+        with np.errstate(over="ignore", invalid="ignore"):
+            probe = np.sqrt(np.einsum("nik,nik->nk", y[:, :, 1:], y[:, :, 1:])) / _PROBE_NORMS[m]
+            cond = np.sqrt(np.einsum("ijn,ijn->n", self.As, self.As)) * np.max(probe, axis=1)
+        cond = np.where(np.isfinite(cond), cond, np.inf)
+        cond[overflow] = np.nan
+        with np.errstate(over="ignore", invalid="ignore"):
+            x = y[:, :, 0] / self.cs
+        x[~(cond < SINGULAR_COND)] = np.nan
+        return x, cond
+
+    def solve_many(self, B: np.ndarray) -> np.ndarray:
+        """X (n, m, k) for several right-hand sides B (n, m, k), for angles already known to
+        be regular (a superposition of loads over a solved system)."""
+        if self.m == 0:
+            return np.zeros((self.n, 0, B.shape[2]))
+        return self._solve(B / self.rs[:, :, None]) / self.cs[:, :, None]
+
+
+def angle_last(A: np.ndarray) -> np.ndarray:
+    """(n, m, m) -> (m, m, n), contiguous."""
+    return np.ascontiguousarray(A.transpose(1, 2, 0))
+
+
 def batched_solve(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Solve A x = b for A (n, m, m) and b (n, m); returns x (n, m) and singular (n,) bool.
-    See :func:`batched_solve_cond`; singular angles get NaN."""
+    See :class:`Equilibrated`; singular angles get NaN."""
     x, cond = batched_solve_cond(A, b)
     return x, ~(cond < SINGULAR_COND)
 
 
 def batched_solve_cond(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Solve A x = b for A (n, m, m) and b (n, m); returns x (n, m) and the estimated
-    condition number (n,) of the equilibrated matrix: inf where exactly singular, NaN where A
-    or b is not finite (an input that overflowed, or a pose that could not be solved).
-
-    Rows and columns are first equilibrated (each scaled to a largest entry of 1), which makes
-    the test independent of units. An angle is singular when the condition number of the
-    equilibrated matrix exceeds ``SINGULAR_COND``; the condition number is estimated as
-    ||A||_F * max_k ||A^-1 z_k|| / ||z_k|| with two fixed random probes z_k solved alongside b
-    (a randomised estimate, within a small factor of ||A||_2 ||A^-1||_2, at the cost of one
-    solve rather than an SVD). Singular angles get NaN.
-    """
-    n, m, _ = A.shape
-    if m == 0:
-        return np.zeros((n, 0)), np.ones(n)
-    absA = np.abs(A)
-    rs = absA.max(axis=2)
-    rs[rs == 0] = 1.0
-    absA /= rs[:, :, None]
-    cs = absA.max(axis=1)
-    cs[cs == 0] = 1.0
-    As = A / rs[:, :, None]
-    As /= cs[:, None, :]
-    rhs = np.empty((n, m, 3))
-    rhs[:, :, 0] = b / rs
-    rhs[:, :, 1:] = _PROBES[:m]
-    # non-finite input (a pose that could not be solved) is singular, never a LAPACK error
-    bad = ~(np.isfinite(As).all(axis=(1, 2)) & np.isfinite(rhs[:, :, 0]).all(axis=1))
-    overflow = bad.copy()
-    if bad.any():
-        As[bad] = np.eye(m)
-        rhs[bad, :, 0] = 0.0
-    try:
-        y = np.linalg.solve(As, rhs)
-    except np.linalg.LinAlgError:  # an exactly singular angle: LU finds a zero pivot
-        exact = np.linalg.det(As) == 0
-        As[exact] = np.eye(m)
-        y = np.linalg.solve(As, rhs)
-        bad |= exact
-    y[bad] = np.inf
-    with np.errstate(over="ignore", invalid="ignore"):
-        probe = np.sqrt(np.einsum("nik,nik->nk", y[:, :, 1:], y[:, :, 1:])) / _PROBE_NORMS[m]
-        cond = np.sqrt(np.einsum("nij,nij->n", As, As)) * np.max(probe, axis=1)
-    cond = np.where(np.isfinite(cond), cond, np.inf)
-    cond[overflow] = np.nan
-    with np.errstate(over="ignore", invalid="ignore"):
-        x = y[:, :, 0] / cs
-    x[~(cond < SINGULAR_COND)] = np.nan
-    return x, cond
+    """Solve A x = b for A (n, m, m) and b (n, m); x (n, m) and the condition number
+    estimate (n,) of the equilibrated matrix (see :class:`Equilibrated`)."""
+    return Equilibrated(angle_last(A)).solve_cond(b)
 
 
 def batched_solve_many(A: np.ndarray, B: np.ndarray) -> np.ndarray:
-    """Solve A X = B for A (n, m, m) and several right-hand sides B (n, m, k), rows and
-    columns equilibrated as in :func:`batched_solve_cond`; X (n, m, k). For angles already
-    known to be regular (a superposition of loads over a solved system)."""
-    n, m, _ = A.shape
-    if m == 0:
-        return np.zeros((n, 0, B.shape[2]))
-    rs = np.abs(A).max(axis=2)
-    rs[rs == 0] = 1.0
-    As = A / rs[:, :, None]
-    cs = np.abs(As).max(axis=1)
-    cs[cs == 0] = 1.0
-    As /= cs[:, None, :]
-    return np.linalg.solve(As, B / rs[:, :, None]) / cs[:, :, None]
+    """Solve A X = B for A (n, m, m) and several right-hand sides B (n, m, k)."""
+    return Equilibrated(angle_last(A)).solve_many(B)
 
 
 _PROBES = np.random.default_rng(20261121).standard_normal((64, 2))

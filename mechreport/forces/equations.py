@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..linalg import SINGULAR_COND, batched_solve_cond
+from ..linalg import SINGULAR_COND, Equilibrated
 
 
 
@@ -118,24 +118,24 @@ class Solution:
 
 
 def solve_step(step: Step, known: dict[str, np.ndarray], n: int) -> Solution:
-    """Solve one step for all angles at once: A (n, m, m) x = b (n, m)."""
+    """Solve one step for all angles at once: A x = b, A built angle-last (m, m, n)."""
     m = len(step.unknowns)
     if len(step.equations) != m:
         raise ValueError(f"{step.title}: {len(step.equations)} equations for {m} unknowns")
     col = {u: i for i, u in enumerate(step.unknowns)}
-    A = np.zeros((n, m, m))
-    b = np.zeros((n, m))
+    A = np.zeros((m, m, n))
+    b = np.zeros((m, n))
     for row, eq in enumerate(step.equations):
         for t in eq.terms:
             s = 1.0 if t.side == "rhs" else -1.0
-            b[:, row] -= s * t.const
+            b[row] -= s * t.const
             for k, u in enumerate(t.action.unknowns):
                 if u in col:
-                    A[:, row, col[u]] += s * t.coeffs[:, k]
+                    A[row, col[u]] += s * t.coeffs[:, k]
                 elif u in known:
-                    b[:, row] -= s * t.coeffs[:, k] * known[u]
+                    b[row] -= s * t.coeffs[:, k] * known[u]
                 else:
                     raise ValueError(f"{step.title}: equation '{eq.label}' needs {u}, "
                                      "which is neither solved here nor known")
-    x, cond = batched_solve_cond(A, b)
+    x, cond = Equilibrated(A).solve_cond(b.T)
     return Solution({u: x[:, i] for u, i in col.items()}, cond)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import AssemblyError
-from ..linalg import SINGULAR_COND, batched_solve, batched_solve_cond
+from ..linalg import SINGULAR_COND, Equilibrated, angle_last
 from ..model import Mechanism
 from ..spec import GROUND
 from .frames import rotate
@@ -194,7 +194,8 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
         cs = np.tile([size, size, 1.0], len(group.links)) if newton else np.ones(A.shape[1])
         A = A * rs[:, None] * cs            # dimensionless: x = cs * (solution)
         b_v = b_v * rs
-        x, cond = batched_solve_cond(A, b_v)
+        system = Equilibrated(angle_last(A))   # equilibrated once, for both solves
+        x, cond = system.solve_cond(b_v)
         x = x * cs
         sing = ~(cond < SINGULAR_COND)
         if not (group.driver is not None and len(group.links) == 1):
@@ -209,7 +210,7 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
                                                                      (n, A.shape[1]))
         if drow is not None:
             b_a[:, drow] += spec.driver.alpha
-        x, _ = batched_solve(A, b_a * rs)
+        x = system.solve(b_a * rs)
         x = x * cs
         x = np.where(sing[:, None], 0.0, x)
         for i, link in enumerate(group.links):
