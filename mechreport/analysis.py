@@ -97,7 +97,7 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> 
         kin = _require_angles(kin.take(~bad, tuple(sorted(kin.flags + tuple(extra),
                                                             key=lambda f: f.angle))))
         ctx = ForceContext(kin)
-        forces = solve_forces(kin, methods, ctx)
+        forces = {name: res.take(~bad, ctx) for name, res in forces.items()}
     _require_finite(kin, forces)
     rev, why = _review(spec, kin, forces, ctx.loads)
     values = rev.values if rev is not None else None

@@ -193,7 +193,7 @@ def test_sheet_follows_the_equation_objects(textbook):
     t = next(t for t in eq.terms if t.action.symbol == "F3ext")
     eq.terms[eq.terms.index(t)] = replace(t, const=t.const * 0 + 123.5)
     forces = dict(a.forces)
-    forces["dyad"] = replace(res, steps=steps)
+    forces["dyad"] = res.with_steps(steps)
     changed = replace(a, forces=forces)
     m = method(build_sheet(changed), "dyad")
     assert "F12x + F03x + 1.06066 + 1.41421 + 123.5 = 0" in numeric_lines(m)

@@ -15,16 +15,27 @@ METHODS: dict[str, ModuleType] = {m.NAME: m for m in (newton_euler, dalembert, d
                                                       power)}
 
 
+CHUNK = 16384   # angles solved together: bounds the equation objects' memory on long sweeps
+
+
 def solve_forces(kin: Kinematics, methods=None,
                  ctx: ForceContext | None = None) -> dict[str, ForceResult]:
     """Run the named methods (default: all) on one kinematics; results by method name.
-    ``ctx``: the kinematics' ForceContext, if the caller has built it already."""
+    ``ctx``: the kinematics' ForceContext, if the caller has built it already.
+
+    Sweeps longer than ``CHUNK`` angles are solved chunk by chunk. The results keep the
+    numbers, not the equation objects (``ForceResult.steps`` rebuilds them from ``ctx``)."""
     names = list(METHODS) if methods is None else list(methods)
     unknown = [m for m in names if m not in METHODS]
     if unknown:
         raise ValueError(f"unknown method(s) {', '.join(unknown)}; valid: {', '.join(METHODS)}")
     ctx = ForceContext(kin) if ctx is None else ctx
-    return {name: METHODS[name].solve(ctx) for name in names}
+    if kin.n <= CHUNK:
+        return {name: METHODS[name].solve(ctx).lean(ctx) for name in names}
+    chunks = [ForceContext(kin.take(slice(a, a + CHUNK), kin.flags))
+              for a in range(0, kin.n, CHUNK)]
+    return {name: ForceResult.join([METHODS[name].solve(c).lean(c) for c in chunks], ctx)
+            for name in names}
 
 
 __all__ = ["METHODS", "solve_forces", "ForceContext", "ForceResult", "JointReaction",

@@ -1,5 +1,8 @@
-"""Turn actions on a free body into labelled equations (shared by every method)."""
+"""Turn actions on a free body into labelled equations (shared by every method), and read
+the terms back (:func:`read_term`, the one decoder of what the encoders here build)."""
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -22,27 +25,32 @@ def force_term(act: Action, d: np.ndarray, side: str = "rhs") -> Term | None:
         return None
     if act.direction is not None:      # one unknown magnitude along a known direction
         return Term(act, act.sign * np.einsum("ni,ni->n", act.direction, d)[:, None],
-                    np.zeros(d.shape[0]), side, direction=d)
+                    np.zeros(d.shape[0]), side, direction=d, kind="projection")
     if act.unknowns:
-        return Term(act, act.sign * d, np.zeros(d.shape[0]), side, direction=d)
+        return Term(act, act.sign * d, np.zeros(d.shape[0]), side, direction=d,
+                    kind="projection")
     return Term(act, np.zeros((d.shape[0], 0)), np.einsum("ni,ni->n", act.value, d), side,
-                direction=d)
+                direction=d, kind="projection")
 
 
-def moment_term(act: Action, about: np.ndarray, n: int, side: str = "rhs") -> Term:
-    """Moment of an action about point ``about`` (n, 2), z-component (CCW positive)."""
+def moment_term(act: Action, about: np.ndarray, n: int, side: str = "rhs",
+                about_name: str | None = None) -> Term:
+    """Moment of an action about point ``about`` (n, 2) named ``about_name``, z-component
+    (CCW positive)."""
     if act.kind == "couple":
         if act.unknowns:
-            return Term(act, np.full((n, 1), act.sign), np.zeros(n), side)
-        return Term(act, np.zeros((n, 0)), np.asarray(act.value, float), side)
+            return Term(act, np.full((n, 1), act.sign), np.zeros(n), side, kind="couple")
+        return Term(act, np.zeros((n, 0)), np.asarray(act.value, float), side, kind="couple")
     lever = act.at - about
+    named = (("about", about_name),)
     if act.direction is not None:
         return Term(act, act.sign * cross(lever, act.direction)[:, None], np.zeros(n), side,
-                    lever=lever)
+                    lever=lever, kind="moment", factors=named)
     if act.unknowns:
         coeffs = act.sign * np.stack([-lever[:, 1], lever[:, 0]], axis=1)
-        return Term(act, coeffs, np.zeros(n), side, lever=lever)
-    return Term(act, np.zeros((n, 0)), cross(lever, act.value), side, lever=lever)
+        return Term(act, coeffs, np.zeros(n), side, lever=lever, kind="moment", factors=named)
+    return Term(act, np.zeros((n, 0)), cross(lever, act.value), side, lever=lever,
+                kind="moment", factors=named)
 
 
 def _at_centre(act: Action, p: np.ndarray) -> bool:
@@ -66,7 +74,7 @@ def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
     """sum M_about^(bodies) = 0 (moments about the named point ``about``)."""
     p = ctx.point_of(about) if at is None else at
     # a force applied at the moment centre itself has no moment: leave it out, as the text does
-    terms = [moment_term(a, p, ctx.n) for a in acts if not _at_centre(a, p)]
+    terms = [moment_term(a, p, ctx.n, about_name=about) for a in acts if not _at_centre(a, p)]
     return Equation(f"sum M_{about}^{body_tag(ctx, bodies)}", "moment", tuple(bodies), terms,
                     about=about)
 
@@ -80,7 +88,7 @@ def normal_constraint(ctx: ForceContext, joint: Joint) -> Equation:
     """A T joint's reaction has no component along its line: F . Delta = 0."""
     act = ctx.reaction(joint, joint.slider)[0]
     d = sliding_direction(ctx, joint)
-    term = Term(act, d.copy(), np.zeros(ctx.n), direction=d)
+    term = Term(act, d.copy(), np.zeros(ctx.n), direction=d, kind="projection")
     return Equation(f"{act.symbol} . Delta_{joint.name} = 0", "constraint", (joint.slider,),
                     [term], axis=f"Delta_{joint.name}")
 
@@ -91,18 +99,107 @@ def newton_euler_equations(ctx: ForceContext, link: str) -> list[Equation]:
     acts = ctx.actions_on([link], inertia=False)
     tag = body_tag(ctx, [link])
     out = []
+    lhs = Action(f"m{s.number} aC{s.number}", "force", "inertia", link, s.r, f"C{s.number}",
+                 value=s.mass * s.a)
     for axis, k in (("x", 0), ("y", 1)):
         d = np.broadcast_to(AXES[axis], (ctx.n, 2))
-        lhs = Action(f"m{s.number} aC{s.number}", "force", "inertia", link, s.r, f"C{s.number}",
-                     value=s.mass * s.a)
-        terms = [force_term(lhs, d, side="lhs")]
+        terms = [Term(lhs, np.zeros((ctx.n, 0)), s.mass * s.a[:, k], "lhs", direction=d,
+                      kind="inertia", factors=(("mass", s.mass), ("accel", s.a)))]
         terms += [t for t in (force_term(a, d) for a in acts) if t is not None]
         out.append(Equation(f"m{s.number} aC{s.number}{axis} = sum F^{tag} . {axis}", "force",
                             (link,), terms, axis=axis))
     lhs = Action(f"IC{s.number} alpha{s.number}", "couple", "inertia", link,
                  value=s.inertia * s.alpha)
-    terms = [moment_term(lhs, s.r, ctx.n, side="lhs")]
-    terms += [moment_term(a, s.r, ctx.n) for a in acts]
+    terms = [Term(lhs, np.zeros((ctx.n, 0)), lhs.value, "lhs", kind="inertia",
+                  factors=(("inertia", s.inertia), ("alpha", s.alpha)))]
+    terms += [moment_term(a, s.r, ctx.n, about_name=f"C{s.number}") for a in acts]
     out.append(Equation(f"IC{s.number} alpha{s.number} = sum M_C{s.number}^{tag}", "moment",
                         (link,), terms, about=f"C{s.number}"))
     return out
+
+
+# ------------------------------------------------------------------------ reading terms back
+
+@dataclass(frozen=True)
+class Piece:
+    """One product of a term, as a worked solution prints it, over the angles (n,):
+    ``factor`` times the ``comp`` component (``x``, ``y``; ``""`` for a couple or a
+    magnitude) of the term's action. The action's component is the unknown ``unknown`` times
+    ``sign`` (F21x = -F12x: the unknown is joint.B.fx, the sign -1), or the known ``value``.
+    ``factor`` is a lever component (+r_x for F_y, -r_y for F_x), a direction cosine, a mass,
+    an inertia or a rate."""
+
+    factor: np.ndarray
+    comp: str = ""
+    unknown: str | None = None
+    sign: float = 1.0
+    value: np.ndarray | None = None
+
+    def coeff(self) -> np.ndarray:
+        """What the piece adds to its unknown's coefficient (n,)."""
+        return self.factor * self.sign
+
+    def const(self) -> np.ndarray:
+        """What a known piece adds to the constant part (n,)."""
+        return self.factor * self.value
+
+
+def _force_parts(act: Action, n: int):
+    """A force's (comp, unknown, sign, value) for x and y, or its magnitude along
+    ``direction`` (one part, comp "")."""
+    if act.direction is not None:
+        return [("", act.unknowns[0], act.sign, None)]
+    if act.unknowns:
+        return [("x", act.unknowns[0], act.sign, None), ("y", act.unknowns[1], act.sign, None)]
+    value = np.broadcast_to(act.value, (n, 2))
+    return [("x", None, 1.0, value[:, 0]), ("y", None, 1.0, value[:, 1])]
+
+
+def read_term(t: Term) -> tuple[Piece, ...]:
+    """The products ``t`` is made of, from its ``kind`` and named factors: the decoder of
+    what :func:`force_term`, :func:`moment_term`, :func:`normal_constraint`,
+    :func:`newton_euler_equations` and the power balance build. Summed, the pieces give the
+    term's ``coeffs`` and ``const`` back (tests/test_sheet_terms.py checks it on every term
+    of every method and spec)."""
+    act, n = t.action, len(t.const)
+    ones = np.ones(n)
+    if t.kind == "inertia":
+        if act.kind == "force":                       # m (a . d)
+            a = t.factor("accel")
+            return (Piece(np.full(n, float(t.factor("mass"))), _axis_comp(t.direction),
+                          value=np.einsum("ni,ni->n", a, np.broadcast_to(t.direction, a.shape))),)
+        return (Piece(np.full(n, float(t.factor("inertia"))), value=t.factor("alpha")),)
+    if t.kind == "couple":
+        if act.unknowns:
+            return (Piece(ones, "", act.unknowns[0], act.sign),)
+        return (Piece(ones, value=np.broadcast_to(np.asarray(act.value, float), (n,))),)
+    if t.kind == "power" and act.unknowns:            # the driver: M omega or F v
+        return (Piece(np.broadcast_to(t.rate, (n,)), "", act.unknowns[0], act.sign),)
+    parts = None if act.kind == "couple" else _force_parts(act, n)
+    if t.kind == "projection":
+        d = np.broadcast_to(t.direction, (n, 2))
+        if act.direction is not None:
+            return (Piece(np.einsum("ni,ni->n", act.direction, d), "", act.unknowns[0],
+                          act.sign),)
+        return tuple(Piece(d[:, i], c, u, s, v) for i, (c, u, s, v) in enumerate(parts))
+    if t.kind == "moment":
+        lever = t.lever
+        if act.direction is not None:
+            return (Piece(cross(lever, act.direction), "", act.unknowns[0], act.sign),)
+        (cx, ux, sx, vx), (cy, uy, sy, vy) = parts     # r x F = r_x F_y - r_y F_x
+        return (Piece(lever[:, 0], cy, uy, sy, vy), Piece(-lever[:, 1], cx, ux, sx, vx))
+    if t.kind == "power":
+        rate = t.rate
+        if act.kind == "couple":
+            return (Piece(rate, value=np.broadcast_to(np.asarray(act.value, float), (n,))),)
+        return tuple(Piece(rate[:, i], c, u, s, v) for i, (c, u, s, v) in enumerate(parts))
+    raise ValueError(f"term of {act.symbol}: unknown kind {t.kind!r}")
+
+
+def _axis_comp(d) -> str:
+    """``x`` or ``y`` for a projection on i or j (every angle), else ``""``."""
+    d = np.asarray(d)
+    for name, axis in AXES.items():
+        if np.all(np.abs(d - axis) <= 0):
+            return name
+    return ""

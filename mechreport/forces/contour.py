@@ -196,7 +196,7 @@ def _probes(n: int) -> np.ndarray:
     return np.unique(np.linspace(0, n - 1, min(PROBES, n)).round().astype(int))
 
 
-def solve(ctx: ForceContext) -> ForceResult:
+def build_steps(ctx: ForceContext) -> tuple[Step, ...]:
     """Joints in a canonical order (by name, last first: the text's order for 4.6 and 4.7),
     each from the first loop through it, loops without the driver first, that gives enough
     independent equations with the reactions already found. Nothing depends on the order in
@@ -243,4 +243,8 @@ def solve(ctx: ForceContext) -> ForceResult:
         raise UnsupportedMechanism(
             f"{spec.file}: the contour method found no independent equations for joint(s) "
             f"{', '.join(missing)} along the loops {', '.join(l.label(spec) for l in loops)}")
-    return run_steps(NAME, ctx, steps)
+    return tuple(steps)
+
+
+def solve(ctx: ForceContext) -> ForceResult:
+    return run_steps(NAME, ctx, build_steps(ctx))

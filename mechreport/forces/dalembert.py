@@ -26,7 +26,7 @@ def moment_centre(ctx: ForceContext, link: str) -> str:
     return pins[0].point if pins else joints[0].point
 
 
-def solve(ctx: ForceContext) -> ForceResult:
+def build_steps(ctx: ForceContext) -> tuple[Step, ...]:
     spec = ctx.spec
     equations = []
     for link in spec.links:
@@ -38,4 +38,8 @@ def solve(ctx: ForceContext) -> ForceResult:
     unknowns = [u for j in spec.joints for u in reaction_unknowns(j)] + [ctx.driver_unknown]
     step = Step("D'Alembert equilibrium of every moving link", unknowns, equations,
                 tuple(l.name for l in spec.links))
-    return run_steps(NAME, ctx, [step])
+    return (step,)
+
+
+def solve(ctx: ForceContext) -> ForceResult:
+    return run_steps(NAME, ctx, build_steps(ctx))

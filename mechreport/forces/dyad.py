@@ -94,7 +94,7 @@ def _group_step(ctx: ForceContext, group: Group) -> Step:
     return Step(f"{name[0].upper()}{name[1:]} {group.label}", unknowns, eqs, group.links)
 
 
-def solve(ctx: ForceContext) -> ForceResult:
+def build_steps(ctx: ForceContext) -> tuple[Step, ...]:
     steps = []
     for group in reversed(ctx.mech.groups):
         if group.dyad is not None:
@@ -103,4 +103,8 @@ def solve(ctx: ForceContext) -> ForceResult:
             steps.append(_driver_step(ctx, group))
         else:
             steps.append(_group_step(ctx, group))
-    return run_steps(NAME, ctx, steps)
+    return tuple(steps)
+
+
+def solve(ctx: ForceContext) -> ForceResult:
+    return run_steps(NAME, ctx, build_steps(ctx))

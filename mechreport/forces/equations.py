@@ -44,12 +44,29 @@ class Action:
     direction: np.ndarray | None = None   # (n, 2) for a force of one unknown magnitude
 
 
+#: what a term is (``Term.kind``), and the named factors each kind multiplies its action by
+TERM_KINDS = {
+    "projection": "a force projected on ``direction``: F . d",
+    "moment": "the moment of a force about the point ``about``: r_PQ x F (``lever`` = r_PQ)",
+    "couple": "a couple in a moment equation: M",
+    "inertia": "Newton-Euler's left side: ``mass`` times ``accel`` . d (a force equation) or "
+               "``inertia`` times ``alpha`` (a moment equation)",
+    "power": "the power of an action: F . v (``rate`` = v of its point) or M omega (``rate`` = "
+             "omega)",
+}
+
+
 @dataclass(frozen=True)
 class Term:
     """One action's contribution to one equation: ``coeffs @ x[unknowns] + const``.
 
-    ``lever`` (n, 2) is r_PQ for moment equations (Q the action's point, P the moment centre);
-    ``direction`` (n, 2) the projection direction for force equations."""
+    ``kind`` says what the term is (see ``TERM_KINDS``) and the term carries the factors it was
+    built from: ``lever`` (n, 2) is r_PQ for moment equations (Q the action's point, P the
+    moment centre, named in ``factors`` as ``about``); ``direction`` (n, 2) the projection
+    direction for force equations; ``rate`` what a power term works on; ``factors`` the other
+    named factors (``mass``, ``accel`` (n, 2), ``inertia``, ``alpha`` (n,), ``about``), kept as
+    references to arrays already computed. :func:`mechreport.forces.builders.read_term` reads
+    them back as the products a worked solution prints."""
 
     action: Action
     coeffs: np.ndarray              # (n, len(action.unknowns))
@@ -58,6 +75,15 @@ class Term:
     lever: np.ndarray | None = None
     direction: np.ndarray | None = None
     rate: np.ndarray | None = None   # power terms: the velocity (n, 2) or omega (n,) it works on
+    kind: str = ""                   # one of TERM_KINDS ("" only for terms built elsewhere)
+    factors: tuple = ()              # ((name, value), ...): the named factors not above
+
+    def factor(self, name: str, default=None):
+        """The named factor ``name`` (see ``factors``), or ``default``."""
+        for key, value in self.factors:
+            if key == name:
+                return value
+        return default
 
 
 @dataclass

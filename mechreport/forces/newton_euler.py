@@ -20,7 +20,7 @@ TITLE = "Newton-Euler"
 SECTION = "4.1, 4.6.1, 4.7.1"
 
 
-def solve(ctx: ForceContext) -> ForceResult:
+def build_steps(ctx: ForceContext) -> tuple[Step, ...]:
     spec = ctx.spec
     equations = []
     for link in spec.links:
@@ -29,4 +29,8 @@ def solve(ctx: ForceContext) -> ForceResult:
     unknowns = [u for j in spec.joints for u in reaction_unknowns(j)] + [ctx.driver_unknown]
     step = Step("Newton-Euler equations of every moving link", unknowns, equations,
                 tuple(l.name for l in spec.links))
-    return run_steps(NAME, ctx, [step])
+    return (step,)
+
+
+def solve(ctx: ForceContext) -> ForceResult:
+    return run_steps(NAME, ctx, build_steps(ctx))

@@ -28,7 +28,7 @@ def power_equation(ctx: ForceContext) -> Equation:
     driver = next(a for link in ctx.spec.driver.links for a in ctx.driver_actions(link))
     driver = Action(driver.symbol, driver.kind, "driver", ctx.spec.driver.link,
                     unknowns=driver.unknowns)
-    terms.append(Term(driver, rate[:, None].copy(), np.zeros(n), rate=rate))
+    terms.append(Term(driver, rate[:, None].copy(), np.zeros(n), rate=rate, kind="power"))
     for link in ctx.spec.links:
         s = ctx.links[link.name]
         for act in ctx.inertia_actions(link.name) + [ctx.gravity_action(link.name)] + \
@@ -37,14 +37,19 @@ def power_equation(ctx: ForceContext) -> Equation:
                 v = s.v if act.category != "load" else \
                     ctx.kin.named_point(act.at_name, link.name).v   # loads: their own point
                 terms.append(Term(act, np.zeros((n, 0)), np.einsum("ni,ni->n", act.value, v),
-                                  rate=v))
+                                  rate=v, kind="power"))
             else:
-                terms.append(Term(act, np.zeros((n, 0)), act.value * s.omega, rate=s.omega))
+                terms.append(Term(act, np.zeros((n, 0)), act.value * s.omega, rate=s.omega,
+                                  kind="power"))
     return Equation("sum P = M omega1 + sum F . v + sum M omega = 0", "power",
                     tuple(l.name for l in ctx.spec.links), terms)
 
 
-def solve(ctx: ForceContext) -> ForceResult:
+def build_steps(ctx: ForceContext) -> tuple[Step, ...]:
     step = Step("Power balance of the whole mechanism", [ctx.driver_unknown], [power_equation(ctx)],
                 tuple(l.name for l in ctx.spec.links))
-    return run_steps(NAME, ctx, [step])
+    return (step,)
+
+
+def solve(ctx: ForceContext) -> ForceResult:
+    return run_steps(NAME, ctx, build_steps(ctx))

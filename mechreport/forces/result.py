@@ -1,7 +1,8 @@
 """The common result type of every force method."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
@@ -45,20 +46,75 @@ class ForceResult:
     ``angles`` (n,) values of the sweep coordinate [deg or length unit]; ``driver_torque``
     (n,) the driver's effort named ``driver_quantity``: the torque [N m] an R driver applies
     (CCW positive), or the force [N] a T driver's first link exerts on its second along the
-    line; ``reactions`` by joint name (empty for ``power``);
-    ``steps`` the labelled systems the method solved, in order; ``singular`` (n,) bool;
+    line; ``reactions`` by joint name (empty for ``power``); ``singular`` (n,) bool;
     ``cond`` (n,) the product of the steps' condition numbers (later steps take earlier steps'
     results as data, so their errors multiply): relative errors of the inputs grow by at most
-    about this factor; NaN where a system's coefficients were not finite (overflow)."""
+    about this factor; NaN where a system's coefficients were not finite (overflow).
+
+    ``steps``, the labelled systems the method solved in order (for worked solution sheets
+    and the split by source), are not kept with the numbers: they hold every coefficient at
+    every angle (most of an analysis' memory). They are built again from ``source`` (the
+    method's ForceContext) when first asked for, and then kept."""
 
     method: str
     angles: np.ndarray
     reactions: dict[str, JointReaction]
     driver_torque: np.ndarray
-    steps: tuple[Step, ...]
     singular: np.ndarray
     cond: np.ndarray | None = None
     driver_quantity: str = "driver.torque"   # "driver.force" for a T driver
+    source: Any = field(default=None, repr=False, compare=False)   # ForceContext
+    _steps: list = field(default_factory=list, repr=False, compare=False)
+
+    @property
+    def steps(self) -> tuple[Step, ...]:
+        if not self._steps:
+            if self.source is None:
+                return ()
+            from . import METHODS
+            self._steps.append(METHODS[self.method].build_steps(self.source))
+        return self._steps[0]
+
+    def with_steps(self, steps) -> "ForceResult":
+        """The same numbers shown with other equation objects (tests of the sheets)."""
+        return replace(self, _steps=[tuple(steps)])
+
+    def lean(self, source) -> "ForceResult":
+        """The same numbers without the equation objects, rebuilt from ``source`` (a
+        ForceContext over the same angles) when asked for."""
+        return replace(self, source=source, _steps=[])
+
+    def take(self, rows: np.ndarray, source) -> "ForceResult":
+        """The result at angle indices ``rows`` (index array or bool mask); ``source`` the
+        ForceContext over those angles."""
+        def cut(x):
+            return None if x is None else x[rows]
+        reactions = {k: replace(r, fx=r.fx[rows], fy=r.fy[rows], moment=cut(r.moment),
+                                px=cut(r.px), py=cut(r.py)) for k, r in self.reactions.items()}
+        return replace(self, angles=self.angles[rows], reactions=reactions,
+                       driver_torque=self.driver_torque[rows], singular=self.singular[rows],
+                       cond=cut(self.cond), source=source, _steps=[])
+
+    @staticmethod
+    def join(parts: list["ForceResult"], source) -> "ForceResult":
+        """Results over consecutive chunks of angles, joined into one over all of them."""
+        first = parts[0]
+        if len(parts) == 1:
+            return first.lean(source)
+
+        def cat(get):
+            vals = [get(p) for p in parts]
+            return None if vals[0] is None else np.concatenate(vals)
+        reactions = {}
+        for k, r in first.reactions.items():
+            reactions[k] = replace(
+                r, fx=cat(lambda p: p.reactions[k].fx), fy=cat(lambda p: p.reactions[k].fy),
+                moment=cat(lambda p: p.reactions[k].moment),
+                px=cat(lambda p: p.reactions[k].px), py=cat(lambda p: p.reactions[k].py))
+        return replace(first, angles=cat(lambda p: p.angles), reactions=reactions,
+                       driver_torque=cat(lambda p: p.driver_torque),
+                       singular=cat(lambda p: p.singular), cond=cat(lambda p: p.cond),
+                       source=source, _steps=[])
 
     def quantity(self, name: str) -> np.ndarray | None:
         """A result quantity by its ``expect`` name, e.g. ``joint.B.fx`` or ``driver.torque``
@@ -102,8 +158,8 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
             p = ctx.joint_points[j.name] + t[:, None] * u
             reactions[j.name] = JointReaction(j.name, "T", fx, fy, m, p[:, 0], p[:, 1])
     quantity = ctx.spec.driver.quantity
-    return ForceResult(method, ctx.kin.angles, reactions, values[quantity], tuple(steps),
-                       singular, cond, quantity)
+    return ForceResult(method, ctx.kin.angles, reactions, values[quantity], singular, cond,
+                       quantity, ctx, [tuple(steps)])
 
 
 def run_steps(method: str, ctx, steps) -> ForceResult:

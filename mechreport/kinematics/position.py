@@ -301,28 +301,34 @@ def _flips(xp: np.ndarray, xm: np.ndarray, angles: np.ndarray) -> np.ndarray:
         return np.sqrt(np.sum(x * x, axis=1))
 
     X = (xp, xm)
-    t0, t1, t2, t3 = angles[:-3], angles[1:-2], angles[2:-1], angles[3:]
     step = norm(xp[2:] - xp[1:-1]) + norm(xm[2:] - xm[1:-1])
     gap = np.minimum(norm(xp[1:-1] - xm[1:-1]), norm(xp[2:] - xm[2:]))
-    close = gap <= 2 * step
-    scale = ((angles[2:] - angles[1:-1]) / (angles[1:-1] - angles[:-2]))[:, None]
-    # Lagrange weights extrapolating (t0, t1, t2) to t3, for intervals k >= 2
-    w0 = ((t3 - t1) * (t3 - t2) / ((t0 - t1) * (t0 - t2)))[:, None]
-    w1 = ((t3 - t0) * (t3 - t2) / ((t1 - t0) * (t1 - t2)))[:, None]
-    w2 = ((t3 - t0) * (t3 - t1) / ((t2 - t0) * (t2 - t1)))[:, None]
     decide = np.zeros((2, 2, n - 2), bool)   # [flip before k, flip before k-1, interval k-1]
+    J = np.flatnonzero(gap <= 2 * step)      # only where the candidates are close (a touch)
+    if J.size == 0:            # no touch: no flip (what _resolve gives for all-False)
+        return flips
+    t0, t1, t2, t3 = (angles[np.maximum(J - 1, 0)], angles[J], angles[J + 1], angles[J + 2])
+    scale = ((t3 - t2) / (t2 - t1))[:, None]
+    # Lagrange weights extrapolating (t0, t1, t2) to t3 (from the third angle of the run on)
+    third = J >= 1
+    with np.errstate(divide="ignore", invalid="ignore"):
+        w0 = ((t3 - t1) * (t3 - t2) / ((t0 - t1) * (t0 - t2)))[:, None]
+        w1 = ((t3 - t0) * (t3 - t2) / ((t1 - t0) * (t1 - t2)))[:, None]
+        w2 = ((t3 - t0) * (t3 - t1) / ((t2 - t0) * (t2 - t1)))[:, None]
+    back = np.maximum(J - 1, 0)
     for a in (0, 1):
         for b in (0, 1):
-            votes = np.zeros(n - 2)
+            votes = np.zeros(J.size)
             for lab in (0, 1):
                 same, other = X[lab], X[1 - lab]
-                x_k, x_k1 = same[1:-1], X[lab ^ a][:-2]
+                x_k, x_k1 = same[J + 1], X[lab ^ a][J]
                 pred = x_k + (x_k - x_k1) * scale                  # two-point prediction
-                x_k2 = X[lab ^ a ^ b][:-3]
-                quad = w0 * x_k2 + w1 * x_k1[1:] + w2 * x_k[1:]
-                pred[1:] = np.where(np.isfinite(quad), quad, pred[1:])
-                votes += norm(other[2:] - pred) < norm(same[2:] - pred)
-            decide[a, b] = (votes == 2) & close
+                with np.errstate(invalid="ignore", over="ignore"):
+                    quad = w0 * X[lab ^ a ^ b][back] + w1 * x_k1 + w2 * x_k
+                use = third[:, None] & np.isfinite(quad)
+                pred = np.where(use, quad, pred)
+                votes += norm(other[J + 2] - pred) < norm(same[J + 2] - pred)
+            decide[a, b, J] = votes == 2
     flips[1:] = _resolve(decide)
     return flips
 
