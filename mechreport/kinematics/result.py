@@ -1,7 +1,7 @@
 """The kinematics result: link-frame states over the analysed crank angles."""
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -122,6 +122,7 @@ class Kinematics:
     branches: tuple[BranchChoice, ...]
     motion: Motion | None = None
     error: np.ndarray | None = None   # (n,) estimated relative error of the accelerations
+    _memo: dict = field(init=False, default_factory=dict, repr=False, compare=False)
 
     @property
     def n(self) -> int:
@@ -131,13 +132,19 @@ class Kinematics:
         return self.mechanism.spec.number(link)
 
     def point(self, link: str, local) -> PointState:
-        """State of the point at ``local`` [m] in ``link``'s frame."""
-        k = self.index(link)
-        s = rotate(local, self.theta[:, k])
-        w, al = self.omega[:, k][:, None], self.alpha[:, k][:, None]
-        return PointState(self.r[:, k] + s,
-                          self.v[:, k] + w * perp(s),
-                          self.a[:, k] + al * perp(s) - w**2 * s)
+        """State of the point at ``local`` [m] in ``link``'s frame (computed once; the arrays
+        are read-only)."""
+        key = (link, float(local[0]), float(local[1]))
+        if key not in self._memo:
+            k = self.index(link)
+            s = rotate(local, self.theta[:, k])
+            w, al = self.omega[:, k][:, None], self.alpha[:, k][:, None]
+            state = PointState(self.r[:, k] + s, self.v[:, k] + w * perp(s),
+                               self.a[:, k] + al * perp(s) - w**2 * s)
+            for x in (state.r, state.v, state.a):
+                x.setflags(write=False)
+            self._memo[key] = state
+        return self._memo[key]
 
     def named_point(self, name: str, link: str | None = None) -> PointState:
         """A named point of ``link`` (default: the first link in spec order that has it)."""
