@@ -96,7 +96,8 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> 
         bad = np.isin(np.round(kin.angles, 9), np.round([f.angle for f in extra], 9))
         kin = _require_angles(kin.take(~bad, tuple(sorted(kin.flags + tuple(extra),
                                                             key=lambda f: f.angle))))
-        ctx = ForceContext(kin)
+        memo, ctx = ctx.memo, ForceContext(kin)
+        ctx.memo = memo                     # the same equations as the numbers came from
         forces = {name: res.take(~bad, ctx) for name, res in forces.items()}
     _require_finite(kin, forces)
     rev, why = _review(spec, kin, forces, ctx.loads)

@@ -32,8 +32,12 @@ def solve_forces(kin: Kinematics, methods=None,
     ctx = ForceContext(kin) if ctx is None else ctx
     if kin.n <= CHUNK:
         return {name: METHODS[name].solve(ctx).lean(ctx) for name in names}
+    if contour.NAME in names:
+        contour.plan(ctx)         # chosen once, over the whole sweep's probe angles
     chunks = [ForceContext(kin.take(slice(a, a + CHUNK), kin.flags))
               for a in range(0, kin.n, CHUNK)]
+    for c in chunks:
+        c.memo = ctx.memo
     return {name: ForceResult.join([METHODS[name].solve(c).lean(c) for c in chunks], ctx)
             for name in names}
 

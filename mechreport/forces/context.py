@@ -53,6 +53,7 @@ class ForceContext:
         self.mech: Mechanism = kin.mechanism
         self.spec = self.mech.spec
         self.n = kin.n
+        self.memo: dict = {}     # choices made once per analysis (the contour method's plan)
         self.gravity = np.asarray(self.spec.gravity, float)
         self.loads: list[AppliedLoad] = evaluate_loads(kin)
         self.links: dict[str, LinkState] = {}

@@ -21,6 +21,7 @@ E, D_T, D on 0-3-4-5-0; then C, B_T, B, A). Nothing depends on the order of the 
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from itertools import combinations
 
 import numpy as np
@@ -91,6 +92,7 @@ def _candidates(ctx: ForceContext, loop: Loop, joint: Joint, unknowns: list[str]
         key = (w.name, tuple(body))
         if key not in cache:
             cache[key] = _equation(ctx, w, body)
+            RECIPES[id(cache[key])] = ("cut", w.name, tuple(body))
         eq = cache[key]
         needed = set(eq.unknown_names())
         if needed & set(unknowns) and needed <= set(unknowns) | known:
@@ -132,7 +134,7 @@ def _try_joint(ctx: ForceContext, loop: Loop, joint: Joint, known: set[str],
                probes: np.ndarray, cache: dict) -> Step | None:
     """Enough independent equations along ``loop`` for ``joint``'s unknowns, or None."""
     unknowns = _unknowns(ctx, [joint])
-    start = [normal_constraint(ctx, joint)] if joint.type == "T" else []
+    start = [_normal(ctx, joint)] if joint.type == "T" else []
     chosen = _select(unknowns, start, _candidates(ctx, loop, joint, unknowns, known, cache),
                      probes)
     if chosen is None:
@@ -147,7 +149,7 @@ def _try_joints(ctx: ForceContext, joints, loops: list[Loop], known: set[str],
     triad or larger Assur group), solved together from the equations along every loop cut at
     any of them."""
     unknowns = _unknowns(ctx, joints)
-    start = [normal_constraint(ctx, j) for j in joints if j.type == "T"]
+    start = [_normal(ctx, j) for j in joints if j.type == "T"]
     candidates: list[Equation] = []
     for joint in joints:
         for loop in (l for l in loops if joint.name in {j.name for j in l.joints}):
@@ -196,7 +198,71 @@ def _probes(n: int) -> np.ndarray:
     return np.unique(np.linspace(0, n - 1, min(PROBES, n)).round().astype(int))
 
 
+def _normal(ctx: ForceContext, joint: Joint) -> Equation:
+    eq = normal_constraint(ctx, joint)
+    RECIPES[id(eq)] = ("normal", joint.name)
+    return eq
+
+
+RECIPES: dict[int, tuple] = {}   # id(equation or bridge step) -> how it was built (a search)
+
+
+@dataclass(frozen=True)
+class StepPlan:
+    """A step the search chose: its title, unknowns and bodies, and each equation's recipe
+    (``("cut", W, body)``, ``("normal", joint)``, or ``("bridge", joint)`` for a whole
+    step), to be built again over any angles."""
+
+    title: str
+    unknowns: tuple[str, ...]
+    recipes: tuple[tuple, ...]
+    bodies: tuple[str, ...]
+
+
+def plan(ctx: ForceContext) -> tuple[StepPlan, ...]:
+    """The equations the method uses, chosen once per analysis (kept in ``ctx.memo``, which
+    the chunks of a long sweep share): the search judges independence at up to ``PROBES``
+    angles, so it runs on a context of those angles alone."""
+    if "contour" not in ctx.memo:
+        probes = _probes(ctx.n)
+        small = ForceContext(ctx.kin.take(probes, ctx.kin.flags)) if len(probes) < ctx.n \
+            else ctx
+        RECIPES.clear()
+        try:
+            steps = _search(small)
+            ctx.memo["contour"] = tuple(
+                StepPlan(s.title, tuple(s.unknowns),
+                         (RECIPES[id(s)],) if id(s) in RECIPES
+                         else tuple(RECIPES[id(e)] for e in s.equations), tuple(s.bodies))
+                for s in steps)
+        finally:
+            RECIPES.clear()
+    return ctx.memo["contour"]
+
+
+def _realise(ctx: ForceContext, p: StepPlan, known: set[str]) -> Step:
+    if p.recipes[0][0] == "bridge":
+        return _bridge_step(ctx, ctx.spec.joint(p.recipes[0][1]), known)
+    eqs = []
+    for r in p.recipes:
+        if r[0] == "normal":
+            eqs.append(normal_constraint(ctx, ctx.spec.joint(r[1])))
+        else:
+            eqs.append(_equation(ctx, ctx.spec.joint(r[1]), list(r[2])))
+    return Step(p.title, list(p.unknowns), eqs, p.bodies)
+
+
 def build_steps(ctx: ForceContext) -> tuple[Step, ...]:
+    """The planned steps (see :func:`plan`) built over ``ctx``'s angles."""
+    known: set[str] = set()
+    steps = []
+    for p in plan(ctx):
+        steps.append(_realise(ctx, p, known))
+        known.update(p.unknowns)
+    return tuple(steps)
+
+
+def _search(ctx: ForceContext) -> tuple[Step, ...]:
     """Joints in a canonical order (by name, last first: the text's order for 4.6 and 4.7),
     each from the first loop through it, loops without the driver first, that gives enough
     independent equations with the reactions already found. Nothing depends on the order in
@@ -235,6 +301,7 @@ def build_steps(ctx: ForceContext) -> tuple[Step, ...]:
     for joint in (j for j in order if j.name not in solved):
         step = _bridge_step(ctx, joint, known)   # a joint on no loop (a lone crank)
         if step is not None:
+            RECIPES[id(step)] = ("bridge", joint.name)
             steps.append(step)
             solved.add(joint.name)
             known.update(step.unknowns)
