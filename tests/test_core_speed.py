@@ -74,3 +74,17 @@ def test_flagged_angles_are_sliced_not_solved_again(monkeypatch):
     fresh = solve_forces(a.kinematics)
     for method, res in a.forces.items():
         _same(res, fresh[method])
+
+
+@pytest.mark.parametrize("name", ["r_rtr_rtr", "stephenson3_six_bar"])
+def test_chunked_kinematic_rates_equal_one_batch(name, monkeypatch):
+    import mechreport.kinematics as kinematics
+    mech = build_mechanism(load_spec(ROOT / "specs" / f"{name}.yaml"))
+    whole = solve_kinematics(mech)
+    monkeypatch.setattr(kinematics, "CHUNK", 41)
+    chunked = solve_kinematics(mech)
+    assert whole.n > 2 * 41
+    assert [(f.angle, f.reason) for f in chunked.flags] == [(f.angle, f.reason)
+                                                            for f in whole.flags]
+    for what in ("r", "theta", "v", "omega", "a", "alpha", "error"):
+        np.testing.assert_array_equal(getattr(chunked, what), getattr(whole, what))

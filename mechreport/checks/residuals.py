@@ -20,18 +20,20 @@ class Residual:
 
 
 def residuals(ctx: ForceContext, results: dict[str, ForceResult]) -> list[Residual]:
-    equations = [eq for link in ctx.spec.links for eq in newton_euler_equations(ctx, link.name)]
-    out = []
-    for name, res in results.items():
-        if not res.reactions:
-            continue
-        values = res.values()
-        force = moment = 0.0
-        for eq in equations:
-            r = float(np.max(np.abs(eq.evaluate(values)), initial=0.0))
-            if eq.kind == "moment":
-                moment = max(moment, r)
-            else:
-                force = max(force, r)
-        out.append(Residual(name, force, moment))
-    return out
+    """The largest residuals of each method with joint reactions, over every link and angle
+    (long sweeps chunk by chunk: the equations hold coefficients at every angle)."""
+    from ..forces import CHUNK
+    worst: dict[str, list[float]] = {name: [0.0, 0.0] for name, res in results.items()
+                                     if res.reactions}
+    for a in range(0, ctx.n, CHUNK):
+        cut = slice(a, a + CHUNK)
+        part = ctx if ctx.n <= CHUNK else ForceContext(ctx.kin.take(cut, ctx.kin.flags))
+        equations = [eq for link in ctx.spec.links
+                     for eq in newton_euler_equations(part, link.name)]
+        for name in worst:
+            values = {k: v[cut] for k, v in results[name].values().items()}
+            for eq in equations:
+                r = float(np.max(np.abs(eq.evaluate(values)), initial=0.0))
+                k = 1 if eq.kind == "moment" else 0
+                worst[name][k] = max(worst[name][k], r)
+    return [Residual(name, force, moment) for name, (force, moment) in worst.items()]

@@ -15,7 +15,7 @@ METHODS: dict[str, ModuleType] = {m.NAME: m for m in (newton_euler, dalembert, d
                                                       power)}
 
 
-CHUNK = 16384   # angles solved together: bounds the equation objects' memory on long sweeps
+CHUNK = 8192    # angles solved together: bounds the equation objects' memory on long sweeps
 
 
 def solve_forces(kin: Kinematics, methods=None,

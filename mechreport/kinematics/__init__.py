@@ -58,7 +58,7 @@ def _solve(mech: Mechanism, phi_deg: np.ndarray) -> Kinematics:
     problems: dict[int, tuple[str, str]] = {}   # angle index -> (kind, why it is left out)
     for k in np.flatnonzero(~np.isfinite(r[spec.links[-1].name][:, 0])):
         problems[int(k)] = _unreached(motion, float(phi_deg[k]), mech, r, int(k))
-    v, w, acc, al, conds = _rates(mech, phi_deg * spec.driver.unit, r, th, problems)
+    v, w, acc, al, conds = _rates_chunked(mech, phi_deg * spec.driver.unit, r, th, problems)
     error = kinematic_error([c for _, c in conds], len(phi_deg))
     for k in np.flatnonzero(error > TRUST_RTOL):
         name, worst = max(conds, key=lambda c: c[1][k])
@@ -164,6 +164,30 @@ def driver_pose(spec, value: np.ndarray) -> dict:
     point = np.asarray(spec.ground[joint.point])     # the frame carries the slider's point
     through = np.asarray(joint.line.through)
     return {d.link: (point - through - value[:, None] * u, zero)}
+
+
+CHUNK = 8192   # angles whose velocity and acceleration systems are solved together
+
+
+def _rates_chunked(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
+                   problems: dict[int, tuple[str, str]]):
+    """:func:`_rates` over chunks of at most ``CHUNK`` angles (bounded working memory)."""
+    n = len(value)
+    if n <= CHUNK:
+        return _rates(mech, value, r, th, problems)
+    parts = []
+    for a in range(0, n, CHUNK):
+        cut = slice(a, a + CHUNK)
+        found: dict[int, tuple[str, str]] = {}
+        parts.append(_rates(mech, value[cut], {k: x[cut] for k, x in r.items()},
+                            {k: x[cut] for k, x in th.items()}, found))
+        for k, why in found.items():
+            problems.setdefault(a + k, why)
+    joined = [{k: np.concatenate([p[i][k] for p in parts]) for k in parts[0][i]}
+              for i in range(4)]
+    conds = [(name, np.concatenate([p[4][g][1] for p in parts]))
+             for g, (name, _) in enumerate(parts[0][4])]
+    return (*joined, conds)
 
 
 def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
