@@ -19,6 +19,7 @@ from .checks import (Agreement, ExpectationResult, Residual, agreement, check_ex
                      residuals)
 from .forces import METHODS, ForceContext, ForceResult, solve_forces
 from .kinematics import EPS, TRUST_RTOL, Flag, Kinematics, solve_kinematics
+from .kinematics.frames import scaled
 from .linalg import SINGULAR_COND
 from .model import Mechanism, build_mechanism
 from .post import CycleUndefined, Review, Verdict, review_of, verdicts
@@ -183,8 +184,10 @@ def _require_finite_inputs(ctx: ForceContext) -> None:
     file = ctx.spec.file
     with np.errstate(over="ignore", invalid="ignore"):
         arrays = [(f"{what} of link {name}", value) for name, s in ctx.links.items()
-                  for what, value in (("m a_C", s.mass * s.a), ("I_C alpha", s.inertia * s.alpha),
-                                      ("weight m g", s.mass * ctx.gravity * np.ones((ctx.n, 1))))]
+                  for what, value in (("m a_C", scaled(s.mass, s.a)),
+                                      ("I_C alpha", s.inertia * s.alpha),
+                                      ("weight m g", scaled(s.mass, ctx.gravity)
+                                       * np.ones((ctx.n, 1))))]
         arrays += [(f"load {ld.symbol}", ld.force if ld.force is not None else ld.moment)
                    for ld in ctx.loads]
     for what, values in arrays:

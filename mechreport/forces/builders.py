@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kinematics.frames import cross, rotate
+from ..kinematics.frames import cross, rotate, scaled
 from ..spec import Joint
 from .context import ForceContext
 from .equations import Action, Equation, Term
@@ -100,7 +100,7 @@ def newton_euler_equations(ctx: ForceContext, link: str) -> list[Equation]:
     tag = body_tag(ctx, [link])
     out = []
     lhs = Action(f"m{s.number} aC{s.number}", "force", "inertia", link, s.r, f"C{s.number}",
-                 value=s.mass * s.a)
+                 value=scaled(s.mass, s.a))
     for axis, k in (("x", 0), ("y", 1)):
         d = np.broadcast_to(AXES[axis], (ctx.n, 2))
         terms = [Term(lhs, np.zeros((ctx.n, 0)), s.mass * s.a[:, k], "lhs", direction=d,

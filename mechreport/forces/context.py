@@ -15,7 +15,7 @@ import numpy as np
 
 from ..kinematics import Kinematics
 from ..model import Mechanism
-from ..kinematics.frames import rotate
+from ..kinematics.frames import rotate, scaled
 from ..spec import GROUND, Joint
 from .equations import Action
 from .loads import AppliedLoad, evaluate_loads
@@ -100,13 +100,13 @@ class ForceContext:
     def gravity_action(self, link: str) -> Action:
         s = self.links[link]
         return Action(f"G{s.number}", "force", "gravity", link, s.r, f"C{s.number}",
-                      value=np.broadcast_to(s.mass * self.gravity, (self.n, 2)))
+                      value=np.broadcast_to(scaled(s.mass, self.gravity), (self.n, 2)))
 
     def inertia_actions(self, link: str) -> list[Action]:
         """d'Alembert inertia force -m a_C at the centre of mass and couple -I alpha."""
         s = self.links[link]
         return [Action(f"Fin{s.number}", "force", "inertia", link, s.r, f"C{s.number}",
-                       value=-s.mass * s.a),
+                       value=-scaled(s.mass, s.a)),
                 Action(f"Min{s.number}", "couple", "inertia", link, value=-s.inertia * s.alpha)]
 
     def load_actions(self, link: str) -> list[Action]:

@@ -107,7 +107,8 @@ def _evaluate(kin: Kinematics, load: Load):
             sign = np.where(np.abs(along) < SPEED_EPS, 0.0, -np.sign(along))
             f0 = sign[:, None] * f0
         return [(load, load.link, load.point, f0, None)]
-    m0 = (np.full(kin.n, float(load.value)) if load.value is not None
+    m0 = (np.broadcast_to(np.asarray(load.value, float), (kin.n,)).copy()
+          if load.value is not None
           else _profile(load.profile, kin.angles))
     if load.oppose == "rotation":
         w = kin.omega[:, num]

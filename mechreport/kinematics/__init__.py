@@ -120,7 +120,7 @@ def _positions(mech: Mechanism, path: SweepPath):
     th = {GROUND: np.zeros(n)}
     branches: list[BranchChoice] = []
     runs = list(path.runs)
-    scale = mechanism_size(spec)
+    scale = _newton_scale(mech)
     for group in mech.groups:
         known = {k: (r[k], th[k]) for k in r}
         if group.driver is not None and len(group.links) == 1:
@@ -143,6 +143,13 @@ def _positions(mech: Mechanism, path: SweepPath):
         for link, (rr, tt) in chosen.items():
             r[link], th[link] = rr, tt
     return r, th, branches, motion_of(path, runs, spec.driver.omega, spec.axis_unit)
+
+
+def _newton_scale(mech: Mechanism) -> float:
+    """The length that makes Newton groups' systems dimensionless (1 without them; dyads
+    and the driver's link keep their own form)."""
+    newton = any(g.dyad is None and len(g.links) > 1 for g in mech.groups)
+    return mechanism_size(mech.spec) if newton else 1.0
 
 
 def driver_pose(spec, value: np.ndarray) -> dict:
@@ -204,7 +211,7 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
     safe_th = {k: np.where(finite, t, 0.0) for k, t in th.items()}
     safe_r = {k: np.where(finite[:, None], x, 0.0) for k, x in r.items()}
     conds: list[tuple[str, np.ndarray]] = []
-    size = mechanism_size(spec)
+    size = _newton_scale(mech)
     for group in mech.groups:
         A, known, drow = velocity_system(spec, group, safe_r, safe_th)
         b_v = -_known_part(known, v, w, (n, A.shape[1]))

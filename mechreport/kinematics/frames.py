@@ -28,3 +28,10 @@ def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def norm(a: np.ndarray) -> np.ndarray:
     return np.hypot(a[..., 0], a[..., 1])
+
+
+def scaled(k, v: np.ndarray) -> np.ndarray:
+    """``k`` times vectors ``v`` (n, 2): ``k`` a number, or one per row (n,) (a stacked
+    variant's mass)."""
+    k = np.asarray(k)
+    return k[..., None] * v if k.ndim else k * v

@@ -65,7 +65,7 @@ def t_line(spec: Spec, joint: Joint, unknown: str, poses: Poses, theta_u: np.nda
     """T ``joint`` with one side known: returns (n, c) with n . r_unknown = c, where r_unknown
     is the origin of link ``unknown`` whose orientation ``theta_u`` is already fixed."""
     line = joint.line
-    n_loc = (-line.direction[1], line.direction[0])
+    n_loc = perp(np.asarray(line.direction, float))
     if unknown == joint.slider:
         guide_r, guide_th = poses[joint.guide]
         n = rotate(n_loc, guide_th)
@@ -85,6 +85,12 @@ def _solve2(n1, c1, n2, c2):
     x = (c1 * n2[:, 1] - c2 * n1[:, 1]) / det
     y = (n1[:, 0] * c2 - n2[:, 0] * c1) / det
     return np.stack([x, y], axis=-1)
+
+
+def _angle(v) -> np.ndarray:
+    """Direction angle of a local vector (2,) (or one per row, (n, 2)) [rad]."""
+    v = np.asarray(v, float)
+    return np.arctan2(v[..., 1], v[..., 0])
 
 
 def _pin_pose(pivot, local_pivot, theta):
@@ -110,7 +116,7 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
         ki, kj = pivot(oi, i), pivot(oj, j)
         ei, mi = np.array(pi[oi.name]), np.array(pi[inner.name])
         ej, mj = np.array(pj[oj.name]), np.array(pj[inner.name])
-        li, lj = np.hypot(*(mi - ei)), np.hypot(*(mj - ej))
+        li, lj = norm(mi - ei), norm(mj - ej)
         d = kj - ki
         dist = norm(d)
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -120,13 +126,13 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
             unit = d / dist[:, None]
         for sign in (1, -1):
             jp = ki + a[:, None] * unit + sign * h[:, None] * perp(unit)
-            thi = np.arctan2(*(jp - ki)[:, ::-1].T) - np.arctan2(mi[1] - ei[1], mi[0] - ei[0])
-            thj = np.arctan2(*(jp - kj)[:, ::-1].T) - np.arctan2(mj[1] - ej[1], mj[0] - ej[0])
+            thi = np.arctan2(*(jp - ki)[:, ::-1].T) - _angle(mi - ei)
+            thj = np.arctan2(*(jp - kj)[:, ::-1].T) - _angle(mj - ej)
             out.append({i: _pin_pose(ki, ei, thi), j: _pin_pose(kj, ej, thj)})
     elif kind == "RRT":
         ki = pivot(oi, i)
         ei, mi = np.array(pi[oi.name]), np.array(pi[inner.name])
-        li = np.hypot(*(mi - ei))
+        li = norm(mi - ei)
         thj = poses[_other(oj, j)][1]
         n, c = t_line(spec, oj, j, poses, thj)
         mj = pj[inner.name]
@@ -135,10 +141,11 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
         off = c_pin - dot(n, ki)
         foot = ki + off[:, None] * n
         h2 = li**2 - off**2
-        h = np.sqrt(np.where(h2 >= -1e-12 * max(li**2, 1e-30), np.maximum(h2, 0), np.nan))
+        tol = -1e-12 * np.maximum(li**2, 1e-30)
+        h = np.sqrt(np.where(h2 >= tol, np.maximum(h2, 0), np.nan))
         for sign in (1, -1):
             jp = foot + sign * h[:, None] * u
-            thi = np.arctan2(*(jp - ki)[:, ::-1].T) - np.arctan2(mi[1] - ei[1], mi[0] - ei[0])
+            thi = np.arctan2(*(jp - ki)[:, ::-1].T) - _angle(mi - ei)
             out.append({i: _pin_pose(ki, ei, thi), j: (jp - rotate(mj, thj), thj)})
     elif kind == "RTR":
         g, s = inner.guide, inner.slider
@@ -146,17 +153,17 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
         kg, ks = pivot(og, g), pivot(os_, s)
         pg, ps = _points(spec, g), _points(spec, s)
         line = inner.line
-        nl = np.array([-line.direction[1], line.direction[0]])
+        nl = perp(np.asarray(line.direction, float))
         a = (np.array(ps[inner.point]) - np.array(ps[os_.name]) - np.array(line.through)
              + np.array(pg[og.name]))
-        c = -float(a @ nl)
+        c = -dot(a, nl)
         d = ks - kg
         dist = norm(d)
         with np.errstate(invalid="ignore", divide="ignore"):
             ratio = c / dist
             ok = np.abs(ratio) <= 1 + 1e-12
             half = np.arccos(np.where(ok, np.clip(ratio, -1, 1), np.nan))
-        base = np.arctan2(d[:, 1], d[:, 0]) - np.arctan2(nl[1], nl[0])
+        base = np.arctan2(d[:, 1], d[:, 0]) - _angle(nl)
         for sign in (1, -1):
             th = base + sign * half
             out.append({g: _pin_pose(kg, pg[og.name], th), s: _pin_pose(ks, ps[os_.name], th)})
@@ -182,21 +189,22 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
     return out
 
 
-def _signature(spec: Spec, dyad: Dyad, cand: Poses) -> np.ndarray:
+def signature(spec: Spec, dyad: Dyad, cand: Poses) -> np.ndarray:
     """Global positions of every named point of the dyad's links, flattened: (n, 2 P)."""
     cols = [point_global(cand, l, p) for l in dyad.links for p in spec.link(l).points.values()]
     return np.concatenate(cols, axis=1)
 
 
 def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
-                   runs: list[np.ndarray]) -> tuple[Poses, BranchChoice, list[np.ndarray]]:
+                   runs: list[np.ndarray], sig: list[np.ndarray] | None = None,
+                   ) -> tuple[Poses, BranchChoice, list[np.ndarray]]:
     """Pick the branch at the first reference angle (``path.ref``) and follow it along the
     ``runs``, each cut where the dyad cannot close (the mechanism locks there). Off-grid angles
     take the candidate nearest the tracked branch interpolated from their grid neighbours.
     Returns the chosen poses over ``path.angles`` (NaN where not reached), how the branch was
-    chosen, and the cut runs."""
+    chosen, and the cut runs. ``sig``: the candidates' signatures, if already computed."""
     name = f"{dyad.label} ({', '.join(dyad.links)})"
-    sig = [_signature(spec, dyad, c) for c in cands]
+    sig = sig if sig is not None else [signature(spec, dyad, c) for c in cands]
     finite = np.all(np.isfinite(np.concatenate(sig, axis=1)), axis=1)
     runs = [run[:_first_false(finite[run])] for run in runs]
     n = len(path.angles)

@@ -134,7 +134,8 @@ class Kinematics:
     def point(self, link: str, local) -> PointState:
         """State of the point at ``local`` [m] in ``link``'s frame (computed once; the arrays
         are read-only)."""
-        key = (link, float(local[0]), float(local[1]))
+        # a local point is a pair of numbers, or one pair per row (stacked variants)
+        key = (link, id(local)) if np.ndim(local) > 1 else (link, *map(float, local))
         if key not in self._memo:
             k = self.index(link)
             s = rotate(local, self.theta[:, k])
@@ -144,6 +145,7 @@ class Kinematics:
             for x in (state.r, state.v, state.a):
                 x.setflags(write=False)
             self._memo[key] = state
+            self._memo[(key, "local")] = local     # keeps id(local) from being reused
         return self._memo[key]
 
     def named_point(self, name: str, link: str | None = None) -> PointState:

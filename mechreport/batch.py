@@ -1,0 +1,113 @@
+"""Many variants of one mechanism analysed as one batch: what a design study runs.
+
+The variants' numbers are stacked with the angles (rows = variants x angles, see
+:mod:`mechreport.spec.stack`); the kinematics and one force method are solved for every row
+at once, with the same equations and the same batched solver as a single analysis. Then each
+variant's cycle quantities and design verdicts are taken from its own rows.
+
+A variant is analysed alone, by :func:`mechreport.analysis.analyse`, when its sweep is not
+clean (an angle that cannot close, is unreachable, singular or near-singular for the
+kinematics or the method, or a value that is not finite) or when the batch cannot be stacked
+(variants that differ in more than numbers, Newton groups): its result, flags and reasons are
+then exactly a single analysis'. Either way each variant's outcome equals ``analyse(spec,
+methods=[method])`` to rounding.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from .analysis import _review, analyse
+from .cli import describe_failure
+from .forces import METHODS, ForceContext
+from .kinematics import EPS, TRUST_RTOL
+from .kinematics.stacked import solve_stacked, variant_kinematics
+from .model import build_mechanism
+from .post import Review, Verdict, verdicts
+from .spec import Spec
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """One variant's result: ``review`` (cycle quantities, or None and ``review_problem``),
+    its design ``verdicts``, and ``error`` when it could not be analysed at all (the message a
+    single analysis gives). ``batched``: solved in the batch (False: analysed alone)."""
+
+    spec: Spec
+    review: Review | None = None
+    review_problem: str = ""
+    verdicts: tuple[Verdict, ...] = ()
+    error: str | None = None
+    batched: bool = False
+
+    @property
+    def passed(self) -> bool | None:
+        """Every design verdict met (None when the variant has no design items or failed)."""
+        if self.error is not None or not self.verdicts:
+            return None
+        return all(v.passed for v in self.verdicts)
+
+
+ROWS = 16384    # variants x angles solved together (bounds the working memory)
+
+
+def analyse_variants(specs: list[Spec], method: str) -> list[Outcome]:
+    """The outcome of every variant in ``specs`` (variants of one spec) with ``method``."""
+    if not specs:
+        return []
+    per = len(specs[0].analysed_angles())
+    size = max(1, ROWS // max(per, 1))
+    out: list[Outcome | None] = [None] * len(specs)
+    for start in range(0, len(specs), size):
+        part = specs[start:start + size]
+        try:
+            mech = build_mechanism(part[0])
+            with np.errstate(all="ignore"):
+                stacked = solve_stacked(mech, part)
+        except Exception:       # noqa: BLE001 - each variant is then analysed alone
+            stacked = None
+        if stacked is not None:
+            out[start:start + len(part)] = _batched(stacked, mech, part, method)
+    return [o if o is not None else _alone(s, method) for o, s in zip(out, specs)]
+
+
+def _batched(stacked, mech, specs: list[Spec], method: str) -> list[Outcome | None]:
+    """The outcomes of the clean variants of the stacked batch (None for the others)."""
+    out: list[Outcome | None] = [None] * len(specs)
+    kin = stacked.kin
+    with np.errstate(all="ignore"):
+        ctx = ForceContext(kin)
+        res = METHODS[method].solve(ctx)
+        cond = res.cond if res.cond is not None else np.ones(kin.n)
+        trusted = ~res.singular & (kin.error + EPS * cond <= TRUST_RTOL)
+        for values in res.values().values():
+            trusted &= np.isfinite(values)
+    clean = stacked.clean & trusted.reshape(len(specs), stacked.per).all(axis=1)
+    index = {id(ld): k for k, ld in enumerate(ctx.spec.loads)}
+    for v in np.flatnonzero(clean):
+        spec = specs[v]
+        rows = stacked.rows(v)
+        kin_v = variant_kinematics(stacked, v, replace(mech, spec=spec))
+        forces = {method: res.take(rows, None)}
+        loads = [replace(ld, load=spec.loads[index[id(ld.load)]],
+                         force=None if ld.force is None else ld.force[rows],
+                         moment=None if ld.moment is None else ld.moment[rows])
+                 for ld in ctx.loads]
+        rev, why = _review(spec, kin_v, forces, loads)
+        values = rev.values if rev is not None else None
+        out[v] = Outcome(spec, rev, why, tuple(verdicts(spec.design, values, why)),
+                         batched=True)
+    return out
+
+
+def _alone(spec: Spec, method: str) -> Outcome:
+    """A variant analysed by itself; a failure is its message, never an exception."""
+    try:
+        a = analyse(spec, methods=[method])
+    except Exception as exc:     # noqa: BLE001 - a failed variant is a row with its reason
+        return Outcome(spec, error=describe_failure(exc))
+    return Outcome(spec, a.review, a.review_problem, a.verdicts)
+
+
+__all__ = ["Outcome", "analyse_variants"]
