@@ -27,15 +27,15 @@ class Equilibrated:
         m, _, n = At.shape
         self.m, self.n = m, n
         absA = np.abs(At)
-        rs = absA.max(axis=1)                  # (m, n)
+        rs = absA.max(axis=1)                  # (m, n); NaN or inf where a row is not finite
         rs[rs == 0] = 1.0
-        absA /= rs[:, None, :]
+        As = np.divide(At, rs[:, None, :])
+        np.abs(As, out=absA)
         cs = absA.max(axis=0)                  # (m, n)
         cs[cs == 0] = 1.0
-        As = At / rs[:, None, :]
         As /= cs[None, :, :]
         # non-finite input (a pose that could not be solved) is singular, never a LAPACK error
-        self.overflow = ~np.isfinite(As).all(axis=(0, 1))
+        self.overflow = ~np.isfinite(rs).all(axis=0)
         if self.overflow.any():
             As[:, :, self.overflow] = np.eye(m)[:, :, None]
         self.rs, self.cs, self.As = rs.T, cs.T, As
