@@ -166,9 +166,9 @@ def read_term(t: Term) -> tuple[Piece, ...]:
     if t.kind == "inertia":
         if act.kind == "force":                       # m (a . d)
             a = t.factor("accel")
-            return (Piece(np.full(n, float(t.factor("mass"))), _axis_comp(t.direction),
+            return (Piece(_per_row(t.factor("mass"), n), _axis_comp(t.direction),
                           value=np.einsum("ni,ni->n", a, np.broadcast_to(t.direction, a.shape))),)
-        return (Piece(np.full(n, float(t.factor("inertia"))), value=t.factor("alpha")),)
+        return (Piece(_per_row(t.factor("inertia"), n), value=t.factor("alpha")),)
     if t.kind == "couple":
         if act.unknowns:
             return (Piece(ones, "", act.unknowns[0], act.sign),)
@@ -194,6 +194,11 @@ def read_term(t: Term) -> tuple[Piece, ...]:
             return (Piece(rate, value=np.broadcast_to(np.asarray(act.value, float), (n,))),)
         return tuple(Piece(rate[:, i], c, u, s, v) for i, (c, u, s, v) in enumerate(parts))
     raise ValueError(f"term of {act.symbol}: unknown kind {t.kind!r}")
+
+
+def _per_row(x, n: int) -> np.ndarray:
+    """A number, or one per row (a stacked variant's mass), as (n,)."""
+    return np.broadcast_to(np.asarray(x, float), (n,))
 
 
 def _axis_comp(d) -> str:

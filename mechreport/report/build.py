@@ -35,13 +35,17 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, handled like Ctrl-C."""
 
 
-def build_key(path: Path, sheet: bool, exact: bool) -> dict:
+def build_key(path: Path, sheet: bool, exact: bool, sheet_options=None) -> dict:
     """What decides whether a report is up to date: the spec's bytes (SHA-256), its path, the
-    mechreport version and the options that change the output."""
+    mechreport version and the options that change the output (``sheet_options``: the
+    sheets' methods and angles, a :class:`~mechreport.report.sheet.SheetOptions`)."""
     from .. import __version__
     from .model import spec_sha256
-    return {"spec": str(path), "spec_sha256": spec_sha256(path),
-            "mechreport_version": __version__, "sheet": bool(sheet), "exact": bool(exact)}
+    key = {"spec": str(path), "spec_sha256": spec_sha256(path),
+           "mechreport_version": __version__, "sheet": bool(sheet), "exact": bool(exact)}
+    if sheet_options is not None:
+        key.update(sheet_options.key())
+    return key
 
 
 def up_to_date(out: Path, name: str, key: dict) -> dict | None:
@@ -61,7 +65,7 @@ def up_to_date(out: Path, name: str, key: dict) -> dict | None:
 
 
 def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = False,
-              exact: bool = False, stage=None) -> dict:
+              exact: bool = False, stage=None, sheet_options=None) -> dict:
     """Analyse ``path`` and write its report into ``folder`` (a private folder inside
     ``out``, later renamed to ``out/name``); the run's row. ``stage(i, n, what)`` is called
     before each stage (progress for long single specs).
@@ -77,7 +81,7 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
     from ..spec import load_spec
 
     path, folder = Path(path), od.inside(out, folder)
-    key = build_key(path, sheet, exact)
+    key = build_key(path, sheet, exact, sheet_options)
     spec = load_spec(path)
     do_sheet = sheet or spec.sheet
     n = 4 if do_sheet else 3
@@ -92,9 +96,11 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
     stage(3, n, "report (Markdown, PDF, CSV, JSON)")
     write_report(model, folder)
     if do_sheet:
-        from .sheet import write_sheet
-        stage(4, n, "solution sheet")
-        write_sheet(analysis, folder, exact=exact)
+        from .sheet import SheetOptions, sheet_analysis, write_sheet
+        stage(4, n, "solution sheet and problem")
+        options = SheetOptions(sheet_options.methods if sheet_options else None,
+                               sheet_options.angles if sheet_options else None, exact)
+        write_sheet(sheet_analysis(analysis, options), folder, options)
     for written in folder.rglob("*"):                   # nothing escaped the folder
         od.inside(folder, written)
     return dict(model.index_row, folder=name)
@@ -108,7 +114,7 @@ def _stage_printer(label: str):
 
 
 def build_safe(path: str, out: str, name: str, sheet: bool, exact: bool,
-               owner: int | None = None, stages: bool = False) -> dict:
+               owner: int | None = None, stages: bool = False, sheet_options=None) -> dict:
     """:func:`build_one` into ``OUT/.tmp-<name>-<owner>`` that never raises an Exception: a
     failure becomes a row with ``ok`` False and the error ``message`` (the private folder is
     then removed). Adds ``seconds`` and ``tmp``. (Top-level so worker processes can run it.)"""
@@ -119,7 +125,7 @@ def build_safe(path: str, out: str, name: str, sheet: bool, exact: bool,
     try:
         tmp = od.make_tmp_dir(Path(out), name, owner)
         row = build_one(Path(path), Path(out), name, tmp, sheet, exact,
-                        _stage_printer(str(path)) if stages else None)
+                        _stage_printer(str(path)) if stages else None, sheet_options)
         row["tmp"] = str(tmp)
     except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the batch
         if tmp is not None:
@@ -245,14 +251,15 @@ def _sigterm_as_interrupt():
 
 
 def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, exact: bool,
-         finish, stages: bool = False) -> None:
+         finish, stages: bool = False, sheet_options=None) -> None:
     """Build each ``(i, path, name)`` of ``todo``; ``finish(i, row)`` is called in this
     process as each one ends (in completion order). ``stages``: print each stage of a spec
     (for a build of one spec)."""
     owner = os.getpid()
     if jobs <= 1 or len(todo) <= 1:
         for i, p, name in todo:
-            finish(i, build_safe(str(p), str(out), name, sheet, exact, owner, stages))
+            finish(i, build_safe(str(p), str(out), name, sheet, exact, owner, stages,
+                                 sheet_options))
         return
     # fresh interpreters: forking a process whose Typst/BLAS threads are running can
     # deadlock the child (seen under pytest, after a report was typeset in-process)
@@ -260,7 +267,8 @@ def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, e
     pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_worker_init,
                                initargs=(owner,))
     try:
-        futs = {pool.submit(build_safe, str(p), str(out), name, sheet, exact, owner): (i, p, name)
+        futs = {pool.submit(build_safe, str(p), str(out), name, sheet, exact, owner,
+                            sheet_options=sheet_options): (i, p, name)
                 for i, p, name in todo}
         for fut in as_completed(futs):
             i, p, name = futs[fut]
@@ -339,12 +347,14 @@ def index_records(rows: list[dict]) -> list[dict]:
 
 def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bool = False,
                 exact: bool = False, wait: float = DEFAULT_WAIT, force: bool = False,
-                quiet: bool = False) -> int:
+                quiet: bool = False, sheet_options=None) -> int:
     """Build every spec in ``paths`` into ``out`` and rewrite the index; exit code 0 if all
     built and passed their checks, 1 otherwise. ``jobs``: parallel processes (default: the
     number of cores); ``wait``: seconds to wait for another build writing to ``out``. A spec
     whose report in ``out`` was built from the same bytes, path, options and mechreport
     version is not built again unless ``force``. ``quiet``: no progress, only failures.
+    ``sheet_options``: the methods and angles of the solution sheets (a
+    :class:`~mechreport.report.sheet.SheetOptions`; None: all methods, the spec's ``at``).
 
     Raises :class:`~mechreport.report.outdir.OutputError` if ``out`` cannot be used, and
     KeyboardInterrupt (or :class:`Terminated`) if interrupted: then the workers are stopped,
@@ -384,7 +394,8 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
             if why:
                 finish(i, dict(_failure(path, name, why), seconds=0.0))
                 continue
-            same = None if force else up_to_date(out, name, build_key(path, sheet, exact))
+            same = None if force else up_to_date(out, name, build_key(path, sheet, exact,
+                                                                      sheet_options))
             if same is not None:
                 from .model import _index_row
                 try:
@@ -399,7 +410,7 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
                 todo.append((i, path, name))
         try:
             _run(todo, out, min(jobs, max(len(todo), 1)), sheet, exact, finish,
-                 stages=len(paths) == 1 and not quiet)
+                 stages=len(paths) == 1 and not quiet, sheet_options=sheet_options)
         except KeyboardInterrupt as exc:
             progress.close()
             for name in names:

@@ -1,8 +1,9 @@
-"""A small math model for the solution sheets, rendered four ways: LaTeX (GitHub Markdown),
-Typst, plain text (tests, terminals) and Python (tests evaluate the printed equations).
+"""The math the solution sheets print, rendered four ways: LaTeX (GitHub Markdown), Typst,
+plain text (tests, terminals) and Python (tests evaluate the printed equations).
 
 An expression is a list of signed terms ``(sign, factors)``; an equation a list of such
 expressions joined by ``=``. Long equations break before a top-level ``+``, ``-`` or ``=``.
+Numbers go through the one number formatter (:func:`fmt`, with the sheets' digits).
 """
 from __future__ import annotations
 
@@ -11,14 +12,15 @@ import re
 from dataclasses import dataclass, field
 
 ZERO = 1e-12          # |x| below this prints as 0 (SI units throughout)
-WIDTH = 78            # plain-text characters per displayed line before breaking
+WIDTH = 100           # plain-text characters per displayed line before breaking
+_GLYPHS = re.compile(r"varphi|theta|omega|alpha|Delta|phi|sum|deg")
 
 
 def fmt(x: float, zero: float = ZERO) -> str:
     """The one number formatter (:func:`mechreport.units.fmt`) with the sheets' digits
     (``SHEET_DIGITS``: worked equations must balance to the textbook's rounding): never
     ``-0``, ``e`` notation for very small/large magnitudes, 0 below ``zero``."""
-    from ..units import SHEET_DIGITS, fmt as number
+    from ...units import SHEET_DIGITS, fmt as number
     x = float(x)
     if not _m.isfinite(x):
         return "nan"
@@ -121,7 +123,8 @@ class Sym(Atom):
     py_name: str = ""
 
     _GREEK = {"alpha": ("\\alpha", "alpha"), "omega": ("\\omega", "omega"),
-              "Delta": ("\\Delta", "Delta"), "Sigma": ("\\Sigma", "Sigma")}
+              "Delta": ("\\Delta", "Delta"), "Sigma": ("\\Sigma", "Sigma"),
+              "theta": ("\\theta", "theta"), "phi": ("\\varphi", "phi")}
 
     def _base(self, tex: bool) -> str:
         if self.base in self._GREEK:
@@ -209,7 +212,8 @@ class Num(Atom):
 class Op(Atom):
     """times, dot, or a literal small operator."""
     name: str
-    _T = {"times": (r"\times", "times", " x ", "*"), "dot": (r"\cdot", "dot", " . ", "*")}
+    _T = {"times": (r"\times", "times", "x", "*"), "dot": (r"\cdot", "dot", ".", "*"),
+          "mul": (r"\cdot", "dot.op", "·", "*")}
 
     def tex(self): return self._T[self.name][0]
     def typ(self): return self._T[self.name][1]
@@ -279,6 +283,8 @@ def _factors(factors, how: str) -> str:
                 sep = ""
             elif how == "tex" and not isinstance(a, Op) and not isinstance(b, Op):
                 sep = r"\,"
+            elif how == "typ" and isinstance(a, Num) and not isinstance(b, Op):
+                sep = " thin "          # 0.707107 F_21y, not 0.707107F_21y
             else:
                 sep = " "
             out.append(sep)
@@ -314,6 +320,11 @@ class Equation:
     """``sides[0] = sides[1] = ...``."""
     sides: list
 
+    @staticmethod
+    def _vlen(plain: str) -> int:
+        """About how wide a plain rendering prints: a Greek letter's name is one glyph."""
+        return len(_GLYPHS.sub("x", plain))
+
     def chunks(self, how: str):
         """Breakable chunks: (kind, text, plain_len); kind 'eq' | 'op' | 'first'."""
         out = []
@@ -321,10 +332,11 @@ class Equation:
             terms = _term_strings(side, how)
             plain = _term_strings(side, "plain")
             for ti, ((op, body), (_, pb)) in enumerate(zip(terms, plain)):
+                n = self._vlen(pb)
                 if ti == 0 and si > 0:
-                    out.append(("eq", op, body, len(pb) + 3 + len(op)))
+                    out.append(("eq", op, body, n + 3 + len(op)))
                 else:
-                    out.append(("op" if op else "first", op, body, len(pb) + 3))
+                    out.append(("op" if op and (ti or si) else "first", op, body, n + 3))
         return out
 
     def lines(self, how: str, width: int = WIDTH) -> list[list[tuple[str, str, str]]]:

@@ -1,0 +1,363 @@
+"""The figures of a solution sheet and its problem version, as SVG (matplotlib):
+
+- the mechanism at a reference angle, links numbered and joints lettered as in the textbook
+  (Fig. 4.7a), with the applied loads and the driver's rotation, and no result;
+- a free-body diagram of every moving link (Fig. 4.7b): the link with its joints, each
+  joint's reaction as its unknown components (F21x, F21y; a slider's along the normal of its
+  line, and its couple M03), the weight G, the external loads, the driver's M, and dashed the
+  inertia force Fin and couple Min that d'Alembert's principle adds, each labelled with the
+  symbol the equations use. Arrows show directions, not magnitudes: an unknown is drawn in
+  its positive direction, a known force along its value at the angle.
+
+Geometry comes from :func:`mechreport.report.scene.build_scene` and is drawn with the report
+drawings' helpers (:mod:`mechreport.report.drawing`)."""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..drawing import LINK_FILL, Labels, _element, _ground_symbol, _guide
+from ..plots import pyplot, save
+from ..scene import build_scene
+
+class SheetLabels(Labels):
+    """The drawings' label placer, measuring a mathtext label by what it prints ($F_{21x}$
+    is four glyphs wide, not ten) and keeping labels inside the figure."""
+
+    def place(self, text: str, x: float, y: float, color: str = "k", bold: bool = False,
+              prefer=None, fontsize: float | None = None) -> None:
+        import re
+        fs = fontsize or self.fs
+        shown = re.sub(r"\\mathrm|[${}\\]", "", text)
+        subs = len(re.findall(r"_\{([^}]*)\}", text.replace(r"\mathrm", "")))
+        glyphs = len(shown.replace("_", "")) - 0.3 * subs
+        w = (0.62 if bold else 0.58) * fs * glyphs * self.pt + 2 * self.pt
+        h = 1.15 * fs * self.pt
+        px, py = self.ax.transData.transform((x, y))
+        fig_w, fig_h = self.ax.figure.bbox.width, self.ax.figure.bbox.height
+        d = 4.0
+        cands = [(d, d, "left", "bottom"), (-d, d, "right", "bottom"), (d, -d, "left", "top"),
+                 (-d, -d, "right", "top"), (0, 1.6 * d, "center", "bottom"),
+                 (0, -1.6 * d, "center", "top"), (1.6 * d, 0, "left", "center"),
+                 (-1.6 * d, 0, "right", "center"), (2.6 * d, 2.6 * d, "left", "bottom"),
+                 (-2.6 * d, 2.6 * d, "right", "bottom"), (2.6 * d, -2.6 * d, "left", "top"),
+                 (-2.6 * d, -2.6 * d, "right", "top")]
+        if prefer is not None:
+            cands.sort(key=lambda c: -(c[0] * prefer[0] + c[1] * prefer[1]))
+        best, best_score = None, math.inf
+        for dx, dy, ha, va in cands:
+            box = self._box(px + dx * self.pt, py + dy * self.pt, w, h, ha, va)
+            score = sum(self._overlap(box, b) for b in self.boxes)
+            inside = (min(box[2], fig_w) - max(box[0], 0)) * (min(box[3], fig_h) - max(box[1], 0))
+            score += 4 * ((box[2] - box[0]) * (box[3] - box[1]) - max(inside, 0))
+            if score < best_score:
+                best, best_score = (dx, dy, ha, va, box), score
+            if score == 0:
+                break
+        dx, dy, ha, va, box = best
+        self.boxes.append(box)
+        self.ax.annotate(text, (x, y), xytext=(dx, dy), textcoords="offset points",
+                         fontsize=fs, color=color, ha=ha, va=va, zorder=9,
+                         fontweight="bold" if bold else "normal", annotation_clip=False)
+
+
+UNKNOWN = "#0b4f8a"      # reactions and the driver: unknown, drawn in their positive direction
+KNOWN = "#222222"        # weights and loads
+INERTIA = "#c0392b"      # d'Alembert's inertia force and couple (dashed)
+
+
+def tex_symbol(symbol: str, comp: str = "") -> str:
+    """matplotlib mathtext of an action symbol: F21 + x -> $F_{21x}$, Fin2 -> $F_{in2}$."""
+    if symbol[:1] in "FGM" and len(symbol) > 1:
+        base, sub = symbol[0], symbol[1:]
+    else:
+        base, sub = symbol, ""
+    if comp:
+        sub = sub + ("," + comp if sub and not sub[-1].isdigit() else comp)
+    sub = sub.replace("in", r"\mathrm{in}").replace("ext", r"\mathrm{ext}")
+    return f"${base}_{{{sub}}}$" if sub else f"${base}$"
+
+
+def _scene(analysis, k: int):
+    res = next(iter(analysis.forces.values()))
+    spec = analysis.spec
+    sc = build_scene(analysis, res, k, {j.name: KNOWN for j in spec.joints},
+                     {j.name: "" for j in spec.joints})
+    sc.arrows = [a for a in sc.arrows if a.kind == "load"]
+    sc.couples = [c for c in sc.couples if c.label != "M"]
+    return sc
+
+
+def _frame(extent_xy: tuple[np.ndarray, np.ndarray], width: float, max_h: float,
+           margin: float = 0.3):
+    """A figure ``width`` inches wide with equal axes showing ``lo..hi``, and ``margin``
+    inches around them for labels that stick out."""
+    from matplotlib.figure import Figure
+    pyplot()
+    lo, hi = extent_xy
+    span = np.maximum(hi - lo, 1e-9)
+    inner_w = width - 2 * margin
+    inner_h = float(np.clip(inner_w * span[1] / span[0], 0.6, max_h - 2 * margin))
+    height = inner_h + 2 * margin
+    fig = Figure(figsize=(width, height))
+    ax = fig.add_axes((margin / width, margin / height, inner_w / width, inner_h / height))
+    want = inner_w / inner_h
+    mid = (lo + hi) / 2
+    span = np.array([span[1] * want, span[1]]) if span[0] / span[1] < want else \
+        np.array([span[0], span[0] / want])
+    ax.set_xlim(mid[0] - span[0] / 2, mid[0] + span[0] / 2)
+    ax.set_ylim(mid[1] - span[1] / 2, mid[1] + span[1] / 2)
+    ax.set_aspect("equal", adjustable="box")
+    ax.axis("off")
+    ax.apply_aspect()
+    return fig, ax
+
+
+def _arrow(ax, start, vec, color, dashed=False, lw=1.3):
+    start = np.asarray(start, float)
+    ax.annotate("", xy=tuple(start + vec), xytext=tuple(start), zorder=6,
+                arrowprops=dict(arrowstyle="-|>", color=color, lw=lw, mutation_scale=9,
+                                shrinkA=0, shrinkB=0, ls=(0, (3, 2)) if dashed else "-"))
+
+
+def _arc(ax, at, r, ccw: bool, color, dashed=False):
+    x, y = at
+    a0, a1 = (200, 470) if ccw else (470, 200)
+    th = np.radians(np.linspace(a0, a1, 30))
+    ax.plot(x + r * np.cos(th[:-3]), y + r * np.sin(th[:-3]), color=color, lw=1.1, zorder=5,
+            ls=(0, (3, 2)) if dashed else "-")
+    ax.annotate("", xy=(x + r * np.cos(th[-1]), y + r * np.sin(th[-1])),
+                xytext=(x + r * np.cos(th[-4]), y + r * np.sin(th[-4])), zorder=5,
+                arrowprops=dict(arrowstyle="-|>", color=color, lw=1.1, mutation_scale=8,
+                                shrinkA=0, shrinkB=0))
+    return x + r * math.cos(math.radians(-40)), y + r * math.sin(math.radians(-40))
+
+
+def _shapes(ax, shapes, labels=True) -> None:
+    """Link outlines, each link's number in a circle at its middle."""
+    done = set()
+    for s in sorted(shapes, key=lambda s: {"plate": 0, "block": 1, "bar": 2, "line": 2}[s.kind]):
+        xy = np.asarray(s.xy)
+        fill = LINK_FILL[(s.number - 1) % len(LINK_FILL)]
+        if s.kind == "line":
+            ax.plot(xy[:, 0], xy[:, 1], color="k", lw=3, solid_capstyle="round", zorder=2.2)
+        else:
+            ax.fill(xy[:, 0], xy[:, 1], facecolor=fill, edgecolor="k", lw=1.0,
+                    zorder={"plate": 1.5, "block": 2.0, "bar": 2.2}[s.kind],
+                    alpha=0.8 if s.kind == "plate" else 0.95)
+    if not labels:
+        return
+    for s in shapes:
+        if s.link in done:
+            continue
+        done.add(s.link)
+        own = [np.asarray(t.xy) for t in shapes if t.link == s.link]
+        c = np.concatenate(own).mean(axis=0)
+        ax.text(c[0], c[1], str(s.number), fontsize=7, ha="center", va="center", zorder=8,
+                bbox=dict(boxstyle="circle,pad=0.15", fc="white", ec="0.3", lw=0.6))
+
+
+def _bounds(points) -> tuple[np.ndarray, np.ndarray]:
+    xy = np.asarray(points, float).reshape(-1, 2)
+    return xy.min(axis=0), xy.max(axis=0)
+
+
+def mechanism_figure(analysis, k: int, path: Path) -> Path:
+    """The mechanism at angle index ``k`` (links numbered, joints lettered, loads and the
+    driver's rotation), without any result."""
+    sc = _scene(analysis, k)
+    spec = analysis.spec
+    ext = sc.extent
+    pts = [p for s in sc.shapes for p in s.xy] + [p for g in sc.guides for p in g[:2]]
+    pts += [(x, y) for x, y, _ in sc.pins]
+    L = 0.2 * ext
+    for a in sc.arrows:
+        m = math.hypot(*a.f)
+        if m > 0:
+            pts.append(tuple(np.asarray(a.at) + np.asarray(a.f) / m * L))
+    lo, hi = _bounds(pts)
+    pad = 0.04 * ext
+    fig, ax = _frame((lo - pad, hi + pad), 4.6, 3.4, margin=0.3)
+    labels = SheetLabels(ax, 8)
+    _shapes(ax, sc.shapes)
+    for kind, p0, p1 in sc.elements:
+        _element(ax, kind, p0, p1, 0.025 * ext)
+    for p0, p1, on_ground, normal, offset in sc.guides:
+        _guide(ax, p0, p1, on_ground, normal, offset)
+    for x, y, on_ground in sc.pins:
+        if on_ground:
+            _ground_symbol(ax, x, y, 0.04 * ext)
+        ax.plot([x], [y], "o", ms=5, mfc="white", mec="k", mew=1.2, zorder=4)
+        labels.block(x, y, 4.0)
+    for a in sc.arrows:
+        m = math.hypot(*a.f)
+        if m <= 0:
+            continue
+        v = np.asarray(a.f) / m * L
+        _arrow(ax, a.at, v, KNOWN)
+        labels.block_segment(np.asarray(a.at) + 0.3 * v, np.asarray(a.at) + v)
+        tip = np.asarray(a.at) + v
+        labels.place(tex_symbol(a.label), tip[0], tip[1], prefer=tuple(v / L))
+    for c in sc.couples:
+        if abs(c.value) > 0:
+            spot = _arc(ax, c.at, 0.06 * ext, c.value > 0, KNOWN)
+            labels.place(tex_symbol(c.label), *spot, prefer=(1, -1))
+    drv = spec.driver
+    if drv.crank:
+        pivot = analysis.context.joint_points[drv.joint][k]
+        n = spec.number(drv.link)
+        spot = _arc(ax, pivot, 0.09 * ext, drv.omega >= 0, UNKNOWN)
+        labels.place(rf"$\omega_{{{n}}}$", *spot, color=UNKNOWN, prefer=(1, -1))
+    merged: dict[tuple, list] = {}
+    for x, y, text in sc.labels:
+        key = (round(x / ext, 4), round(y / ext, 4))
+        merged.setdefault(key, [x, y, []])[2].append(text)
+    for x, y, names in merged.values():
+        labels.place("/".join(names), x, y, bold=True, fontsize=8.5, prefer=(-1, 1))
+    return save(fig, path.parent, path.stem)[0]
+
+
+def _actions(analysis, link: str):
+    """The actions on ``link`` as a free body, as the d'Alembert equations have them."""
+    return analysis.context.actions_on([link], inertia=True)
+
+
+def fbd_figure(analysis, k: int, link: str, path: Path, zero: set) -> tuple[Path, list[str]]:
+    """The free-body diagram of ``link`` at angle index ``k``; also the symbols of the
+    actions that vanish at that angle (left out of the drawing). ``zero``: reaction unknowns
+    a slider's normal constraint sets to zero (not drawn)."""
+    spec, kin, ctx = analysis.spec, analysis.kinematics, analysis.context
+    sc = _scene(analysis, k)
+    shapes = [s for s in sc.shapes if s.link == link]
+    lk = spec.link(link)
+    n = lk.number
+    acts = _actions(analysis, link)
+    body = [p for s in shapes for p in s.xy]
+    size = float(np.max(np.ptp(np.asarray(body), axis=0))) if body else sc.extent * 0.2
+    size = max(size, 0.15 * sc.extent)
+    L = 0.42 * size
+    com = np.asarray(kin.com(link).r[k], float)
+    draws = []          # (kind, at, vec or ccw, label, color, dashed)
+    omitted = []
+    for a in acts:
+        dashed = a.category == "inertia"
+        color = INERTIA if dashed else (UNKNOWN if a.unknowns else KNOWN)
+        if a.kind == "couple":
+            at = com
+            if a.category == "reaction":
+                joint = next(j for j in spec.joints
+                             if a.unknowns[0] == f"joint.{j.name}.moment")
+                at = np.asarray(ctx.joint_points[joint.name][k], float)
+            elif a.category == "driver":
+                at = np.asarray(ctx.joint_points[spec.driver.joint][k], float)
+            if a.unknowns:
+                draws.append(("couple", at, True, tex_symbol(a.symbol), color, dashed))
+            else:
+                v = float(np.broadcast_to(a.value, (kin.n,))[k])
+                if abs(v) <= 1e-12 * (1 + abs(v)) or v == 0:
+                    omitted.append(a.symbol)
+                else:
+                    draws.append(("couple", com, v > 0, tex_symbol(a.symbol), color, dashed))
+            continue
+        at = np.asarray(a.at[k], float)
+        if a.direction is not None:                  # the actuator's push, unknown magnitude
+            u = np.asarray(a.direction[k], float) * a.sign
+            draws.append(("force", at, u * L, tex_symbol(a.symbol), color, dashed))
+        elif a.unknowns:                             # a reaction: its unknown components
+            for comp, u, axis in (("x", a.unknowns[0], (1.0, 0.0)),
+                                  ("y", a.unknowns[1], (0.0, 1.0))):
+                if u in zero:
+                    continue
+                draws.append(("force", at, np.asarray(axis) * L, tex_symbol(a.symbol, comp),
+                              color, dashed))
+        else:
+            f = np.asarray(np.broadcast_to(a.value, (kin.n, 2))[k], float)
+            m = math.hypot(*f)
+            if m <= 1e-12 * (1 + m) or m == 0:
+                omitted.append(a.symbol)
+                continue
+            draws.append(("force", at, f / m * L, tex_symbol(a.symbol), color, dashed))
+    draws = _spread(draws, L)
+    pts = body + [tuple(com)]
+    for kind, at, v, *_ in draws:
+        pts.append(tuple(at))
+        if kind == "force":
+            pts.append(tuple(at + v))
+        else:
+            pts += [tuple(at + 0.25 * L), tuple(at - 0.25 * L)]
+    lo, hi = _bounds(pts)
+    pad = 0.05 * L
+    fig, ax = _frame((lo - pad, hi + pad), 2.2, 2.5, margin=0.34)
+    labels = SheetLabels(ax, 7.5)
+    _shapes(ax, shapes, labels=False)
+    for j in spec.joints:
+        if link in j.links and j.type == "R":
+            x, y = ctx.joint_points[j.name][k]
+            ax.plot([x], [y], "o", ms=4.5, mfc="white", mec="k", mew=1.0, zorder=4)
+            labels.block(x, y, 3.5)
+    ax.plot([com[0]], [com[1]], marker="o", ms=5, mfc="white", mec="k", mew=0.8, zorder=4.5)
+    ax.plot([com[0]], [com[1]], marker="+", ms=5, color="k", mew=0.8, zorder=4.6)
+    labels.block(com[0], com[1], 3.5)
+    for kind, at, v, text, color, dashed in draws:
+        if kind == "force":
+            _arrow(ax, at, v, color, dashed)
+            labels.block_segment(at + 0.3 * v, at + v)
+    spots = []
+    for kind, at, v, text, color, dashed in draws:
+        if kind == "couple":
+            spots.append((text, _arc(ax, at, 0.22 * L, v, color, dashed), color))
+    # names first: the points, then the forces' symbols at their tips
+    named = {}
+    for name, local in lk.points.items():
+        r = kin.point(link, local).r[k]
+        named.setdefault((round(r[0] / size, 4), round(r[1] / size, 4)), [r, []])[1].append(name)
+    for r, names in named.values():
+        labels.place("/".join(names), r[0], r[1], bold=True, fontsize=8, prefer=(-1, 1))
+    c_name = f"$C_{{{n}}}$"
+    if not any(np.allclose(r, com) for r, _ in named.values()):
+        labels.place(c_name, com[0], com[1], prefer=(-1, -1))
+    centre = np.mean(np.asarray(pts, float), axis=0)
+    for kind, at, v, text, color, dashed in draws:
+        if kind == "force":
+            tip = at + v
+            d = v / L
+            side = np.array([-d[1], d[0]])           # beside the tip, away from the middle
+            if np.dot(side, tip - centre) < 0:
+                side = -side
+            labels.place(text, tip[0], tip[1], color=color, prefer=tuple(side + 0.4 * d))
+    for text, spot, color in spots:
+        labels.place(text, *spot, color=color, prefer=(1, -1))
+    return save(fig, path.parent, path.stem)[0], omitted
+
+
+def _spread(draws: list, L: float) -> list:
+    """Forces at one point along the same direction would hide each other: the second is
+    drawn arriving at the point (its head there, as textbooks also draw forces), a third
+    shifted sideways."""
+    out = []
+    taken: list[tuple[np.ndarray, np.ndarray]] = []     # (point, direction occupied)
+
+    def free(at, d) -> bool:
+        for p, q in taken:
+            if np.allclose(p, at, atol=1e-9 * (1 + L)) and float(np.dot(q, d)) > 0.97:
+                return False
+        return True
+
+    for item in draws:
+        kind, at, v = item[:3]
+        if kind != "force":
+            out.append(item)
+            continue
+        d = v / max(float(np.hypot(*v)), 1e-300)
+        if free(at, d):
+            taken.append((at, d))
+            out.append(item)
+        elif free(at, -d):
+            taken.append((at, -d))
+            out.append((kind, at - v, v) + tuple(item[3:]))
+        else:
+            shift = 0.12 * L * np.array([-d[1], d[0]]) * (1 + len(taken) % 3)
+            out.append((kind, at + shift, v) + tuple(item[3:]))
+    return out

@@ -1,0 +1,739 @@
+"""The model of a solution sheet (the answer key) and of its problem version, built from an
+analysis: what the templates print, and the figures to draw.
+
+A sheet has, for each chosen reference angle: the mechanism's figure, the kinematics
+derivation (:mod:`.kinematics`), the inertia forces, a free-body diagram of every link, each
+chosen method's equations in symbols and with numbers (:mod:`.translate`, from the very
+``Equation`` objects the method solved), the unknowns each step finds, and a table of the
+answers (with exact closed forms under ``--exact``, :mod:`.exact`). The problem version has
+the statement, the data, the figures and what to find, and no result.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...forces import METHODS
+from ...forces.equations import Equation as FEquation
+from ...forces.equations import Step
+from ...spec import GROUND
+from .expr import Equation, Expr, Num, Point, Raw, fmt
+from .kinematics import derive, scalar, vec_expr
+from .symbols import (M_, N_, R, Names, alpha, axis_atom, comp_sym, omega, scalar_sym,
+                      unit_of, vec_sym)
+from .translate import Translator, zero_by_constraint
+
+ALL_METHODS = tuple(METHODS)
+
+
+@dataclass(frozen=True)
+class SheetOptions:
+    """What a sheet shows: ``methods`` (names, in this order; None: all), ``angles`` (the
+    reference angles, sweep units; None: the spec's ``at``), ``exact`` closed forms."""
+
+    methods: tuple[str, ...] | None = None
+    angles: tuple[float, ...] | None = None
+    exact: bool = False
+
+    def key(self) -> dict:
+        """The options that change the output, for a build's up-to-date check (empty when
+        they are the defaults)."""
+        out = {}
+        if self.methods is not None:
+            out["sheet_methods"] = list(self.methods)
+        if self.angles is not None:
+            out["sheet_angles"] = [float(a) for a in self.angles]
+        return out
+
+
+METHOD_INTRO = {
+    "newton_euler": ["For every moving link, Newton's and Euler's equations of motion ",
+                     R(r"m\,\mathbf{a}_C = \sum \mathbf{F}", "m bold(a)_C = sum bold(F)"),
+                     " and ", R(r"I_C\,\alpha = \sum M_C", "I_C alpha = sum M_C"),
+                     " (moments about the link's own centre of mass), with the joint reactions "
+                     "and the driver's effort as unknowns; all links' equations are solved "
+                     "together."],
+    "dalembert": ["The inertia force ", R(r"\mathbf{F}_{in} = -m\,\mathbf{a}_C",
+                                          'bold(F)_"in" = -m bold(a)_C'),
+                  " (at the centre of mass) and the inertia couple ",
+                  R(r"M_{in} = -I_C\,\alpha", 'M_"in" = -I_C alpha'),
+                  " are added to each link as loads; each link is then in static equilibrium: "
+                  "its forces along x and y and its moments about one of its own joints sum to "
+                  "zero. All links' equations are solved together."],
+    "dyad": ["The dyads (groups of two links and three joints) are solved from the last one "
+             "back toward the driver, with d'Alembert's loads: first the group's outer "
+             "reactions, then its interior joint, and the driver's link last."],
+    "contour": ["Each joint is cut in turn; walking the contour from it, a moment equation "
+                "about each pin met (or a force projection on the sliding direction of each "
+                "slider met) is written for the links left behind, so that the other joints' "
+                "reactions do not enter."],
+    "power": ["Independent check, not in the textbook: ideal joints do no work, so with "
+              "d'Alembert's loads the total power vanishes, ",
+              R(r"\sum P = M\,\omega_1 + \sum \mathbf{F} \cdot \mathbf{v} + \sum M\,\omega = 0",
+                "sum P = M omega_1 + sum bold(F) dot bold(v) + sum M omega = 0"),
+              "; it gives the driver's effort without any joint reaction."],
+}
+
+T_NOTE = ["The textbook finds the point P (or Q) where a slider's reaction acts, which makes the "
+          "equations nonlinear; here the reaction of a sliding joint is its force at the "
+          "slider's point plus a couple about that point (linear unknowns), which is equivalent "
+          "to the same force acting at P, given with the results."]
+
+
+# ------------------------------------------------------------------------------ the model
+
+@dataclass
+class Figure:
+    path: str                 # relative to the sheet's folder
+    caption: list             # rich text
+    draw: object = None       # callable(Path) that writes it
+
+
+@dataclass
+class EqModel:
+    number: int
+    symbolic: Equation
+    numeric: Equation
+    source: FEquation | None = None
+
+
+@dataclass
+class EqGroup:
+    heading: str | None
+    equations: list
+
+
+@dataclass
+class StepModel:
+    number: int
+    title: str
+    free_body: str
+    unknowns: list
+    notes: list               # (text, math or list of math)
+    groups: list              # EqGroup
+    results: list             # Equation
+    points: list = field(default_factory=list)   # (joint, vector symbol, Equation | None)
+
+    @property
+    def equations(self) -> list:
+        return [e for g in self.groups for e in g.equations]
+
+
+@dataclass
+class MethodModel:
+    name: str
+    title: str
+    section: str
+    intro: list
+    steps: list
+    effort: Equation
+    check: list = field(default_factory=list)    # power: (method title, Equation)
+
+
+@dataclass
+class AngleModel:
+    angle: float
+    title: str
+    skipped: str | None = None
+    intro: list = field(default_factory=list)
+    figure: Figure | None = None
+    kinematics: list = field(default_factory=list)     # KinBlock
+    actions: list = field(default_factory=list)        # rows
+    loads: list = field(default_factory=list)
+    fbds: list = field(default_factory=list)           # Figure
+    fbd_note: list = field(default_factory=list)
+    methods: list = field(default_factory=list)
+    answers: list = field(default_factory=list)        # (symbol, value Equation, exact)
+    answers_note: str = ""
+    shown: list = field(default_factory=list)
+
+
+@dataclass
+class SheetModel:
+    name: str
+    file: str
+    description: str
+    exact: bool
+    links: list
+    joints: list
+    driver: list              # rich text
+    conventions: list
+    t_note: list
+    angles: list
+    method_titles: list
+    units: str = ""
+    exact_note: str = ""
+
+    def figures(self) -> list[Figure]:
+        out = []
+        for a in self.angles:
+            if a.figure is not None:
+                out.append(a.figure)
+            out += a.fbds
+        return out
+
+
+@dataclass
+class ProblemModel:
+    name: str
+    file: str
+    description: str
+    links: list
+    joints: list
+    ground: list
+    driver: list
+    gravity: str
+    loads: list
+    angles: list              # (title, Figure)
+    tasks: list               # rich text items
+
+
+# ------------------------------------------------------------------------------ helpers
+
+def coordinate(spec, angle: float) -> tuple[str, str]:
+    """(heading, short) for a reference value: ("Crank angle 45°", "φ = 45°") or
+    ("Stroke 300 mm", "s = 300 mm")."""
+    d = spec.driver
+    if d.kind == "R":
+        what = "Crank angle" if d.crank else "Relative angle"
+        return f"{what} {fmt(angle)}°", f"φ = {fmt(angle)}°"
+    u = spec.units.get("length", "m")
+    return f"Stroke {fmt(angle)} {u}", f"s = {fmt(angle)} {u}"
+
+
+def _tag(angle: float) -> str:
+    return fmt(angle).replace("-", "m").replace(".", "p")
+
+
+def _vec(v) -> str:
+    return f"({fmt(v[0])}, {fmt(v[1])})"
+
+
+def _free_body(ctx, bodies) -> str:
+    links = [ctx.spec.link(b) for b in bodies]
+    if len(links) == 1:
+        return f"link {links[0].number} ({links[0].name})"
+    return "links " + " & ".join(str(l.number) for l in links) + \
+        " (" + ", ".join(l.name for l in links) + ")"
+
+
+def _scalar(x: float, unit) -> Expr:
+    return scalar(x, unit)
+
+
+# ------------------------------------------------------------------------------ methods
+
+def _results(unknowns, values: dict, k: int, names: Names, result) -> tuple[list, list]:
+    """Solved unknowns grouped by joint: F12 = Fx i + Fy j N, M03 = ... N·m, M = ... N·m;
+    and each slider's equivalent point of application."""
+    lines, points, done = [], [], set()
+    for u in unknowns:
+        if u in done:
+            continue
+        joint = names.joint_of.get(u)
+        if joint is not None and names.comp_of[u] in ("x", "y"):
+            fx, fy = (values[f"joint.{joint}.f{c}"][k] for c in ("x", "y"))
+            done.update({f"joint.{joint}.fx", f"joint.{joint}.fy"})
+            lines.append(Equation([Expr().add(1, vec_sym(names.vec[joint])),
+                                   vec_expr((fx, fy), N_)]))
+            continue
+        done.add(u)
+        lines.append(Equation([Expr().add(1, names[u]), _scalar(values[u][k], unit_of(u))]))
+        if joint is not None and result is not None:
+            r = result.reactions.get(joint)
+            if r is not None and r.px is not None:
+                pe = None
+                if np.isfinite(r.px[k]):
+                    pe = Equation([Expr().add(1, Raw(r"\mathbf{r}_{P}", "bold(r)_P", "r_P")),
+                                   vec_expr((r.px[k], r.py[k]), M_)])
+                points.append((Point(joint), vec_sym(names.vec[joint]), pe))
+    return lines, points
+
+
+def _step_model(number: int, step: Step, tr: Translator, names: Names, ctx, result,
+                counter: list, origin: dict, group_by_link: bool) -> StepModel:
+    k = tr.k
+    unknowns = set(step.unknowns)
+    zero_all = zero_by_constraint(step)
+    zero_k = zero_by_constraint(step, k)
+    groups: list[EqGroup] = []
+    zero_notes = []
+    for eq in step.equations:
+        counter[0] += 1
+        constraint = eq.kind == "constraint"
+        em = EqModel(counter[0], tr.symbolic(eq, set() if constraint else zero_all),
+                     tr.numeric(eq, unknowns, set() if constraint else zero_k), eq)
+        if constraint:
+            for u in sorted(zero_k & {p for t in eq.terms for p in t.action.unknowns}):
+                zero_notes.append((u, counter[0]))
+        heading = None
+        if group_by_link and len(eq.bodies) == 1 and not constraint:
+            link = ctx.spec.link(eq.bodies[0])
+            heading = f"Link {link.number} ({link.name})"
+        elif group_by_link and constraint:
+            heading = "Sliders"
+        if groups and groups[-1].heading == heading:
+            groups[-1].equations.append(em)
+        else:
+            groups.append(EqGroup(heading, [em]))
+    if not group_by_link:
+        for g in groups:
+            g.heading = None
+    notes = []
+    pairs, seen, earlier = [], set(), {}
+    for eq in step.equations:
+        for t in eq.terms:
+            a = t.action
+            if not a.unknowns:
+                continue
+            if a.sign < 0 and a.category == "reaction" and a.symbol not in seen:
+                seen.add(a.symbol)
+                joint = names.joint_of[a.unknowns[0]]
+                canon = names.vec[joint] if a.kind == "force" else names.couple[joint]
+                sym = vec_sym if a.kind == "force" else scalar_sym
+                pairs.append(Equation([Expr().add(1, sym(a.symbol)),
+                                       Expr().add(-1, sym(canon))]))
+            for u in a.unknowns:
+                if u not in unknowns and u in origin:
+                    earlier.setdefault(origin[u], [])
+                    if u not in earlier[origin[u]]:
+                        earlier[origin[u]].append(u)
+    if pairs:
+        notes.append(("action and reaction:", pairs))
+    for s, us in sorted(earlier.items()):
+        notes.append((f"found in step {s}:",
+                      [Equation([Expr().add(1, names[u]), _scalar(tr.values[u][k], unit_of(u))])
+                       for u in us]))
+    deltas = {}
+    for eq in step.equations:
+        if eq.axis and eq.axis.startswith("Delta_") and eq.axis not in deltas:
+            d = next((t.direction for t in eq.terms if t.direction is not None), None)
+            if d is not None:
+                deltas[eq.axis] = np.asarray(d)[k]
+    for ax, d in deltas.items():
+        notes.append(("sliding direction (unit vector):",
+                      Equation([Expr().add(1, axis_atom(ax)), vec_expr(d)])))
+    for u, n in zero_notes:
+        notes.append((f"the slider's reaction is normal to its line, so by ({n})",
+                      Equation([Expr().add(1, names[u]), Expr().add(1, Num(0.0))])))
+    results, points = _results(step.unknowns, tr.values, k, names, result)
+    return StepModel(number, step.title, _free_body(ctx, step.bodies),
+                     [names[u] for u in step.unknowns], notes, groups, results, points)
+
+
+def _method_model(name: str, result, k: int, names: Names, ctx, counter: list,
+                  others: dict) -> MethodModel:
+    mod = METHODS[name]
+    values = result.values()
+    tr = Translator(ctx, values, k)
+    origin: dict[str, int] = {}
+    steps = []
+    group = name in ("newton_euler", "dalembert")
+    for i, step in enumerate(result.steps, 1):
+        steps.append(_step_model(i, step, tr, names, ctx, result, counter, origin, group))
+        for u in step.unknowns:
+            origin[u] = i
+    effort = result.driver_quantity
+    value = float(result.driver_torque[k])
+    eq = Equation([Expr().add(1, names[effort]), _scalar(value, unit_of(effort))])
+    check = []
+    if name == "power":
+        for other, v in others.items():
+            diff = value - v
+            if abs(diff) <= 1e-9 * max(1.0, abs(value)):
+                diff = 0.0
+            check.append((METHODS[other].TITLE,
+                          Equation([Expr().add(1, names[effort]), _scalar(v, unit_of(effort))]),
+                          fmt(diff)))
+    section = mod.SECTION.strip("()")
+    if section[:1].isdigit():
+        section = "textbook " + section
+    return MethodModel(name, mod.TITLE, section, METHOD_INTRO.get(name, []), steps, eq, check)
+
+
+# ------------------------------------------------------------------------------ angles
+
+def _intro(analysis, k: int) -> list:
+    kin, spec = analysis.kinematics, analysis.spec
+    d = spec.driver
+    drv = spec.link(d.link)
+    n = drv.number
+    if d.kind == "R":
+        return [f"The driver link {n} ({drv.name}) turns at ",
+                Equation([Expr().add(1, omega(n)), scalar(kin.omega[k, n], Raw(
+                    r"\mathrm{rad/s}", '"rad/s"', "rad/s"))]), " with ",
+                Equation([Expr().add(1, alpha(n)), scalar(kin.alpha[k, n], Raw(
+                    r"\mathrm{rad/s^2}", '"rad/s"^2', "rad/s^2"))]), "."]
+    return [f"The actuator extends at {fmt(d.omega)} m/s (acceleration {fmt(d.alpha)} m/s²), "
+            f"moving link {n} ({drv.name})."]
+
+
+def _inertia_rows(analysis, k: int) -> list:
+    ctx, spec = analysis.context, analysis.spec
+    rows = []
+    for link in spec.links:
+        s = ctx.links[link.name]
+        fin, mi = ctx.inertia_actions(link.name)
+        g = ctx.gravity_action(link.name)
+        rows.append([str(link.number), link.name, fmt(s.mass), fmt(s.inertia),
+                     _vec(fin.value[k]), fmt(mi.value[k]), _vec(g.value[k])])
+    return rows
+
+
+def _load_rows(analysis, k: int) -> list:
+    kin, ctx, spec = analysis.kinematics, analysis.context, analysis.spec
+    elements = {"spring": "spring force k (L − L0) along its line",
+                "damper": "damper force c dL/dt along its line",
+                "torsion_spring": "torsion spring couple k (θ_rel − θ0)"}
+    rows = []
+    for ld in ctx.loads:
+        load = ld.load
+        if ld.link == GROUND:            # a spring or damper's frame end acts on the frame
+            continue
+        link = spec.link(ld.link)
+        if ld.force is not None:
+            v = kin.named_point(ld.point, ld.link).v[k]
+            rule = (f"opposes the velocity of {ld.point}, v = {_vec(v)} m/s"
+                    if load.oppose == "velocity" else elements.get(load.kind, "as given"))
+            rows.append([ld.symbol, f"{link.number} ({link.name})", ld.point or "",
+                         f"{_vec(ld.force[k])} N", rule])
+        else:
+            w = kin.omega[k, link.number]
+            rule = (f"opposes the rotation of link {link.number}, ω = {fmt(w)} rad/s"
+                    if load.oppose == "rotation" else elements.get(load.kind, "as given"))
+            rows.append([ld.symbol, f"{link.number} ({link.name})", "",
+                         f"{fmt(ld.moment[k])} N·m", rule])
+    return rows
+
+
+def _answers(analysis, k: int, names: Names, exact, methods) -> tuple[list, str]:
+    """The answers at ``k`` by the first method with reactions, one row per joint (and the
+    driver): (symbol, x, y, magnitude, couple, exact forms or None); and how well the
+    methods agree."""
+    from ...post import reference_method
+    forces = {m: analysis.forces[m] for m in methods if m in analysis.forces} or analysis.forces
+    ref = forces[reference_method(forces)]
+    spec = analysis.spec
+    rows = []
+
+    def ex(sym, x):
+        if exact is None:
+            return None
+        c = exact(x)
+        if c is None:
+            return [sym, " none found"]
+        return [Equation([Expr().add(1, sym), Expr().add(1, exact.atom(c))])]
+
+    values = ref.values()
+    for j in spec.joints:
+        r = ref.reactions.get(j.name)
+        if r is None:
+            continue
+        vec = names.vec[j.name]
+        forms = None
+        if exact is not None:
+            forms = ex(comp_sym(vec, "x"), r.fx[k]) + [", "] + ex(comp_sym(vec, "y"), r.fy[k])
+            if r.moment is not None:
+                forms += [", "] + ex(scalar_sym(names.couple[j.name]), r.moment[k])
+        rows.append((vec_sym(vec), fmt(r.fx[k]), fmt(r.fy[k]), fmt(r.f[k]),
+                     fmt(r.moment[k]) if r.moment is not None else "", forms))
+    q = ref.driver_quantity
+    v = float(ref.driver_torque[k])
+    rows.append((names[q], "", "", "", fmt(v), ex(names[q], v) if exact is not None else None))
+    worst = 0.0
+    for res in forces.values():
+        for u, val in res.values().items():
+            if u in values:
+                worst = max(worst, abs(float(val[k]) - float(values[u][k])))
+    n = len(forces)
+    agree = "to round-off" if fmt(worst) == "0" else f"within {fmt(worst)} (N or N·m)"
+    note = (f"By {METHODS[ref.method].TITLE}; the {n} methods shown agree {agree}."
+            if n > 1 else f"By {METHODS[ref.method].TITLE}.")
+    return rows, note
+
+
+def _zero_actions(analysis, k: int, link: str) -> list[str]:
+    out = []
+    for a in analysis.context.actions_on([link], inertia=True):
+        if a.unknowns:
+            continue
+        v = np.asarray(a.value)
+        v = v[k] if v.ndim else v
+        if np.all(np.abs(v) == 0) or np.all(np.abs(v) < 1e-12):
+            out.append(a.symbol)
+    return out
+
+
+def _fbds(analysis, k: int, tag: str, methods) -> tuple[list, list]:
+    from .figures import fbd_figure
+    spec = analysis.spec
+    zero = set()
+    ref = next((analysis.forces[m] for m in methods if m in analysis.forces
+                and analysis.forces[m].reactions), None)
+    if ref is not None:
+        for step in ref.steps:
+            zero |= zero_by_constraint(step)
+    figs = []
+    omitted = []
+    for link in spec.links:
+        path = f"figures/sheet-{tag}-fbd-{link.number}.svg"
+        omitted += _zero_actions(analysis, k, link.name)
+
+        def draw(p, _link=link.name, _zero=frozenset(zero)):
+            return fbd_figure(analysis, k, _link, p, set(_zero))[0]
+        figs.append(Figure(path, [f"Link {link.number} ({link.name})"], draw))
+    note = ["Unknown reactions (blue) are drawn as their components in the positive "
+            "directions; a slider's reaction along the normal of its line, with its couple. "
+            "The inertia force and couple (dashed, red) are d'Alembert's loads, used by every "
+            "method but Newton-Euler, which writes ",
+            R(r"m\,\mathbf{a}_C", "m bold(a)_C"), " and ", R(r"I_C\,\alpha", "I_C alpha"),
+            " instead. Arrows show directions, not magnitudes."]
+    if omitted:
+        note.append(" Zero at this angle, not drawn: ")
+        for i, sym in enumerate(omitted):
+            note += [scalar_sym(sym) if sym.startswith("M") else vec_sym(sym),
+                     ", " if i < len(omitted) - 1 else "."]
+    return figs, note
+
+
+def _angle_model(analysis, angle: float, names: Names, exact, methods, display) -> AngleModel:
+    kin, ctx, spec = analysis.kinematics, analysis.context, analysis.spec
+    title, short = coordinate(spec, angle)
+    k = kin.index_of(angle)
+    if k is None:
+        reasons = [f.reason for f in analysis.flags if abs(f.angle - angle) < 1e-9]
+        return AngleModel(angle, title,
+                          skipped="; ".join(reasons) or "left out of the analysis")
+    am = AngleModel(angle, title)
+    tag = _tag(angle)
+    am.intro = _intro(analysis, k)
+    from .figures import mechanism_figure
+    am.figure = Figure(f"figures/sheet-{tag}-mechanism.svg",
+                       [f"The mechanism at {short}: links numbered, joints lettered."],
+                       lambda p: mechanism_figure(analysis, k, p))
+    am.kinematics = derive(analysis, k, exact)
+    am.actions = _inertia_rows(analysis, k)
+    am.loads = _load_rows(analysis, k)
+    am.fbds, am.fbd_note = _fbds(analysis, k, tag, methods)
+    counter = [0]
+    others = {}
+    for name in methods:
+        res = analysis.forces.get(name)
+        if res is None:
+            continue
+        mm = _method_model(name, res, k, names, ctx, counter, others if name == "power" else {})
+        if name != "power":
+            others[name] = float(res.driver_torque[k])
+        am.methods.append(mm)
+    am.answers, am.answers_note = _answers(analysis, k, names, exact, methods)
+    if display is not None:
+        from ...post import reference_method
+        ref = analysis.forces[reference_method(analysis.forces)]
+        F, M = display.unit("force"), display.unit("moment")
+        for j in spec.joints:
+            r = ref.reactions.get(j.name)
+            if r is None:
+                continue
+            am.shown.append([spec.symbol(*j.links), f"{display.num(r.fx[k], 'force')} {F}",
+                             f"{display.num(r.fy[k], 'force')} {F}",
+                             f"{display.num(r.f[k], 'force')} {F}",
+                             f"{display.num(r.moment[k], 'moment')} {M}"
+                             if r.moment is not None else ""])
+        am.shown.append(["M (driver)", "", "", "",
+                         f"{display.num(ref.driver_torque[k], 'moment')} {M}"])
+    return am
+
+
+# ------------------------------------------------------------------------------ the sheet
+
+def _conventions(spec) -> list:
+    effort = ([R("M", "M"), " is the driver torque on the driver link."]
+              if spec.driver.kind == "R" else
+              [R("F_d", "F_d"), " is the actuator's force along its line (its first link on its "
+               "second)."])
+    return [
+        ["Links are numbered in the spec's order, the ground is 0. ",
+         R(r"\mathbf{F}_{ij}", "bold(F)_(i j)"), " is the force of link i on link j (",
+         R(r"\mathbf{F}_{ji} = -\mathbf{F}_{ij}", "bold(F)_(j i) = -bold(F)_(i j)"),
+         "); its components ", R(r"F_{ijx}, F_{ijy}", "F_(i j x), F_(i j y)"),
+         " are global, along ", R(r"\mathbf{i}", "bold(i)"), " and ",
+         R(r"\mathbf{j}", "bold(j)"), "."],
+        ["Moments and couples are about the z-axis, counterclockwise positive; ",
+         R(r"\mathbf{r}_{PQ} = \mathbf{r}_Q - \mathbf{r}_P", "bold(r)_(P Q) = bold(r)_Q - "
+           "bold(r)_P"), ", so the moment about P of a force F applied at Q is ",
+         R(r"\mathbf{r}_{PQ} \times \mathbf{F} = (x_Q - x_P) F_y - (y_Q - y_P) F_x",
+           "bold(r)_(P Q) times bold(F) = (x_Q - x_P) F_y - (y_Q - y_P) F_x"), "."],
+        [R(r"\mathbf{F}_{in\,i} = -m_i \mathbf{a}_{C_i}", 'bold(F)_("in" i) = -m_i bold(a)_(C_i)'),
+         " is the inertia force of link i at its centre of mass ", R("C_i", "C_i"), ", ",
+         R(r"M_{in\,i} = -I_{C_i} \alpha_i", 'M_("in" i) = -I_(C_i) alpha_i'),
+         " its inertia couple, ", R(r"\mathbf{G}_i = m_i \mathbf{g}", "bold(G)_i = m_i bold(g)"),
+         " its weight; ", *effort],
+        ["Each method states its equations in symbols (the very equations the program "
+         "solves), then with the numbers of the reference angle: terms that vanish there are "
+         "left out, values found in an earlier step are substituted, coefficients are "
+         "simplified. Numbers have 6 significant digits; SI units (m, kg, s, N, N·m)."],
+    ]
+
+
+def choose_methods(analysis, methods) -> list[str]:
+    """The methods to show, in the textbook's order (``methods`` None: all analysed)."""
+    names = [m for m in ALL_METHODS if m in analysis.forces]
+    if methods is None:
+        return names
+    return [m for m in methods if m in analysis.forces]
+
+
+def build_sheet(analysis, options: SheetOptions | None = None) -> SheetModel:
+    """The answer key of an analysis (figures not drawn yet: see ``SheetModel.figures``)."""
+    options = options or SheetOptions()
+    spec = analysis.spec
+    names = Names(spec)
+    angles = list(options.angles) if options.angles is not None else list(spec.at)
+    exact = None
+    exact_note = ""
+    if options.exact:
+        from .exact import ExactForms
+        exact = ExactForms(spec, angles)
+        exact_note = ("Exact values are " + exact.describe() + " that match the computed "
+                      "value to 12 digits; “none found” means the value is not such a "
+                      "combination (or needs more digits than a computed value can confirm).")
+    methods = choose_methods(analysis, options.methods)
+    from ..model import display_of
+    display = display_of(analysis)
+    si = (display.length, display.force, display.moment, display.mass) == ("m", "N", "N*m", "kg")
+    links = [[str(l.number), l.name, ", ".join(f"{p} {_vec(xy)}" for p, xy in l.points.items()),
+              fmt(l.mass), fmt(l.inertia), _vec(l.com)] for l in spec.links]
+    joints = []
+    for j in spec.joints:
+        a, b = j.links
+        joints.append([j.name, j.type, f"{spec.number(a)} ({a}) on {spec.number(b)} ({b})",
+                       names.vec[j.name]])
+    angle_models = [_angle_model(analysis, float(a), names, exact, methods,
+                                 None if si else display) for a in angles]
+    return SheetModel(spec.name, str(spec.file), spec.description.strip(), options.exact,
+                      links, joints, _driver_text(spec), _conventions(spec),
+                      T_NOTE if any(j.type == "T" for j in spec.joints) else [],
+                      angle_models, [METHODS[m].TITLE for m in methods],
+                      "" if si else display.describe(), exact_note)
+
+
+def _driver_text(spec) -> list:
+    d = spec.driver
+    link = spec.link(d.link)
+    if d.kind == "R":
+        rpm = d.omega * 30 / math.pi
+        return [f"Driver: joint {d.joint}, link {link.number} ({link.name}) turns at ",
+                Equation([Expr().add(1, omega(link.number)), scalar(d.omega, Raw(
+                    r"\mathrm{rad/s}", '"rad/s"', "rad/s"))]),
+                f" ({fmt(rpm)} rpm)" + (", constant" if d.alpha == 0 else
+                                        f", accelerating at {fmt(d.alpha)} rad/s²") + "."]
+    return [f"Driver: the actuator {d.joint} extends at {fmt(d.omega)} m/s, moving link "
+            f"{link.number} ({link.name})."]
+
+
+# ------------------------------------------------------------------------------ problem
+
+def _load_text(spec, load) -> str:
+    def where(link, point):
+        return f"link {spec.number(link)} ({link})" + (f" at {point}" if point else "")
+    if load.kind == "spring":
+        (la, pa), (lb, pb) = load.between
+        return (f"a spring of stiffness {fmt(load.stiffness)} N/m and free length "
+                f"{fmt(load.free_length)} m between {pa} ({la}) and {pb} ({lb})")
+    if load.kind == "damper":
+        (la, pa), (lb, pb) = load.between
+        return f"a damper of {fmt(load.damping)} N·s/m between {pa} ({la}) and {pb} ({lb})"
+    if load.kind == "torsion_spring":
+        return (f"a torsion spring of {fmt(load.stiffness)} N·m/rad at joint {load.joint}, "
+                f"free at {fmt(load.free_angle)}°")
+    if load.kind == "force":
+        if load.value is not None:
+            what = f"a force {_vec(load.value)} N"
+        else:
+            what = (f"a force along {_vec(load.direction)} whose magnitude follows a profile "
+                    f"over the {spec.driver.coordinate}")
+        rule = " opposing the velocity of its point" if load.oppose == "velocity" else ""
+        return f"{what} on {where(load.link, load.point)}{rule}"
+    what = f"a moment {fmt(load.value)} N·m" if load.value is not None else \
+        "a moment following a profile"
+    rule = " opposing the link's rotation" if load.oppose == "rotation" else ""
+    return f"{what} on {where(load.link, None)}{rule}"
+
+
+def build_problem(analysis, options: SheetOptions | None = None,
+                  sheet: SheetModel | None = None) -> ProblemModel:
+    """The problem version: statement, data, figures, what to find; no result."""
+    options = options or SheetOptions()
+    spec = analysis.spec
+    names = Names(spec)
+    angles = list(options.angles) if options.angles is not None else list(spec.at)
+    methods = choose_methods(analysis, options.methods)
+    links = []
+    for l in spec.links:
+        pts = list(l.points.items())
+        dims = []
+        for a in range(len(pts)):
+            for b in range(a + 1, len(pts)):
+                d = np.hypot(*np.subtract(pts[b][1], pts[a][1]))
+                dims.append(f"{pts[a][0]}{pts[b][0]} = {fmt(d)} m")
+        shape = ""
+        if l.shape is not None:
+            shape = (f"{l.shape.kind} {fmt(l.shape.length)} × {fmt(l.shape.height)} × "
+                     f"{fmt(l.shape.depth)} m")
+        links.append([str(l.number), l.name, ", ".join(f"{p} {_vec(xy)}" for p, xy in pts),
+                      ", ".join(dims), shape, fmt(l.mass), fmt(l.inertia), _vec(l.com)])
+    joints = [[j.name, {"R": "pin (R)", "T": "slider (T)"}[j.type],
+               f"{spec.number(j.links[0])} ({j.links[0]}) – {spec.number(j.links[1])} "
+               f"({j.links[1]})" + (f", line through {_vec(j.line.through)} along "
+                                    f"{_vec(j.line.direction)} in the frame of "
+                                    f"{j.links[0]}" if j.type == "T" else "")]
+              for j in spec.joints]
+    ground = [f"{n} {_vec(xy)}" for n, xy in spec.ground.items()]
+    loads = [_load_text(spec, ld) for ld in spec.loads]
+    figs = []
+    if sheet is not None:
+        for am in sheet.angles:
+            figs.append((am.title, am.figure))
+    else:
+        for a in angles:
+            figs.append((coordinate(spec, a)[0], None))
+    titles = [METHODS[m].TITLE for m in methods if m != "power"]
+    effort = "the driver torque M" if spec.driver.kind == "R" else \
+        "the actuator force F_d"
+    shorts = ", ".join(coordinate(spec, a)[1] for a in angles)
+    tasks = [f"the positions, velocities and accelerations of the joints and of the centres "
+             f"of mass, and the angular velocities and accelerations of the links, at {shorts};",
+             "the inertia force and inertia couple of every link;",
+             f"the reaction of every joint ({', '.join(names.vec[j.name] for j in spec.joints)}"
+             f") and {effort}" + (f", by {_join_and(titles)}" if titles else "") + ";"]
+    if "power" in methods:
+        tasks.append(f"check {effort} with a power balance.")
+    return ProblemModel(spec.name, str(spec.file), spec.description.strip(), links, joints,
+                        ground, _driver_text(spec), _vec(spec.gravity) + " m/s²", loads, figs,
+                        tasks)
+
+
+def _join_and(items: list[str]) -> str:
+    if len(items) <= 1:
+        return "".join(items)
+    return ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def sheet_analysis(analysis, options: SheetOptions):
+    """The analysis a sheet at ``options.angles`` needs: ``analysis`` itself when every
+    angle was analysed (the sweep's or a reference angle), else the spec analysed again with
+    those angles added to its reference angles (the branch is still followed from the first
+    one)."""
+    if options.angles is None:
+        return analysis
+    from dataclasses import replace
+    from ...analysis import analyse
+    spec = analysis.spec
+    have = spec.analysed_angles()
+    missing = tuple(float(a) for a in options.angles
+                    if not np.any(np.abs(have - float(a)) < 1e-9))
+    if not missing:
+        return analysis
+    return analyse(replace(spec, at=tuple(spec.at) + missing), tol=analysis.tol)

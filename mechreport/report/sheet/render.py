@@ -1,0 +1,103 @@
+"""Write a solution sheet and its problem version: solution.md / solution.pdf (the answer
+key) and problem.md / problem.pdf (statement, data, figures, what to find), beside the
+figures they show (figures/sheet-*.svg).
+
+Templates: ``templates/solution.{md,typ}.j2`` and ``templates/problem.{md,typ}.j2``, through
+the reports' one Jinja2 environment (:func:`mechreport.report.render.environment`) with the
+sheets' math filters: ``mtex`` / ``mtyp`` render an atom, expression or equation (or rich
+text: a list of strings and math) as LaTeX or Typst math."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..files import atomic_write_text
+from ..markdown import md_inline
+from ..pdf import compile_typst, typst_escape, typst_string
+from ..render import environment
+from .expr import Equation, fmt, math
+from .model import SheetOptions, build_problem, build_sheet
+from .symbols import rich_label
+
+
+def _rich(segments, how: str) -> str:
+    """Text with inline math: strings escaped for the target, math between dollars."""
+    out = []
+    for seg in segments:
+        if isinstance(seg, str):
+            if how == "tex":             # md_inline trims; math needs the spaces around it
+                core = seg.strip()
+                lead, trail = seg[:len(seg) - len(seg.lstrip())], seg[len(seg.rstrip()):]
+                out.append((" " if lead else "") + (md_inline(core) if core else "")
+                           + (" " if trail and core else ""))
+            else:
+                out.append(typst_escape(seg))
+        else:
+            out.append("$" + math(seg, how) + "$")
+    return "".join(out)
+
+
+def _description_typ(text: str) -> str:
+    """A spec's Markdown description as Typst: paragraphs, *emphasis* and `code` kept,
+    everything else escaped (it is user text)."""
+    import re
+    out = []
+    for para in re.split(r"\n\s*\n", text.strip()):
+        pieces, pos = [], 0
+        for m in re.finditer(r"\*([^*\n]+)\*|`([^`\n]+)`", para):
+            pieces.append(typst_escape(para[pos:m.start()]))
+            if m.group(1) is not None:
+                pieces.append("#emph[" + typst_escape(m.group(1)) + "]")
+            else:
+                pieces.append("#raw(" + typst_string(m.group(2)) + ")")
+            pos = m.end()
+        pieces.append(typst_escape(para[pos:]))
+        out.append("".join(pieces))
+    return "\n\n".join(out)
+
+
+def _env():
+    env = environment()
+    if "mtex" not in env.filters:
+        env.filters["mtex"] = lambda x: math(x, "tex")
+        env.filters["mtyp"] = lambda x: math(x, "typ")
+        env.filters["rich_md"] = lambda segs: _rich(segs, "tex")
+        env.filters["rich_typ"] = lambda segs: _rich(segs, "typ")
+        env.filters["num"] = fmt
+        env.filters["label_md"] = lambda s: _rich(rich_label(str(s)), "tex")
+        env.filters["label_typ"] = lambda s: _rich(rich_label(str(s)), "typ")
+        env.filters["desc_typ"] = _description_typ
+        env.tests["equation"] = lambda x: isinstance(x, Equation)
+        env.tests["mathlist"] = lambda x: isinstance(x, (list, tuple))
+    return env
+
+
+def render_markdown(model) -> str:
+    return _env().get_template("solution.md.j2").render(sheet=model)
+
+
+def render_typst(model) -> str:
+    return _env().get_template("solution.typ.j2").render(sheet=model)
+
+
+def render_problem_markdown(model) -> str:
+    return _env().get_template("problem.md.j2").render(p=model)
+
+
+def render_problem_typst(model) -> str:
+    return _env().get_template("problem.typ.j2").render(p=model)
+
+
+def write_sheet(analysis, outdir: Path, options: SheetOptions | None = None) -> list[Path]:
+    """Write the answer key and the problem version of ``analysis`` into ``outdir``, with
+    their figures; returns [solution.md, solution.pdf, problem.md, problem.pdf]."""
+    outdir = Path(outdir)
+    sheet = build_sheet(analysis, options)
+    (outdir / "figures").mkdir(parents=True, exist_ok=True)
+    for fig in sheet.figures():
+        fig.draw(outdir / fig.path)
+    problem = build_problem(analysis, options, sheet)
+    out = [atomic_write_text(outdir / "solution.md", render_markdown(sheet))]
+    out.append(compile_typst(render_typst(sheet), outdir / "solution.pdf", outdir))
+    out.append(atomic_write_text(outdir / "problem.md", render_problem_markdown(problem)))
+    out.append(compile_typst(render_problem_typst(problem), outdir / "problem.pdf", outdir))
+    return out
