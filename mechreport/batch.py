@@ -19,7 +19,6 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .analysis import _review, analyse
-from .cli import describe_failure
 from .forces import METHODS, ForceContext
 from .kinematics import EPS, TRUST_RTOL
 from .kinematics.stacked import solve_stacked, variant_kinematics
@@ -31,15 +30,23 @@ from .spec import Spec
 @dataclass(frozen=True)
 class Outcome:
     """One variant's result: ``review`` (cycle quantities, or None and ``review_problem``),
-    its design ``verdicts``, and ``error`` when it could not be analysed at all (the message a
-    single analysis gives). ``batched``: solved in the batch (False: analysed alone)."""
+    its design ``verdicts``, and ``exception`` when it could not be analysed at all (what a
+    single analysis raises). ``batched``: solved in the batch (False: analysed alone)."""
 
     spec: Spec
     review: Review | None = None
     review_problem: str = ""
     verdicts: tuple[Verdict, ...] = ()
-    error: str | None = None
+    exception: BaseException | None = None
     batched: bool = False
+
+    @property
+    def error(self) -> str | None:
+        """The failure's message for users (None when the variant was analysed)."""
+        if self.exception is None:
+            return None
+        from .cli import describe_failure
+        return describe_failure(self.exception)
 
     @property
     def passed(self) -> bool | None:
@@ -65,10 +72,10 @@ def analyse_variants(specs: list[Spec], method: str) -> list[Outcome]:
             mech = build_mechanism(part[0])
             with np.errstate(all="ignore"):
                 stacked = solve_stacked(mech, part)
+            if stacked is not None:
+                out[start:start + len(part)] = _batched(stacked, mech, part, method)
         except Exception:       # noqa: BLE001 - each variant is then analysed alone
-            stacked = None
-        if stacked is not None:
-            out[start:start + len(part)] = _batched(stacked, mech, part, method)
+            pass
     return [o if o is not None else _alone(s, method) for o, s in zip(out, specs)]
 
 
@@ -106,7 +113,7 @@ def _alone(spec: Spec, method: str) -> Outcome:
     try:
         a = analyse(spec, methods=[method])
     except Exception as exc:     # noqa: BLE001 - a failed variant is a row with its reason
-        return Outcome(spec, error=describe_failure(exc))
+        return Outcome(spec, exception=exc)
     return Outcome(spec, a.review, a.review_problem, a.verdicts)
 
 

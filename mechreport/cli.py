@@ -137,13 +137,36 @@ def _cmd_check(ns: argparse.Namespace) -> int:
 
 def _cmd_build(ns: argparse.Namespace) -> int:
     from .report.build import build_files
+    options = None
+    if not ns.sheet:
+        given = [o for o, v in (("--exact", ns.exact), ("--sheet-methods", ns.sheet_methods),
+                                ("--sheet-angles", ns.sheet_angles)) if v]
+        if given:
+            print(f"error: {', '.join(given)} need{'s' if len(given) == 1 else ''} --sheet: "
+                  f"{'it changes' if len(given) == 1 else 'they change'} only the solution "
+                  "sheets, which --sheet writes", file=sys.stderr)
+            return 2
+    else:
+        from .report.sheet import SheetOptions
+        if ns.exact:
+            from .report.sheet.exact import require_sympy
+            require_sympy()                 # a clear message now, not one per spec
+        options = SheetOptions(ns.sheet_methods, ns.sheet_angles, ns.exact)
     return build_files(spec_files(ns.specs), Path(ns.out), jobs=ns.jobs, sheet=ns.sheet,
-                       exact=ns.exact, wait=ns.wait, force=ns.force, quiet=ns.quiet)
+                       exact=ns.exact, wait=ns.wait, force=ns.force, quiet=ns.quiet,
+                       sheet_options=options)
 
 
 def _cmd_diff(ns: argparse.Namespace) -> int:
     from .diff import diff_command
     return diff_command(Path(ns.old), Path(ns.new), ns.rtol)
+
+
+def _cmd_study(ns: argparse.Namespace) -> int:
+    from .study import study_command
+    return study_command(Path(ns.spec), Path(ns.out), method=ns.method,
+                         scheduler=ns.scheduler, jobs=ns.jobs, reports=ns.reports,
+                         cross=ns.cross_check, chunk=ns.chunk, wait=ns.wait)
 
 
 # ------------------------------------------------------------------- argument checks
@@ -162,6 +185,35 @@ def _checked(convert, ok, what: str):
 
 
 _int_at_least_1 = _checked(int, lambda v: v >= 1, "a whole number >= 1")
+
+
+def _sheet_methods(text: str) -> tuple[str, ...]:
+    """``--sheet-methods``: comma-separated method names, each known, none twice."""
+    from .forces import METHODS
+    names = [t.strip() for t in text.split(",")]
+    bad = [n for n in names if n not in METHODS]
+    if not text.strip() or bad or len(set(names)) != len(names):
+        what = f"unknown method {bad[0]!r}; " if bad and bad[0] else ""
+        raise argparse.ArgumentTypeError(
+            f"{what}must be method names separated by commas, each once, from: "
+            f"{', '.join(METHODS)}; got {text!r}")
+    return tuple(names)
+
+
+def _sheet_angles(text: str) -> tuple[float, ...]:
+    """``--sheet-angles``: comma-separated finite numbers (deg, or the stroke's unit)."""
+    try:
+        values = tuple(float(t) for t in text.split(","))
+    except ValueError:
+        values = ()
+    if not values or not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(
+            f"must be angles in degrees (strokes in the spec's length unit for a linear "
+            f"actuator) separated by commas, e.g. 30,45; got {text!r}")
+    return tuple(dict.fromkeys(values))
+
+
+_int_at_least_0 = _checked(int, lambda v: v >= 0, "a whole number >= 0")
 _number_above_0 = _checked(float, lambda v: math.isfinite(v) and v > 0, "a finite number > 0")
 _seconds = _checked(float, lambda v: math.isfinite(v) and v >= 0, "a number of seconds >= 0")
 
@@ -177,6 +229,48 @@ character other than letters, digits, '-', '_', '.' replaced by '_'; specs of on
 the same name get -2, -3, ... in argument order. A report folder is replaced as a whole when
 its spec is built; OUT/index.md and index.pdf list every report folder in OUT. Two builds
 into the same OUT take turns (OUT/.mechreport.lock)."""
+
+
+STUDY_EPILOG = """\
+exit status: 0 when the study ran and its files were written (variants that cannot be
+analysed are rows with their reason); 1 when it cannot run (a spec problem, no study: section,
+a --method that cannot give the kept quantities, an unusable scheduler or output folder) or
+when --cross-check finds a disagreement; 2 on a usage error; 130 if interrupted (nothing is
+written then).
+
+Writes OUT/<name>/study.parquet, study.csv (one row per variant), study.md and study.pdf,
+<name> being the spec's file name without .yaml, as for build; a report built there by
+`mechreport build` is kept. Progress and an ETA go to stderr."""
+
+
+def _add_study_parser(sub) -> None:
+    from .forces import METHODS
+    p = sub.add_parser("study", help="run many variants of a spec (its study: section)",
+                       description="Run the variants that the spec's study: section describes "
+                       "(one force method each), tabulate their cycle quantities and design "
+                       "verdicts, and write the table and a study report.",
+                       epilog=STUDY_EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("spec", metavar="SPEC")
+    p.add_argument("-o", "--out", default="out", help="output folder (default: out)")
+    p.add_argument("--method", choices=list(METHODS), default=None,
+                   help="the force method for every variant (default: the fastest that gives "
+                   "every kept quantity and design verdict)")
+    p.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                   help="run on an existing Dask cluster, e.g. tcp://host:8786 (needs "
+                   "mechreport[dask]); default: a local process pool")
+    p.add_argument("--jobs", type=_int_at_least_1, default=None,
+                   help="local processes, >= 1 (default: cores; ignored with --scheduler)")
+    p.add_argument("--chunk", type=_int_at_least_1, default=None, metavar="N",
+                   help="variants per task, >= 1 (default: about 8 tasks per worker, at most "
+                   "100 variants each)")
+    p.add_argument("--reports", type=_int_at_least_0, default=0, metavar="K",
+                   help="also build full reports (every method) of the K best passing variants")
+    p.add_argument("--cross-check", type=_int_at_least_0, default=0, metavar="N",
+                   help="re-run N random variants with every method; exit 1 on disagreement")
+    p.add_argument("--wait", type=_seconds, default=120.0, metavar="SECONDS",
+                   help="how long to wait for a build writing to the same output folder "
+                   "(default 120)")
+    p.set_defaults(func=_cmd_study)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -218,9 +312,18 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("-o", "--out", default="out", help="output folder (default: out)")
     p.add_argument("--jobs", type=_int_at_least_1, default=None,
                    help="parallel specs, >= 1 (default: cores)")
-    p.add_argument("--sheet", action="store_true", help="also write worked solution sheets")
+    p.add_argument("--sheet", action="store_true",
+                   help="also write worked solution sheets: solution.md/.pdf (the answer "
+                   "key) and problem.md/.pdf (statement, data, figure, what to find)")
+    p.add_argument("--sheet-methods", type=_sheet_methods, metavar="M1,M2",
+                   help="the methods the sheets work through, in this order (default: all): "
+                   "newton_euler, dalembert, dyad, contour, power; needs --sheet")
+    p.add_argument("--sheet-angles", type=_sheet_angles, metavar="A1,A2",
+                   help="the reference angles of the sheets in degrees (strokes for a linear "
+                   "actuator; default: the spec's `at`); needs --sheet")
     p.add_argument("--exact", action="store_true",
-                   help="solution sheets also show closed forms (needs sympy)")
+                   help="solution sheets also show exact closed forms in the spec's square "
+                   "roots (needs sympy: pip install 'mechreport[exact]'); needs --sheet")
     p.add_argument("--wait", type=_seconds, default=120.0, metavar="SECONDS",
                    help="how long to wait for another build writing to the same output "
                    "folder (default 120)")
@@ -242,6 +345,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--rtol", type=_number_above_0, default=1e-6,
                    help="relative tolerance (default 1e-6: what every printed value promises)")
     p.set_defaults(func=_cmd_diff)
+
+    _add_study_parser(sub)
 
     ns = parser.parse_args(argv)
     if getattr(ns, "func", None) is None:           # bare `mechreport`

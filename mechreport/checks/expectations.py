@@ -75,11 +75,21 @@ def check_expectations(kin: Kinematics, results: dict[str, ForceResult], flags,
     return out
 
 
-def _check_cycle(e: Expectation, cycle: dict[str, float] | None, why: str) -> ExpectationResult:
-    got = None if cycle is None else cycle.get(e.quantity)
+def cycle_value(cycle: dict[str, float] | None, quantity: str,
+                why: str = "") -> tuple[float | None, str]:
+    """The value of cycle quantity ``quantity`` in ``cycle`` (a review's values; None when
+    they are undefined, because ``why``), or None and the message saying why it has none."""
+    got = None if cycle is None else cycle.get(quantity)
     if got is None:
         reason = why if cycle is None else "not defined for this mechanism"
-        return ExpectationResult(e, "cycle", None, False, f"{e.quantity} is undefined: {reason}")
+        return None, f"{quantity} is undefined: {reason}"
+    return got, ""
+
+
+def _check_cycle(e: Expectation, cycle: dict[str, float] | None, why: str) -> ExpectationResult:
+    got, undefined = cycle_value(cycle, e.quantity, why)
+    if got is None:
+        return ExpectationResult(e, "cycle", None, False, undefined)
     ok = abs(got - e.value) <= e.tol
     msg = "" if ok else (f"{e.quantity}: expected {e.value:.10g} ± {e.tol:.2g}, got {got:.10g} "
                          "(over the cycle)")

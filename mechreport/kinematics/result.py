@@ -148,6 +148,19 @@ class Kinematics:
             self._memo[(key, "local")] = local     # keeps id(local) from being reused
         return self._memo[key]
 
+    def carry_points(self, source: "Kinematics", rows: slice) -> None:
+        """Take the point states ``source`` has computed, at its ``rows`` (this kinematics'
+        angles), instead of computing them again: a stacked batch's for one variant, whose
+        local points are the rows' own values."""
+        for key, state in list(source._memo.items()):
+            if key[-1] == "local":
+                continue
+            if len(key) == 2:        # a local point given per row: this variant's is one pair
+                local = source._memo[(key, "local")][rows.start]
+                key = (key[0], float(local[0]), float(local[1]))
+            if key not in self._memo:
+                self._memo[key] = PointState(state.r[rows], state.v[rows], state.a[rows])
+
     def named_point(self, name: str, link: str | None = None) -> PointState:
         """A named point of ``link`` (default: the first link in spec order that has it)."""
         spec = self.mechanism.spec

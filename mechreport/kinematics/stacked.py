@@ -111,5 +111,7 @@ def solve_stacked(mech: Mechanism, specs: list[Spec]) -> StackedKinematics | Non
 
 def variant_kinematics(stacked: StackedKinematics, v: int, mech: Mechanism) -> Kinematics:
     """Variant ``v``'s own kinematics (its rows, its spec in ``mech``)."""
-    kin = stacked.kin.take(stacked.rows(v), ())
-    return replace(kin, mechanism=mech, motion=stacked.motions[v])
+    kin = replace(stacked.kin.take(stacked.rows(v), ()), mechanism=mech,
+                  motion=stacked.motions[v])
+    kin.carry_points(stacked.kin, stacked.rows(v))
+    return kin

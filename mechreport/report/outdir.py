@@ -223,10 +223,14 @@ def remove(path: Path) -> None:
         pass
 
 
+STUDY_ENTRIES = ("study.parquet", "study.csv", "study.md", "study.pdf", "study-figures",
+                 "study-reports")   # what `mechreport study` writes beside a spec's report
+
+
 def occupied(out: Path, name: str) -> str | None:
-    """Why ``OUT/name`` must not be replaced by a report, or None. Only a report folder (one
-    holding summary.json) or an empty folder is replaced: a build into ``-o .`` must never
-    delete a folder of the user's that happens to share a spec's name."""
+    """Why ``OUT/name`` must not be replaced, or None. Only a report folder (one holding
+    summary.json), a study folder (study.parquet) or an empty folder is replaced: a build into
+    ``-o .`` must never delete a folder of the user's that happens to share a spec's name."""
     path = Path(out) / name
     if not os.path.lexists(path):
         return None
@@ -237,15 +241,32 @@ def occupied(out: Path, name: str) -> str | None:
         entries = {e.name for e in path.iterdir()}
     except OSError as exc:
         return f"{path}: {exc.strerror or exc}"
-    if entries and "summary.json" not in entries:
-        return (f"{path} exists and is not a mechreport report folder (no summary.json); "
-                f"{advice}")
+    if entries and not entries & {"summary.json", "study.parquet"}:
+        return (f"{path} exists and is neither a mechreport report nor a study folder (no "
+                f"summary.json, no study.parquet); {advice}")
     return None
 
 
-def swap_in(out: Path, tmp: Path, name: str) -> Path:
+def link_tree(src: Path, dst: Path) -> None:
+    """Copy ``src`` (a file or folder) to ``dst`` as hard links (a copy where linking fails)."""
+    def link(a, b):
+        try:
+            os.link(a, b)
+        except OSError:
+            shutil.copy2(a, b)
+    if src.is_symlink():
+        os.symlink(os.readlink(src), dst)
+    elif src.is_dir():
+        shutil.copytree(src, dst, symlinks=True, copy_function=link)
+    else:
+        link(src, dst)
+
+
+def swap_in(out: Path, tmp: Path, name: str, carry=lambda entry: entry in STUDY_ENTRIES) -> Path:
     """Replace ``OUT/name`` by the complete folder ``tmp`` (two renames; the old folder, if
-    any, is deleted afterwards). Returns the final folder."""
+    any, is deleted afterwards). Entries of the old folder for which ``carry(name)`` holds and
+    that ``tmp`` lacks are carried over as hard links (a report keeps the study beside it, and
+    a study the report). Returns the final folder."""
     out = Path(out)
     if _UNSAFE.search(name) is not None or name.strip(".") == "" or name.startswith("."):
         raise OutputError(f"refusing to write {out / name}: {name!r} is not a folder name "
@@ -255,6 +276,10 @@ def swap_in(out: Path, tmp: Path, name: str) -> Path:
         raise OutputError(why)
     final = out / name
     inside(out, tmp)
+    if os.path.lexists(final):
+        for entry in final.iterdir():
+            if carry(entry.name) and not os.path.lexists(tmp / entry.name):
+                link_tree(entry, tmp / entry.name)
     old = out / f".old-{name}-{os.getpid()}"
     remove(old)
     had_old = os.path.lexists(final)

@@ -20,7 +20,7 @@ from ..errors import Problem, SpecError
 from ..quantities import CYCLE_UNITS, JOINT_CYCLE_UNITS, is_cycle
 from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Expectation, Joint, Line, Link, Load,
-                    Shape, Spec, Sweep, Vec)
+                    Shape, Spec, Study, Sweep, Vary, Vec)
 from .yaml_source import (MAX_DEPTH, MAX_FILE_BYTES, HugeInteger, Source, check_text, decode,
                           format_path, too_big)
 
@@ -38,12 +38,13 @@ NUMBER_RANGE = (f"between {-NUMBER_MAX:g} and {NUMBER_MAX:g} "
 POSITIVE_RANGE = f"between {NUMBER_MIN:g} and {NUMBER_MAX:g}"
 MAX_PROBLEMS = 100   # listed per file; the rest are counted
 
-__all__ = ["load_spec", "parse_spec", "LENGTH_UNITS", "MASS_UNITS", "NUMBER_MAX", "NUMBER_MIN",
+__all__ = ["load_spec", "parse_spec", "load_source", "parse_source", "spec_from_data",
+           "LENGTH_UNITS", "MASS_UNITS", "NUMBER_MAX", "NUMBER_MIN",
            "MAX_FILE_BYTES", "MAX_DEPTH", "MAX_PROBLEMS"]
 
 TOP_KEYS = ("mechreport", "name", "description", "units", "gravity", "ground", "links",
             "joints", "driver", "sweep", "at", "assembly", "loads", "expect", "sheet", "design",
-            "report")
+            "report", "study")
 DESIGN_KEYS = ("speed_fluctuation", "motor", "bearings", "limits")
 MOTOR_KEYS = ("rated_torque", "peak_torque", "rated_power")
 LIMIT_KEYS = ("joint_force", "transmission_angle", "shaking_force")
@@ -58,6 +59,8 @@ _YAML11_BOOLS = {"yes", "no", "on", "off", "y", "n"}
 _SEXAGESIMAL = re.compile(r"[-+]?[0-9][0-9_]*(?::[0-5]?[0-9])+(?:\.[0-9_]*)?\Z")
 _NUMBER_TEXT = re.compile(r"\s*[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?\s*\Z")
 
+
+MAX_SWEEP_ANGLES = 1_000_000   # about 2.5 GB and a minute of CPU for a full analysis
 
 def _show(value: Any) -> str:
     if value is None:
@@ -208,6 +211,17 @@ def load_spec(path: str | FsPath) -> Spec:
 
     The size is checked before reading (at most ``MAX_FILE_BYTES``), and at most one byte more
     is ever read, so a huge file or a device such as /dev/zero is refused at once."""
+    return parse_spec(_read_file(path), str(path))
+
+
+def load_source(path: str | FsPath) -> Source:
+    """Read a spec file into a :class:`Source` (its data tree and the line of every key path)
+    without validating it, under the same limits as :func:`load_spec`; with
+    :func:`spec_from_data` it gives the Spec. Raises ``SpecError``."""
+    return parse_source(_read_file(path), str(path))
+
+
+def _read_file(path: str | FsPath) -> bytes:
     filename = str(path)
     try:
         with open(path, "rb") as fh:
@@ -220,32 +234,61 @@ def load_spec(path: str | FsPath) -> Spec:
         raise SpecError([Problem(filename, None, "", f"cannot read file: {reason}")]) from None
     if len(data) > MAX_FILE_BYTES:
         raise too_big(len(data), filename)
-    return parse_spec(data, filename)
+    return data
 
 
 def parse_spec(text: str | bytes, filename: str = "<spec>") -> Spec:
     """Validate spec text (or UTF-8 bytes); ``filename`` is used in messages.
 
     Raises ``SpecError`` and nothing else, whatever the input."""
+    def work() -> Spec:
+        src = _source(text, filename)
+        return _checked(src.data, src)
+    return _guarded(filename, work)
+
+
+def parse_source(text: str | bytes, filename: str = "<spec>") -> Source:
+    """Read spec text (or UTF-8 bytes) into a :class:`Source` without validating it (the same
+    limits as :func:`parse_spec`). Raises ``SpecError`` and nothing else."""
+    return _guarded(filename, lambda: _source(text, filename))
+
+
+def spec_from_data(data: Any, src: Source) -> Spec:
+    """Validate a spec's data tree and convert it to SI: ``src.data``, or a copy of it with
+    leaves replaced (a study's variant, in the spec's own units). Messages name ``src``'s file
+    and the lines of ``src``'s key paths. Raises ``SpecError`` and nothing else."""
+    return _guarded(src.filename, lambda: _checked(data, src))
+
+
+def _source(text: str | bytes, filename: str) -> Source:
+    if isinstance(text, (bytes, bytearray, memoryview)):
+        data = bytes(text)
+        if len(data) > MAX_FILE_BYTES:
+            raise too_big(len(data), filename)
+        text = decode(data, filename)
+    elif not isinstance(text, str):
+        raise SpecError([Problem(filename, None, "", "spec text must be str or bytes, got "
+                                                     f"{type(text).__name__}")])
+    check_text(text, filename)
+    return Source(filename, text)
+
+
+def _checked(data: Any, src: Source) -> Spec:
+    ck = _Checker(src)
+    spec = _build(data, ck)
+    if spec is None or ck.problems:
+        if not ck.problems:   # pragma: no cover - every refusal records its reason
+            ck.error((), "internal error: the spec was refused without a reason; please "
+                         "report this")
+        raise SpecError(_listed(ck))
+    return spec
+
+
+def _guarded(filename: str, work):
+    """``work()``, with any failure but a ``SpecError`` turned into one (never a traceback
+    for a user's file)."""
     try:
-        if isinstance(text, (bytes, bytearray, memoryview)):
-            data = bytes(text)
-            if len(data) > MAX_FILE_BYTES:
-                raise too_big(len(data), filename)
-            text = decode(data, filename)
-        elif not isinstance(text, str):
-            raise SpecError([Problem(filename, None, "", "spec text must be str or bytes, got "
-                                                         f"{type(text).__name__}")])
-        check_text(text, filename)
-        src = Source(filename, text)
-        ck = _Checker(src)
-        spec = _build(src.data, ck)
-        if spec is None or ck.problems:
-            if not ck.problems:   # pragma: no cover - every refusal records its reason
-                ck.error((), "internal error: the spec was refused without a reason; please "
-                             "report this")
-            raise SpecError(_listed(ck))
-        return spec
+        return work()
     except SpecError:
         raise
     except RecursionError:
@@ -325,6 +368,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src, driver=driver)
     design = _design(top.get("design"), ck, joints) if "design" in top else Design()
     report = _report(top.get("report"), ck, units) if "report" in top else ReportSettings()
+    study = _study(top["study"], ck, top) if "study" in top else None
     sheet = top.get("sheet", False)
     if not isinstance(sheet, bool):
         ck.error(("sheet",), f"must be true or false, got {_show(sheet)}"
@@ -343,8 +387,10 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                 gravity=gravity, ground=ground, links=tuple(links), joints=tuple(joints),
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
                 expect=tuple(expect), sheet=sheet, units=units, design=design,
-                report=report)
+                report=report, study=study)
     _cycle_requests(spec, ck)
+    if study is not None:
+        _study_requests(spec, ck)
     return None if ck.problems else spec
 
 
@@ -411,13 +457,246 @@ def _cycle_requests(spec: Spec, ck: _Checker) -> None:
             ck.error(("design",), f"the design review is undefined: {why}")
         return
     for path, quantity in asked:
-        if quantity == "cycle.flywheel_inertia" and not spec.design.speed_fluctuation:
-            ck.error(path, "'cycle.flywheel_inertia' needs design.speed_fluctuation (the "
-                           "coefficient of speed fluctuation Cs)")
-        parts = quantity.split(".")
-        if parts[0] == "joint" and parts[2] == "life_h" and parts[1] not in spec.design.bearings:
-            ck.error(path, f"'{quantity}' needs design.bearings.{parts[1]}.rating (the "
-                           "bearing's dynamic load rating C)")
+        need = _cycle_need(spec, quantity)
+        if need:
+            ck.error(path, need)
+
+
+def _cycle_need(spec: Spec, quantity: str) -> str | None:
+    """What a cycle quantity needs that ``spec`` does not give (None when nothing)."""
+    if quantity == "cycle.flywheel_inertia" and not spec.design.speed_fluctuation:
+        return ("'cycle.flywheel_inertia' needs design.speed_fluctuation (the coefficient of "
+                "speed fluctuation Cs)")
+    parts = quantity.split(".")
+    if parts[0] == "joint" and parts[2] == "life_h" and parts[1] not in spec.design.bearings:
+        return (f"'{quantity}' needs design.bearings.{parts[1]}.rating (the bearing's dynamic "
+                "load rating C)")
+    return None
+
+
+# --------------------------------------------------------------------------------- study
+
+STUDY_KEYS = ("vary", "sample", "count", "seed", "keep")
+VARY_KEYS = ("key", "from", "to", "count", "values")
+SAMPLES = ("grid", "random", "lhs")
+MAX_STUDY_VARIANTS = 1_000_000
+MAX_SEED = 2**63 - 1
+#: top-level keys whose numbers a study does not vary: they describe the file, not the machine
+NOT_VARIED = ("mechreport", "study", "expect", "report")
+
+
+def _whole(value: Any, path: tuple, ck: _Checker, low: int, high: int) -> int | None:
+    """A whole number in [low, high] (reported otherwise)."""
+    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+        ck.error(path, f"must be a whole number from {low} to {high}, got {_show(value)}"
+                       f"{_text_hint(value)}")
+        return None
+    return value
+
+
+def _study(value: Any, ck: _Checker, top: dict) -> Study | None:
+    """The ``study`` section (docs/spec.md, section 17): every key path must lead to a number
+    of this spec; values are kept as written (the spec's own units)."""
+    path = ("study",)
+    body = ck.mapping(value, path, STUDY_KEYS, required=("vary", "keep"))
+    if body is None or "vary" not in body or "keep" not in body:
+        return None
+    ok = True
+    sample = "grid"
+    if "sample" in body:
+        sample = ck.choice(body["sample"], path + ("sample",), SAMPLES)
+        ok &= sample is not None
+    count = None
+    if "count" in body:
+        count = _whole(body["count"], path + ("count",), ck, 1, MAX_STUDY_VARIANTS)
+        ok &= count is not None
+    elif sample in ("random", "lhs"):
+        ck.error(path, f"missing required key 'count' (how many variants {sample} sampling "
+                       "draws)")
+        ok = False
+    seed = 0
+    if "seed" in body:
+        seed = _whole(body["seed"], path + ("seed",), ck, 0, MAX_SEED)
+        ok &= seed is not None
+    vary = _vary(body["vary"], path + ("vary",), ck, top, sample or "grid")
+    keep = _keep(body["keep"], path + ("keep",), ck)
+    if not ok or vary is None or keep is None:
+        return None
+    study = Study(vary, keep, sample, count, seed, ck.src.line(path))
+    if sample == "grid" and study.size > MAX_STUDY_VARIANTS:
+        ck.error(path + ("vary",), f"the grid has {study.size} combinations; a study may have "
+                                   f"at most {MAX_STUDY_VARIANTS} variants (fewer counts or "
+                                   "values, or sample: random or lhs)")
+        return None
+    return study
+
+
+def _vary(value: Any, path: tuple, ck: _Checker, top: dict,
+          sample: str) -> tuple[Vary, ...] | None:
+    if not isinstance(value, list) or not value:
+        ck.error(path, "must be a list of {key, from, to, count} or {key, values}"
+                       + ("" if isinstance(value, list) else f", got {_show(value)}"))
+        return None
+    out: list[Vary] = []
+    seen: dict[tuple, int] = {}
+    ok = True
+    for i, item in enumerate(value):
+        where = path + (i,)
+        body = ck.mapping(item, where, VARY_KEYS, required=("key",))
+        if body is None or "key" not in body:
+            ok = False
+            continue
+        leaf = _key_path(body["key"], where + ("key",), ck, top)
+        if leaf is not None and leaf in seen:
+            ck.error(where + ("key",), f"'{body['key']}' is varied by study.vary[{seen[leaf]}] "
+                                       "too: vary each key once")
+            leaf = None
+        if leaf is not None:
+            seen[leaf] = i
+        entry = _vary_values(body, where, ck, sample)
+        if leaf is None or entry is None:
+            ok = False
+            continue
+        out.append(Vary(body["key"], leaf, line=ck.src.line(where), **entry))
+    return tuple(out) if ok else None
+
+
+def _vary_values(body: dict, where: tuple, ck: _Checker, sample: str) -> dict | None:
+    """``values`` (kept as written), or ``from``/``to`` (and ``count`` for a grid)."""
+    has_values = "values" in body
+    has_range = "from" in body or "to" in body
+    if has_values == has_range:
+        ck.error(where, "give either 'values: [...]' or 'from', 'to' (and 'count' for a grid), "
+                        "not " + ("both" if has_values else "neither"))
+        return None
+    if has_values:
+        if "count" in body:
+            ck.error(where + ("count",), "'count' goes with 'from' and 'to'; with 'values' the "
+                                         "grid takes every value")
+            return None
+        raw = body["values"]
+        if not isinstance(raw, list) or not raw or len(raw) > MAX_STUDY_VARIANTS:
+            ck.error(where + ("values",), f"must be a list of 1 to {MAX_STUDY_VARIANTS} numbers"
+                                          f", got {_show(raw)}")
+            return None
+        numbers = [ck.number(v, where + ("values", j)) for j, v in enumerate(raw)]
+        if any(v is None for v in numbers):
+            return None
+        return {"values": tuple(raw)}
+    missing = [k for k in ("from", "to") if k not in body]
+    if missing:
+        ck.error(where, f"missing required key '{missing[0]}' (a range needs 'from' and 'to')")
+        return None
+    start = ck.number(body["from"], where + ("from",))
+    stop = ck.number(body["to"], where + ("to",))
+    count = None
+    if "count" in body:
+        count = _whole(body["count"], where + ("count",), ck, 1, MAX_STUDY_VARIANTS)
+        if count is None:
+            return None
+    elif sample == "grid":
+        ck.error(where, "missing required key 'count' (how many grid values from 'from' to "
+                        "'to', both included)")
+        return None
+    if start is None or stop is None:
+        return None
+    if start == stop:
+        ck.error(where + ("to",), f"equals 'from' ({_show(body['from'])}): a range needs two "
+                                  "different ends; for one value write values: [x]")
+        return None
+    if count == 1 and sample == "grid":
+        ck.error(where + ("count",), "must be at least 2 for a range (both ends are values); "
+                                     "for one value write values: [x]")
+        return None
+    return {"start": start, "stop": stop, "count": count}
+
+
+def _key_path(key: Any, where: tuple, ck: _Checker, top: dict) -> tuple | None:
+    """The key path of ``key`` (``links.rod.points.C.0``: names, and list indices as numbers)
+    if it leads to a number of the spec; None (reported) otherwise."""
+    if not isinstance(key, str) or not key:
+        ck.error(where, f"must be a key path into this spec such as links.rod.mass or "
+                        f"links.rod.points.C.0, got {_show(key)}")
+        return None
+    parts = key.split(".")
+    if parts[0] in NOT_VARIED:
+        ck.error(where, f"'{key}': a study varies the mechanism, not '{parts[0]}'")
+        return None
+    node: Any = top
+    leaf: list = []
+    for depth, part in enumerate(parts):
+        here = ".".join(parts[:depth]) or "the spec"
+        if isinstance(node, dict):
+            if part not in node:
+                near = difflib.get_close_matches(part, [str(k) for k in node], n=1)
+                hint = (f"; did you mean '{near[0]}'?" if near else
+                        f" (it has {', '.join(str(k) for k in list(node)[:12])})")
+                ck.error(where, f"'{key}': {here} has no key '{part}'{hint}")
+                return None
+            leaf.append(part)
+            node = node[part]
+        elif isinstance(node, list):
+            if not part.isdigit() or int(part) >= len(node):
+                ck.error(where, f"'{key}': {here} is a list of {len(node)}: '{part}' must be "
+                                f"an index from 0 to {len(node) - 1}")
+                return None
+            leaf.append(int(part))
+            node = node[int(part)]
+        else:
+            ck.error(where, f"'{key}': {here} is a single value ({_show(node)}), it has no "
+                            f"'{part}'")
+            return None
+    if isinstance(node, bool) or not isinstance(node, (int, float)):
+        what = ("a list" if isinstance(node, list) else "a mapping" if isinstance(node, dict)
+                else _show(node))
+        ck.error(where, f"'{key}' must lead to a number of the spec, but it is {what}")
+        return None
+    return tuple(leaf)
+
+
+def _keep(value: Any, path: tuple, ck: _Checker) -> tuple[str, ...] | None:
+    """Cycle quantity names (checked against the mechanism by :func:`_study_requests`)."""
+    if not isinstance(value, list) or not value:
+        ck.error(path, "must be a list of cycle quantities such as [cycle.torque.rms, "
+                       "joint.B.f_max]" + ("" if isinstance(value, list)
+                                           else f", got {_show(value)}"))
+        return None
+    out, ok = [], True
+    for i, q in enumerate(value):
+        if not isinstance(q, str) or not is_cycle(q):
+            near = (difflib.get_close_matches(q, list(CYCLE_UNITS), n=1)
+                    if isinstance(q, str) else [])
+            hint = f"; did you mean '{near[0]}'?" if near else ""
+            ck.error(path + (i,), f"must be a cycle quantity (cycle.*, balance.*, or "
+                                  f"joint.J.{'|'.join(JOINT_CYCLE_UNITS)}), got {_show(q)}"
+                                  f"{hint}")
+            ok = False
+        elif q in out:
+            ck.error(path + (i,), f"'{q}' is kept twice")
+            ok = False
+        else:
+            out.append(q)
+    return tuple(out) if ok else None
+
+
+def _study_requests(spec: Spec, ck: _Checker) -> None:
+    """A study tabulates cycle quantities: they must be defined for the spec, and each kept
+    one must name a joint of the mechanism and have the design inputs it needs."""
+    why = spec.cycle_problem()
+    if why is not None:
+        ck.error(("study",), f"a study tabulates cycle quantities, which are undefined here: "
+                             f"{why}")
+        return
+    joints = {j.name for j in spec.joints}
+    for i, q in enumerate(spec.study.keep):
+        parts = q.split(".")
+        if parts[0] == "joint" and parts[1] not in joints:
+            ck.error(("study", "keep", i), f"'{q}': no joint named '{parts[1]}' (joints: "
+                                           f"{', '.join(sorted(joints))})")
+            continue
+        need = _cycle_need(spec, q)
+        if need:
+            ck.error(("study", "keep", i), need)
 
 
 def _units(value: Any, ck: _Checker) -> tuple[float, float, dict[str, str]]:
@@ -735,8 +1014,9 @@ def _sweep(value: Any, ck: _Checker) -> Sweep:
     if vals["stop"] <= vals["start"]:
         ck.error(("sweep", "stop"), f"must be greater than start ({vals['start']:g})")
         return Sweep()
-    if (vals["stop"] - vals["start"]) / vals["step"] > 100000:
-        ck.error(("sweep", "step"), "gives more than 100000 angles; use a larger step")
+    if (vals["stop"] - vals["start"]) / vals["step"] > MAX_SWEEP_ANGLES:
+        ck.error(("sweep", "step"), f"gives more than {MAX_SWEEP_ANGLES} angles; use a larger "
+                                    "step")
         return Sweep()
     sweep = Sweep(**vals)
     if len(sweep.angles()) == 0:   # stop - start below 1e-9 deg reads as "zero whole turns"

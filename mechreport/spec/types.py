@@ -220,6 +220,46 @@ class Design:
 
 
 @dataclass(frozen=True)
+class Vary:
+    """One varied leaf of a study: ``key`` as written (``links.rod.points.C.0``), ``path`` the
+    same as keys and list indices (``("links", "rod", "points", "C", 0)``). Either ``values``
+    (as written, in the spec's own units) or a range ``start`` (``from``) .. ``stop`` (``to``)
+    with ``count`` grid points (``count`` is used by grid sampling only)."""
+
+    key: str
+    path: tuple
+    values: tuple[float, ...] | None = None
+    start: float | None = None
+    stop: float | None = None
+    count: int | None = None
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class Study:
+    """The ``study`` section: the varied leaves, how variants are drawn (``sample`` grid,
+    random or lhs; ``count`` variants for random and lhs, ``seed``) and the cycle quantities
+    tabulated (``keep``). Only ``mechreport study`` uses it."""
+
+    vary: tuple[Vary, ...]
+    keep: tuple[str, ...]
+    sample: str = "grid"
+    count: int | None = None
+    seed: int = 0
+    line: int | None = None
+
+    @property
+    def size(self) -> int:
+        """How many variants the study has: every combination for grid, else ``count``."""
+        if self.sample != "grid":
+            return int(self.count or 0)
+        n = 1
+        for v in self.vary:
+            n *= len(v.values) if v.values is not None else int(v.count or 0)
+        return n
+
+
+@dataclass(frozen=True)
 class ReportSettings:
     """The spec's ``report`` section: display ``units`` (``length`` m|cm|mm|in, ``force``
     N|kN|lbf, ``moment`` N*m|N*mm|kN*m|lbf*in, ``mass`` kg|g|lb; lengths default to the spec's
@@ -253,6 +293,7 @@ class Spec:
     units: dict[str, str] = field(default_factory=lambda: {"length": "m", "mass": "kg"})
     design: Design = field(default_factory=Design)
     report: "ReportSettings" = field(default_factory=lambda: ReportSettings())
+    study: Study | None = None        # only `mechreport study` uses it
 
     @property
     def axis_unit(self) -> str:

@@ -1,0 +1,20 @@
+"""Design studies: many variants of one spec, their cycle quantities in one table.
+
+    mechreport study SPEC [-o OUT] [--method M] [--scheduler ADDRESS] [--jobs N]
+                          [--reports K] [--cross-check N] [--chunk N]
+
+One module per step: :mod:`.plan` (the ``study:`` section -> the variants: grid, random,
+Latin hypercube), :mod:`.variants` (the spec's data tree with the varied leaves replaced,
+validated by the loader), :mod:`.evaluate` (THE SEAM: a chunk of variants -> one row each),
+:mod:`.methods` (which force method), :mod:`.execute` (local process pool or a Dask cluster,
+chunks, order, progress), :mod:`.table` (the rows as columns, ranking, Pareto front),
+:mod:`.outputs` (study.parquet, study.csv; the output folder), :mod:`.report` and
+:mod:`.document` (study.md, study.pdf), :mod:`.cross_check`, :mod:`.run` (the command).
+"""
+from .evaluate import Row, evaluate_chunk
+from .plan import Plan, plan_of
+from .run import study_command
+from .variants import BaseSpec, base_of, load_base, variant_spec
+
+__all__ = ["Row", "evaluate_chunk", "Plan", "plan_of", "study_command", "BaseSpec", "base_of",
+           "load_base", "variant_spec"]

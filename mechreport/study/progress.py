@@ -1,0 +1,73 @@
+"""The study's progress on stderr: on a terminal one line redrawn at most ten times a second,
+
+    [##########..........] 5000/10000 variants 50%  (3 failed)  31 s, ETA 31 s
+
+elsewhere (CI logs, files) one such line at every tenth of the study."""
+from __future__ import annotations
+
+import sys
+import time
+
+
+def duration(seconds: float) -> str:
+    """``42 s``, ``3 min 05 s``, ``1 h 02 min``."""
+    s = int(round(max(seconds, 0.0)))
+    if s < 60:
+        return f"{s} s"
+    if s < 3600:
+        return f"{s // 60} min {s % 60:02d} s"
+    return f"{s // 3600} h {s % 3600 // 60:02d} min"
+
+
+class StudyProgress:
+    """Progress of ``total`` variants. ``update(done, failed)`` with running totals."""
+
+    WIDTH = 20
+
+    def __init__(self, total: int, stream=None, quiet: bool = False):
+        self.total = max(int(total), 1)
+        self.stream = stream or sys.stderr
+        self.quiet = quiet
+        self.tty = (not quiet) and hasattr(self.stream, "isatty") and self.stream.isatty()
+        self.start = time.monotonic()
+        self.done = self.failed = 0
+        self._drawn = 0.0
+        self._tenth = 0
+        self._open = False
+
+    def line(self) -> str:
+        elapsed = time.monotonic() - self.start
+        frac = self.done / self.total
+        fill = int(self.WIDTH * frac)
+        bar = "#" * fill + "." * (self.WIDTH - fill)
+        failed = f"  ({self.failed} failed)" if self.failed else ""
+        if self.done >= self.total:
+            when = f"{duration(elapsed)}"
+        elif self.done:
+            when = f"{duration(elapsed)}, ETA {duration(elapsed * (1 - frac) / frac)}"
+        else:
+            when = f"{duration(elapsed)}, ETA unknown"
+        return f"[{bar}] {self.done}/{self.total} variants {int(100 * frac)}%{failed}  {when}"
+
+    def update(self, done: int, failed: int = 0) -> None:
+        self.done, self.failed = done, failed
+        if self.quiet:
+            return
+        now = time.monotonic()
+        if self.tty:
+            if now - self._drawn >= 0.1 or done >= self.total:
+                self.stream.write("\r" + self.line() + "\x1b[K")
+                self.stream.flush()
+                self._drawn, self._open = now, True
+            return
+        tenth = int(10 * done / self.total)
+        if tenth > self._tenth:
+            self._tenth = tenth
+            print(self.line(), file=self.stream, flush=True)
+
+    def close(self) -> None:
+        """End the bar's line (a terminal's cursor goes to a fresh line)."""
+        if self.tty and self._open:
+            self.stream.write("\n")
+            self.stream.flush()
+            self._open = False

@@ -1,0 +1,219 @@
+"""``mechreport study SPEC``: load, plan, run the variants, cross-check, write the outputs.
+
+Exit status: 0 when the study ran and was written (whatever its variants' outcomes: failed
+variants are rows with their reason); 1 when it cannot run (the spec or its study section is
+invalid, the method cannot give the kept quantities, the scheduler cannot be used, the output
+folder cannot be written) or when ``--cross-check`` finds a disagreement; 130 when interrupted
+(nothing is written then).
+"""
+from __future__ import annotations
+
+import os
+import sys
+import time
+from pathlib import Path
+
+from ..errors import MechreportError
+from ..report import outdir as od
+
+
+def _method(base, method: str | None) -> tuple[str, str]:
+    from .methods import cannot_serve, default_method
+    study, design = base.spec.study, base.spec.design
+    if method is None:
+        return (default_method(study.keep, design),
+                "the fastest method that gives every kept quantity and design verdict")
+    why = cannot_serve(method, study.keep, design)
+    if why:
+        raise MechreportError(f"--method {method}: {why}; leave --method out to use the "
+                              "fastest method that can")
+    return method, "chosen with --method"
+
+
+def study_command(path, out="out", method: str | None = None, scheduler: str | None = None,
+                  jobs: int | None = None, reports: int = 0, cross: int = 0,
+                  chunk: int | None = None, wait: float = 120.0, stream=None) -> int:
+    """Run the study of the spec at ``path`` into ``out``; the exit status (see the module
+    docstring). Raises ``SpecError``/``MechreportError`` when the study cannot run and
+    KeyboardInterrupt when interrupted."""
+    from ..report.build import _sigterm_as_interrupt
+    from .execute import auto_chunk, connect, dask_workers, run_variants
+    from .plan import plan_of
+    from .progress import StudyProgress, duration
+    from .variants import load_base
+
+    err = stream or sys.stderr
+    path = Path(path)
+    base = load_base(path)
+    study = base.spec.study
+    method, why = _method(base, method)
+    plan = plan_of(study)
+    out = od.prepare(Path(out))            # fail early on an unusable -o
+    name = od.safe_stem(path)
+    with _sigterm_as_interrupt():
+        client = connect(scheduler) if scheduler else None
+        try:
+            if client is not None:
+                workers = dask_workers(client)
+                where = f"the Dask cluster at {scheduler} ({workers} worker thread(s))"
+            else:
+                workers = max(1, jobs or os.cpu_count() or 1)
+                where = ("this process" if workers == 1 else f"{workers} local processes")
+            size = chunk or auto_chunk(plan.n, workers)
+            note = (" (study.count is for random and lhs sampling: not used by grid)"
+                    if study.sample == "grid" and study.count else "")
+            print(f"study {path}: {plan.n} variant(s), {study.sample} sampling{note}; method "
+                  f"{method} ({why}); on {where}, chunks of {size}", file=err, flush=True)
+            progress = StudyProgress(plan.n, err)
+            start = time.perf_counter()
+            try:
+                table = run_variants(base, plan, method, study.keep, jobs=workers,
+                                     chunk=size, client=client, progress=progress)
+            except KeyboardInterrupt as exc:
+                progress.close()
+                print(f"interrupted after {progress.done} of {plan.n} variant(s); nothing "
+                      "was written", file=err)
+                exc.reported = True
+                raise
+        finally:
+            if client is not None:
+                client.close()
+        seconds = time.perf_counter() - start
+        n_ok = int(table.ok.sum())
+        n_pass = int(table.passing.sum())
+        print(f"{plan.n} variant(s) in {duration(seconds)}: {n_ok} completed, "
+              f"{plan.n - n_ok} failed, {n_pass} pass the design review", file=err,
+              flush=True)
+        cc = None
+        if cross:
+            from .cross_check import cross_check
+
+            def tick(i, n):
+                print(f"cross-check [{i}/{n}]", file=err, flush=True)
+            cc = cross_check(base, table, cross, study.seed, progress=tick)
+        from .report import StudyRun
+        from ..report.model import build_time, spec_sha256
+        run = StudyRun(base, table, method, why, seconds, where, size,
+                       sha256=spec_sha256(path), cross=cc,
+                       date=build_time().strftime("%Y-%m-%d %H:%M UTC"))
+        print(f"writing {out / name}/ ...", file=err, flush=True)
+        try:
+            final = write_study(run, out, name, reports, wait, err)
+        except KeyboardInterrupt as exc:
+            print(f"interrupted while writing; {out / name} was left as it was", file=err)
+            exc.reported = True
+            raise
+    failed_reports = [r for r in run.reports if not r[2]]
+    print(f"{spec_line(run)}; written to {final}/ (study.parquet, study.csv, study.md, "
+          f"study.pdf{', study-reports/' if run.reports else ''})")
+    if cc is not None:
+        print(f"cross-check: {cc.summary()}")
+        for r in cc.rows:
+            if not r.ok:
+                print(f"  variant {r.index + 1} DISAGREES: {r.where}")
+    for rank, i, _folder, message in failed_reports:
+        print(f"  no report for rank {rank} (variant {i + 1}): {message}", file=err)
+    return 1 if (cc is not None and not cc.ok) else 0
+
+
+def spec_line(run) -> str:
+    t = run.table
+    n_ok = int(t.ok.sum())
+    return (f"{run.base.spec.file}: {t.n} variant(s) by {run.method}: {n_ok} completed, "
+            f"{t.n - n_ok} failed, {int(t.passing.sum())} pass the design review")
+
+
+def write_study(run, out: Path, name: str, reports: int = 0, wait: float = 120.0,
+                err=None) -> Path:
+    """Write every file of ``run`` into ``OUT/name`` (see :mod:`.outputs`); the folder."""
+    from ..report.pdf import compile_typst
+    from ..report.files import atomic_write_text
+    from .outputs import install, write_csv, write_parquet
+    from .report import FIGURES, build_document, write_figures
+    err = err or sys.stderr
+    with od.OutputLock(out).acquire(wait):
+        od.clean_leftovers(out)
+        why = od.occupied(out, name)
+        if why:
+            raise od.OutputError(why)
+        tmp = od.make_tmp_dir(out, name)
+        try:
+            t = run.table
+            meta = {"spec": run.base.file, "spec_sha256": run.sha256, "method": run.method,
+                    "sample": run.plan.sample, "seed": run.plan.seed, "variants": t.n,
+                    "version": _version()}
+            write_parquet(t, tmp / "study.parquet", meta)
+            write_csv(t, tmp / "study.csv")
+            if reports:
+                run.reports = write_best_reports(run, tmp, reports, err)
+            figures = write_figures(run, tmp / FIGURES)
+            doc = build_document(run, figures)
+            atomic_write_text(tmp / "study.md", doc.markdown())
+            compile_typst(doc.typst(), tmp / "study.pdf", tmp)
+            for written in tmp.rglob("*"):              # nothing escaped the folder
+                od.inside(tmp, written)
+            return install(out, tmp, name)
+        finally:
+            od.remove(tmp)
+
+
+def _version() -> str:
+    from .. import __version__
+    return __version__
+
+
+def write_best_reports(run, tmp: Path, k: int, err) -> list[tuple]:
+    """Full reports (every method, as ``mechreport build`` writes them) of the ``k`` best
+    passing variants into ``tmp/study-reports/NN-variant-I/``, each with its variant's spec
+    file; (rank, index, folder or None, message) per report."""
+    from ..cli import describe_failure
+    t = run.table
+    ranked = list(t.ranked()[:k])
+    if len(ranked) < k:
+        print(f"--reports {k}: only {len(ranked)} variant(s) pass the design review; "
+              f"building {len(ranked)} report(s)", file=err)
+    done = []
+    for rank, i in enumerate(ranked, 1):
+        folder = f"study-reports/{rank:02d}-variant-{i + 1}"
+        print(f"report [{rank}/{len(ranked)}]: variant {i + 1}", file=err, flush=True)
+        try:
+            variant_report(run, int(i), rank, tmp, folder)
+            done.append((rank, int(i), folder, ""))
+        except Exception as exc:  # noqa: BLE001 - one report must not lose the study
+            od.remove(tmp / folder)
+            done.append((rank, int(i), None, describe_failure(exc)))
+    return done
+
+
+def variant_report(run, i: int, rank: int, tmp: Path, folder: str) -> None:
+    from ..analysis import analyse
+    from ..report.drawing import write_drawings
+    from ..report.model import build_model, spec_sha256
+    from ..report.plots import write_plots
+    from ..report.render import write_report
+    from ..spec import load_spec
+    from ..report.files import atomic_write_text
+    from .variants import variant_yaml
+    base, plan = run.base, run.plan
+    values = plan.variant(i)
+    where = od.inside(tmp, tmp / folder)
+    where.mkdir(parents=True)
+    spec_file = where / f"variant-{i + 1}.yaml"
+    header = (f"Variant {i + 1} of the design study of {base.file} (rank {rank} of the "
+              "variants that pass the design review), written by mechreport study:\n"
+              + "\n".join(f"  {k} = {v:.12g}" for k, v in values.items())
+              + "\nThe spec's expect entries and study section are left out.")
+    changed = ", ".join(f"{k} = {v:.12g}" for k, v in values.items())
+    about = (f"Variant {i + 1} of a design study of {Path(base.file).name} (rank {rank} of "
+             f"the variants that pass the design review): {changed}. The base spec's "
+             "description follows; its numbers are the base spec's.")
+    description = about + ("\n\n" + base.spec.description if base.spec.description else "")
+    text = variant_yaml(base, values, header, name=f"{base.spec.name} (study variant {i + 1})",
+                        description=description)
+    atomic_write_text(spec_file, text)
+    spec = load_spec(spec_file)
+    analysis = analyse(spec)
+    model = build_model(analysis, f"{folder}/{spec_file.name}", sha256=spec_sha256(spec_file))
+    write_plots(model, where / "figures")
+    write_drawings(model, where / "figures")
+    write_report(model, where)

@@ -1,0 +1,132 @@
+"""A study's variants: the spec's data tree with the varied leaves replaced, validated by the
+loader like any spec (so a variant's bad value is reported with the file, line and key path of
+the leaf it replaced).
+
+The YAML is read once. Each variant copies only the mappings and lists on the paths to its
+varied leaves (the rest of the tree is shared, never modified), and is validated from that
+tree: no YAML text is written or parsed per variant.
+
+A variant is the spec without its ``study`` section (the study is about the mechanism) and
+without its ``expect`` entries (they hold the base spec's values, which a variant is not meant
+to reproduce).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping
+
+from ..spec import Spec
+from ..spec.loader import load_source, spec_from_data
+from ..spec.yaml_source import Source
+
+#: top-level keys a variant leaves out (see the module docstring)
+DROPPED = ("study", "expect")
+
+
+@dataclass(frozen=True)
+class BaseSpec:
+    """The spec a study varies: ``spec`` (validated, with its ``study``), ``data`` (its data
+    tree without ``study`` and ``expect``, as written: the spec's own units), ``source`` (file
+    name and the line of every key path, for messages) and ``paths`` (each varied key -> its
+    path of keys and list indices)."""
+
+    spec: Spec
+    data: dict
+    source: Source = field(repr=False)
+    paths: dict[str, tuple]
+
+    @property
+    def file(self) -> str:
+        return self.spec.file
+
+    def __getstate__(self):
+        # the source's text and line table are all a worker needs of it
+        src = Source.__new__(Source)
+        src.filename, src.text, src.lines, src.problems = (self.source.filename, "",
+                                                           self.source.lines, [])
+        return {"spec": self.spec, "data": self.data, "source": src, "paths": self.paths}
+
+    def __setstate__(self, state):
+        for k, v in state.items():
+            object.__setattr__(self, k, v)
+
+
+def load_base(path: str | Path) -> BaseSpec:
+    """Read and validate the spec at ``path`` (raises ``SpecError``); its study section must
+    be there (else a ``SpecError`` saying so)."""
+    from ..errors import Problem, SpecError
+    src = load_source(path)
+    spec = spec_from_data(src.data, src)
+    if spec.study is None:
+        raise SpecError([Problem(str(path), None, "", "this spec has no 'study:' section; "
+                                 "`mechreport study` needs one saying what to vary and what "
+                                 "to keep (docs/spec.md, section 17)")])
+    return base_of(spec, src)
+
+
+def base_of(spec: Spec, src: Source) -> BaseSpec:
+    """The :class:`BaseSpec` of a validated ``spec`` read from ``src``."""
+    data = {k: v for k, v in src.data.items() if k not in DROPPED}
+    paths = {v.key: v.path for v in spec.study.vary} if spec.study is not None else {}
+    return BaseSpec(spec, data, src, paths)
+
+
+def replaced(data: Any, changes: Mapping[tuple, Any]) -> Any:
+    """``data`` with the leaf at each path of ``changes`` set to its value. Only the mappings
+    and lists on those paths are copied; ``data`` itself is not modified."""
+    if not changes:
+        return data
+    out = dict(data) if isinstance(data, dict) else list(data)
+    heads: dict[Any, dict[tuple, Any]] = {}
+    for path, value in changes.items():
+        if len(path) == 1:
+            out[path[0]] = value
+        else:
+            heads.setdefault(path[0], {})[path[1:]] = value
+    for head, sub in heads.items():
+        out[head] = replaced(out[head], sub)
+    return out
+
+
+def variant_data(base: BaseSpec, values: Mapping[str, float]) -> dict:
+    """The data tree of the variant taking ``values`` ({varied key: value}, spec units)."""
+    return replaced(base.data, {base.paths[k]: _plain(v) for k, v in values.items()})
+
+
+def variant_spec(base: BaseSpec, values: Mapping[str, float]) -> Spec:
+    """The validated Spec of a variant (raises ``SpecError`` naming the replaced leaf when a
+    value is not valid there, e.g. a negative mass)."""
+    return spec_from_data(variant_data(base, values), base.source)
+
+
+def variant_yaml(base: BaseSpec, values: Mapping[str, float], header: str = "",
+                 name: str | None = None, description: str | None = None) -> str:
+    """A variant as spec text (for the full reports of the best variants): ``header`` lines
+    as comments, then the data tree as YAML (with ``name`` and ``description`` in place of
+    the spec's, when given)."""
+    import yaml
+
+    class Dumper(yaml.SafeDumper):
+        pass
+
+    def text_block(dumper, value: str):
+        style = "|" if "\n" in value else None       # multi-line text as a literal block
+        return dumper.represent_scalar("tag:yaml.org,2002:str", value, style=style)
+    Dumper.add_representer(str, text_block)
+    data = variant_data(base, values)
+    if name is not None:
+        data = dict(data, name=name)
+    if description is not None:
+        data = dict(data, description=description)
+    text = yaml.dump(data, Dumper=Dumper, sort_keys=False, allow_unicode=True,
+                     default_flow_style=None, width=100)
+    lines = "".join(f"# {line}\n" if line else "#\n" for line in header.splitlines())
+    return lines + text
+
+
+def _plain(value: float) -> float | int:
+    """A whole float written back as an int (``900.0`` -> ``900``), so that a variant's YAML
+    and messages read like the spec."""
+    f = float(value)
+    return int(f) if f.is_integer() and abs(f) < 2**53 else f
