@@ -14,7 +14,7 @@ from ..errors import AssemblyError
 from ..linalg import SINGULAR_COND, Equilibrated, angle_last
 from ..model import Mechanism
 from ..spec import GROUND
-from .frames import rotate
+from .frames import perp, rotate
 from .constraints import mechanism_size
 from .groups import gamma, row_scale, solve_newton_group, velocity_system
 from .path import SweepPath, sweep_path
@@ -145,6 +145,25 @@ def _positions(mech: Mechanism, path: SweepPath):
     return r, th, branches, motion_of(path, runs, spec.driver.omega, spec.axis_unit)
 
 
+def driver_rates(spec, value: np.ndarray):
+    """Velocity, angular velocity, acceleration and angular acceleration of the driver's link
+    on ground, (n, 2), (n,), (n, 2), (n,), differentiating :func:`driver_pose`: a crank turned
+    to ``value`` [rad] at omega and alpha, or a slider (or guide) pushed along its line."""
+    d = spec.driver
+    n = len(value)
+    omega, alpha = np.broadcast_to(d.omega, (n,)), np.broadcast_to(d.alpha, (n,))
+    if d.kind == "R":
+        s = rotate(spec.link(d.link).points[d.joint], value)    # R(phi) p; r = pivot - s
+        ds = perp(s)
+        return (-omega[:, None] * ds, omega.copy(),
+                -alpha[:, None] * ds + (omega ** 2)[:, None] * s, alpha.copy())
+    joint = spec.joint(d.joint)
+    u = np.broadcast_to(np.asarray(joint.line.direction, float), (n, 2))
+    sign = 1.0 if joint.guide == GROUND else -1.0   # the slider moves, or the guide is pushed
+    zero = np.zeros(n)
+    return sign * omega[:, None] * u, zero, sign * alpha[:, None] * u, zero.copy()
+
+
 def _newton_scale(mech: Mechanism) -> float:
     """The length that makes Newton groups' systems dimensionless (1 without them; dyads
     and the driver's link keep their own form)."""
@@ -213,6 +232,11 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
     conds: list[tuple[str, np.ndarray]] = []
     size = _newton_scale(mech)
     for group in mech.groups:
+        if group.driver is not None and len(group.links) == 1:
+            # the driver's link on ground, in closed form (its system is never singular)
+            link = group.links[0]
+            v[link], w[link], acc[link], al[link] = driver_rates(spec, value)
+            continue
         A, known, drow = velocity_system(spec, group, safe_r, safe_th)
         b_v = -_known_part(known, v, w, (n, A.shape[1]))
         if drow is not None:
@@ -229,8 +253,7 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
         x, cond = system.solve_cond(b_v)
         x = x * cs
         sing = ~(cond < SINGULAR_COND)
-        if not (group.driver is not None and len(group.links) == 1):
-            conds.append((f"{group.kind} {group.label}", np.where(finite, cond, np.inf)))
+        conds.append((f"{group.kind} {group.label}", np.where(finite, cond, np.inf)))
         for k in np.flatnonzero(sing & finite):
             problems.setdefault(int(k), ("singular", f"{group.kind} {group.label}: velocity "
                                                      "equations singular"))
