@@ -100,3 +100,13 @@ def test_a_variant_that_cannot_assemble_is_analysed_alone_and_reports_why():
     outcomes = analyse_variants([spec, broken, spec], "dyad")
     assert outcomes[0].batched and outcomes[2].batched
     assert not outcomes[1].batched and "cannot close" in outcomes[1].error
+
+
+def test_a_method_without_reactions_reports_no_shaking_force():
+    """The power balance alone gives the driver torque, not the frame's load: the review has
+    no shaking quantities (rather than ones computed from no reactions)."""
+    a = analyse(ROOT / "specs" / "four_bar.yaml", methods=["power"])
+    assert "cycle.torque.rms" in a.review.values
+    assert not any(q.startswith("cycle.shaking.") for q in a.review.values)
+    full = analyse(ROOT / "specs" / "four_bar.yaml")
+    assert full.review.values["cycle.shaking.force_max"] > 0

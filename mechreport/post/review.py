@@ -73,9 +73,10 @@ def review_of(kin, forces, loads, speed_fluctuation: float | None = None,
     frame = frame_load(kin, res, loads)
     shaking = sample(np.stack([frame.fx, frame.fy], axis=1))
     f = np.hypot(shaking[:, 0], shaking[:, 1])
-    values["cycle.shaking.force_max"] = float(np.max(f))
-    values["cycle.shaking.force_rms"] = cyc.rms(f)
-    values["cycle.shaking.moment_max"] = float(np.max(np.abs(sample(frame.m))))
+    if res.reactions:     # the shaking force is the ground joints' reactions: none, no value
+        values["cycle.shaking.force_max"] = float(np.max(f))
+        values["cycle.shaking.force_rms"] = cyc.rms(f)
+        values["cycle.shaking.moment_max"] = float(np.max(np.abs(sample(frame.m))))
     angles = {label: sample(ta) for label, ta in transmission_angles(kin).items()}
     if angles:
         pooled = np.concatenate(list(angles.values()))
