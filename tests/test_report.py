@@ -53,6 +53,9 @@ def test_every_file_is_written(built, book):
     assert not list(folder.rglob("*.png")), "one SVG per figure, shown by both reports"
     assert not list(folder.rglob("*.tmp")), "temporary files left behind"
     assert (built / "index.md").exists() and (built / "index.pdf").exists()
+    index = (built / "index.md").read_text()
+    for label, file in (("sheet pdf", "solution.pdf"), ("problem pdf", "problem.pdf")):
+        assert f"[{label}]({folder.name}/{file})" in index     # sheet: true in the spec
 
 
 def test_slider_crank_textbook_values_in_markdown(built):

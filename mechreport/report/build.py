@@ -311,7 +311,9 @@ def index_rows(out: Path, failures: dict[str, dict] | None = None) -> list[dict]
                 f"{name}/summary.json is not a mechreport summary ({type(exc).__name__}: {exc})"
             rows.append(_failure(name, name, msg))
             continue
-        row["sheets"] = [f"{name}/{f}" for f in ("solution.md", "solution.pdf")
+        row["sheets"] = [(f"{label} {f.rsplit('.', 1)[-1]}", f"{name}/{f}")
+                         for label, f in (("sheet", "solution.md"), ("sheet", "solution.pdf"),
+                                          ("problem", "problem.md"), ("problem", "problem.pdf"))
                          if (Path(out) / name / f).is_file()]
         rows.append(row)
     return rows
