@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kinematics.frames import cross, rotate, scaled
+from ..kinematics.frames import cross, perp, rotate, scaled
 from ..spec import Joint
 from .context import ForceContext
 from .equations import Action, Equation, Term
@@ -47,17 +47,25 @@ def moment_term(act: Action, about: np.ndarray, n: int, side: str = "rhs",
         return Term(act, act.sign * cross(lever, act.direction)[:, None], np.zeros(n), side,
                     lever=lever, kind="moment", factors=named)
     if act.unknowns:
-        coeffs = act.sign * np.stack([-lever[:, 1], lever[:, 0]], axis=1)
+        coeffs = act.sign * perp(lever)
         return Term(act, coeffs, np.zeros(n), side, lever=lever, kind="moment", factors=named)
     return Term(act, np.zeros((n, 0)), cross(lever, act.value), side, lever=lever,
                 kind="moment", factors=named)
 
 
-def _at_centre(act: Action, p: np.ndarray) -> bool:
+def _at_centre(ctx: ForceContext, act: Action, p: np.ndarray) -> bool:
+    """Whether force ``act`` is applied at point ``p`` at every angle (asked of the same
+    arrays again and again: the answer is kept in ``ctx.cache``)."""
     if act.kind != "force":
         return False
-    scale = 1.0 + float(np.max(np.abs(p)))
-    return bool(np.all(np.abs(act.at - p) <= 1e-12 * scale))
+    if act.at is p:
+        return True
+    memo = ctx.cache.setdefault("at centre", {})
+    key = (id(act.at), id(p))
+    if key not in memo:
+        scale = 1.0 + float(np.max(np.abs(p)))
+        memo[key] = (bool(np.all(np.abs(act.at - p) <= 1e-12 * scale)), act.at, p)
+    return memo[key][0]
 
 
 def force_equation(ctx: ForceContext, bodies, acts: list[Action], axis: str,
@@ -74,7 +82,8 @@ def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
     """sum M_about^(bodies) = 0 (moments about the named point ``about``)."""
     p = ctx.point_of(about) if at is None else at
     # a force applied at the moment centre itself has no moment: leave it out, as the text does
-    terms = [moment_term(a, p, ctx.n, about_name=about) for a in acts if not _at_centre(a, p)]
+    terms = [moment_term(a, p, ctx.n, about_name=about) for a in acts
+             if not _at_centre(ctx, a, p)]
     return Equation(f"sum M_{about}^{body_tag(ctx, bodies)}", "moment", tuple(bodies), terms,
                     about=about)
 

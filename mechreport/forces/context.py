@@ -54,6 +54,7 @@ class ForceContext:
         self.spec = self.mech.spec
         self.n = kin.n
         self.memo: dict = {}     # choices made once per analysis (the contour method's plan)
+        self.cache: dict = {}    # this context's own: actions per free body, coincidences
         self.gravity = np.asarray(self.spec.gravity, float)
         self.loads: list[AppliedLoad] = evaluate_loads(kin)
         self.links: dict[str, LinkState] = {}
@@ -148,6 +149,13 @@ class ForceContext:
                        joint.point, unknowns=unknown, sign=sign, direction=u)]
 
     def actions_on(self, bodies, *, inertia: bool, exclude=()) -> list[Action]:
+        """See :meth:`_actions_on`; built once per free body (methods share them)."""
+        key = ("actions", tuple(bodies), inertia, tuple(exclude))
+        if key not in self.cache:
+            self.cache[key] = tuple(self._actions_on(bodies, inertia=inertia, exclude=exclude))
+        return list(self.cache[key])
+
+    def _actions_on(self, bodies, *, inertia: bool, exclude=()) -> list[Action]:
         """Every external action on the free body made of ``bodies`` (moving links): reactions
         of joints that cross its boundary, gravity, loads, the driver torque, and (d'Alembert)
         the inertia forces and couples. Joints inside the body cancel and are left out (the

@@ -9,12 +9,19 @@ def rotate(v, theta: np.ndarray) -> np.ndarray:
     v = np.asarray(v, float)
     c, s = np.cos(theta), np.sin(theta)
     x, y = v[..., 0], v[..., 1]
-    return np.stack([c * x - s * y, s * x + c * y], axis=-1)
+    out = np.empty(np.broadcast_shapes(np.shape(c), np.shape(x)) + (2,))
+    out[..., 0] = c * x - s * y
+    out[..., 1] = s * x + c * y
+    return out
 
 
 def perp(v: np.ndarray) -> np.ndarray:
     """k x v: ``v`` turned +90 degrees."""
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+    v = np.asarray(v)
+    out = np.empty(v.shape, np.result_type(v, float))
+    out[..., 0] = -v[..., 1]
+    out[..., 1] = v[..., 0]
+    return out
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
