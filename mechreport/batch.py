@@ -95,7 +95,7 @@ def _batched(stacked, mech, specs: list[Spec], method: str) -> list[Outcome | No
     for v in np.flatnonzero(clean):
         spec = specs[v]
         rows = stacked.rows(v)
-        kin_v = variant_kinematics(stacked, v, replace(mech, spec=spec))
+        kin_v = variant_kinematics(stacked, v, mech.with_spec(spec))
         forces = {method: res.take(rows, None)}
         loads = [replace(ld, load=spec.loads[index[id(ld.load)]],
                          force=None if ld.force is None else ld.force[rows],

@@ -19,11 +19,23 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def _variants(spec, count: int = 4):
-    """``count`` variants: every link's mass and inertia, one point of the last link and the
-    driver's speed changed by a few percent."""
+    """``count`` variants: every link's mass and inertia, one point of the last link, every
+    slider line (turned 2 degrees and moved 1 % of its offset) and the driver's speed
+    changed."""
     out = []
     for k in range(count):
         f = 1.0 + 0.03 * k
+        turn = np.radians(2.0 * k)
+        joints = []
+        for joint in spec.joints:
+            if joint.line is not None:
+                (dx, dy), (tx, ty) = joint.line.direction, joint.line.through
+                line = dataclasses.replace(
+                    joint.line, through=(tx * (1 + 0.01 * k), ty + 0.001 * k),
+                    direction=(dx * np.cos(turn) - dy * np.sin(turn),
+                               dx * np.sin(turn) + dy * np.cos(turn)))
+                joint = dataclasses.replace(joint, line=line)
+            joints.append(joint)
         links = []
         for i, link in enumerate(spec.links):
             points = dict(link.points)
@@ -33,7 +45,8 @@ def _variants(spec, count: int = 4):
             links.append(dataclasses.replace(link, mass=link.mass * f,
                                              inertia=link.inertia * f ** 2, points=points))
         driver = dataclasses.replace(spec.driver, omega=spec.driver.omega * (1 + 0.1 * k))
-        out.append(dataclasses.replace(spec, links=tuple(links), driver=driver))
+        out.append(dataclasses.replace(spec, links=tuple(links), joints=tuple(joints),
+                                       driver=driver))
     return out
 
 

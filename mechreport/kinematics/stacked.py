@@ -21,6 +21,7 @@ from ..model import Mechanism
 from ..spec import GROUND, Spec
 from ..spec.stack import stack_specs
 from . import TRUST_RTOL, _rates, driver_pose, kinematic_error
+from .constraints import joint_residual
 from .path import sweep_path
 from .position import dyad_candidates, signature, track_branches
 from .result import Kinematics, Motion, motion_of
@@ -62,12 +63,14 @@ def solve_stacked(mech: Mechanism, specs: list[Spec]) -> StackedKinematics | Non
     if on_path is None or analysed is None:
         return None
     unit = first.driver.unit
+    mech = mech.with_spec(on_path)      # the groups' joints (their lines) are the stacked ones
     value = np.tile(path.angles * unit, V)
     r = {GROUND: np.zeros((V * n_path, 2))}
     th = {GROUND: np.zeros(V * n_path)}
     clean = np.ones(V, bool)
     runs = [list(path.runs) for _ in range(V)]
-    for group in mech.groups:
+    own = [mech.with_spec(s) for s in specs]     # each variant's joints, for its bookkeeping
+    for g, group in enumerate(mech.groups):
         if group.dyad is None:
             chosen = driver_pose(on_path, value)
         else:
@@ -81,8 +84,8 @@ def solve_stacked(mech: Mechanism, specs: list[Spec]) -> StackedKinematics | Non
                 if not all(np.all(np.isfinite(c[l][0][path.ref])) for c in mine for l in c):
                     clean[v] = False          # cannot assemble: analysed alone, for its reason
                     continue
-                poses, _, runs[v] = track_branches(specs[v], group.dyad, mine, path, runs[v],
-                                                   [s[cut] for s in sigs])
+                poses, _, runs[v] = track_branches(specs[v], own[v].groups[g].dyad, mine, path,
+                                                   runs[v], [s[cut] for s in sigs])
                 for l, (rr, tt) in poses.items():
                     chosen[l][0][cut], chosen[l][1][cut] = rr, tt
         for link, (rr, tt) in chosen.items():
@@ -92,11 +95,12 @@ def solve_stacked(mech: Mechanism, specs: list[Spec]) -> StackedKinematics | Non
     idx = (np.arange(V)[:, None] * n_path + path.analysed[None, :]).ravel()
     r = {k: x[idx] for k, x in r.items()}
     th = {k: x[idx] for k, x in th.items()}
-    flat = replace(mech, spec=analysed)
+    flat = mech.with_spec(analysed)
     problems: dict[int, tuple[str, str]] = {}
     v_, w_, acc, al, conds = _rates(flat, np.tile(phi * unit, V), r, th, problems)
     error = kinematic_error([c for _, c in conds], V * per)
     bad = ~np.isfinite(r[first.links[-1].name][:, 0]) | (error > TRUST_RTOL)
+    bad |= ~_closed(flat, r, th)
     bad[list(problems)] = True
     clean &= ~bad.reshape(V, per).any(axis=1)
     order = [GROUND] + [l.name for l in first.links]
@@ -107,6 +111,21 @@ def solve_stacked(mech: Mechanism, specs: list[Spec]) -> StackedKinematics | Non
     kin = Kinematics(flat, np.tile(phi, V), stack(r), stack(th), stack(v_), stack(w_),
                      stack(acc), stack(al), (), (), None, error)
     return StackedKinematics(kin, per, clean, motions)
+
+
+def _closed(mech: Mechanism, r: dict, th: dict) -> np.ndarray:
+    """Rows (n,) where every joint closes (gaps within 1e-9 of the mechanism's extent, angles
+    within 1e-9 rad): a check that the stacked poses are each variant's own."""
+    with np.errstate(invalid="ignore"):
+        scale = 1e-3 + np.max(np.stack([np.abs(x).max(axis=1) for x in r.values()]), axis=0)
+        ok = np.ones(len(scale), bool)
+        for joint in mech.spec.joints:
+            gap = joint_residual(mech.spec, joint, r, th)
+            if joint.type == "R":
+                ok &= np.hypot(gap[:, 0], gap[:, 1]) <= 1e-9 * scale
+            else:
+                ok &= (np.abs(gap[:, 0]) <= 1e-9) & (np.abs(gap[:, 1]) <= 1e-9 * scale)
+    return ok
 
 
 def variant_kinematics(stacked: StackedKinematics, v: int, mech: Mechanism) -> Kinematics:

@@ -1,7 +1,7 @@
 """Stage 2: the mechanism model: joint graph, dyads (Assur groups) and loops (contours)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..spec import GROUND, Joint, Spec
 from .dyads import Dyad
@@ -25,6 +25,23 @@ class Mechanism:
 
     def joints_of(self, link: str) -> list[Joint]:
         return [j for j in self.spec.joints if link in j.links]
+
+    def with_spec(self, spec: Spec) -> "Mechanism":
+        """The same structure over ``spec`` (the same links and joints by name, other
+        numbers): every group, dyad and loop then refers to ``spec``'s own joints, whose lines
+        may differ (a study's variants, or all of them stacked)."""
+        own = {j.name: j for j in spec.joints}
+
+        def rebind(joints):
+            return tuple(own[j.name] for j in joints)
+
+        def dyad(d: Dyad | None) -> Dyad | None:
+            if d is None:
+                return None
+            return replace(d, outer=rebind(d.outer), inner=own[d.inner.name])
+        groups = tuple(replace(g, joints=rebind(g.joints), dyad=dyad(g.dyad)) for g in self.groups)
+        loops = tuple(replace(l, joints=rebind(l.joints)) for l in self.loops)
+        return Mechanism(spec, groups, loops)
 
 
 def build_mechanism(spec: Spec) -> Mechanism:
