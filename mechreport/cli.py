@@ -201,16 +201,17 @@ def _sheet_methods(text: str) -> tuple[str, ...]:
 
 
 def _sheet_angles(text: str) -> tuple[float, ...]:
-    """``--sheet-angles``: comma-separated finite numbers (deg, or the stroke's unit)."""
+    """``--sheet-angles``: comma-separated finite numbers (deg, or the stroke's unit), each
+    once (as for ``--sheet-methods``)."""
     try:
         values = tuple(float(t) for t in text.split(","))
     except ValueError:
         values = ()
-    if not values or not all(math.isfinite(v) for v in values):
+    if not values or not all(math.isfinite(v) for v in values) or len(set(values)) < len(values):
         raise argparse.ArgumentTypeError(
             f"must be angles in degrees (strokes in the spec's length unit for a linear "
-            f"actuator) separated by commas, e.g. 30,45; got {text!r}")
-    return tuple(dict.fromkeys(values))
+            f"actuator) separated by commas, each once, e.g. 30,45; got {text!r}")
+    return values
 
 
 _int_at_least_0 = _checked(int, lambda v: v >= 0, "a whole number >= 0")

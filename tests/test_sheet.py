@@ -438,10 +438,24 @@ def test_cli_sheet_options_are_checked(tmp_path, capsys):
     assert exc.value.code == 2
     err = capsys.readouterr().err
     assert "unknown method 'dyads'" in err and "newton_euler, dalembert, dyad" in err
-    with pytest.raises(SystemExit):
-        main(["build", spec, "-o", str(tmp_path), "--sheet", "--sheet-angles", "45,x"])
-    assert "separated by commas" in capsys.readouterr().err
+    for bad in ("45,x", "45,45"):
+        with pytest.raises(SystemExit):
+            main(["build", spec, "-o", str(tmp_path), "--sheet", "--sheet-angles", bad])
+        assert "separated by commas, each once" in capsys.readouterr().err
     assert not any(tmp_path.iterdir())
+
+
+def test_a_sheet_at_a_singular_angle_is_an_error_not_an_empty_answer_key(textbook):
+    """4.6 at 90 deg: the slider-crank's dead centre is left out of the analysis; a sheet
+    there would be a problem without an answer. Both explicit angles and the spec's own are
+    refused when nothing can be solved; a problem lists only angles that have answers."""
+    from mechreport.errors import AnalysisError
+    a = textbook["4.6"]["analysis"]
+    with pytest.raises(AnalysisError, match=r"--sheet-angles: φ = 90°: .*singular"):
+        sheet_analysis(a, SheetOptions(angles=(45.0, 90.0)))
+    assert sheet_analysis(a, SheetOptions(angles=(45.0,))).kinematics.index_of(45) is not None
+    b = sheet_analysis(a, SheetOptions(angles=(45.0, 89.0)))
+    assert b.kinematics.index_of(89.0) is not None
 
 
 # ------------------------------------------------------------------------------ every spec

@@ -668,7 +668,8 @@ def build_problem(analysis, options: SheetOptions | None = None,
     options = options or SheetOptions()
     spec = analysis.spec
     names = Names(spec)
-    angles = list(options.angles) if options.angles is not None else list(spec.at)
+    angles = [a for a in (options.angles if options.angles is not None else spec.at)
+              if analysis.kinematics.index_of(a) is not None]   # a problem with an answer
     methods = choose_methods(analysis, options.methods)
     links = []
     for l in spec.links:
@@ -695,7 +696,8 @@ def build_problem(analysis, options: SheetOptions | None = None,
     figs = []
     if sheet is not None:
         for am in sheet.angles:
-            figs.append((am.title, am.figure))
+            if am.skipped is None:
+                figs.append((am.title, am.figure))
     else:
         for a in angles:
             figs.append((coordinate(spec, a)[0], None))
@@ -727,13 +729,29 @@ def sheet_analysis(analysis, options: SheetOptions):
     those angles added to its reference angles (the branch is still followed from the first
     one)."""
     if options.angles is None:
-        return analysis
+        return _solvable(analysis, list(analysis.spec.at), "the spec's reference angles")
     from dataclasses import replace
     from ...analysis import analyse
     spec = analysis.spec
     have = spec.analysed_angles()
     missing = tuple(float(a) for a in options.angles
                     if not np.any(np.abs(have - float(a)) < 1e-9))
-    if not missing:
-        return analysis
-    return analyse(replace(spec, at=tuple(spec.at) + missing), tol=analysis.tol)
+    if missing:
+        analysis = analyse(replace(spec, at=tuple(spec.at) + missing), tol=analysis.tol)
+    return _solvable(analysis, list(options.angles), "--sheet-angles", every=True)
+
+
+def _solvable(analysis, angles: list, what: str, every: bool = False):
+    """``analysis`` if a sheet can be written at ``angles`` (each of them, with ``every``;
+    else at least one); otherwise an error naming the angles left out and why."""
+    from ...errors import AnalysisError
+    spec = analysis.spec
+    out = [a for a in angles if analysis.kinematics.index_of(a) is None]
+    if out and (every or len(out) == len(angles)):
+        why = "; ".join(
+            f"{coordinate(spec, a)[1]}: " + ("; ".join(
+                f.reason for f in analysis.flags if abs(f.angle - a) < 1e-9)
+                or "left out of the analysis") for a in out)
+        raise AnalysisError(f"{spec.file}: no solution sheet at {what}: {why}. Choose "
+                            "angles away from singular or unreachable positions")
+    return analysis
