@@ -88,22 +88,16 @@ class Doc:
                 out += [f"- {_typ_inline(item)}" for item in block[1]] + [""]
             elif kind == "table":
                 _, header, rows, right, note = block
-                n = len(header)
-                align = "(" + ", ".join("right" if i in right else "left"
-                                        for i in range(n)) + ("," if n == 1 else "") + ")"
-                out.append("#block(breakable: true, table(")
-                out.append(f"  columns: {n}, align: {align}, stroke: none,")
-                out.append("  inset: (x: 4pt, y: 2.5pt),")
-                out.append("  fill: (_, y) => if y > 0 and calc.even(y) { luma(244) },")
-                out.append("  table.hline(stroke: 0.8pt),")
-                out.append("  table.header(" + ", ".join(
-                    f"text(weight: \"bold\", {typst_string(_breakable(h))})" for h in header)
-                    + "),")
-                out.append("  table.hline(stroke: 0.5pt),")
-                for row in rows:
-                    out.append("  " + ", ".join(f"[{typst_escape(c)}]" for c in row) + ",")
-                out.append("  table.hline(stroke: 0.8pt),")
-                out.append("))")
+                # a page holds about MAX_COLUMNS columns of numbers: a wider table is split
+                # into parts that each repeat the leading columns (rank and variant)
+                lead = list(range(2 if header[1:2] == ["variant"] else 1))
+                rest = list(range(len(lead), len(header)))
+                step = MAX_COLUMNS - len(lead)
+                parts = [lead + rest[a:a + step] for a in range(0, len(rest), step)] or [lead]
+                for cols in parts:
+                    out += _typ_table([header[i] for i in cols],
+                                      [[row[i] for i in cols] for row in rows],
+                                      {k for k, i in enumerate(cols) if i in right})
                 if note:
                     out.append(f"#text(size: 8pt)[{typst_escape(note)}]")
                 out.append("")
@@ -116,13 +110,14 @@ class Doc:
 
 
 def _breakable(text: str) -> str:
-    """``text`` with break opportunities (zero-width spaces) after dots and before units, so
-    that a long key path in a narrow column header wraps instead of overlapping."""
+    """``text`` with break opportunities (zero-width spaces) after dots and underscores and
+    before units, so that a long key path in a narrow column header wraps instead of
+    overlapping."""
     text = str(text)
     head, sep, unit = text.partition(" [")
     if sep:                                   # the unit stays whole: [N m] never splits
         text = head + sep + unit.replace(" ", "\u00a0")
-    return text.replace(".", ".\u200b").replace(" [", "\u200b [")
+    return text.replace(".", ".\u200b").replace("_", "_\u200b").replace(" [", "\u200b [")
 
 
 def _md_inline(parts: Inline) -> str:
@@ -154,3 +149,25 @@ def _typ_inline(parts: Inline) -> str:
         else:
             out.append(typst_escape(part))
     return "".join(out)
+
+
+MAX_COLUMNS = 8   # columns of a study table that fit a page side by side
+
+
+def _typ_table(header: list[str], rows: list[list[str]], right: set[int]) -> list[str]:
+    """One Typst table (striped, header repeated on each page)."""
+    n = len(header)
+    align = "(" + ", ".join("right" if i in right else "left"
+                            for i in range(n)) + ("," if n == 1 else "") + ")"
+    out = ["#block(breakable: true, table(",
+           f"  columns: {n}, align: {align}, stroke: none,",
+           "  inset: (x: 4pt, y: 2.5pt),",
+           "  fill: (_, y) => if y > 0 and calc.even(y) { luma(244) },",
+           "  table.hline(stroke: 0.8pt),",
+           "  table.header(" + ", ".join(
+               f"text(weight: \"bold\", {typst_string(_breakable(h))})" for h in header) + "),",
+           "  table.hline(stroke: 0.5pt),"]
+    out += ["  " + ", ".join(f"[{typst_escape(c)}]" for c in row) + "," for row in rows]
+    out += ["  table.hline(stroke: 0.8pt),", "))"]
+    return out
+
