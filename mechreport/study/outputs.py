@@ -55,8 +55,12 @@ def write_parquet(table: Table, path: Path, metadata: dict[str, str] | None = No
 
 
 def _cell(value) -> str:
+    """A number's shortest exact form (``-10``, ``0.125``, ``1e+20``), empty if undefined."""
     if isinstance(value, (float, np.floating)):
-        return repr(float(value)) if np.isfinite(value) else ""
+        v = float(value)
+        if not np.isfinite(v):
+            return ""
+        return str(int(v)) if v.is_integer() and abs(v) < 1e15 else repr(v)
     return str(value)
 
 
