@@ -281,6 +281,8 @@ def _factors(factors, how: str) -> str:
             a, b = factors[i - 1], factors[i]
             if isinstance(a, Num) and a.paren and isinstance(b, Num) and b.paren:
                 sep = ""
+            elif isinstance(b, Raw) and b.t == r"^\circ" and how != "plain":
+                sep = ""                # 45°, not 45 °
             elif how == "tex" and not isinstance(a, Op) and not isinstance(b, Op):
                 sep = r"\,"
             elif how == "typ" and isinstance(a, Num) and not isinstance(b, Op):
