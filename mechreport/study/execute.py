@@ -28,7 +28,7 @@ from .variants import BaseSpec
 
 #: chunks in flight per worker
 IN_FLIGHT = 3
-#: most variants per chunk chosen automatically (about 1-2 s of work each today)
+#: most variants per chunk chosen automatically (a few tenths of a second of work each)
 MAX_AUTO_CHUNK = 100
 
 
