@@ -88,3 +88,26 @@ def test_chunked_kinematic_rates_equal_one_batch(name, monkeypatch):
                                                             for f in whole.flags]
     for what in ("r", "theta", "v", "omega", "a", "alpha", "error"):
         np.testing.assert_array_equal(getattr(chunked, what), getattr(whole, what))
+
+
+def test_slider_points_are_defined_against_the_whole_sweep():
+    """A T joint's application point is undefined where its force is below 1e-12 of the
+    largest over the sweep: joining chunks judges against the whole sweep, not each chunk
+    (a chunk of tiny forces has points of its own that the whole sweep leaves undefined)."""
+    from mechreport.forces import ForceResult, dyad
+    from mechreport.forces.result import slider_point
+    kin = solve_kinematics(build_mechanism(load_spec(ROOT / "specs" / "slider_crank.yaml")))
+    ctx = ForceContext(kin)
+    res = dyad.solve(ctx)
+    one, two = slice(0, 100), slice(100, kin.n)
+    first = res.take(one, ForceContext(kin.take(one, ())))
+    c2 = ForceContext(kin.take(two, ()))
+    second = res.take(two, c2)
+    r = second.reactions["C_T"]
+    tiny = dataclasses.replace(r, fx=r.fx * 1e-14, fy=r.fy * 1e-14, moment=r.moment * 1e-14)
+    tiny = dataclasses.replace(tiny, **dict(zip(("px", "py"), slider_point(
+        c2, c2.spec.joint("C_T"), tiny.fx, tiny.fy, tiny.moment))))
+    assert np.isfinite(tiny.px).all()                   # defined against its own chunk
+    second = dataclasses.replace(second, reactions={**second.reactions, "C_T": tiny})
+    joined = ForceResult.join([first, second], ctx).reactions["C_T"]
+    assert np.isfinite(joined.px[:100]).all() and np.isnan(joined.px[100:]).all()

@@ -89,8 +89,13 @@ class ForceResult:
         ForceContext over those angles."""
         def cut(x):
             return None if x is None else x[rows]
-        reactions = {k: replace(r, fx=r.fx[rows], fy=r.fy[rows], moment=cut(r.moment),
-                                px=cut(r.px), py=cut(r.py)) for k, r in self.reactions.items()}
+        reactions = {}
+        for k, r in self.reactions.items():
+            fx, fy, m = r.fx[rows], r.fy[rows], cut(r.moment)
+            px, py = cut(r.px), cut(r.py)
+            if m is not None and source is not None:   # against the kept angles' forces
+                px, py = slider_point(source, source.spec.joint(k), fx, fy, m)
+            reactions[k] = replace(r, fx=fx, fy=fy, moment=m, px=px, py=py)
         return replace(self, angles=self.angles[rows], reactions=reactions,
                        driver_torque=self.driver_torque[rows], singular=self.singular[rows],
                        cond=cut(self.cond), source=source, _steps=[])
@@ -107,10 +112,12 @@ class ForceResult:
             return None if vals[0] is None else np.concatenate(vals)
         reactions = {}
         for k, r in first.reactions.items():
-            reactions[k] = replace(
-                r, fx=cat(lambda p: p.reactions[k].fx), fy=cat(lambda p: p.reactions[k].fy),
-                moment=cat(lambda p: p.reactions[k].moment),
-                px=cat(lambda p: p.reactions[k].px), py=cat(lambda p: p.reactions[k].py))
+            fx, fy = cat(lambda p: p.reactions[k].fx), cat(lambda p: p.reactions[k].fy)
+            m = cat(lambda p: p.reactions[k].moment)
+            px = py = None
+            if m is not None:        # defined against the whole sweep's largest force
+                px, py = slider_point(source, source.spec.joint(k), fx, fy, m)
+            reactions[k] = replace(r, fx=fx, fy=fy, moment=m, px=px, py=py)
         return replace(first, angles=cat(lambda p: p.angles), reactions=reactions,
                        driver_torque=cat(lambda p: p.driver_torque),
                        singular=cat(lambda p: p.singular), cond=cat(lambda p: p.cond),
@@ -137,6 +144,20 @@ class ForceResult:
         return out
 
 
+def slider_point(ctx, joint, fx: np.ndarray, fy: np.ndarray, m: np.ndarray):
+    """Where a T joint's force (fx, fy) and couple m about the slider's point act as one force
+    on the sliding line: (px, py) [m], NaN where the force vanishes (below 1e-12 of the
+    largest over the sweep) and the point is undefined."""
+    u = rotate(joint.line.direction, ctx.kin.theta[:, ctx.num(joint.guide)])
+    f = np.stack([fx, fy], axis=1)
+    s = cross(u, f)
+    scale = np.maximum(np.max(np.abs(f), initial=0.0), 1e-300)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(np.abs(s) > 1e-12 * scale, m / s, np.nan)
+    p = ctx.joint_points[joint.name] + t[:, None] * u
+    return p[:, 0], p[:, 1]
+
+
 def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular,
                 cond=None) -> ForceResult:
     """Assemble a ForceResult from solved unknowns (shared by all methods)."""
@@ -149,14 +170,8 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
                 reactions[j.name] = JointReaction(j.name, "R", fx, fy)
                 continue
             m = values[f"joint.{j.name}.moment"]
-            u = rotate(j.line.direction, ctx.kin.theta[:, ctx.num(j.guide)])
-            f = np.stack([fx, fy], axis=1)
-            s = cross(u, f)
-            scale = np.maximum(np.max(np.abs(f)), 1e-300)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                t = np.where(np.abs(s) > 1e-12 * scale, m / s, np.nan)
-            p = ctx.joint_points[j.name] + t[:, None] * u
-            reactions[j.name] = JointReaction(j.name, "T", fx, fy, m, p[:, 0], p[:, 1])
+            px, py = slider_point(ctx, j, fx, fy, m)
+            reactions[j.name] = JointReaction(j.name, "T", fx, fy, m, px, py)
     quantity = ctx.spec.driver.quantity
     return ForceResult(method, ctx.kin.angles, reactions, values[quantity], singular, cond,
                        quantity, ctx, [tuple(steps)])
