@@ -266,6 +266,68 @@ def test_one_free_body_diagram_per_link_and_reference_angle(textbook, key):
     assert render_markdown(model).count("figures/sheet-") == links + 1
 
 
+def test_the_verb_agrees_with_the_number_of_equations(textbook):
+    """"(41) gives M = ..." for the power balance's one equation, "(38)–(40) give" for
+    several."""
+    model, md = textbook["4.6"]["model"], textbook["4.6"]["md"]
+    steps = [s for m in model.angles[0].methods for s in m.steps]
+    power = method(model, "power").steps[0]
+    n = power.equations[0].number
+    assert f"**({n}) gives** $M = 151.492" in md
+    assert not re.search(r"\*\*\(\d+\) give\*\*", md)
+    assert not re.search(r"\*\*\(\d+\)–\(\d+\) gives\*\*", md)
+    assert len(power.equations) == 1 and power.cited == f"({n}) gives"
+    assert all(s.cited.endswith(" give") for s in steps if len(s.equations) > 1)
+
+
+@pytest.mark.parametrize("key", ["4.6", "4.7"])
+def test_free_body_sentence_names_the_bodies_its_equations_use(textbook, key):
+    """A step's "Free body" sentence lists the free bodies of its equations (a slider's normal
+    constraint is not one), each once: the contour's step for joint C of 4.6 writes one
+    equation for the slider and one for the rod, not one for the rod and slider together."""
+    a, model = textbook[key]["analysis"], textbook[key]["model"]
+    spec = a.spec
+    if key == "4.6":
+        md = textbook[key]["md"]
+        assert "#### Step 2: Joint C (loop 0-1-2-3-0)\n\nFree bodies: link 3 (slider) and " \
+            "link 2 (rod). Unknowns" in md
+        assert "Free bodies: link 2 (rod) and links 2 &amp; 3 (rod, slider). Unknowns" in md
+        assert "Free body: links 1 &amp; 2 &amp; 3 (crank, rod, slider). Unknowns: $M$." in md
+
+    def said(bodies):
+        ls = sorted((spec.link(b) for b in bodies), key=lambda l: l.number)
+        return (f"link {ls[0].number} ({ls[0].name})" if len(ls) == 1 else
+                "links " + " & ".join(str(l.number) for l in ls) + " ("
+                + ", ".join(l.name for l in ls) + ")")
+
+    for m in model.angles[0].methods:
+        for s in m.steps:
+            used = list(dict.fromkeys(frozenset(e.source.bodies) for e in s.equations
+                                      if e.source.kind != "constraint"))
+            assert s.free_body.startswith("Free body: " if len(used) == 1 else "Free bodies: ")
+            rest = s.free_body.split(": ", 1)[1]
+            for b in used:
+                assert said(b) in rest, (m.name, s.number, said(b), s.free_body)
+                rest = rest.replace(said(b), "", 1)
+            assert re.fullmatch(r"(, | and )*", rest), (m.name, s.number, s.free_body)
+
+
+def test_joint_names_and_coinciding_mass_centres_read_as_the_textbook_writes_them(textbook):
+    """C_T is typeset C with subscript T in the tables and messages (a method's name such as
+    newton_euler stays text); a centre of mass on a joint is said to be there."""
+    from mechreport.report.sheet.symbols import rich_label
+    md = textbook["4.6"]["md"]
+    assert "| $C_{T}$ | T | 0 (ground) on 3 (slider) | $\\mathbf{F}_{03}$ |" in md
+    assert "C\\_T" not in md and "$C_{3}$ is at $C$." in md and "C_{3} = C" not in md
+    assert "| $\\mathbf{F}_{3ext}$ | 3 (slider) |" in md
+    assert [render(x, "plain") for x in rich_label("dyad B_R C_R C_T: singular")[1::2]] == \
+        ["B_R", "C_R", "C_T"]
+    assert rich_label("force equations singular (newton_euler)") == \
+        ["force equations singular (newton_euler)"]
+    assert "| $C_{T}$ | slider (T) |" in render_problem_markdown(
+        build_problem(textbook["4.6"]["analysis"]))
+
+
 # ------------------------------------------------------------------------------ 4.7
 
 R_RTR_RTR = ["F05 = 268.165 i + 135.057 j N", "F34 = -268.072 i - 134.583 j N",

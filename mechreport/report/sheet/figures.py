@@ -24,7 +24,28 @@ from ..scene import build_scene
 
 class SheetLabels(Labels):
     """The drawings' label placer, measuring a mathtext label by what it prints ($F_{21x}$
-    is four glyphs wide, not ten) and keeping labels inside the figure."""
+    is four glyphs wide, not ten), keeping labels inside the figure and near their point:
+    the candidate offsets are tried ring by ring (nearest first), each ring from the
+    preferred side round, and the first box that touches no obstacle is taken (else the least
+    bad). Obstacles are pins, link outlines, arrow shafts, couple arcs and earlier labels."""
+
+    D = 4.0                  # the nearest offset [pt]
+    RINGS = (1.0, 2.2, 3.6)  # offsets tried, in units of D
+
+    def block_path(self, xy, r_pt: float = 2.5) -> None:
+        """Obstacles along the polyline ``xy`` (data units), one every ``r_pt`` points."""
+        px = self.ax.transData.transform(np.asarray(xy, float).reshape(-1, 2))
+        for a, b in zip(px[:-1], px[1:]):
+            n = max(int(np.hypot(*(b - a)) / (r_pt * self.pt)), 1)
+            r = r_pt * self.pt
+            for t in np.linspace(0.0, 1.0, n + 1):
+                q = a + t * (b - a)
+                self.boxes.append((q[0] - r, q[1] - r, q[0] + r, q[1] + r))
+
+    def block_area(self, lo, hi) -> None:
+        """An obstacle: the rectangle from ``lo`` to ``hi`` (data units)."""
+        (x0, y0), (x1, y1) = self.ax.transData.transform(np.asarray([lo, hi], float))
+        self.boxes.append((min(x0, x1), min(y0, y1), max(x0, x1), max(y0, y1)))
 
     def place(self, text: str, x: float, y: float, color: str = "k", bold: bool = False,
               prefer=None, fontsize: float | None = None) -> None:
@@ -37,24 +58,31 @@ class SheetLabels(Labels):
         h = 1.15 * fs * self.pt
         px, py = self.ax.transData.transform((x, y))
         fig_w, fig_h = self.ax.figure.bbox.width, self.ax.figure.bbox.height
-        d = 4.0
-        cands = [(d, d, "left", "bottom"), (-d, d, "right", "bottom"), (d, -d, "left", "top"),
-                 (-d, -d, "right", "top"), (0, 1.6 * d, "center", "bottom"),
-                 (0, -1.6 * d, "center", "top"), (1.6 * d, 0, "left", "center"),
-                 (-1.6 * d, 0, "right", "center"), (2.6 * d, 2.6 * d, "left", "bottom"),
-                 (-2.6 * d, 2.6 * d, "right", "bottom"), (2.6 * d, -2.6 * d, "left", "top"),
-                 (-2.6 * d, -2.6 * d, "right", "top")]
-        if prefer is not None:
-            cands.sort(key=lambda c: -(c[0] * prefer[0] + c[1] * prefer[1]))
+        pref = np.asarray(prefer if prefer is not None else (1.0, 1.0), float)
+        pref = pref / max(float(np.hypot(*pref)), 1e-12)
+        boxes = np.asarray(self.boxes, float).reshape(-1, 4)
         best, best_score = None, math.inf
-        for dx, dy, ha, va in cands:
-            box = self._box(px + dx * self.pt, py + dy * self.pt, w, h, ha, va)
-            score = sum(self._overlap(box, b) for b in self.boxes)
-            inside = (min(box[2], fig_w) - max(box[0], 0)) * (min(box[3], fig_h) - max(box[1], 0))
-            score += 4 * ((box[2] - box[0]) * (box[3] - box[1]) - max(inside, 0))
-            if score < best_score:
-                best, best_score = (dx, dy, ha, va, box), score
-            if score == 0:
+        for ring in self.RINGS:
+            d = self.D * ring
+            cands = [(d, d, "left", "bottom"), (-d, d, "right", "bottom"),
+                     (d, -d, "left", "top"), (-d, -d, "right", "top"),
+                     (0, 1.3 * d, "center", "bottom"), (0, -1.3 * d, "center", "top"),
+                     (1.3 * d, 0, "left", "center"), (-1.3 * d, 0, "right", "center")]
+            cands.sort(key=lambda c: -(c[0] * pref[0] + c[1] * pref[1]) / math.hypot(c[0], c[1]))
+            for dx, dy, ha, va in cands:
+                box = self._box(px + dx * self.pt, py + dy * self.pt, w, h, ha, va)
+                ox = np.minimum(box[2], boxes[:, 2]) - np.maximum(box[0], boxes[:, 0])
+                oy = np.minimum(box[3], boxes[:, 3]) - np.maximum(box[1], boxes[:, 1])
+                score = float(np.sum(np.where((ox > 0) & (oy > 0), ox * oy, 0.0)))
+                inside = (min(box[2], fig_w) - max(box[0], 0)) * \
+                    (min(box[3], fig_h) - max(box[1], 0))
+                score += 4 * ((box[2] - box[0]) * (box[3] - box[1]) - max(inside, 0))
+                score *= 1 + 0.25 * ring             # farther is worse, when none is free
+                if score < best_score:
+                    best, best_score = (dx, dy, ha, va, box), score
+                if score == 0:
+                    break
+            if best_score == 0:
                 break
         dx, dy, ha, va, box = best
         self.boxes.append(box)
@@ -122,12 +150,15 @@ def _arrow(ax, start, vec, color, dashed=False, lw=1.3):
                                 shrinkA=0, shrinkB=0, ls=(0, (3, 2)) if dashed else "-"))
 
 
-def _arc(ax, at, r, ccw: bool, color, dashed=False):
+def _arc(ax, at, r, ccw: bool, color, dashed=False, labels=None):
+    """A couple's arc about ``at`` (an obstacle to ``labels``); returns where its label goes."""
     x, y = at
     a0, a1 = (200, 470) if ccw else (470, 200)
     th = np.radians(np.linspace(a0, a1, 30))
     ax.plot(x + r * np.cos(th[:-3]), y + r * np.sin(th[:-3]), color=color, lw=1.1, zorder=5,
             ls=(0, (3, 2)) if dashed else "-")
+    if labels is not None:
+        labels.block_path(np.stack([x + r * np.cos(th), y + r * np.sin(th)], axis=1), 2.0)
     ax.annotate("", xy=(x + r * np.cos(th[-1]), y + r * np.sin(th[-1])),
                 xytext=(x + r * np.cos(th[-4]), y + r * np.sin(th[-4])), zorder=5,
                 arrowprops=dict(arrowstyle="-|>", color=color, lw=1.1, mutation_scale=8,
@@ -159,6 +190,18 @@ def _shapes(ax, shapes, labels=True) -> None:
                 bbox=dict(boxstyle="circle,pad=0.15", fc="white", ec="0.3", lw=0.6))
 
 
+def _block_shapes(labels, shapes, numbers: bool = True) -> None:
+    """Link outlines (and their number circles) as label obstacles."""
+    own: dict[str, list] = {}
+    for s in shapes:
+        xy = np.asarray(s.xy, float)
+        labels.block_path(np.vstack([xy, xy[:1]]) if s.kind != "line" else xy, 2.0)
+        own.setdefault(s.link, []).append(xy)
+    for xys in own.values() if numbers else ():
+        c = np.concatenate(xys).mean(axis=0)
+        labels.block(c[0], c[1], 5.0)
+
+
 def _bounds(points) -> tuple[np.ndarray, np.ndarray]:
     xy = np.asarray(points, float).reshape(-1, 2)
     return xy.min(axis=0), xy.max(axis=0)
@@ -177,45 +220,57 @@ def mechanism_figure(analysis, k: int, path: Path) -> Path:
         m = math.hypot(*a.f)
         if m > 0:
             pts.append(tuple(np.asarray(a.at) + np.asarray(a.f) / m * L))
+    if spec.driver.crank:                      # the driver's arc, whole
+        pivot = np.asarray(analysis.context.joint_points[spec.driver.joint][k], float)
+        pts += [tuple(pivot - 0.09 * ext), tuple(pivot + 0.09 * ext)]
     lo, hi = _bounds(pts)
     pad = 0.04 * ext
     fig, ax = _frame((lo - pad, hi + pad), 4.6, 3.4, margin=0.3)
     labels = SheetLabels(ax, 8)
     _shapes(ax, sc.shapes)
+    _block_shapes(labels, sc.shapes)
     for kind, p0, p1 in sc.elements:
         _element(ax, kind, p0, p1, 0.025 * ext)
+        labels.block_path([p0, p1], 2.0)
     for p0, p1, on_ground, normal, offset in sc.guides:
         _guide(ax, p0, p1, on_ground, normal, offset)
+        for side in ((-1, 1) if on_ground else (0,)):
+            off = side * offset * np.asarray(normal, float)
+            labels.block_path([np.asarray(p0) + off, np.asarray(p1) + off], 2.0)
     for x, y, on_ground in sc.pins:
         if on_ground:
             _ground_symbol(ax, x, y, 0.04 * ext)
+            labels.block_area((x - 0.04 * ext, y - 0.055 * ext), (x + 0.04 * ext, y))
         ax.plot([x], [y], "o", ms=5, mfc="white", mec="k", mew=1.2, zorder=4)
         labels.block(x, y, 4.0)
+    tips = []
     for a in sc.arrows:
         m = math.hypot(*a.f)
         if m <= 0:
             continue
         v = np.asarray(a.f) / m * L
         _arrow(ax, a.at, v, KNOWN)
-        labels.block_segment(np.asarray(a.at) + 0.3 * v, np.asarray(a.at) + v)
-        tip = np.asarray(a.at) + v
-        labels.place(tex_symbol(a.label), tip[0], tip[1], prefer=tuple(v / L))
+        labels.block_segment(np.asarray(a.at) + 0.15 * v, np.asarray(a.at) + v)
+        tips.append((tex_symbol(a.label), np.asarray(a.at) + v, tuple(v / L), KNOWN))
     for c in sc.couples:
         if abs(c.value) > 0:
-            spot = _arc(ax, c.at, 0.06 * ext, c.value > 0, KNOWN)
-            labels.place(tex_symbol(c.label), *spot, prefer=(1, -1))
+            spot = _arc(ax, c.at, 0.06 * ext, c.value > 0, KNOWN, labels=labels)
+            tips.append((tex_symbol(c.label), spot, (1, -1), KNOWN))
     drv = spec.driver
     if drv.crank:
         pivot = analysis.context.joint_points[drv.joint][k]
         n = spec.number(drv.link)
-        spot = _arc(ax, pivot, 0.09 * ext, drv.omega >= 0, UNKNOWN)
-        labels.place(rf"$\omega_{{{n}}}$", *spot, color=UNKNOWN, prefer=(1, -1))
+        spot = _arc(ax, pivot, 0.09 * ext, drv.omega >= 0, UNKNOWN, labels=labels)
+        tips.append((rf"$\omega_{{{n}}}$", spot, (1, -1), UNKNOWN))
+    # the joints' letters first (each at its point), then the loads' and the driver's symbols
     merged: dict[tuple, list] = {}
     for x, y, text in sc.labels:
         key = (round(x / ext, 4), round(y / ext, 4))
         merged.setdefault(key, [x, y, []])[2].append(text)
     for x, y, names in merged.values():
         labels.place("/".join(names), x, y, bold=True, fontsize=8.5, prefer=(-1, 1))
+    for text, at, prefer, color in tips:
+        labels.place(text, at[0], at[1], color=color, prefer=prefer)
     return save(fig, path.parent, path.stem)[0]
 
 
@@ -279,6 +334,7 @@ def fbd_figure(analysis, k: int, link: str, path: Path, zero: set) -> tuple[Path
                 omitted.append(a.symbol)
                 continue
             draws.append(("force", at, f / m * L, tex_symbol(a.symbol), color, dashed))
+    applied = [at for _, at, *_ in draws]
     draws = _spread(draws, L)
     pts = body + [tuple(com)]
     for kind, at, v, *_ in draws:
@@ -292,6 +348,7 @@ def fbd_figure(analysis, k: int, link: str, path: Path, zero: set) -> tuple[Path
     fig, ax = _frame((lo - pad, hi + pad), 2.2, 2.5, margin=0.34)
     labels = SheetLabels(ax, 7.5)
     _shapes(ax, shapes, labels=False)
+    _block_shapes(labels, shapes, numbers=False)
     for j in spec.joints:
         if link in j.links and j.type == "R":
             x, y = ctx.joint_points[j.name][k]
@@ -303,11 +360,11 @@ def fbd_figure(analysis, k: int, link: str, path: Path, zero: set) -> tuple[Path
     for kind, at, v, text, color, dashed in draws:
         if kind == "force":
             _arrow(ax, at, v, color, dashed)
-            labels.block_segment(at + 0.3 * v, at + v)
+            labels.block_segment(at + 0.15 * v, at + v)
     spots = []
     for kind, at, v, text, color, dashed in draws:
         if kind == "couple":
-            spots.append((text, _arc(ax, at, 0.22 * L, v, color, dashed), color))
+            spots.append((text, _arc(ax, at, 0.22 * L, v, color, dashed, labels), color))
     # names first: the points, then the forces' symbols at their tips
     named = {}
     for name, local in lk.points.items():
@@ -321,12 +378,14 @@ def fbd_figure(analysis, k: int, link: str, path: Path, zero: set) -> tuple[Path
     centre = np.mean(np.asarray(pts, float), axis=0)
     for kind, at, v, text, color, dashed in draws:
         if kind == "force":
-            tip = at + v
             d = v / L
-            side = np.array([-d[1], d[0]])           # beside the tip, away from the middle
-            if np.dot(side, tip - centre) < 0:
+            end = at + v                             # the free end: the tip, or the tail of
+            if any(np.allclose(end, q) for q in applied):    # a force drawn arriving
+                end, d = at, -d
+            side = np.array([-d[1], d[0]])           # beside it, away from the middle
+            if np.dot(side, end - centre) < 0:
                 side = -side
-            labels.place(text, tip[0], tip[1], color=color, prefer=tuple(side + 0.4 * d))
+            labels.place(text, end[0], end[1], color=color, prefer=tuple(side + 0.4 * d))
     for text, spot, color in spots:
         labels.place(text, *spot, color=color, prefer=(1, -1))
     return save(fig, path.parent, path.stem)[0], omitted

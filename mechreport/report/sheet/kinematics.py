@@ -541,9 +541,7 @@ def mass_centres(st: State, exact=None) -> KinBlock:
         rp = st.joint_r(base)
         if np.allclose(np.asarray(link.com, float), np.asarray(link.points[base.point], float),
                        atol=1e-12):
-            b.found([R(f"{Point(cname).tex()} = {Point(base.point).tex()}",
-                               f"{Point(cname).typ()} = {Point(base.point).typ()}",
-                               f"{cname} = {base.point}")])
+            b.text([Point(cname), " is at ", Point(base.point), "."])
             continue
         for e in rigid_lines(st, link.name, base.point, rp, cname, rc, exact):
             b.eq(None, e)

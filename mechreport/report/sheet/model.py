@@ -109,7 +109,7 @@ class EqGroup:
 class StepModel:
     number: int
     title: str
-    free_body: str
+    free_bodies: list         # each free body the step's equations are written for, in order
     unknowns: list
     notes: list               # (text, math or list of math)
     groups: list              # EqGroup
@@ -119,6 +119,21 @@ class StepModel:
     @property
     def equations(self) -> list:
         return [e for g in self.groups for e in g.equations]
+
+    @property
+    def free_body(self) -> str:
+        """"Free body: link 2 (rod)" or "Free bodies: link 3 (slider) and link 2 (rod)"."""
+        return ("Free body: " if len(self.free_bodies) == 1 else "Free bodies: ") + \
+            _join_and(self.free_bodies)
+
+    @property
+    def cited(self) -> str:
+        """The equations the results come from, with the verb agreeing: "(41) gives",
+        "(41)–(43) give"."""
+        eqs = self.equations
+        if len(eqs) == 1:
+            return f"({eqs[0].number}) gives"
+        return f"({eqs[0].number})–({eqs[-1].number}) give"
 
 
 @dataclass
@@ -212,7 +227,7 @@ def _vec(v) -> str:
 
 
 def _free_body(ctx, bodies) -> str:
-    links = [ctx.spec.link(b) for b in bodies]
+    links = sorted((ctx.spec.link(b) for b in bodies), key=lambda l: l.number)
     if len(links) == 1:
         return f"link {links[0].number} ({links[0].name})"
     return "links " + " & ".join(str(l.number) for l in links) + \
@@ -319,7 +334,9 @@ def _step_model(number: int, step: Step, tr: Translator, names: Names, ctx, resu
         notes.append((f"the slider's reaction is normal to its line, so by ({n})",
                       Equation([Expr().add(1, names[u]), Expr().add(1, Num(0.0))])))
     results, points = _results(step.unknowns, tr.values, k, names, result)
-    return StepModel(number, step.title, _free_body(ctx, step.bodies),
+    bodies = list(dict.fromkeys(frozenset(eq.bodies) for eq in step.equations
+                                if eq.kind != "constraint" and eq.bodies)) or [step.bodies]
+    return StepModel(number, step.title, [_free_body(ctx, b) for b in bodies],
                      [names[u] for u in step.unknowns], notes, groups, results, points)
 
 
@@ -397,13 +414,13 @@ def _load_rows(analysis, k: int) -> list:
             v = kin.named_point(ld.point, ld.link).v[k]
             rule = (f"opposes the velocity of {ld.point}, v = {_vec(v)} m/s"
                     if load.oppose == "velocity" else elements.get(load.kind, "as given"))
-            rows.append([ld.symbol, f"{link.number} ({link.name})", ld.point or "",
+            rows.append([vec_sym(ld.symbol), f"{link.number} ({link.name})", ld.point or "",
                          f"{_vec(ld.force[k])} N", rule])
         else:
             w = kin.omega[k, link.number]
             rule = (f"opposes the rotation of link {link.number}, ω = {fmt(w)} rad/s"
                     if load.oppose == "rotation" else elements.get(load.kind, "as given"))
-            rows.append([ld.symbol, f"{link.number} ({link.name})", "",
+            rows.append([scalar_sym(ld.symbol), f"{link.number} ({link.name})", "",
                          f"{fmt(ld.moment[k])} N·m", rule])
     return rows
 
@@ -609,7 +626,7 @@ def build_sheet(analysis, options: SheetOptions | None = None) -> SheetModel:
     for j in spec.joints:
         a, b = j.links
         joints.append([j.name, j.type, f"{spec.number(a)} ({a}) on {spec.number(b)} ({b})",
-                       names.vec[j.name]])
+                       vec_sym(names.vec[j.name])])
     angle_models = [_angle_model(analysis, float(a), names, exact, methods,
                                  None if si else display) for a in angles]
     return SheetModel(spec.name, str(spec.file), spec.description.strip(), options.exact,

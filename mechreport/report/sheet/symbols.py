@@ -168,10 +168,13 @@ _LABEL = re.compile(r"\b([A-Za-z][A-Za-z0-9]*_[A-Za-z0-9]+)\b")
 
 
 def rich_label(text: str) -> list:
-    """Text with joint names such as C_T or B_R typeset as the textbook's C_T (subscript)."""
+    """Text with joint names such as C_T or B_R typeset as the textbook's C_T (subscript);
+    other words with an underscore (a message's ``newton_euler``) stay text."""
     out: list = []
     pos = 0
     for m in _LABEL.finditer(text):
+        if Point(m.group(1))._split() is None:
+            continue
         if m.start() > pos:
             out.append(text[pos:m.start()])
         out.append(Point(m.group(1)))
