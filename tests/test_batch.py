@@ -123,3 +123,15 @@ def test_a_method_without_reactions_reports_no_shaking_force():
     assert not any(q.startswith("cycle.shaking.") for q in a.review.values)
     full = analyse(ROOT / "specs" / "four_bar.yaml")
     assert full.review.values["cycle.shaking.force_max"] > 0
+
+
+def test_a_variant_that_changes_branch_over_a_turn_is_analysed_alone():
+    """A change-point four-bar comes back on its other branch: in a batch it is analysed
+    alone and has no cycle quantities, for the same reason as a single analysis gives."""
+    spec = load_spec(ROOT / "tests" / "data" / "edge" / "change_point_four_bar.yaml")
+    alone = analyse(spec, methods=["dyad"])
+    outcomes = analyse_variants(_variants(spec, 3), "dyad")
+    assert not any(o.batched for o in outcomes)
+    assert all(o.review is None and o.review_problem == alone.review_problem
+               for o in outcomes[:1])
+    assert all("repeats every two turns" in o.review_problem for o in outcomes)

@@ -41,3 +41,22 @@ def test_4_6_slider_crank_continues_through_its_touch_points_at_any_step(step):
     kin = solve_kinematics(build_mechanism(spec))
     x_c = kin.named_point("C").r[:, 0]
     np.testing.assert_allclose(x_c, 2 * np.cos(np.radians(kin.angles)), atol=1e-9)
+
+
+def test_a_dyad_that_comes_back_on_its_other_branch_has_no_cycle_quantities():
+    """A change-point four-bar (1 + 3 = 2 + 2) followed smoothly through its change point at
+    0 deg is crossed from 1 to 89 deg and open from 90 deg: the motion repeats every two turns,
+    so a 360-degree cycle would join two assemblies. The kinematics say so, and the cycle
+    quantities are undefined with that reason; a parallelogram, whose change points come in a
+    pair, comes back to its start."""
+    from mechreport.analysis import analyse
+    edge = Path(__file__).resolve().parent / "data" / "edge"
+    a = analyse(edge / "change_point_four_bar.yaml")
+    kin = a.kinematics
+    c = kin.named_point("C", "rocker").r
+    assert c[kin.at(359), 1] > 0 > c[kin.at(1), 1]          # the branch changed at 0 deg
+    assert [b.closes for b in kin.branches] == [False]
+    assert "is on its other branch" in " ".join(kin.notes())
+    assert a.review is None and "repeats every two turns" in a.review_problem
+    p = analyse(edge / "parallelogram_four_bar.yaml")
+    assert [b.closes for b in p.kinematics.branches] == [True] and p.review is not None

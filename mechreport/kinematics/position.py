@@ -40,12 +40,15 @@ DEFAULT_BRANCH_RULES = {
 
 @dataclass(frozen=True)
 class BranchChoice:
-    """How a dyad's assembly branch was chosen at the first reference angle."""
+    """How a dyad's assembly branch was chosen at the first reference angle. ``closes``:
+    False when, followed through a whole turn, the dyad comes back on its other branch (it
+    passes a change point, where both branches meet): its motion repeats every two turns."""
 
     dyad: str
     kind: str
     sign: int
     rule: str  # "hint: C", "default: <rule>", "undecided: <why>" or "unique"
+    closes: bool = True
 
 
 def point_global(poses: Poses, link: str, local) -> np.ndarray:
@@ -216,7 +219,10 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
             reached[run] = True
     else:
         sign, rule = _pick_branch(spec, dyad, cands, sig, path)
-        choice = BranchChoice(name, dyad.kind, sign, rule)
+        closes = True
+        if path.periodic and len(runs[0]) == len(path.runs[0]):   # a whole turn: back home?
+            closes = _closes(sig, runs[0], path.travel[0])
+        choice = BranchChoice(name, dyad.kind, sign, rule, closes)
         for run, travel in zip(runs, path.travel):
             todo = ~reached[run]
             if not todo.any():   # a full turn forward leaves nothing for the backward run
@@ -240,6 +246,15 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
         th = np.where(use_plus, cands[0][link][1], cands[-1][link][1])
         chosen[link] = (np.where(reached[:, None], r, np.nan), np.where(reached, th, np.nan))
     return chosen, choice, runs
+
+
+def _closes(sig: list[np.ndarray], run: np.ndarray, travel: np.ndarray) -> bool:
+    """Whether the branch followed along a whole-turn ``run`` (from the reference angle, all
+    the way round) comes back to the branch it started on: an even number of label swaps
+    over the run and the step back to its start."""
+    ring = np.concatenate([run, run[:1]])
+    t = np.concatenate([travel[:len(run)], [360.0]])
+    return int(np.sum(_flips(sig[0][ring], sig[-1][ring], t))) % 2 == 0
 
 
 def _first_false(mask: np.ndarray) -> int:

@@ -191,7 +191,21 @@ class Kinematics:
             out.append(self.motion.describe())
         out += [f"dyad {b.dyad}: {b.rule}" for b in self.branches
                 if b.rule.startswith("undecided")]
+        if self.turn_problem:
+            out.append(self.turn_problem)
         return out
+
+    @property
+    def turn_problem(self) -> str:
+        """Why the motion does not repeat every turn ("" when it does, or is not a turn): a
+        dyad that comes back on its other branch after a whole turn."""
+        swapped = [b.dyad for b in self.branches if not b.closes]
+        if not swapped:
+            return ""
+        return (f"after a whole turn, dyad {', '.join(swapped)} is on its other branch: the "
+                "mechanism passes a change point (both branches meet there) and its motion "
+                "repeats every two turns; the results after the change point belong to the "
+                "other assembly")
 
     def index_of(self, angle: float) -> int | None:
         """Index of a crank angle among the analysed (solved) ones; None if it was not

@@ -84,8 +84,10 @@ def solve_stacked(mech: Mechanism, specs: list[Spec]) -> StackedKinematics | Non
                 if not all(np.all(np.isfinite(c[l][0][path.ref])) for c in mine for l in c):
                     clean[v] = False          # cannot assemble: analysed alone, for its reason
                     continue
-                poses, _, runs[v] = track_branches(specs[v], own[v].groups[g].dyad, mine, path,
-                                                   runs[v], [s[cut] for s in sigs])
+                poses, choice, runs[v] = track_branches(specs[v], own[v].groups[g].dyad, mine,
+                                                        path, runs[v], [s[cut] for s in sigs])
+                if not choice.closes:
+                    clean[v] = False         # analysed alone: its review says why it has none
                 for l, (rr, tt) in poses.items():
                     chosen[l][0][cut], chosen[l][1][cut] = rr, tt
         for link, (rr, tt) in chosen.items():

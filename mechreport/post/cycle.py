@@ -64,13 +64,17 @@ class Cycle:
         return np.concatenate([[0.0], np.cumsum((v[1:] + v[:-1]) / 2)]) * self.step
 
 
-def cycle_of(spec: Spec, analysed_angles: np.ndarray, reachable: bool = True) -> Cycle:
+def cycle_of(spec: Spec, analysed_angles: np.ndarray, reachable: bool = True,
+             turn_problem: str = "") -> Cycle:
     """The cycle grid of ``spec`` and where each of its angles sits among ``analysed_angles``.
-    Raises ``CycleUndefined`` when the sweep is not one whole turn of a crank, or when the
-    crank cannot make a full turn (``reachable`` False)."""
+    Raises ``CycleUndefined`` when the sweep is not one whole turn of a crank, when the
+    crank cannot make a full turn (``reachable`` False), or when the motion does not repeat
+    every turn (``turn_problem`` says why)."""
     why = spec.cycle_problem()
     if why is None and not reachable:
         why = "cycle quantities need a crank that makes a full turn; this one locks"
+    if why is None and turn_problem:
+        why = f"cycle quantities need a motion that repeats every turn; {turn_problem}"
     if why is not None:
         raise CycleUndefined(f"{spec.file}: {why}")
     grid = np.round(spec.sweep.angles(), 9)

@@ -53,7 +53,7 @@ def review_of(kin, forces, loads, speed_fluctuation: float | None = None,
     evaluated loads."""
     spec = kin.mechanism.spec
     motion = kin.motion
-    cyc = cycle_of(spec, kin.angles, motion is None or motion.full)
+    cyc = cycle_of(spec, kin.angles, motion is None or motion.full, kin.turn_problem)
     method = reference_method(forces)
     res = forces[method]
     omega = spec.driver.omega
