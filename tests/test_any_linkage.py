@@ -223,3 +223,34 @@ def test_frame_load_is_the_mechanism_momentum_balance(spec_path):
                                atol=1e-9 * scale)
     mscale = max(1.0, float(np.max(np.abs(moment))))
     np.testing.assert_allclose(frame.m, moment, rtol=0, atol=1e-9 * mscale)
+
+
+def test_fine_samples_solved_at_once_must_stay_on_the_followed_branch(monkeypatch):
+    """A Newton group followed over more than COARSE samples solves the samples between the
+    coarse ones at once, each from an interpolated guess. One of them converging elsewhere (an
+    other assembly: here a solution moved by hand) is caught by the continuity check and
+    followed again sample by sample: the result equals the undisturbed one."""
+    import dataclasses
+    from mechreport.kinematics import groups, solve_kinematics
+    from mechreport.model import build_mechanism
+    from mechreport.spec import Sweep
+    spec = load_spec(ROOT / "tests" / "data" / "class_iii_triad.yaml")
+    spec = dataclasses.replace(spec, sweep=Sweep(0.0, 360.0, 0.5))   # 720 samples: two levels
+    mech = build_mechanism(spec)
+    clean = solve_kinematics(mech)
+    real = groups.newton
+    moved = []
+
+    def astray(spec_, group, q, known, idx, value, scale, **kw):
+        sol, ok = real(spec_, group, q, known, idx, value, scale, **kw)
+        if len(np.unique(idx)) > groups.CHUNK_MAX and not moved:   # the fine samples' batch
+            sol = sol.copy()
+            sol[len(idx) // 2, :2] += 0.3 * scale           # lands far from its neighbours
+            moved.append(int(idx[len(idx) // 2]))
+        return sol, ok
+
+    monkeypatch.setattr(groups, "newton", astray)
+    kin = solve_kinematics(mech)
+    assert moved
+    np.testing.assert_allclose(kin.r, clean.r, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(kin.theta, clean.theta, rtol=0, atol=1e-9)

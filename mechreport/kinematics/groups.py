@@ -292,6 +292,8 @@ def continue_group(spec: Spec, group: Group, q_ref: np.ndarray, known: Poses, pa
                 guess = np.stack([np.interp(travel[fine], travel[solved], q[run[solved], c])
                                   for c in range(q.shape[1])], axis=1)
                 sol, ok = newton(spec, group, guess, known, run[fine], value, scale)
+                ok &= _continues(sol, guess, q[run[solved]], travel[solved], travel[fine],
+                                 scale)
                 q[run[fine[ok]]] = sol[ok]
                 reached[run[fine[ok]]] = True
                 pos = int(fine[~ok][0]) if (~ok).any() else last + 1
@@ -307,6 +309,23 @@ def continue_group(spec: Spec, group: Group, q_ref: np.ndarray, known: Poses, pa
             sol, ok = newton(spec, group, guess, known, off[ok_n], value, scale)
             q[off[ok_n][ok]] = sol[ok]
     return q, cut
+
+
+def _continues(sol: np.ndarray, guess: np.ndarray, q_coarse: np.ndarray, t_coarse: np.ndarray,
+               t_fine: np.ndarray, scale: float) -> np.ndarray:
+    """Which fine samples (F,) solved at once stayed on the followed branch: each must land
+    within half a coarse step of the pose interpolated between its coarse neighbours (a
+    Newton solve from that guess may converge to another assembly). The others are then
+    followed sample by sample."""
+    def size(dq):   # dimensionless: lengths over the mechanism's size, angles wrapped
+        d = dq.reshape(len(dq), -1, 3).copy()
+        d[:, :, :2] /= scale
+        d[:, :, 2] = (d[:, :, 2] + np.pi) % (2 * np.pi) - np.pi
+        return np.sqrt(np.sum(d ** 2, axis=(1, 2)))
+    hi = np.clip(np.searchsorted(t_coarse, t_fine), 1, len(t_coarse) - 1)
+    step = size(q_coarse[hi] - q_coarse[hi - 1])
+    with np.errstate(invalid="ignore"):
+        return size(sol - guess) <= 0.5 * step + 1e-9
 
 
 def _follow(spec: Spec, group: Group, q: np.ndarray, reached: np.ndarray, run: np.ndarray,
