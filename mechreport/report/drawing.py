@@ -115,6 +115,12 @@ class Labels:
                 best, best_score = (dx, dy, ha, va, box), score
             if score == 0:
                 break
+        self._annotate(text, x, y, best, fs, color, bold)
+
+    def _annotate(self, text: str, x: float, y: float, best, fs: float, color: str,
+                  bold: bool) -> None:
+        """Write ``text`` at the chosen offset ``best`` = (dx, dy, ha, va, box) [pt] from its
+        point, and keep its box out of the way of the labels after it."""
         dx, dy, ha, va, box = best
         self.boxes.append(box)
         self.ax.annotate(text, (x, y), xytext=(dx, dy), textcoords="offset points",

@@ -84,11 +84,7 @@ class SheetLabels(Labels):
                     break
             if best_score == 0:
                 break
-        dx, dy, ha, va, box = best
-        self.boxes.append(box)
-        self.ax.annotate(text, (x, y), xytext=(dx, dy), textcoords="offset points",
-                         fontsize=fs, color=color, ha=ha, va=va, zorder=9,
-                         fontweight="bold" if bold else "normal", annotation_clip=False)
+        self._annotate(text, x, y, best, fs, color, bold)
 
 
 UNKNOWN = "#0b4f8a"      # reactions and the driver: unknown, drawn in their positive direction
