@@ -117,6 +117,16 @@ class Labels:
                 break
         self._annotate(text, x, y, best, fs, color, bold)
 
+    def place_points(self, points, extent: float) -> None:
+        """Name the points ``points`` [(x, y, name)], one label for names that share a
+        place (A/O); ``extent`` the drawing's size (what "the same place" is relative to)."""
+        merged: dict[tuple, list] = {}
+        for x, y, text in points:
+            key = (round(x / extent, 4), round(y / extent, 4))
+            merged.setdefault(key, [x, y, []])[2].append(text)
+        for x, y, names in merged.values():
+            self.place("/".join(names), x, y, bold=True, fontsize=8.5, prefer=(-1, 1))
+
     def _annotate(self, text: str, x: float, y: float, best, fs: float, color: str,
                   bold: bool) -> None:
         """Write ``text`` at the chosen offset ``best`` = (dx, dy, ha, va, box) [pt] from its
@@ -299,12 +309,7 @@ def draw_scene(scene, d=None, title: str | None = None):
             labels.block(x + r * math.cos(t), y + r * math.sin(t), 2.5)
         couple_spots.append((c, x + r * 0.8, y - r * 0.8))
     # point labels first (they name the drawing), then arrows, then couples
-    merged: dict[tuple, list[str]] = {}
-    for x, y, text in scene.labels:
-        key = (round(x / ext, 4), round(y / ext, 4))
-        merged.setdefault(key, [x, y, []])[2].append(text)
-    for x, y, names in merged.values():
-        labels.place("/".join(names), x, y, bold=True, fontsize=8.5, prefer=(-1, 1))
+    labels.place_points(scene.labels, ext)
     for a, mag, start, tip in arrows:
         if tip is not None:
             u = (tip - start) / max(np.linalg.norm(tip - start), 1e-300)

@@ -259,12 +259,7 @@ def mechanism_figure(analysis, k: int, path: Path) -> Path:
         spot = _arc(ax, pivot, 0.09 * ext, drv.omega >= 0, UNKNOWN, labels=labels)
         tips.append((rf"$\omega_{{{n}}}$", spot, (1, -1), UNKNOWN))
     # the joints' letters first (each at its point), then the loads' and the driver's symbols
-    merged: dict[tuple, list] = {}
-    for x, y, text in sc.labels:
-        key = (round(x / ext, 4), round(y / ext, 4))
-        merged.setdefault(key, [x, y, []])[2].append(text)
-    for x, y, names in merged.values():
-        labels.place("/".join(names), x, y, bold=True, fontsize=8.5, prefer=(-1, 1))
+    labels.place_points(sc.labels, ext)
     for text, at, prefer, color in tips:
         labels.place(text, at[0], at[1], color=color, prefer=prefer)
     return save(fig, path.parent, path.stem)[0]
