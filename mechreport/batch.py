@@ -61,21 +61,25 @@ ROWS = 16384    # variants x angles solved together (bounds the working memory)
 
 def analyse_variants(specs: list[Spec], method: str) -> list[Outcome]:
     """The outcome of every variant in ``specs`` (variants of one spec) with ``method``."""
-    if not specs:
-        return []
-    per = len(specs[0].analysed_angles())
-    size = max(1, ROWS // max(per, 1))
     out: list[Outcome | None] = [None] * len(specs)
-    for start in range(0, len(specs), size):
-        part = specs[start:start + size]
-        try:
-            mech = build_mechanism(part[0])
-            with np.errstate(all="ignore"):
-                stacked = solve_stacked(mech, part)
-            if stacked is not None:
-                out[start:start + len(part)] = _batched(stacked, mech, part, method)
-        except Exception:       # noqa: BLE001 - each variant is then analysed alone
-            pass
+    groups: dict[tuple, list[int]] = {}      # variants that can stack: same sense, same sweep
+    for i, s in enumerate(specs):
+        groups.setdefault((np.sign(s.driver.omega), s.sweep, tuple(s.at)), []).append(i)
+    for members in groups.values():
+        per = len(specs[members[0]].analysed_angles())
+        size = max(1, ROWS // max(per, 1))
+        for start in range(0, len(members), size):
+            idx = members[start:start + size]
+            part = [specs[i] for i in idx]
+            try:
+                mech = build_mechanism(part[0])
+                with np.errstate(all="ignore"):
+                    stacked = solve_stacked(mech, part)
+                if stacked is not None:
+                    for i, o in zip(idx, _batched(stacked, mech, part, method)):
+                        out[i] = o
+            except Exception:   # noqa: BLE001 - each variant is then analysed alone
+                pass
     return [o if o is not None else _alone(s, method) for o, s in zip(out, specs)]
 
 

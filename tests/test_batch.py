@@ -135,3 +135,15 @@ def test_a_variant_that_changes_branch_over_a_turn_is_analysed_alone():
     assert all(o.review is None and o.review_problem == alone.review_problem
                for o in outcomes[:1])
     assert all("repeats every two turns" in o.review_problem for o in outcomes)
+
+
+def test_variants_turning_either_way_are_batched_by_sense():
+    """Variants whose cranks turn clockwise and counter-clockwise follow their branches in
+    opposite senses: each sense is one batch, and every outcome equals its own analysis."""
+    spec = load_spec(ROOT / "specs" / "four_bar.yaml")
+    both = [dataclasses.replace(spec, driver=dataclasses.replace(spec.driver, omega=w))
+            for w in (spec.driver.omega, -spec.driver.omega, 0.5 * spec.driver.omega)]
+    outcomes = analyse_variants(both, "dyad")
+    assert all(o.batched for o in outcomes)
+    for s, o in zip(both, outcomes):
+        _same_outcome(o, analyse(s, methods=["dyad"]))
