@@ -26,6 +26,8 @@ from mechreport.report.model import PALETTE, build_model
 from mechreport.spec import parse_spec
 from mechreport.units import Display, fmt
 
+from test_batch_safety import tiny_spec as tiny  # the 30-degree slider-crank, written once
+
 ROOT = Path(__file__).resolve().parents[1]
 FOUR_BAR = ROOT / "specs" / "four_bar.yaml"
 SLIDER = ROOT / "specs" / "slider_crank.yaml"
@@ -36,21 +38,6 @@ TAB10 = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e37
 def four_bar_text() -> str:
     """specs/four_bar.yaml without its own ``report`` section."""
     return re.sub(r"(?m)^report:.*\n(?:  .*\n)*", "", FOUR_BAR.read_text())
-
-
-def tiny(path: Path, name: str = "tiny", extra: str = "", torque: float | None = None) -> Path:
-    """specs/slider_crank.yaml on a 30-degree sweep, no sheet; ``extra`` YAML appended."""
-    text = SLIDER.read_text(encoding="utf-8")
-    text = text[:text.index("# Textbook 4.6")]
-    text = text.replace("sweep: {start: 0, stop: 360, step: 1}",
-                        "sweep: {start: 0, stop: 360, step: 30}")
-    text = text.replace("sheet: true ", "sheet: false")
-    text = text.replace("name: R-RRT slider-crank", f"name: {json.dumps(name)}")
-    if torque is not None:
-        text += f"expect:\n  - {{angle: 45, quantity: driver.torque, value: {torque}}}\n"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text + extra, encoding="utf-8")
-    return path
 
 
 def run(*args, env=None, cwd=ROOT):
@@ -230,7 +217,7 @@ def test_branch_choices_in_report_kin_and_validate(slider_model):
 # ------------------------------------------------------------------ failed checks explained
 
 def test_failed_expectation_is_explained_once_in_report_and_summary(tmp_path):
-    spec = tiny(tmp_path / "bad.yaml", torque=150.0)
+    spec = tiny(tmp_path / "bad.yaml", expect_torque=150.0)
     out = tmp_path / "out"
     assert build_files([spec], out, jobs=1, quiet=True) == 1
     s = json.loads((out / "bad" / "summary.json").read_text())
@@ -245,7 +232,7 @@ def test_failed_expectation_is_explained_once_in_report_and_summary(tmp_path):
 
 
 def test_check_junit_has_a_case_per_spec_expectation_and_verdict(tmp_path):
-    bad = tiny(tmp_path / "bad.yaml", torque=150.0)
+    bad = tiny(tmp_path / "bad.yaml", expect_torque=150.0)
     xml = tmp_path / "junit.xml"
     out = run("check", bad, "specs/four_bar.yaml", "--junit", xml)
     assert out.returncode == 1

@@ -378,27 +378,18 @@ def dyad_block(st: State, group, exact=None, known: set | None = None) -> KinBlo
             owner = rot_owner(link)
             n_own = st.num(owner) if owner != GROUND else 0
             kxd = np.array([-d[1], d[0]])
-            if what == "v":
-                atom = omega(n_own)
-                if owner in (i, j):
-                    side.unknown([atom, K_, Op("times"), RVec(jt.point, j1.point)], kxd, atom)
-                    b.values[atom.py()] = st.w(owner)
-                elif owner != GROUND:
-                    side.known([atom, K_, Op("times"), RVec(jt.point, j1.point)],
-                               st.w(owner) * kxd)
-            else:
-                atom = alpha(n_own)
-                w = st.w(owner) if owner != GROUND else 0.0
-                if owner in (i, j):
-                    side.unknown([atom, K_, Op("times"), RVec(jt.point, j1.point)], kxd, atom)
-                    b.values[atom.py()] = st.al(owner)
-                elif owner != GROUND:
-                    side.known([atom, K_, Op("times"), RVec(jt.point, j1.point)],
-                               st.al(owner) * kxd)
-                if owner != GROUND:
-                    side.known_neg([Raw(rf"\omega_{{{n_own}}}^2", f"omega_{n_own}^2",
-                                        f"omega{n_own}^2"), RVec(jt.point, j1.point)],
-                                   w * w * d)
+            # omega k x r (velocities) or alpha k x r - omega^2 r (accelerations)
+            atom, rate = (omega(n_own), st.w) if what == "v" else (alpha(n_own), st.al)
+            cross_term = [atom, K_, Op("times"), RVec(jt.point, j1.point)]
+            if owner in (i, j):
+                side.unknown(cross_term, kxd, atom)
+                b.values[atom.py()] = rate(owner)
+            elif owner != GROUND:
+                side.known(cross_term, rate(owner) * kxd)
+            if what != "v" and owner != GROUND:
+                w = st.w(owner)
+                side.known_neg([Raw(rf"\omega_{{{n_own}}}^2", f"omega_{n_own}^2",
+                                    f"omega{n_own}^2"), RVec(jt.point, j1.point)], w * w * d)
         if j1.type == "T":
             _slider_terms(st, left, j1, i, j, what)
         for jt in (j0, j1, j2):
