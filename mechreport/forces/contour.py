@@ -92,7 +92,7 @@ def _candidates(ctx: ForceContext, loop: Loop, joint: Joint, unknowns: list[str]
         key = (w.name, tuple(body))
         if key not in cache:
             cache[key] = _equation(ctx, w, body)
-            RECIPES[id(cache[key])] = ("cut", w.name, tuple(body))
+            _recipes(cache)[id(cache[key])] = ("cut", w.name, tuple(body))
         eq = cache[key]
         needed = set(eq.unknown_names())
         if needed & set(unknowns) and needed <= set(unknowns) | known:
@@ -134,7 +134,7 @@ def _try_joint(ctx: ForceContext, loop: Loop, joint: Joint, known: set[str],
                probes: np.ndarray, cache: dict) -> Step | None:
     """Enough independent equations along ``loop`` for ``joint``'s unknowns, or None."""
     unknowns = _unknowns(ctx, [joint])
-    start = [_normal(ctx, joint)] if joint.type == "T" else []
+    start = [_normal(ctx, joint, cache)] if joint.type == "T" else []
     chosen = _select(unknowns, start, _candidates(ctx, loop, joint, unknowns, known, cache),
                      probes)
     if chosen is None:
@@ -149,7 +149,7 @@ def _try_joints(ctx: ForceContext, joints, loops: list[Loop], known: set[str],
     triad or larger Assur group), solved together from the equations along every loop cut at
     any of them."""
     unknowns = _unknowns(ctx, joints)
-    start = [_normal(ctx, j) for j in joints if j.type == "T"]
+    start = [_normal(ctx, j, cache) for j in joints if j.type == "T"]
     candidates: list[Equation] = []
     for joint in joints:
         for loop in (l for l in loops if joint.name in {j.name for j in l.joints}):
@@ -198,13 +198,16 @@ def _probes(n: int) -> np.ndarray:
     return np.unique(np.linspace(0, n - 1, min(PROBES, n)).round().astype(int))
 
 
-def _normal(ctx: ForceContext, joint: Joint) -> Equation:
+def _normal(ctx: ForceContext, joint: Joint, cache: dict) -> Equation:
     eq = normal_constraint(ctx, joint)
-    RECIPES[id(eq)] = ("normal", joint.name)
+    _recipes(cache)[id(eq)] = ("normal", joint.name)
     return eq
 
 
-RECIPES: dict[int, tuple] = {}   # id(equation or bridge step) -> how it was built (a search)
+def _recipes(cache: dict) -> dict[int, tuple]:
+    """How each equation (or bridge step) of one search was built, by id (kept beside the
+    search's equations, which keeps those ids valid)."""
+    return cache.setdefault("recipes", {})
 
 
 @dataclass(frozen=True)
@@ -227,16 +230,12 @@ def plan(ctx: ForceContext) -> tuple[StepPlan, ...]:
         probes = _probes(ctx.n)
         small = ForceContext(ctx.kin.take(probes, ctx.kin.flags)) if len(probes) < ctx.n \
             else ctx
-        RECIPES.clear()
-        try:
-            steps = _search(small)
-            ctx.memo["contour"] = tuple(
-                StepPlan(s.title, tuple(s.unknowns),
-                         (RECIPES[id(s)],) if id(s) in RECIPES
-                         else tuple(RECIPES[id(e)] for e in s.equations), tuple(s.bodies))
-                for s in steps)
-        finally:
-            RECIPES.clear()
+        steps, recipes = _search(small)
+        ctx.memo["contour"] = tuple(
+            StepPlan(s.title, tuple(s.unknowns),
+                     (recipes[id(s)],) if id(s) in recipes
+                     else tuple(recipes[id(e)] for e in s.equations), tuple(s.bodies))
+            for s in steps)
     return ctx.memo["contour"]
 
 
@@ -262,11 +261,12 @@ def build_steps(ctx: ForceContext) -> tuple[Step, ...]:
     return tuple(steps)
 
 
-def _search(ctx: ForceContext) -> tuple[Step, ...]:
+def _search(ctx: ForceContext) -> tuple[tuple[Step, ...], dict[int, tuple]]:
     """Joints in a canonical order (by name, last first: the text's order for 4.6 and 4.7),
     each from the first loop through it, loops without the driver first, that gives enough
     independent equations with the reactions already found. Nothing depends on the order in
-    which links and joints are written."""
+    which links and joints are written. Returns the steps and how each of their equations was
+    built (:func:`_recipes`)."""
     spec = ctx.spec
     drv = spec.driver.joint
     loops = sorted(all_loops(spec), key=lambda l: (drv in {j.name for j in l.joints},
@@ -301,7 +301,7 @@ def _search(ctx: ForceContext) -> tuple[Step, ...]:
     for joint in (j for j in order if j.name not in solved):
         step = _bridge_step(ctx, joint, known)   # a joint on no loop (a lone crank)
         if step is not None:
-            RECIPES[id(step)] = ("bridge", joint.name)
+            _recipes(cache)[id(step)] = ("bridge", joint.name)
             steps.append(step)
             solved.add(joint.name)
             known.update(step.unknowns)
@@ -310,7 +310,7 @@ def _search(ctx: ForceContext) -> tuple[Step, ...]:
         raise UnsupportedMechanism(
             f"{spec.file}: the contour method found no independent equations for joint(s) "
             f"{', '.join(missing)} along the loops {', '.join(l.label(spec) for l in loops)}")
-    return tuple(steps)
+    return tuple(steps), _recipes(cache)
 
 
 def solve(ctx: ForceContext) -> ForceResult:

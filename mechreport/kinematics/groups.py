@@ -24,7 +24,7 @@ from ..spec import GROUND, Spec
 from .constraints import _wrap, driver_row, joint_blocks, joint_residual
 from .frames import rotate
 from .path import SweepPath
-from .position import BranchChoice, Poses, _first_false, point_global
+from .position import BranchChoice, Poses, _first_false, point_global, signature
 
 STARTS = 96          # starting poses for the assembly at the first reference angle
 NEWTON_STEPS = 40    # iterations per solve at most
@@ -124,13 +124,17 @@ def gamma(spec: Spec, group: Group, r: dict, th: dict, v: dict, w: dict) -> np.n
 
 # ------------------------------------------------------------------------ Newton groups
 
+def _as_poses(group: Group, q: np.ndarray) -> Poses:
+    """The group's links' poses {link: (r (m, 2), theta (m,))} from coordinates q (m, 3k)."""
+    return {l: (q[:, 3 * i:3 * i + 2], q[:, 3 * i + 2]) for i, l in enumerate(group.links)}
+
+
 def _poses(group: Group, q: np.ndarray, known: Poses, idx: np.ndarray) -> tuple[dict, dict]:
     """Pose dicts at angle indices ``idx``: known links from ``known``, group links from q."""
     r = {l: known[l][0][idx] for l in known}
     th = {l: known[l][1][idx] for l in known}
-    for i, l in enumerate(group.links):
-        r[l] = q[:, 3 * i:3 * i + 2]
-        th[l] = q[:, 3 * i + 2]
+    for l, (rr, tt) in _as_poses(group, q).items():
+        r[l], th[l] = rr, tt
     return r, th
 
 
@@ -156,9 +160,7 @@ def newton(spec: Spec, group: Group, q: np.ndarray, known: Poses, idx: np.ndarra
         if patience is not None and best and since >= patience:
             break
         q = np.where(done[:, None], q, q + _damped_step(J, F, q.shape[1], scale))
-    for _ in range(1):       # quadratic convergence: one more step reaches round-off
-        if not done.any():
-            break
+    if done.any():           # quadratic convergence: one more step reaches round-off
         F, J = _equations_at(spec, group, q[done], known, idx[done], value, scale)
         q[done] += _damped_step(J, F, q.shape[1], scale)
     return q, done
@@ -205,9 +207,8 @@ def assemble(spec: Spec, group: Group, known: Poses, path: SweepPath, value, sca
             f"{spec.file}: the {group.class_name} {group.label} ({', '.join(group.links)}) "
             f"cannot be assembled at the first reference angle {path.angles[ref]:g}; check "
             "link lengths, `at` and the assembly hints")
-    sols = _distinct(spec, group, q[ok], known, ref, scale)
+    sols, sig = _distinct(spec, group, q[ok], scale)
     hints = {p: v for p, v in spec.assembly.items() if spec.point_owner(p) in group.links}
-    sig = np.stack([_points(spec, group, s, known, ref) for s in sols])
     if hints:
         err = np.zeros(len(sols))
         for p, target in hints.items():
@@ -242,25 +243,16 @@ def _anchor_centre(spec: Spec, group: Group, known: Poses, ref: int) -> np.ndarr
     return np.mean(pts, axis=0) if pts else np.zeros(2)
 
 
-def _points(spec: Spec, group: Group, q: np.ndarray, known: Poses, ref: int) -> np.ndarray:
-    """Global coordinates of every named point of the group's links, flattened (2P,)."""
-    out = []
-    for i, link in enumerate(group.links):
-        for p in spec.link(link).points.values():
-            out.append(q[3 * i:3 * i + 2] + rotate(p, np.array(q[3 * i + 2]))[..., :])
-    return np.concatenate(out)
-
-
-def _distinct(spec, group, sols, known, ref, scale) -> np.ndarray:
-    keep: list[np.ndarray] = []
-    sigs: list[np.ndarray] = []
-    for s in sols:
-        sig = _points(spec, group, s, known, ref)
-        if all(np.max(np.abs(sig - t)) > 1e-6 * scale for t in sigs):
-            keep.append(s)
-            sigs.append(sig)
-    order = np.lexsort(np.stack(sigs).T[::-1])   # a stable order, whatever the starts found
-    return np.stack(keep)[order]
+def _distinct(spec: Spec, group: Group, sols: np.ndarray, scale: float):
+    """The distinct poses among ``sols`` (s, 3k), in a stable order whatever the starts found,
+    and their signatures (global positions of every named point, see ``signature``)."""
+    every = signature(spec, group.links, _as_poses(group, sols))
+    keep: list[int] = []
+    for k, sig in enumerate(every):
+        if all(np.max(np.abs(sig - every[t])) > 1e-6 * scale for t in keep):
+            keep.append(k)
+    order = np.lexsort(every[keep].T[::-1])
+    return sols[keep][order], every[keep][order]
 
 
 def continue_group(spec: Spec, group: Group, q_ref: np.ndarray, known: Poses, path: SweepPath,
@@ -377,6 +369,5 @@ def solve_newton_group(spec: Spec, group: Group, known: Poses, path: SweepPath,
     its assembly was chosen, and the runs cut where it locks."""
     sols, pick, rule = assemble(spec, group, known, path, value, scale)
     q, runs = continue_group(spec, group, sols[pick], known, path, runs, value, scale)
-    poses = {l: (q[:, 3 * i:3 * i + 2], q[:, 3 * i + 2]) for i, l in enumerate(group.links)}
     name = f"{group.label} ({', '.join(group.links)})"
-    return poses, BranchChoice(name, group.class_name, pick + 1, rule), runs
+    return _as_poses(group, q), BranchChoice(name, group.class_name, pick + 1, rule), runs

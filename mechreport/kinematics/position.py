@@ -192,9 +192,10 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
     return out
 
 
-def signature(spec: Spec, dyad: Dyad, cand: Poses) -> np.ndarray:
-    """Global positions of every named point of the dyad's links, flattened: (n, 2 P)."""
-    cols = [point_global(cand, l, p) for l in dyad.links for p in spec.link(l).points.values()]
+def signature(spec: Spec, links, cand: Poses) -> np.ndarray:
+    """Global positions of every named point of ``links`` (a dyad's, a group's) in poses
+    ``cand``, flattened: (n, 2 P)."""
+    cols = [point_global(cand, l, p) for l in links for p in spec.link(l).points.values()]
     return np.concatenate(cols, axis=1)
 
 
@@ -207,7 +208,7 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
     Returns the chosen poses over ``path.angles`` (NaN where not reached), how the branch was
     chosen, and the cut runs. ``sig``: the candidates' signatures, if already computed."""
     name = f"{dyad.label} ({', '.join(dyad.links)})"
-    sig = sig if sig is not None else [signature(spec, dyad, c) for c in cands]
+    sig = sig if sig is not None else [signature(spec, dyad.links, c) for c in cands]
     finite = np.all(np.isfinite(np.concatenate(sig, axis=1)), axis=1)
     runs = [run[:_first_false(finite[run])] for run in runs]
     n = len(path.angles)

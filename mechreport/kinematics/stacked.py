@@ -75,7 +75,7 @@ def solve_stacked(mech: Mechanism, specs: list[Spec]) -> StackedKinematics | Non
             chosen = driver_pose(on_path, value)
         else:
             cands = dyad_candidates(on_path, group.dyad, {k: (r[k], th[k]) for k in r})
-            sigs = [signature(on_path, group.dyad, c) for c in cands]
+            sigs = [signature(on_path, group.dyad.links, c) for c in cands]
             chosen = {l: (np.full((V * n_path, 2), np.nan), np.full(V * n_path, np.nan))
                       for l in group.links}
             for v in range(V):
