@@ -112,10 +112,5 @@ def batched_solve_cond(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.nda
     return Equilibrated(angle_last(A)).solve_cond(b)
 
 
-def batched_solve_many(A: np.ndarray, B: np.ndarray) -> np.ndarray:
-    """Solve A X = B for A (n, m, m) and several right-hand sides B (n, m, k)."""
-    return Equilibrated(angle_last(A)).solve_many(B)
-
-
 _PROBES = np.random.default_rng(20261121).standard_normal((64, 2))
 _PROBE_NORMS = {m: np.sqrt(np.sum(_PROBES[:m] ** 2, axis=0)) for m in range(1, 65)}

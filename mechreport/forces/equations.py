@@ -143,18 +143,25 @@ class Solution:
         return ~(self.cond < SINGULAR_COND)
 
 
-def solve_step(step: Step, known: dict[str, np.ndarray], n: int) -> Solution:
-    """Solve one step for all angles at once: A x = b, A built angle-last (m, m, n)."""
+def step_system(step: Step, known: dict[str, np.ndarray], n: int, columns: int = 1,
+                column=None) -> tuple[np.ndarray, np.ndarray]:
+    """The step's matrix A (m, m, n), angle-last, and right-hand sides b (m, columns, n).
+
+    Unknowns solved by earlier steps are ``known``: (n,) values, or (columns, n) parts. A
+    term's constant goes to right-hand side ``column(term)`` (0 by default; None leaves it
+    out)."""
     m = len(step.unknowns)
     if len(step.equations) != m:
         raise ValueError(f"{step.title}: {len(step.equations)} equations for {m} unknowns")
     col = {u: i for i, u in enumerate(step.unknowns)}
     A = np.zeros((m, m, n))
-    b = np.zeros((m, n))
+    b = np.zeros((m, columns, n))
     for row, eq in enumerate(step.equations):
         for t in eq.terms:
             s = 1.0 if t.side == "rhs" else -1.0
-            b[row] -= s * t.const
+            c = 0 if column is None else column(t)
+            if c is not None:
+                b[row, c] -= s * t.const
             for k, u in enumerate(t.action.unknowns):
                 if u in col:
                     A[row, col[u]] += s * t.coeffs[:, k]
@@ -163,5 +170,11 @@ def solve_step(step: Step, known: dict[str, np.ndarray], n: int) -> Solution:
                 else:
                     raise ValueError(f"{step.title}: equation '{eq.label}' needs {u}, "
                                      "which is neither solved here nor known")
-    x, cond = Equilibrated(A).solve_cond(b.T)
-    return Solution({u: x[:, i] for u, i in col.items()}, cond)
+    return A, b
+
+
+def solve_step(step: Step, known: dict[str, np.ndarray], n: int) -> Solution:
+    """Solve one step for all angles at once (see :func:`step_system`)."""
+    A, b = step_system(step, known, n)
+    x, cond = Equilibrated(A).solve_cond(b[:, 0].T)
+    return Solution({u: x[:, i] for i, u in enumerate(step.unknowns)}, cond)

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..linalg import batched_solve_many
+from ..linalg import Equilibrated
 from .context import ForceContext
-from .equations import Action
+from .equations import Action, step_system
 from .result import ForceResult
 
 INERTIA, GRAVITY = "inertia", "gravity"
@@ -39,25 +39,14 @@ def split_by_source(ctx: ForceContext, res: ForceResult) -> dict[str, dict[str, 
     names = load_names(ctx)
     sources = list(dict.fromkeys([INERTIA, GRAVITY] + [ld.name for ld in ctx.loads]))
     col = {s: k for k, s in enumerate(sources)}
-    n, S = ctx.n, len(sources)
-    known: dict[str, np.ndarray] = {}            # unknown -> (n, S) parts
+    known: dict[str, np.ndarray] = {}            # unknown -> (S, n) parts
+
+    def column(t) -> int | None:
+        src = source_of(t.action, names)
+        return None if src is None else col[src]
     for step in res.steps:
-        m = len(step.unknowns)
-        idx = {u: i for i, u in enumerate(step.unknowns)}
-        A = np.zeros((n, m, m))
-        B = np.zeros((n, m, S))
-        for row, eq in enumerate(step.equations):
-            for t in eq.terms:
-                sign = 1.0 if t.side == "rhs" else -1.0
-                src = source_of(t.action, names)
-                if src is not None:
-                    B[:, row, col[src]] -= sign * t.const
-                for k, u in enumerate(t.action.unknowns):
-                    if u in idx:
-                        A[:, row, idx[u]] += sign * t.coeffs[:, k]
-                    else:
-                        B[:, row, :] -= sign * t.coeffs[:, k, None] * known[u]
-        X = batched_solve_many(A, B)
-        for u, i in idx.items():
-            known[u] = X[:, i, :]
-    return {s: {u: parts[:, k] for u, parts in known.items()} for s, k in col.items()}
+        A, b = step_system(step, known, ctx.n, len(sources), column)
+        X = Equilibrated(A).solve_many(b.transpose(2, 0, 1))     # (n, m, S)
+        for i, u in enumerate(step.unknowns):
+            known[u] = X[:, i, :].T
+    return {s: {u: parts[k] for u, parts in known.items()} for s, k in col.items()}
