@@ -23,6 +23,12 @@ from .loads import AppliedLoad, evaluate_loads
 DRIVER_TORQUE = "driver.torque"   # an R driver's unknown; a T driver's is "driver.force"
 
 
+def joint_point(kin: Kinematics, joint: Joint) -> np.ndarray:
+    """Where a joint's reaction acts (n, 2) [m]: the pin, or the slider's point."""
+    owner = joint.links[1] if joint.type == "T" or joint.links[0] == GROUND else joint.links[0]
+    return kin.named_point(joint.point, owner).r
+
+
 def reaction_unknowns(joint: Joint) -> tuple[str, ...]:
     base = (f"joint.{joint.name}.fx", f"joint.{joint.name}.fy")
     return base + ((f"joint.{joint.name}.moment",) if joint.type == "T" else ())
@@ -70,12 +76,7 @@ class ForceContext:
     @cached_property
     def joint_points(self) -> dict[str, np.ndarray]:
         """Where each joint's reaction acts (n, 2): the pin, or the slider's point."""
-        out = {}
-        for j in self.spec.joints:
-            owner = j.links[1] if j.type == "T" else (j.links[1] if j.links[0] == GROUND
-                                                      else j.links[0])
-            out[j.name] = self.kin.named_point(j.point, owner).r
-        return out
+        return {j.name: joint_point(self.kin, j) for j in self.spec.joints}
 
     def point_of(self, name: str) -> np.ndarray:
         """Global position (n, 2) of a joint point or named point."""

@@ -7,9 +7,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..forces import ForceResult
+from ..forces.context import joint_point
 from ..kinematics import Kinematics
 from ..kinematics.frames import cross, rotate
-from ..spec import GROUND, Joint
+from ..spec import GROUND
 
 
 def reference_method(forces: dict[str, ForceResult]) -> str:
@@ -19,12 +20,6 @@ def reference_method(forces: dict[str, ForceResult]) -> str:
         if res.reactions:
             return name
     return next(iter(forces))
-
-
-def joint_point(kin: Kinematics, joint: Joint) -> np.ndarray:
-    """Where a joint's reaction acts (n, 2) [m]: the pin, or the slider's point."""
-    owner = joint.links[1] if joint.type == "T" or joint.links[0] == GROUND else joint.links[0]
-    return kin.named_point(joint.point, owner).r
 
 
 @dataclass(frozen=True)
@@ -47,9 +42,10 @@ def frame_load(kin: Kinematics, res: ForceResult, loads=()) -> FrameLoad:
     """Shaking force and moment from method ``res``'s reactions: every joint with ground (for
     [ground, X] the frame receives -F, for [X, ground] +F; T couples likewise), a crank motor's
     reaction torque -M (a T driver on a frame guide: its push back on the frame; a driver
-    between moving links reacts on them, not on the frame), the reaction -F (or -M) of each load that ``reacts_on: ground``, and
-    the frame end of every spring, damper and torsion spring anchored on ground (``loads``: the
-    analysis' AppliedLoads). Weights reach the frame through the joints."""
+    between moving links reacts on them, not on the frame), the reaction -F (or -M) of each
+    load that ``reacts_on: ground``, and the frame end of every spring, damper and torsion
+    spring anchored on ground (``loads``: the analysis' AppliedLoads). Weights reach the frame
+    through the joints."""
     spec = kin.mechanism.spec
     d = spec.driver
     n = kin.n
