@@ -22,7 +22,7 @@ from .kinematics import EPS, TRUST_RTOL, Flag, Kinematics, solve_kinematics
 from .kinematics.frames import scaled
 from .linalg import SINGULAR_COND
 from .model import Mechanism, build_mechanism
-from .post import CycleUndefined, Review, Verdict, review_of, verdicts
+from .post import Review, Verdict, design_review, verdicts
 from .spec import Spec, load_spec
 
 DEFAULT_TOL = 1e-6
@@ -101,23 +101,12 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> 
         ctx.memo = memo                     # the same equations as the numbers came from
         forces = {name: res.take(~bad, ctx) for name, res in forces.items()}
     _require_finite(kin, forces)
-    rev, why = _review(spec, kin, forces, ctx.loads)
+    rev, why = design_review(kin, forces, ctx.loads)
     values = rev.values if rev is not None else None
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces),
                     residuals(ctx, forces),
                     check_expectations(kin, forces, kin.flags, values, why), tol, rev, why,
                     tuple(verdicts(spec.design, values, why)))
-
-
-def _review(spec: Spec, kin: Kinematics, forces, loads) -> tuple[Review | None, str]:
-    """The cycle quantities, or None and why they are undefined."""
-    if spec.cycle_problem() is not None:
-        return None, spec.cycle_problem()
-    ratings = {j: b.rating for j, b in spec.design.bearings.items()}
-    try:
-        return review_of(kin, forces, loads, spec.design.speed_fluctuation, ratings), ""
-    except CycleUndefined as exc:
-        return None, str(exc).split(": ", 1)[-1]
 
 
 def _force_flags(kin: Kinematics, forces: dict[str, ForceResult]) -> list[Flag]:

@@ -18,12 +18,12 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .analysis import _review, analyse
+from .analysis import analyse
 from .forces import METHODS, ForceContext
 from .kinematics import EPS, TRUST_RTOL
 from .kinematics.stacked import solve_stacked, variant_kinematics
 from .model import build_mechanism
-from .post import Review, Verdict, verdicts
+from .post import Review, Verdict, design_review, verdicts
 from .spec import Spec
 
 
@@ -105,7 +105,7 @@ def _batched(stacked, mech, specs: list[Spec], method: str) -> list[Outcome | No
                          force=None if ld.force is None else ld.force[rows],
                          moment=None if ld.moment is None else ld.moment[rows])
                  for ld in ctx.loads]
-        rev, why = _review(spec, kin_v, forces, loads)
+        rev, why = design_review(kin_v, forces, loads)
         values = rev.values if rev is not None else None
         out[v] = Outcome(spec, rev, why, tuple(verdicts(spec.design, values, why)),
                          batched=True)

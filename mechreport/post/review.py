@@ -13,7 +13,7 @@ import numpy as np
 
 from .balance import Counterweight, counterweight
 from .bearings import BearingLoad, bearing_load
-from .cycle import Cycle, cycle_of
+from .cycle import Cycle, CycleUndefined, cycle_of
 from .frame import frame_load, inertia_force, reference_method
 from .transmission import transmission_angles
 
@@ -103,3 +103,16 @@ def review_of(kin, forces, loads, speed_fluctuation: float | None = None,
             values[f"joint.{name}.life_h"] = b.life_h
     return Review(cyc, method, values, torque, energy, bearings, angles, cw, shaking,
                   inertial, balanced)
+
+
+def design_review(kin, forces, loads) -> tuple[Review | None, str]:
+    """The cycle quantities of the spec's design review (its speed fluctuation, its bearings'
+    ratings), or None and why they are undefined."""
+    spec = kin.mechanism.spec
+    if spec.cycle_problem() is not None:
+        return None, spec.cycle_problem()
+    ratings = {j: b.rating for j, b in spec.design.bearings.items()}
+    try:
+        return review_of(kin, forces, loads, spec.design.speed_fluctuation, ratings), ""
+    except CycleUndefined as exc:
+        return None, str(exc).split(": ", 1)[-1]
