@@ -115,10 +115,9 @@ def _force_flags(kin: Kinematics, forces: dict[str, ForceResult]) -> list[Flag]:
 
     The kinematic error already covers the physical singularities (Newton-Euler's matrix is
     the transpose of the constraint Jacobian); the force systems add their own rounding."""
-    inputs = kin.error if kin.error is not None else np.zeros(kin.n)
     worst = np.ones(kin.n)
     singular = np.zeros(kin.n, bool)
-    which: list[list[str]] = [[] for _ in range(kin.n)]
+    doubtful = {}
     for name, res in forces.items():
         cond = res.cond if res.cond is not None else np.ones(kin.n)
         if np.isnan(cond).any():
@@ -127,16 +126,12 @@ def _force_flags(kin: Kinematics, forces: dict[str, ForceResult]) -> list[Flag]:
                 f"{kin.mechanism.spec.file}: the {name} equations are not finite numbers at "
                 f"{kin.angles[k]:g} deg: the inputs are beyond what double precision can "
                 "represent (check masses, lengths, speeds, gravity and loads)")
-        with np.errstate(over="ignore", invalid="ignore"):
-            doubtful = res.singular | ~(inputs + EPS * cond <= TRUST_RTOL)
-        for k in np.flatnonzero(doubtful):
-            which[k].append(name)
+        doubtful[name] = ~trusted(kin, res)
         singular |= res.singular
         worst = np.maximum(worst, np.nan_to_num(cond, nan=np.inf))
     flags = []
-    for k, names in enumerate(which):
-        if not names:
-            continue
+    for k in np.flatnonzero(np.any(list(doubtful.values()), axis=0)):
+        names = [name for name, bad in doubtful.items() if bad[k]]
         if singular[k] or not worst[k] < SINGULAR_COND:
             flags.append(Flag(float(kin.angles[k]),
                               f"force equations singular ({', '.join(names)})", "singular"))
@@ -146,6 +141,15 @@ def _force_flags(kin: Kinematics, forces: dict[str, ForceResult]) -> list[Flag]:
                               f"(condition {worst[k]:.1e}); results would not be trustworthy "
                               f"to {TRUST_RTOL:g}", "near-singular"))
     return flags
+
+
+def trusted(kin: Kinematics, res: ForceResult) -> np.ndarray:
+    """Angles (n,) where method ``res`` is regular and its rounding error bound (eps x its
+    condition number) added to the kinematics' own error is within ``TRUST_RTOL``."""
+    inputs = kin.error if kin.error is not None else np.zeros(kin.n)
+    cond = res.cond if res.cond is not None else np.ones(kin.n)
+    with np.errstate(over="ignore", invalid="ignore"):
+        return ~res.singular & (inputs + EPS * cond <= TRUST_RTOL)
 
 
 def _require_angles(kin: Kinematics) -> Kinematics:

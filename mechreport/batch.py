@@ -18,9 +18,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .analysis import analyse
+from .analysis import analyse, trusted
 from .forces import METHODS, ForceContext
-from .kinematics import EPS, TRUST_RTOL
 from .kinematics.stacked import solve_stacked, variant_kinematics
 from .model import build_mechanism
 from .post import Review, Verdict, design_review, verdicts
@@ -90,11 +89,10 @@ def _batched(stacked, mech, specs: list[Spec], method: str) -> list[Outcome | No
     with np.errstate(all="ignore"):
         ctx = ForceContext(kin)
         res = METHODS[method].solve(ctx)
-        cond = res.cond if res.cond is not None else np.ones(kin.n)
-        trusted = ~res.singular & (kin.error + EPS * cond <= TRUST_RTOL)
+        ok = trusted(kin, res)
         for values in res.values().values():
-            trusted &= np.isfinite(values)
-    clean = stacked.clean & trusted.reshape(len(specs), stacked.per).all(axis=1)
+            ok &= np.isfinite(values)
+    clean = stacked.clean & ok.reshape(len(specs), stacked.per).all(axis=1)
     index = {id(ld): k for k, ld in enumerate(ctx.spec.loads)}
     for v in np.flatnonzero(clean):
         spec = specs[v]
