@@ -47,13 +47,6 @@ class Outcome:
         from .cli import describe_failure
         return describe_failure(self.exception)
 
-    @property
-    def passed(self) -> bool | None:
-        """Every design verdict met (None when the variant has no design items or failed)."""
-        if self.error is not None or not self.verdicts:
-            return None
-        return all(v.passed for v in self.verdicts)
-
 
 ROWS = 16384    # variants x angles solved together (bounds the working memory)
 

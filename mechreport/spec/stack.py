@@ -106,10 +106,4 @@ def stack_specs(specs: list[Spec], rows: int) -> Spec | None:
         return None
 
 
-def stacked_fields() -> dict[str, tuple[str, ...]]:
-    """Which numbers may differ, by record (for documentation and tests)."""
-    return {cls.__name__: names for cls, names in _NUMBERS.items()} | {
-        "Link points": ("points",), "Spec": ("gravity", "ground")}
-
-
-__all__ = ["stack_specs", "stacked_fields"]
+__all__ = ["stack_specs"]
