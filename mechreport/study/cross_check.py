@@ -83,7 +83,7 @@ def cross_check(base: BaseSpec, table: Table, count: int, seed: int,
 
 def check_one(base: BaseSpec, table: Table, i: int, tol: float = DEFAULT_TOL) -> CrossRow:
     from ..analysis import analyse
-    from ..post import review_of
+    from ..post import design_review
     mine = table.row(i)
     try:
         spec = variant_spec(base, table.plan.variant(i))
@@ -113,16 +113,13 @@ def check_one(base: BaseSpec, table: Table, i: int, tol: float = DEFAULT_TOL) ->
         if math.isfinite(v):
             u = unit_of(q)
             floors[u] = max(floors.get(u, 0.0), abs(v))
-    ratings = {j: b.rating for j, b in spec.design.bearings.items()}
     for method, res in a.forces.items():
         if cannot_serve(method, keep, spec.design) is not None:
             continue
-        try:
-            values = review_of(a.kinematics, {method: res}, a.loads,
-                               spec.design.speed_fluctuation, ratings).values
-        except Exception as exc:  # noqa: BLE001
-            return CrossRow(i, False, None, f"{method}: no cycle quantities "
-                                            f"({type(exc).__name__}: {exc})")
+        review, why = design_review(a.kinematics, {method: res}, a.loads)
+        if review is None:
+            return CrossRow(i, False, None, f"{method}: no cycle quantities ({why})")
+        values = review.values
         for q, v in zip(keep, mine_vals):
             other = values.get(q)
             if other is None or not math.isfinite(v):
