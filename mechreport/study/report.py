@@ -13,10 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..quantities import unit_of
 from ..units import fmt
 from .document import Doc
-from .table import Table, badness, larger_is_better
+from .table import Table, badness, column_name, larger_is_better, quantity_unit, with_unit
 
 FIGURES = "study-figures"
 BEST = 10                 # variants in the best-variants table
@@ -101,14 +100,6 @@ def key_unit(path: tuple, units: dict[str, str], loads: list | None = None) -> s
 def key_units(base) -> dict[str, str]:
     loads = base.data.get("loads") if isinstance(base.data.get("loads"), list) else None
     return {k: key_unit(p, base.spec.units, loads) for k, p in base.paths.items()}
-
-
-def with_unit(label: str, unit: str) -> str:
-    return f"{label} [{unit}]" if unit else label
-
-
-def quantity_unit(q: str) -> str:
-    return (unit_of(q) or "").replace("·", " ")
 
 
 # ---------------------------------------------------------------------------- figures
@@ -229,7 +220,7 @@ def write_figures(run: StudyRun, folder: Path) -> dict[str, str]:
                 ax.set_ylim(*limits)
             ax.set_xlabel(with_unit(key, units.get(key, "")), fontsize=7.5)
             if k % PANELS == 0:
-                ax.set_ylabel(with_unit(q, quantity_unit(q)), fontsize=7.5)
+                ax.set_ylabel(column_name(q), fontsize=7.5)
         for k in range(d, rows * cols):
             axes[k // PANELS][k % PANELS].set_visible(False)
         handles, labels = axes[0][0].get_legend_handles_labels()
@@ -262,8 +253,8 @@ def write_figures(run: StudyRun, folder: Path) -> dict[str, str]:
             ax.text(0.99, 0.02, f"{outside} variant(s) beyond the scale, not drawn",
                     transform=ax.transAxes, ha="right", va="bottom", fontsize=7, color=INK,
                     bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8})
-        ax.set_xlabel(with_unit(t.keep[0], quantity_unit(t.keep[0])))
-        ax.set_ylabel(with_unit(t.keep[1], quantity_unit(t.keep[1])))
+        ax.set_xlabel(column_name(t.keep[0]))
+        ax.set_ylabel(column_name(t.keep[1]))
         legend_top(ax, 3)
         save(fig, folder, "pareto")
         out["pareto"] = f"{FIGURES}/pareto.svg"
@@ -400,7 +391,7 @@ def _best_section(doc: Doc, run: StudyRun, units: dict[str, str]) -> None:
         doc.p("No variant completed.")
         return
     header = (["rank", "variant"] + [with_unit(k, units.get(k, "")) for k in plan.keys]
-              + [with_unit(q, quantity_unit(q)) for q in shown_q])
+              + [column_name(q) for q in shown_q])
     rows = []
     for r, i in enumerate(picked, 1):
         row = [str(r), str(i + 1)] + _variant_cells(run, i) + [fmt(v) for v in
@@ -432,7 +423,7 @@ def _pareto_section(doc: Doc, run: StudyRun, units: dict[str, str], figures) -> 
         shown = front if len(front) <= 20 else front[np.linspace(0, len(front) - 1, 20)
                                                      .round().astype(int)]
         header = (["variant"] + [with_unit(k, units.get(k, "")) for k in plan.keys]
-                  + [with_unit(q, quantity_unit(q)) for q in (q1, q2)])
+                  + [column_name(q) for q in (q1, q2)])
         rows = [[str(i + 1)] + _variant_cells(run, i) + [fmt(t.values[i, 0]),
                                                          fmt(t.values[i, 1])] for i in shown]
         note = (f"20 of the {len(front)} front variants, evenly spread; study.csv has every "

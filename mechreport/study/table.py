@@ -36,10 +36,18 @@ def larger_is_better(quantity: str) -> bool:
     return quantity in LARGER_IS_BETTER or quantity.endswith(".life_h")
 
 
+def quantity_unit(quantity: str) -> str:
+    """The quantity's SI unit, ASCII as in results.csv (``N m``); "" when it has none."""
+    return (unit_of(quantity) or "").replace("·", " ")
+
+
+def with_unit(label: str, unit: str) -> str:
+    return f"{label} [{unit}]" if unit else label
+
+
 def column_name(quantity: str) -> str:
     """``cycle.torque.rms [N m]``: the quantity and its SI unit (ASCII, as results.csv)."""
-    unit = (unit_of(quantity) or "").replace("·", " ")
-    return f"{quantity} [{unit}]" if unit else quantity
+    return with_unit(quantity, quantity_unit(quantity))
 
 
 def badness(quantity: str, values: np.ndarray) -> np.ndarray:
