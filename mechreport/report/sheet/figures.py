@@ -21,6 +21,7 @@ import numpy as np
 from ..drawing import LINK_FILL, Labels, _element, _ground_symbol, _guide
 from ..plots import pyplot, save
 from ..scene import build_scene
+from .symbols import split_symbol
 
 class SheetLabels(Labels):
     """The drawings' label placer, measuring a mathtext label by what it prints ($F_{21x}$
@@ -94,10 +95,7 @@ INERTIA = "#c0392b"      # d'Alembert's inertia force and couple (dashed)
 
 def tex_symbol(symbol: str, comp: str = "") -> str:
     """matplotlib mathtext of an action symbol: F21 + x -> $F_{21x}$, Fin2 -> $F_{in2}$."""
-    if symbol[:1] in "FGM" and len(symbol) > 1:
-        base, sub = symbol[0], symbol[1:]
-    else:
-        base, sub = symbol, ""
+    base, sub = split_symbol(symbol)
     if comp:
         sub = sub + ("," + comp if sub and not sub[-1].isdigit() else comp)
     sub = sub.replace("in", r"\mathrm{in}").replace("ext", r"\mathrm{ext}")

@@ -31,7 +31,7 @@ def R(tex: str, typ: str, plain: str | None = None) -> Raw:
                re.sub(r"[\\{}]|mathbf|boldsymbol|mathrm", "", tex))
 
 
-def _split_symbol(symbol: str) -> tuple[str, str]:
+def split_symbol(symbol: str) -> tuple[str, str]:
     """``F12`` -> (F, 12), ``Fin2`` -> (F, in2), ``M03`` -> (M, 03); others as they are."""
     if symbol[:1] in "FGM":
         return symbol[0], symbol[1:]
@@ -40,20 +40,20 @@ def _split_symbol(symbol: str) -> tuple[str, str]:
 
 def vec_sym(symbol: str) -> Sym:
     """The bold vector of an action: **F**_12, **F**_in2, **G**_2."""
-    base, sub = _split_symbol(symbol)
+    base, sub = split_symbol(symbol)
     return Sym(base, sub, bold=True, py_name=symbol)
 
 
 def comp_sym(symbol: str, axis: str) -> Sym:
     """A component: F_12x; F_3ext,x where the subscript does not end in a digit."""
-    base, sub = _split_symbol(symbol)
+    base, sub = split_symbol(symbol)
     sub = sub + ("," + axis if sub and not sub[-1].isdigit() else axis)
     return Sym(base, sub, py_name=symbol.replace(",", "_") + axis)
 
 
 def scalar_sym(symbol: str) -> Sym:
     """A couple or a magnitude: M, M_03, M_in2, F_d."""
-    base, sub = _split_symbol(symbol)
+    base, sub = split_symbol(symbol)
     return Sym(base, sub, py_name=symbol.replace(",", "_"))
 
 
