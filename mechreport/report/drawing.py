@@ -30,7 +30,7 @@ def _segments(ax, segs, lw: float, zorder: float) -> None:
                           autolim=False)
 
 
-def _ground_symbol(ax, x: float, y: float, size: float) -> None:
+def draw_ground_symbol(ax, x: float, y: float, size: float) -> None:
     """A fixed pivot: a triangle under the pin and a hatched base."""
     tri = np.array([[x, y], [x - size * 0.6, y - size], [x + size * 0.6, y - size]])
     ax.fill(tri[:, 0], tri[:, 1], facecolor="white", edgecolor="k", lw=1.0, zorder=3.5)
@@ -40,7 +40,7 @@ def _ground_symbol(ax, x: float, y: float, size: float) -> None:
                    for t in np.linspace(-size, size * 0.8, 6)], 0.7, 3.5)
 
 
-def _guide(ax, p0, p1, on_ground: bool, normal, offset: float) -> None:
+def draw_guide(ax, p0, p1, on_ground: bool, normal, offset: float) -> None:
     p0, p1, nrm = np.asarray(p0), np.asarray(p1), np.asarray(normal)
     if not on_ground:
         ax.plot(*np.stack([p0, p1]).T, color="0.35", lw=0.8, ls=(0, (6, 3)), zorder=1)
@@ -174,7 +174,7 @@ def _links(ax, scene) -> None:
                     color="0.25", zorder=z + 0.005)
 
 
-def _element(ax, kind: str, p0, p1, size: float, color: str = "0.3") -> None:
+def draw_element(ax, kind: str, p0, p1, size: float, color: str = "0.3") -> None:
     """A spring as a zig-zag, a damper as a dashpot (piston in a cylinder) between ``p0`` and
     ``p1``; a torsion spring as a spiral around its joint. ``size`` [m] sets their width."""
     p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
@@ -267,15 +267,15 @@ def draw_scene(scene, d=None, title: str | None = None):
             along = np.subtract(p1, p0) / max(math.hypot(*np.subtract(p1, p0)), 1e-300)
             shift = ((k + 1) // 2 * (1 if k % 2 else -1) * 3 * size
                      * np.array([-along[1], along[0]]))
-            _element(ax, "link", p0, np.add(p0, shift), size)       # short connectors
-            _element(ax, "link", p1, np.add(p1, shift), size)
+            draw_element(ax, "link", p0, np.add(p0, shift), size)       # short connectors
+            draw_element(ax, "link", p1, np.add(p1, shift), size)
             p0, p1 = tuple(np.add(p0, shift)), tuple(np.add(p1, shift))
-        _element(ax, kind, p0, p1, size)
+        draw_element(ax, kind, p0, p1, size)
     for p0, p1, on_ground, normal, offset in scene.guides:
-        _guide(ax, p0, p1, on_ground, normal, offset)
+        draw_guide(ax, p0, p1, on_ground, normal, offset)
     for x, y, on_ground in scene.pins:
         if on_ground:
-            _ground_symbol(ax, x, y, 0.04 * ext)
+            draw_ground_symbol(ax, x, y, 0.04 * ext)
         ax.plot([x], [y], "o", ms=5, mfc="white", mec="k", mew=1.2, zorder=4)
         labels.block(x, y, 4.0)
     handles = []

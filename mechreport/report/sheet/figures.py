@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..drawing import LINK_FILL, Labels, _element, _ground_symbol, _guide
+from ..drawing import LINK_FILL, Labels, draw_element, draw_ground_symbol, draw_guide
 from ..plots import pyplot, save
 from ..scene import build_scene
 from .symbols import split_symbol
@@ -224,16 +224,16 @@ def mechanism_figure(analysis, k: int, path: Path) -> Path:
     _shapes(ax, sc.shapes)
     _block_shapes(labels, sc.shapes)
     for kind, p0, p1 in sc.elements:
-        _element(ax, kind, p0, p1, 0.025 * ext)
+        draw_element(ax, kind, p0, p1, 0.025 * ext)
         labels.block_path([p0, p1], 2.0)
     for p0, p1, on_ground, normal, offset in sc.guides:
-        _guide(ax, p0, p1, on_ground, normal, offset)
+        draw_guide(ax, p0, p1, on_ground, normal, offset)
         for side in ((-1, 1) if on_ground else (0,)):
             off = side * offset * np.asarray(normal, float)
             labels.block_path([np.asarray(p0) + off, np.asarray(p1) + off], 2.0)
     for x, y, on_ground in sc.pins:
         if on_ground:
-            _ground_symbol(ax, x, y, 0.04 * ext)
+            draw_ground_symbol(ax, x, y, 0.04 * ext)
             labels.block_area((x - 0.04 * ext, y - 0.055 * ext), (x + 0.04 * ext, y))
         ax.plot([x], [y], "o", ms=5, mfc="white", mec="k", mew=1.2, zorder=4)
         labels.block(x, y, 4.0)
