@@ -68,10 +68,10 @@ def joint_residual(spec: Spec, joint: Joint, r: dict, th: dict) -> np.ndarray:
         pb = r[b] + rotate(_pts(spec, b)[joint.name], th[b])
         return pa - pb
     e, u, _, _ = _slide(spec, joint, r, th)
-    return np.stack([_wrap(th[joint.slider] - th[joint.guide]), dot(e, perp(u))], axis=-1)
+    return np.stack([wrap_angle(th[joint.slider] - th[joint.guide]), dot(e, perp(u))], axis=-1)
 
 
-def _wrap(angle: np.ndarray) -> np.ndarray:
+def wrap_angle(angle: np.ndarray) -> np.ndarray:
     return (angle + np.pi) % (2 * np.pi) - np.pi
 
 

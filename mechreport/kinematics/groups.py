@@ -21,10 +21,10 @@ from ..errors import AssemblyError
 from ..linalg import batched_solve_cond
 from ..model import Group
 from ..spec import GROUND, Spec
-from .constraints import _wrap, driver_row, joint_blocks, joint_residual
+from .constraints import wrap_angle, driver_row, joint_blocks, joint_residual
 from .frames import rotate
 from .path import SweepPath
-from .position import BranchChoice, Poses, _first_false, point_global, signature
+from .position import BranchChoice, Poses, first_false, point_global, signature
 
 STARTS = 96          # starting poses for the assembly at the first reference angle
 NEWTON_STEPS = 40    # iterations per solve at most
@@ -69,7 +69,7 @@ def equations(spec: Spec, group: Group, r: dict, th: dict, value=None, scale: fl
         if joint.name == group.driver:
             now, dblocks, _ = driver_row(spec, r, th)
             gap = now - value
-            F[:, row] = _wrap(gap) if spec.driver.kind == "R" else gap
+            F[:, row] = wrap_angle(gap) if spec.driver.kind == "R" else gap
             for link, blk in dblocks.items():
                 if link in col:
                     J[:, row, col[link]:col[link] + 3] = blk
@@ -333,11 +333,11 @@ def _follow(spec: Spec, group: Group, q: np.ndarray, reached: np.ndarray, run: n
             pos += 1
             continue
         idx = run[pos:pos + chunk]
-        idx = idx[:_first_false(~reached[idx])]
+        idx = idx[:first_false(~reached[idx])]
         guess = _extrapolate(q[run[max(0, pos - 3):pos]], travel[max(0, pos - 3):pos],
                              travel[pos:pos + len(idx)])
         sol, ok = newton(spec, group, guess, known, idx, value, scale)
-        good = _first_false(ok & np.all(np.isfinite(sol), axis=1))
+        good = first_false(ok & np.all(np.isfinite(sol), axis=1))
         if good:
             q[idx[:good]] = sol[:good]
             reached[idx[:good]] = True

@@ -210,7 +210,7 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
     name = f"{dyad.label} ({', '.join(dyad.links)})"
     sig = sig if sig is not None else [signature(spec, dyad.links, c) for c in cands]
     finite = np.all(np.isfinite(np.concatenate(sig, axis=1)), axis=1)
-    runs = [run[:_first_false(finite[run])] for run in runs]
+    runs = [run[:first_false(finite[run])] for run in runs]
     n = len(path.angles)
     reached = np.zeros(n, bool)
     use_plus = np.ones(n, bool)
@@ -258,7 +258,7 @@ def _closes(sig: list[np.ndarray], run: np.ndarray, travel: np.ndarray) -> bool:
     return int(np.sum(_flips(sig[0][ring], sig[-1][ring], t))) % 2 == 0
 
 
-def _first_false(mask: np.ndarray) -> int:
+def first_false(mask: np.ndarray) -> int:
     bad = np.flatnonzero(~mask)
     return int(bad[0]) if bad.size else len(mask)
 

@@ -73,7 +73,7 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
     Raises whatever the analysis or rendering raises (see :func:`build_safe`)."""
     from ..analysis import analyse
     from .drawing import write_drawings
-    from .model import _index_row, build_model
+    from .model import index_row, build_model
     from .plots import write_plots
     from .render import write_report
 
@@ -89,7 +89,7 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
     analysis = analyse(spec)
     model = build_model(analysis, path, sha256=key["spec_sha256"])
     model.summary["build"] = key
-    model.stem, model.index_row = name, _index_row(model.summary, name)
+    model.stem, model.index_row = name, index_row(model.summary, name)
     stage(2, n, "figures")
     write_plots(model, folder / "figures")
     write_drawings(model, folder / "figures")
@@ -202,7 +202,7 @@ class Progress:
 
 # ------------------------------------------------------------------------------ workers
 
-def _worker_init(parent: int) -> None:
+def worker_init(parent: int) -> None:
     """In each worker: leave Ctrl-C to the parent (the terminal sends it to every process of
     the group; the parent then terminates the workers), and exit if the parent dies."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
@@ -218,7 +218,7 @@ def _watch_parent(parent: int, every: float = 0.5) -> None:
             os._exit(1)                    # orphaned: the build is gone, stop writing
 
 
-def _stop_pool(pool: ProcessPoolExecutor) -> None:
+def stop_pool(pool: ProcessPoolExecutor) -> None:
     """Cancel what has not started and terminate the workers (they must not outlive us)."""
     procs = list((getattr(pool, "_processes", None) or {}).values())
     pool.shutdown(wait=False, cancel_futures=True)
@@ -234,7 +234,7 @@ def _stop_pool(pool: ProcessPoolExecutor) -> None:
 
 
 @contextmanager
-def _sigterm_as_interrupt():
+def sigterm_as_interrupt():
     """SIGTERM raises :class:`Terminated` (a KeyboardInterrupt) in the main thread."""
     if threading.current_thread() is not threading.main_thread():
         yield
@@ -264,7 +264,7 @@ def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, e
     # fresh interpreters: forking a process whose Typst/BLAS threads are running can
     # deadlock the child (seen under pytest, after a report was typeset in-process)
     ctx = multiprocessing.get_context("spawn")
-    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_worker_init,
+    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=worker_init,
                                initargs=(owner,))
     try:
         futs = {pool.submit(build_safe, str(p), str(out), name, sheet, exact, owner,
@@ -279,7 +279,7 @@ def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, e
                 row = _failure(p, name, internal_error(exc))
             finish(i, row)
     except BaseException:
-        _stop_pool(pool)
+        stop_pool(pool)
         raise
     pool.shutdown(wait=True)
 
@@ -289,7 +289,7 @@ def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, e
 def index_rows(out: Path, failures: dict[str, dict] | None = None) -> list[dict]:
     """The index of ``out``: one row per report folder on disk (from its summary.json), with
     ``failures`` (folder name -> this run's FAIL row) in place of, or beside, the folders."""
-    from .model import _index_row
+    from .model import index_row
 
     failures = failures or {}
     disk = od.report_folders(out)
@@ -305,7 +305,7 @@ def index_rows(out: Path, failures: dict[str, dict] | None = None) -> list[dict]
         try:
             if isinstance(data, str):
                 raise ValueError(data)
-            row = _index_row(data, name)
+            row = index_row(data, name)
         except (KeyError, TypeError, ValueError, IndexError) as exc:
             msg = str(exc) if isinstance(data, str) else \
                 f"{name}/summary.json is not a mechreport summary ({type(exc).__name__}: {exc})"
@@ -369,7 +369,7 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
     names = od.folder_names(paths)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(paths)))
     start = time.perf_counter()
-    with _sigterm_as_interrupt(), od.OutputLock(out).acquire(wait):
+    with sigterm_as_interrupt(), od.OutputLock(out).acquire(wait):
         od.clean_leftovers(out)
         progress = Progress(len(paths), quiet=quiet)
         failures: dict[str, dict] = {}
@@ -399,9 +399,9 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
             same = None if force else up_to_date(out, name, build_key(path, sheet, exact,
                                                                       sheet_options))
             if same is not None:
-                from .model import _index_row
+                from .model import index_row
                 try:
-                    row = dict(_index_row(same, name), folder=name, spec=str(path),
+                    row = dict(index_row(same, name), folder=name, spec=str(path),
                                skipped=True, seconds=0.0)
                 except (KeyError, TypeError, ValueError, IndexError):
                     todo.append((i, path, name))

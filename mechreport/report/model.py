@@ -883,7 +883,7 @@ def _quantities(sw: SweepData, st, cycle: dict, sc: dict, effort_unit: str = "NÂ
     return out
 
 
-def _index_row(model_summary: dict, stem: str) -> dict:
+def index_row(model_summary: dict, stem: str) -> dict:
     """One index row (index.md/pdf/csv/json) from a report's summary.json."""
     s = model_summary
     t = s.get("driver_torque") or {}
@@ -993,7 +993,7 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
         flags=_flag_rows(analysis), left_out=_left_out_text(analysis, sw, d),
         notes=analysis.kinematics.notes(), failures=failure_rows(fails), design=design,
         figures=figures, sweep=sw, scenes=scenes, csv_header=header, csv_rows=rows,
-        summary=summary, index_row=_index_row(summary, stem), meta=meta, display=d,
+        summary=summary, index_row=index_row(summary, stem), meta=meta, display=d,
         heads=heads)
 
 

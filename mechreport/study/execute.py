@@ -65,9 +65,9 @@ _BASE: BaseSpec | None = None
 
 
 def _pool_init(base: BaseSpec, parent: int) -> None:
-    from ..report.build import _worker_init
+    from ..report.build import worker_init
     global _BASE
-    _worker_init(parent)                 # Ctrl-C is the parent's; exit if the parent dies
+    worker_init(parent)                 # Ctrl-C is the parent's; exit if the parent dies
     _BASE = base
 
 
@@ -77,7 +77,7 @@ def _pool_task(start: int, keys, values: np.ndarray, method: str, keep) -> tuple
 
 def run_pool(base: BaseSpec, plan: Plan, method: str, keep, size: int, jobs: int,
              on_chunk) -> None:
-    from ..report.build import _stop_pool
+    from ..report.build import stop_pool
     # fresh interpreters, as `mechreport build` does: forking a process whose BLAS or Typst
     # threads are running can deadlock the child
     ctx = multiprocessing.get_context("spawn")
@@ -107,7 +107,7 @@ def run_pool(base: BaseSpec, plan: Plan, method: str, keep, size: int, jobs: int
                 on_chunk(start, rows)
                 submit()
     except BaseException:
-        _stop_pool(pool)
+        stop_pool(pool)
         raise
     pool.shutdown(wait=True)
 

@@ -36,7 +36,7 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     """Run the study of the spec at ``path`` into ``out``; the exit status (see the module
     docstring). Raises ``SpecError``/``MechreportError`` when the study cannot run and
     KeyboardInterrupt when interrupted."""
-    from ..report.build import _sigterm_as_interrupt
+    from ..report.build import sigterm_as_interrupt
     from .execute import auto_chunk, connect, dask_workers, run_variants
     from .plan import plan_of
     from .progress import StudyProgress, duration
@@ -50,7 +50,7 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     plan = plan_of(study)
     out = od.prepare(Path(out))            # fail early on an unusable -o
     name = od.safe_stem(path)
-    with _sigterm_as_interrupt():
+    with sigterm_as_interrupt():
         client = connect(scheduler) if scheduler else None
         try:
             if client is not None:
