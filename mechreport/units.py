@@ -133,9 +133,6 @@ class Display:
         unit = self.unit(kind)
         return f"{label} [{unit}]" if unit else label
 
-    def with_scales(self, scales: dict) -> "Display":
-        return Display(self.length, self.force, self.moment, self.mass, dict(scales))
-
     def describe(self) -> str:
         """``lengths in mm, forces in kN, moments in N·m, masses in g``."""
         return (f"lengths in {self.length}, forces in {self.force}, moments in "

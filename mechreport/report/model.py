@@ -253,11 +253,6 @@ class ReportModel:
     coord: str = "crank angle"
     coord_unit: str = "°"
 
-    @property
-    def method_names(self) -> list[str]:
-        return [m[1] for m in self.methods]
-
-
 # ------------------------------------------------------------------------ traceability
 
 def build_time() -> _dt.datetime:

@@ -76,13 +76,6 @@ def point_vec(base: str, point: str) -> Raw:
                f"{base}_{point}")
 
 
-def point_comp(base: str, point: str, axis: str) -> Raw:
-    """A component with a point subscript: v_(C_2 x)."""
-    p = Point(point)
-    return Raw(rf"{base}_{{{p.tex()}{axis}}}", f"{base}_({p.typ()} {axis})",
-               f"{base}_{point}{axis}")
-
-
 def delta_sym(joint: str) -> Raw:
     """The unit vector along a slider's line, **Δ**_(C_T)."""
     p = Point(joint)
