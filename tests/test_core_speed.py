@@ -111,3 +111,75 @@ def test_slider_points_are_defined_against_the_whole_sweep():
     second = dataclasses.replace(second, reactions={**second.reactions, "C_T": tiny})
     joined = ForceResult.join([first, second], ctx).reactions["C_T"]
     assert np.isfinite(joined.px[:100]).all() and np.isnan(joined.px[100:]).all()
+
+
+# ------------------------------------------------------------ block triangular solves
+
+def _step(structure: dict[str, list[str]], unknowns: list[str]):
+    """A Step whose equations name the given unknowns (coefficients are irrelevant here)."""
+    from mechreport.forces.equations import Action, Equation, Step, Term
+    eqs = []
+    for label, names in structure.items():
+        act = Action(label, "force", "reaction", "1", unknowns=tuple(names))
+        eqs.append(Equation(label, "force", ("1",),
+                            [Term(act, np.ones((1, len(names))), np.zeros(1))]))
+    return Step("test", unknowns, eqs)
+
+
+def test_triangular_blocks_order_dependencies_first():
+    from mechreport.forces.equations import triangular_blocks
+    # c from e3 alone; a and b together from e1, e2 (which also need c); d from e4 (needs a)
+    step = _step({"e1": ["a", "b", "c"], "e2": ["a", "b"], "e3": ["c"], "e4": ["d", "a"]},
+                 ["a", "b", "c", "d"])
+    blocks = [(sorted(b.unknowns), sorted(e.label for e in b.equations))
+              for b in triangular_blocks(step)]
+    assert blocks == [(["c"], ["e3"]), (["a", "b"], ["e1", "e2"]), (["d"], ["e4"])]
+
+
+def test_structurally_singular_step_is_left_whole():
+    from mechreport.forces.equations import triangular_blocks
+    step = _step({"e1": ["a"], "e2": ["a"], "e3": ["b", "c"]}, ["a", "b", "c"])
+    assert triangular_blocks(step) == [step]
+
+
+@pytest.mark.parametrize("name", ["r_rtr_rtr", "stephenson3_six_bar", "offset_slider_crank",
+                                  "hydraulic_boom", "scotch_yoke"])
+@pytest.mark.parametrize("method", ["newton_euler", "dalembert", "contour"])
+def test_blockwise_solve_equals_the_whole_system(name, method):
+    """Each method's systems solved whole (one LAPACK solve) and block by block agree."""
+    from mechreport.forces.equations import solve_step, triangular_blocks
+    kin = solve_kinematics(build_mechanism(load_spec(ROOT / "specs" / f"{name}.yaml")))
+    steps = METHODS[method].build_steps(ForceContext(kin))
+    whole: dict[str, np.ndarray] = {}
+    parts: dict[str, np.ndarray] = {}
+    for step in steps:
+        whole.update(solve_step(step, whole, kin.n).values)
+        for block in triangular_blocks(step):
+            parts.update(solve_step(block, parts, kin.n).values)
+    assert whole.keys() == parts.keys()
+    for k in whole:
+        np.testing.assert_allclose(parts[k], whole[k], rtol=1e-11,
+                                   atol=1e-12 * max(np.max(np.abs(whole[k])), 1.0))
+
+
+@pytest.mark.parametrize("m", [1, 2])
+def test_closed_form_small_solves_equal_lapack(m):
+    """1x1 and 2x2 systems are solved by Cramer's rule: same answer and condition estimate
+    as the LAPACK path (3x3 systems padded with an identity row and column), exactly singular
+    ones NaN with an infinite condition number."""
+    from mechreport.linalg import batched_solve_cond
+    rng = np.random.default_rng(7)
+    n = 500
+    A = rng.standard_normal((n, m, m)) * 10.0 ** rng.uniform(-3, 3, (n, m, 1))
+    A[0] = 0.0                                    # exactly singular
+    A[1, :, 0] = 0.0
+    b = rng.standard_normal((n, m))
+    x, cond = batched_solve_cond(A, b)
+    big = np.zeros((n, 3, 3))
+    big[:, :m, :m] = A
+    big[:, m:, m:] = np.eye(3 - m)
+    ref, _ = batched_solve_cond(big, np.concatenate([b, np.zeros((n, 3 - m))], axis=1))
+    ok = np.arange(n) > 1
+    np.testing.assert_allclose(x[ok], ref[ok, :m], rtol=1e-10)
+    assert np.all(np.isinf(cond[:2])) and np.all(np.isnan(x[:2]))
+    assert np.all(np.isfinite(cond[ok]))

@@ -178,3 +178,91 @@ def solve_step(step: Step, known: dict[str, np.ndarray], n: int) -> Solution:
     A, b = step_system(step, known, n)
     x, cond = Equilibrated(A).solve_cond(b[:, 0].T)
     return Solution({u: x[:, i] for i, u in enumerate(step.unknowns)}, cond)
+
+
+def triangular_blocks(step: Step) -> list[Step]:
+    """The step as a chain of smaller square steps, in solving order: the block triangular
+    form of its sparsity pattern (Dulmage-Mendelsohn: a matching of equations to unknowns,
+    then the strongly connected components of "equation i uses the unknown equation j
+    determines", dependencies first). Each block uses only its own unknowns and those of the
+    blocks before it, so solving the blocks in turn (each with the earlier values substituted)
+    solves the whole system; a Newton-Euler system of a chain of dyads splits into the dyads'
+    own systems. The pattern is structural (which unknowns each equation names), the same at
+    every angle. ``[step]`` when it does not split or has no perfect matching (a structurally
+    singular system is left whole, to be reported singular)."""
+    key = (tuple(step.unknowns), tuple(tuple(eq.unknown_names()) for eq in step.equations))
+    order = _BLOCKS.get(key)
+    if order is None:
+        order = _BLOCKS[key] = _block_order(*key)
+    if len(order) <= 1:
+        return [step]
+    return [Step(step.title, [step.unknowns[c] for c in cols],
+                 [step.equations[r] for r in rows], step.bodies) for rows, cols in order]
+
+
+_BLOCKS: dict[tuple, list[tuple[list[int], list[int]]]] = {}   # structure -> block order
+
+
+def _block_order(unknowns: tuple[str, ...], uses: tuple[tuple[str, ...], ...]):
+    """[(equation rows, unknown columns)] per block in solving order; one block when the
+    structure has no perfect matching."""
+    m = len(unknowns)
+    col = {u: j for j, u in enumerate(unknowns)}
+    pattern = [sorted({col[u] for u in names if u in col}) for names in uses]
+    owner = [-1] * m                # unknown column -> the equation row matched to it
+
+    def augment(row: int, seen: set[int]) -> bool:   # Kuhn's augmenting path
+        for c in pattern[row]:
+            if c not in seen:
+                seen.add(c)
+                if owner[c] < 0 or augment(owner[c], seen):
+                    owner[c] = row
+                    return True
+        return False
+    if len(uses) != m or not all(augment(r, set()) for r in range(m)):
+        return [(list(range(len(uses))), list(range(m)))]
+    matched = {owner[c]: c for c in range(m)}       # row -> its column
+    needs = [[owner[c] for c in pattern[r] if c != matched[r]] for r in range(m)]
+    blocks = _strong_components(needs)              # dependencies first (Tarjan)
+    return [(sorted(b), sorted(matched[r] for r in b)) for b in blocks]
+
+
+def _strong_components(edges: list[list[int]]) -> list[list[int]]:
+    """Strongly connected components of the graph ``edges`` (node -> the nodes it needs), each
+    after every component it needs (Tarjan's order). Iterative: no recursion limit."""
+    index: dict[int, int] = {}
+    low: dict[int, int] = {}
+    stack: list[int] = []
+    on_stack: set[int] = set()
+    out: list[list[int]] = []
+    for root in range(len(edges)):
+        if root in index:
+            continue
+        work = [(root, 0)]
+        while work:
+            node, i = work.pop()
+            if i == 0:
+                index[node] = low[node] = len(index)
+                stack.append(node)
+                on_stack.add(node)
+            if i < len(edges[node]):
+                work.append((node, i + 1))
+                nxt = edges[node][i]
+                if nxt not in index:
+                    work.append((nxt, 0))
+                elif nxt in on_stack:
+                    low[node] = min(low[node], index[nxt])
+                continue
+            for nxt in edges[node]:
+                if nxt in on_stack:
+                    low[node] = min(low[node], low[nxt])
+            if low[node] == index[node]:
+                comp = []
+                while True:
+                    w = stack.pop()
+                    on_stack.discard(w)
+                    comp.append(w)
+                    if w == node:
+                        break
+                out.append(comp)
+    return out

@@ -178,13 +178,14 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
 
 
 def run_steps(method: str, ctx, steps) -> ForceResult:
-    """Solve ``steps`` in order, each with the values found by those before it."""
-    from .equations import solve_step
+    """Solve ``steps`` in order, each with the values found by those before it, block by
+    block (``triangular_blocks``); the condition number is the product of the blocks'."""
+    from .equations import solve_step, triangular_blocks
     known: dict[str, np.ndarray] = {}
     singular = np.zeros(ctx.n, bool)
     cond = np.ones(ctx.n)
-    for step in steps:
-        sol = solve_step(step, known, ctx.n)
+    for block in (b for step in steps for b in triangular_blocks(step)):
+        sol = solve_step(block, known, ctx.n)
         known.update(sol.values)
         singular |= sol.singular
         with np.errstate(over="ignore", invalid="ignore"):

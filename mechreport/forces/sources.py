@@ -10,7 +10,7 @@ import numpy as np
 
 from ..linalg import Equilibrated
 from .context import ForceContext
-from .equations import Action, step_system
+from .equations import Action, step_system, triangular_blocks
 from .result import ForceResult
 
 INERTIA, GRAVITY = "inertia", "gravity"
@@ -44,7 +44,7 @@ def split_by_source(ctx: ForceContext, res: ForceResult) -> dict[str, dict[str, 
     def column(t) -> int | None:
         src = source_of(t.action, names)
         return None if src is None else col[src]
-    for step in res.steps:
+    for step in (b for s in res.steps for b in triangular_blocks(s)):
         A, b = step_system(step, known, ctx.n, len(sources), column)
         X = Equilibrated(A).solve_many(b.transpose(2, 0, 1))     # (n, m, S)
         for i, u in enumerate(step.unknowns):
