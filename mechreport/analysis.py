@@ -67,6 +67,15 @@ class Analysis:
                                                          reference_method(self.forces)])
 
     @property
+    def n(self) -> int:
+        """Angles analysed (those left out are in ``flags``)."""
+        return self.kinematics.n
+
+    def notes(self) -> list[str]:
+        """What a reader must know before the numbers (see ``Kinematics.notes``)."""
+        return self.kinematics.notes()
+
+    @property
     def worst(self) -> Agreement | None:
         return self.agreement[0] if self.agreement else None
 
@@ -88,25 +97,36 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> 
     if not isinstance(spec, Spec):
         spec = load_spec(spec)
     mech = build_mechanism(spec)
-    kin = _require_angles(solve_kinematics(mech))
-    ctx = ForceContext(kin)                 # one per kinematics: its loads evaluated once
-    _require_finite_inputs(ctx)
-    forces = solve_forces(kin, methods, ctx)
-    extra = _force_flags(kin, forces)
-    if extra:
-        bad = np.isin(np.round(kin.angles, 9), np.round([f.angle for f in extra], 9))
-        kin = _require_angles(kin.take(~bad, tuple(sorted(kin.flags + tuple(extra),
-                                                            key=lambda f: f.angle))))
-        memo, ctx = ctx.memo, ForceContext(kin)
-        ctx.memo = memo                     # the same equations as the numbers came from
-        forces = {name: res.take(~bad, ctx) for name, res in forces.items()}
-    _require_finite(kin, forces)
+    kin, ctx, forces = solve_trusted(_require_angles(solve_kinematics(mech)), methods)
+    kin = _require_angles(kin)
     rev, why = design_review(kin, forces, ctx.loads)
     values = rev.values if rev is not None else None
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces),
                     residuals(ctx, forces),
                     check_expectations(kin, forces, kin.flags, values, why), tol, rev, why,
                     tuple(verdicts(spec.design, values, why)))
+
+
+def solve_trusted(kin: Kinematics, methods=None, memo: dict | None = None,
+                  ) -> tuple[Kinematics, ForceContext, dict[str, ForceResult]]:
+    """Every method's forces over ``kin``, with the angles where a method cannot be trusted
+    flagged and left out of the kinematics and of every result (see :func:`_force_flags`).
+    Raises ``AnalysisError`` where an input or a result is not a finite number. ``memo``:
+    choices shared with other parts of the same sweep (the contour method's plan)."""
+    ctx = ForceContext(kin)                 # one per kinematics: its loads evaluated once
+    if memo is not None:
+        ctx.memo = memo
+    _require_finite_inputs(ctx)
+    forces = solve_forces(kin, methods, ctx)
+    extra = _force_flags(kin, forces)
+    if extra:
+        bad = np.isin(np.round(kin.angles, 9), np.round([f.angle for f in extra], 9))
+        kin = kin.take(~bad, tuple(sorted(kin.flags + tuple(extra), key=lambda f: f.angle)))
+        memo, ctx = ctx.memo, ForceContext(kin)
+        ctx.memo = memo                     # the same equations as the numbers came from
+        forces = {name: res.take(~bad, ctx) for name, res in forces.items()}
+    _require_finite(kin, forces)
+    return kin, ctx, forces
 
 
 def _force_flags(kin: Kinematics, forces: dict[str, ForceResult]) -> list[Flag]:
@@ -156,14 +176,18 @@ def _require_angles(kin: Kinematics) -> Kinematics:
     """``kin`` if it has at least one angle; else an error saying why every angle was lost."""
     if kin.n:
         return kin
-    spec = kin.mechanism.spec
+    raise no_angle_error(kin.mechanism.spec, kin.flags)
+
+
+def no_angle_error(spec: Spec, flags) -> AnalysisError:
+    """The error of a sweep that lost every angle, saying why (the first three reasons)."""
     kinds: dict[str, list[float]] = {}
-    for f in kin.flags:
+    for f in flags:
         kinds.setdefault(f.reason, []).append(f.angle)
     why = "; ".join(f"{reason} ({_angles(a, spec.axis_unit)})"
                     for reason, a in list(kinds.items())[:3])
     more = f"; and {len(kinds) - 3} more reason(s)" if len(kinds) > 3 else ""
-    raise AnalysisError(f"{spec.file}: no angle of the sweep can be analysed: {why}{more}")
+    return AnalysisError(f"{spec.file}: no angle of the sweep can be analysed: {why}{more}")
 
 
 def _angles(angles: list[float], unit: str = "deg") -> str:

@@ -37,20 +37,40 @@ class Agreement:
 
 def agreement(results: dict[str, ForceResult]) -> list[Agreement]:
     """One entry per quantity computed by at least two methods, worst first."""
+    return finish(spreads(results))
+
+
+@dataclass(frozen=True)
+class Spread:
+    """One quantity over some angles: its largest spread between methods ``spread`` (inf or
+    NaN where a method's value is not finite) at ``angle`` between ``methods``, and its
+    largest magnitude ``top``; what a long sweep keeps of each chunk (see :func:`merge`)."""
+
+    spread: float
+    methods: tuple[str, str]
+    angle: float
+    top: float
+    n_methods: int
+
+
+Spreads = dict   # quantity -> Spread (n_methods 1: only its magnitude counts)
+
+
+def spreads(results: dict[str, ForceResult]) -> Spreads:
+    """Each quantity's :class:`Spread` over the results' angles."""
     by_q: dict[str, dict[str, np.ndarray]] = {}
     for name, res in results.items():
         for q, values in res.values().items():
             by_q.setdefault(q, {})[name] = values
-    kind_scale: dict[str, float] = {}
+    angles = next(iter(results.values())).angles if results else np.zeros(0)
+    out: Spreads = {}
     for q, per in by_q.items():
-        top = max(float(np.max(np.abs(v), initial=0.0)) for v in per.values())
-        kind_scale[_kind(q)] = max(kind_scale.get(_kind(q), 0.0), top)
-    out = []
-    for q, per in by_q.items():
-        if len(per) < 2:
-            continue
         names = list(per)
         stack = np.stack([per[m] for m in names])          # (methods, n)
+        top = float(np.max(np.abs(stack), initial=0.0))
+        if len(per) < 2:                # its magnitude still sets its kind's scale
+            out[q] = Spread(0.0, (names[0], names[0]), 0.0, top, 1)
+            continue
         if stack.shape[1] == 0:
             continue
         hi, lo = np.argmax(stack, axis=0), np.argmin(stack, axis=0)
@@ -58,12 +78,41 @@ def agreement(results: dict[str, ForceResult]) -> list[Agreement]:
         finite = np.isfinite(spread)
         # a NaN never agrees: it is the worst disagreement there is, not none
         k = int(np.argmax(spread)) if finite.all() else int(np.flatnonzero(~finite)[0])
-        scale = max(float(np.max(np.abs(stack))), SCALE_FLOOR * kind_scale[_kind(q)])
-        if not (finite[k] and np.isfinite(scale)):
+        pair = (names[hi[k]], names[lo[k]]) if spread[k] > 0 else (names[0], names[1])
+        out[q] = Spread(float(spread[k]), pair, float(angles[k]), top, len(names))
+    return out
+
+
+def merge(a: Spreads, b: Spreads) -> Spreads:
+    """The spreads of two sets of angles together (``a``'s angles first: on a tie, and for
+    the first value that is not finite, ``a``'s entry is kept)."""
+    out = dict(a)
+    for q, s in b.items():
+        if q not in out:
+            out[q] = s
+            continue
+        r = out[q]
+        bad_s, bad_r = not np.isfinite(s.spread), not np.isfinite(r.spread)
+        worse = (bad_s and not bad_r) or (not bad_s and not bad_r and s.spread > r.spread)
+        keep = s if worse else r
+        out[q] = Spread(keep.spread, keep.methods, keep.angle, max(r.top, s.top),
+                        max(r.n_methods, s.n_methods))
+    return out
+
+
+def finish(parts: Spreads) -> list[Agreement]:
+    """The agreement table from the spreads over the whole sweep, worst first."""
+    kind_scale: dict[str, float] = {}
+    for q, s in parts.items():
+        kind_scale[_kind(q)] = max(kind_scale.get(_kind(q), 0.0), s.top)
+    out = []
+    for q, s in parts.items():
+        if s.n_methods < 2:
+            continue
+        scale = max(s.top, SCALE_FLOOR * kind_scale[_kind(q)])
+        if not (np.isfinite(s.spread) and np.isfinite(scale)):
             rel = float("inf")
         else:
-            rel = float(spread[k] / scale) if scale > 0 else 0.0
-        angle = float(next(iter(results.values())).angles[k])
-        pair = (names[hi[k]], names[lo[k]]) if spread[k] > 0 else (names[0], names[1])
-        out.append(Agreement(q, rel, float(spread[k]), pair, angle, len(names)))
+            rel = float(s.spread / scale) if scale > 0 else 0.0
+        out.append(Agreement(q, rel, s.spread, s.methods, s.angle, s.n_methods))
     return sorted(out, key=lambda a: -a.relative)

@@ -44,34 +44,45 @@ def check_expectations(kin: Kinematics, results: dict[str, ForceResult], flags,
     spec = kin.mechanism.spec
     for e in spec.expect:
         if e.angle is None:
-            out.append(_check_cycle(e, cycle, cycle_why))
+            out.append(check_cycle(e, cycle, cycle_why))
             continue
         k = kin.index_of(e.angle)
-        if k is None:
-            why = next((f.reason for f in flags if abs(f.angle - e.angle) < 1e-9),
-                       "not analysed")
-            out.append(ExpectationResult(e, "-", None, False,
-                                         f"{spec.driver.coordinate} {e.angle:g} {spec.axis_unit} is left "
-                                         f"out: {why}"))
+        out += left_out(e, spec, flags) if k is None else at_angle(e, kin, results, k)
+    return out
+
+
+def left_out(e: Expectation, spec, flags) -> list[ExpectationResult]:
+    """The failed result of an expectation whose angle has no result (and why)."""
+    why = next((f.reason for f in flags if abs(f.angle - e.angle) < 1e-9), "not analysed")
+    return [ExpectationResult(e, "-", None, False,
+                              f"{spec.driver.coordinate} {e.angle:g} {spec.axis_unit} is left "
+                              f"out: {why}")]
+
+
+def at_angle(e: Expectation, kin: Kinematics, results: dict[str, ForceResult],
+             k: int) -> list[ExpectationResult]:
+    """An instantaneous expectation checked at row ``k`` of ``kin``: against the kinematics,
+    or against every force method that computes its quantity."""
+    spec = kin.mechanism.spec
+    if e.quantity.startswith(("point.", "link.")):
+        sources = {"kinematics": kinematic_value(kin, e.quantity, k)}
+    else:
+        sources = {}
+        for name, res in results.items():
+            values = res.quantity(e.quantity)
+            if values is not None:
+                sources[name] = float(values[k])
+    out = []
+    for source, got in sources.items():
+        if not np.isfinite(got):
+            out.append(ExpectationResult(e, source, None, False,
+                                         f"{e.quantity} is undefined at {e.angle:g} "
+                                         f"{spec.axis_unit}"))
             continue
-        if e.quantity.startswith(("point.", "link.")):
-            sources = {"kinematics": kinematic_value(kin, e.quantity, k)}
-        else:
-            sources = {}
-            for name, res in results.items():
-                values = res.quantity(e.quantity)
-                if values is not None:
-                    sources[name] = float(values[k])
-        for source, got in sources.items():
-            if not np.isfinite(got):
-                out.append(ExpectationResult(e, source, None, False,
-                                             f"{e.quantity} is undefined at {e.angle:g} "
-                                             f"{spec.axis_unit}"))
-                continue
-            ok = abs(got - e.value) <= e.tol
-            msg = "" if ok else (f"{e.quantity} at {e.angle:g} {spec.axis_unit}: expected {e.value:.10g} "
-                                 f"± {e.tol:.2g}, got {got:.10g} ({source})")
-            out.append(ExpectationResult(e, source, got, ok, msg))
+        ok = abs(got - e.value) <= e.tol
+        msg = "" if ok else (f"{e.quantity} at {e.angle:g} {spec.axis_unit}: expected "
+                             f"{e.value:.10g} ± {e.tol:.2g}, got {got:.10g} ({source})")
+        out.append(ExpectationResult(e, source, got, ok, msg))
     return out
 
 
@@ -86,7 +97,7 @@ def cycle_value(cycle: dict[str, float] | None, quantity: str,
     return got, ""
 
 
-def _check_cycle(e: Expectation, cycle: dict[str, float] | None, why: str) -> ExpectationResult:
+def check_cycle(e: Expectation, cycle: dict[str, float] | None, why: str) -> ExpectationResult:
     got, undefined = cycle_value(cycle, e.quantity, why)
     if got is None:
         return ExpectationResult(e, "cycle", None, False, undefined)

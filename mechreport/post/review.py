@@ -17,6 +17,7 @@ from .cycle import Cycle, CycleUndefined, cycle_of
 from .frame import frame_load, inertia_force, reference_method
 from .transmission import transmission_angles
 
+
 @dataclass(frozen=True)
 class Review:
     """Cycle quantities of one analysis. ``values`` by quantity name [SI; the units are in
@@ -47,18 +48,64 @@ def review(analysis, speed_fluctuation: float | None = None,
                      ratings)
 
 
+@dataclass(frozen=True)
+class Traces:
+    """What the cycle review reads, over the analysed ``angles`` (n,) [deg], from the
+    reference ``method``: the driver ``torque`` (n,) [N m or N], the frame load ``frame``
+    (n, 3) (fx, fy [N], m [N m]), the inertial force ``inertial`` (n, 2) [N] (sum of m a_C),
+    each dyad's ``transmission`` angle (n,) [deg] and each joint's reaction magnitude
+    ``reactions`` (n,) [N]. A long sweep's traces are computed chunk by chunk and joined."""
+
+    method: str
+    angles: np.ndarray
+    torque: np.ndarray
+    frame: np.ndarray
+    inertial: np.ndarray
+    transmission: dict[str, np.ndarray]
+    reactions: dict[str, np.ndarray]
+
+    @staticmethod
+    def join(parts: "list[Traces]") -> "Traces":
+        """The traces of consecutive chunks as one (angles in the parts' order)."""
+        cat = np.concatenate
+        first = parts[0]
+        return Traces(first.method, cat([p.angles for p in parts]),
+                      cat([p.torque for p in parts]), cat([p.frame for p in parts]),
+                      cat([p.inertial for p in parts]),
+                      {k: cat([p.transmission[k] for p in parts]) for k in first.transmission},
+                      {k: cat([p.reactions[k] for p in parts]) for k in first.reactions})
+
+
+def traces_of(kin, forces, loads) -> Traces:
+    """The review's traces (see :class:`Traces`) of one kinematics and its force results."""
+    method = reference_method(forces)
+    res = forces[method]
+    frame = frame_load(kin, res, loads)
+    return Traces(method, kin.angles, np.asarray(res.driver_torque, float),
+                  np.stack([frame.fx, frame.fy, frame.m], axis=1), inertia_force(kin),
+                  transmission_angles(kin),
+                  {name: r.f for name, r in res.reactions.items()})
+
+
 def review_of(kin, forces, loads, speed_fluctuation: float | None = None,
               ratings: dict[str, float] | None = None) -> Review:
     """:func:`review` from its parts: the kinematics, the force results by method and the
     evaluated loads."""
-    spec = kin.mechanism.spec
     motion = kin.motion
-    cyc = cycle_of(spec, kin.angles, motion is None or motion.full, kin.turn_problem)
-    method = reference_method(forces)
-    res = forces[method]
+    return review_from(traces_of(kin, forces, loads), kin.mechanism.spec,
+                       motion is None or motion.full, kin.turn_problem, speed_fluctuation,
+                       ratings)
+
+
+def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = "",
+                speed_fluctuation: float | None = None,
+                ratings: dict[str, float] | None = None) -> Review:
+    """The cycle quantities from a sweep's traces (``reachable``: the crank turns fully;
+    ``turn_problem``: why the motion does not repeat every turn, or "")."""
+    cyc = cycle_of(spec, tr.angles, reachable, turn_problem)
     omega = spec.driver.omega
-    sample = lambda v: cyc.sample(v, kin.angles)   # noqa: E731 - one-line adapter
-    torque = sample(res.driver_torque)
+    sample = lambda v: cyc.sample(v, tr.angles)   # noqa: E731 - one-line adapter
+    torque = sample(tr.torque)
     mean = float(np.mean(torque))
     energy = cyc.integral(torque - mean)
     values = {
@@ -70,19 +117,18 @@ def review_of(kin, forces, loads, speed_fluctuation: float | None = None,
     if speed_fluctuation:
         values["cycle.flywheel_inertia"] = (values["cycle.energy_fluctuation"]
                                             / (speed_fluctuation * omega ** 2))
-    frame = frame_load(kin, res, loads)
-    shaking = sample(np.stack([frame.fx, frame.fy], axis=1))
+    shaking = sample(tr.frame[:, :2])
     f = np.hypot(shaking[:, 0], shaking[:, 1])
-    if res.reactions:     # the shaking force is the ground joints' reactions: none, no value
+    if tr.reactions:     # the shaking force is the ground joints' reactions: none, no value
         values["cycle.shaking.force_max"] = float(np.max(f))
         values["cycle.shaking.force_rms"] = cyc.rms(f)
-        values["cycle.shaking.moment_max"] = float(np.max(np.abs(sample(frame.m))))
-    angles = {label: sample(ta) for label, ta in transmission_angles(kin).items()}
+        values["cycle.shaking.moment_max"] = float(np.max(np.abs(sample(tr.frame[:, 2]))))
+    angles = {label: sample(ta) for label, ta in tr.transmission.items()}
     if angles:
         pooled = np.concatenate(list(angles.values()))
         values["cycle.transmission_angle.min"] = float(np.min(pooled))
         values["cycle.transmission_angle.max"] = float(np.max(pooled))
-    inertial = sample(inertia_force(kin))
+    inertial = sample(tr.inertial)
     crank = np.radians(cyc.angles)    # a crank's x-axis angle is the cycle's crank angle
     cw = counterweight(inertial, crank, omega, spec.driver.alpha)
     values["cycle.inertia_shaking.force_rms"] = cw.rms_before
@@ -92,16 +138,16 @@ def review_of(kin, forces, loads, speed_fluctuation: float | None = None,
     balanced = cw.balanced
     rpm = abs(omega) * 30.0 / np.pi
     bearings = {}
-    for name, r in res.reactions.items():
+    for name, magnitude in tr.reactions.items():
         rating = (ratings or {}).get(name)
-        b = bearing_load(sample(r.f), rating, rpm)
+        b = bearing_load(sample(magnitude), rating, rpm)
         bearings[name] = b
         values[f"joint.{name}.f_max"] = b.f_max
         values[f"joint.{name}.f_mean"] = b.f_mean
         values[f"joint.{name}.f_equivalent"] = b.f_equivalent
         if b.life_h is not None:
             values[f"joint.{name}.life_h"] = b.life_h
-    return Review(cyc, method, values, torque, energy, bearings, angles, cw, shaking,
+    return Review(cyc, tr.method, values, torque, energy, bearings, angles, cw, shaking,
                   inertial, balanced)
 
 
@@ -111,8 +157,19 @@ def design_review(kin, forces, loads) -> tuple[Review | None, str]:
     spec = kin.mechanism.spec
     if spec.cycle_problem() is not None:
         return None, spec.cycle_problem()
+    motion = kin.motion
+    return design_review_from(traces_of(kin, forces, loads), spec,
+                              motion is None or motion.full, kin.turn_problem)
+
+
+def design_review_from(tr: Traces, spec, reachable: bool = True,
+                       turn_problem: str = "") -> tuple[Review | None, str]:
+    """:func:`design_review` from a sweep's traces (a long sweep's, joined chunk by chunk)."""
+    if spec.cycle_problem() is not None:
+        return None, spec.cycle_problem()
     ratings = {j: b.rating for j, b in spec.design.bearings.items()}
     try:
-        return review_of(kin, forces, loads, spec.design.speed_fluctuation, ratings), ""
+        return review_from(tr, spec, reachable, turn_problem, spec.design.speed_fluctuation,
+                           ratings), ""
     except CycleUndefined as exc:
         return None, str(exc).split(": ", 1)[-1]
