@@ -80,14 +80,14 @@ class Equilibrated:
             return np.zeros((n, 0)), np.ones(n)
         rhs = np.empty((m, 3, n))
         rhs[:, 0, :] = b.T / self.rs
-        rhs[:, 1:, :] = _PROBES[:m, :, None]
+        rhs[:, 1:, :] = PROBES[:m, :, None]
         overflow = self.overflow | ~np.isfinite(rhs[:, 0, :]).all(axis=0)
         rhs[:, 0, overflow] = 0.0
         y = self._solve(rhs)
         y[:, :, overflow] = np.inf
         with np.errstate(over="ignore", invalid="ignore"):
             probe = np.sqrt(np.einsum("ikn,ikn->kn", y[:, 1:], y[:, 1:])) \
-                / _PROBE_NORMS[m][:, None]
+                / PROBE_NORMS[m][:, None]
             cond = np.sqrt(np.einsum("ijn,ijn->n", self.As, self.As)) * np.max(probe, axis=0)
             x = y[:, 0, :] / self.cs
         cond[~np.isfinite(cond)] = np.inf
@@ -137,5 +137,5 @@ def batched_solve_cond(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.nda
     return Equilibrated(angle_last(A)).solve_cond(b)
 
 
-_PROBES = np.random.default_rng(20261121).standard_normal((64, 2))
-_PROBE_NORMS = {m: np.sqrt(np.sum(_PROBES[:m] ** 2, axis=0)) for m in range(1, 65)}
+PROBES = np.random.default_rng(20261121).standard_normal((64, 2))
+PROBE_NORMS = {m: np.sqrt(np.sum(PROBES[:m] ** 2, axis=0)) for m in range(1, 65)}

@@ -11,14 +11,15 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import AssemblyError
-from ..linalg import SINGULAR_COND, Equilibrated, angle_last
+from ..linalg import SINGULAR_COND, Equilibrated
 from ..model import Mechanism
 from ..spec import GROUND
-from .frames import perp, rotate
+from .dyadsolve import DyadSystem
+from .frames import LinkFrames, Trig, perp, rotate
 from .constraints import mechanism_size
-from .groups import gamma, row_scale, solve_newton_group, velocity_system
+from .groups import RateEquations, row_scale, solve_newton_group
 from .path import SweepPath, sweep_path
-from .position import BranchChoice, dyad_candidates, track_branches
+from .position import BranchChoice, dyad_candidates, signature, track_branches
 from .result import Flag, Kinematics, Motion, PointState, motion_of
 
 TRUST_RTOL = 1e-6   # every reported value must be trustworthy to this relative accuracy
@@ -53,8 +54,19 @@ def _solve(mech: Mechanism, phi_deg: np.ndarray) -> Kinematics:
     path = sweep_path(spec, phi_deg, spec.at[0])
     r, th, branches, motion = _positions(mech, path)
     idx = path.analysed
-    r = {k: x[idx] for k, x in r.items()}
-    th = {k: x[idx] for k, x in th.items()}
+    if len(idx) < len(path.angles):     # else every solved angle is analysed, in order
+        r = {k: x[idx] for k, x in r.items()}
+        th = {k: x[idx] for k, x in th.items()}
+    return finish(mech, phi_deg, r, th, branches, motion)
+
+
+def finish(mech: Mechanism, phi_deg: np.ndarray, r: dict, th: dict, branches, motion: Motion
+           ) -> Kinematics:
+    """The kinematics at the analysed angles ``phi_deg`` (n,) [deg] from the poses there
+    (origins r (n, 2) [m] and angles theta (n,) [rad] by link name, NaN where not reached):
+    velocities, accelerations, their estimated error and the angles left out (unreachable,
+    cannot close, singular, near-singular), with the sweep's ``branches`` and ``motion``."""
+    spec = mech.spec
     problems: dict[int, tuple[str, str]] = {}   # angle index -> (kind, why it is left out)
     for k in np.flatnonzero(~np.isfinite(r[spec.links[-1].name][:, 0])):
         problems[int(k)] = _unreached(motion, float(phi_deg[k]), mech, r, int(k))
@@ -71,7 +83,8 @@ def _solve(mech: Mechanism, phi_deg: np.ndarray) -> Kinematics:
     order = [GROUND] + [l.name for l in spec.links]
 
     def stack(d):
-        return np.stack([d[k] for k in order], axis=1)[keep]
+        out = np.stack([d[k] for k in order], axis=1)
+        return out if not problems else out[keep]
 
     flags = tuple(Flag(float(phi_deg[k]), why, kind) for k, (kind, why) in sorted(problems.items()))
     return Kinematics(mech, phi_deg[keep], stack(r), stack(th), stack(v), stack(w), stack(acc),
@@ -127,14 +140,11 @@ def _positions(mech: Mechanism, path: SweepPath):
             chosen = driver_pose(spec, value)
         elif group.dyad is not None:
             dyad = group.dyad
-            cands = dyad_candidates(spec, dyad, known)
-            if not all(np.all(np.isfinite(c[link][0][path.ref])) for c in cands
-                       for link in dyad.links):
-                raise AssemblyError(
-                    f"{spec.file}: the dyad {dyad.label} ({', '.join(dyad.links)}) cannot "
-                    f"close at the first reference angle {spec.at[0]:g} {spec.axis_unit}; "
-                    "check link lengths and `at`")
-            chosen, choice, runs = track_branches(spec, dyad, cands, path, runs)
+            trig = Trig()      # the candidates' cos and sin, for their signatures too
+            cands = dyad_candidates(spec, dyad, known, trig)
+            require_closes_at_ref(spec, dyad, cands, path.ref)
+            sig = [signature(spec, dyad.links, c, trig) for c in cands]
+            chosen, choice, runs = track_branches(spec, dyad, cands, path, runs, sig)
             branches.append(choice)
         else:
             chosen, choice, runs = solve_newton_group(spec, group, known, path, runs, value,
@@ -143,6 +153,16 @@ def _positions(mech: Mechanism, path: SweepPath):
         for link, (rr, tt) in chosen.items():
             r[link], th[link] = rr, tt
     return r, th, branches, motion_of(path, runs, spec.driver.omega, spec.axis_unit)
+
+
+def require_closes_at_ref(spec, dyad, cands: list, ref: int) -> None:
+    """Raise ``AssemblyError`` unless every candidate pose of ``dyad`` is solved at index
+    ``ref`` (the first reference angle)."""
+    if not all(np.all(np.isfinite(c[link][0][ref])) for c in cands for link in dyad.links):
+        raise AssemblyError(
+            f"{spec.file}: the dyad {dyad.label} ({', '.join(dyad.links)}) cannot close at "
+            f"the first reference angle {spec.at[0]:g} {spec.axis_unit}; check link lengths "
+            "and `at`")
 
 
 def driver_rates(spec, value: np.ndarray):
@@ -227,8 +247,11 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
     zeros2 = np.zeros((n, 2))
     v, w, acc, al = {GROUND: zeros2}, {GROUND: np.zeros(n)}, {GROUND: zeros2}, {GROUND: np.zeros(n)}
     finite = np.all(np.isfinite(np.stack([r[k][:, 0] for k in r])), axis=0)
-    safe_th = {k: np.where(finite, t, 0.0) for k, t in th.items()}
-    safe_r = {k: np.where(finite[:, None], x, 0.0) for k, x in r.items()}
+    if finite.all():
+        frames = LinkFrames(r, th)
+    else:   # poses not reached: any finite stand-in (their rates are not reported)
+        frames = LinkFrames({k: np.where(finite[:, None], x, 0.0) for k, x in r.items()},
+                            {k: np.where(finite, t, 0.0) for k, t in th.items()})
     conds: list[tuple[str, np.ndarray]] = []
     size = _newton_scale(mech)
     for group in mech.groups:
@@ -237,48 +260,60 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
             link = group.links[0]
             v[link], w[link], acc[link], al[link] = driver_rates(spec, value)
             continue
-        A, known, drow = velocity_system(spec, group, safe_r, safe_th)
-        b_v = -_known_part(known, v, w, (n, A.shape[1]))
-        if drow is not None:
-            b_v[:, drow] += spec.driver.omega
-        # a Newton group's system made dimensionless (angle rows as lengths, x and y columns
-        # times the mechanism's size): the same solution, a condition number independent of
-        # the mechanism's size (dyads keep the form their error estimate was calibrated in)
-        newton = group.dyad is None and len(group.links) > 1
-        rs = row_scale(spec, group, size) if newton else np.ones(A.shape[1])
-        cs = np.tile([size, size, 1.0], len(group.links)) if newton else np.ones(A.shape[1])
-        A = A * rs[:, None] * cs            # dimensionless: x = cs * (solution)
-        b_v = b_v * rs
-        system = Equilibrated(angle_last(A))   # equilibrated once, for both solves
-        x, cond = system.solve_cond(b_v)
-        x = x * cs
-        sing = ~(cond < SINGULAR_COND)
-        conds.append((f"{group.kind} {group.label}", np.where(finite, cond, np.inf)))
-        for k in np.flatnonzero(sing & finite):
-            problems.setdefault(int(k), ("singular", f"{group.kind} {group.label}: velocity "
-                                                     "equations singular"))
-        x = np.where(sing[:, None], 0.0, x)
-        for i, link in enumerate(group.links):
-            v[link], w[link] = x[:, 3 * i:3 * i + 2], x[:, 3 * i + 2]
-        b_a = gamma(spec, group, safe_r, safe_th, v, w) - _known_part(known, acc, al,
-                                                                     (n, A.shape[1]))
-        if drow is not None:
-            b_a[:, drow] += spec.driver.alpha
-        x = system.solve(b_a * rs)
-        x = x * cs
-        x = np.where(sing[:, None], 0.0, x)
-        for i, link in enumerate(group.links):
-            acc[link], al[link] = x[:, 3 * i:3 * i + 2], x[:, 3 * i + 2]
+        label = f"{group.kind} {group.label}"
+        cond = _group_rates(spec, group, frames, size, (v, w), (acc, al))
+        conds.append((label, np.where(finite, cond, np.inf)))
+        for k in np.flatnonzero(~(cond < SINGULAR_COND) & finite):
+            problems.setdefault(int(k), ("singular", f"{label}: velocity equations singular"))
     return v, w, acc, al, conds
 
 
-def _known_part(known: list, lin: dict, ang: dict, shape: tuple[int, int]) -> np.ndarray:
-    """J_known qdot_known (or qddot): the known links' blocks times their rates (n, rows)."""
-    out = np.zeros(shape)
-    for rows, link, blk in known:
-        q = np.concatenate([lin[link], ang[link][:, None]], axis=1)
-        out[:, rows] += np.einsum("nij,nj->ni", blk, q)
-    return out
+def _group_rates(spec, group, frames: LinkFrames, size: float, vel: tuple[dict, dict],
+                 accel: tuple[dict, dict]) -> np.ndarray:
+    """Solve one group's velocities and accelerations into ``vel`` (v (n, 2) [m/s], omega
+    (n,) [rad/s] by link) and ``accel`` ([m/s^2], [rad/s^2]), zero where its velocity system
+    is singular; returns its condition numbers (n,)."""
+    eqs = RateEquations(spec, group, frames)
+    system, rs, cs = _rate_system(spec, group, eqs, size)
+    b_v = eqs.known_part(*vel)
+    np.negative(b_v, out=b_v)
+    if eqs.drow is not None:
+        b_v[eqs.drow] += spec.driver.omega
+    x, cond = system.solve_cond(_scaled(b_v, rs).T)
+    x = _scaled(x, cs)
+    sing = ~(cond < SINGULAR_COND)
+    x[sing] = 0.0
+    for i, link in enumerate(group.links):
+        vel[0][link], vel[1][link] = x[:, 3 * i:3 * i + 2], x[:, 3 * i + 2]
+    b_a = eqs.gamma(*vel)
+    b_a -= eqs.known_part(*accel)
+    if eqs.drow is not None:
+        b_a[eqs.drow] += spec.driver.alpha
+    x = _scaled(system.solve(_scaled(b_a, rs).T), cs)
+    x[sing] = 0.0
+    for i, link in enumerate(group.links):
+        accel[0][link], accel[1][link] = x[:, 3 * i:3 * i + 2], x[:, 3 * i + 2]
+    return cond
+
+
+def _scaled(x: np.ndarray, factors: np.ndarray | None) -> np.ndarray:
+    """``x`` times ``factors`` (broadcast), or ``x`` itself without them."""
+    return x if factors is None else x * factors
+
+
+def _rate_system(spec, group, eqs: RateEquations, size: float):
+    """The group's velocity matrices (3k, 3k, n) equilibrated once, for both solves, and the
+    row and column factors (rs (3k, 1), cs (3k,); None for none) its right-hand sides and
+    solutions take: a dyad's in its own form (its error estimate was calibrated in it), solved
+    through its structure (:class:`DyadSystem`); a Newton group's made dimensionless (angle
+    rows as lengths, x and y columns times the mechanism's size ``size``): the same solution,
+    a condition number independent of the mechanism's size."""
+    if group.dyad is not None:
+        return DyadSystem(eqs), None, None
+    rs = row_scale(spec, group, size)
+    cs = np.tile([size, size, 1.0], len(group.links))
+    A = eqs.matrix() * rs[:, None, None] * cs[:, None]   # dimensionless: x = cs * (solution)
+    return Equilibrated(A), rs[:, None], cs
 
 
 __all__ = ["solve_kinematics", "Kinematics", "PointState", "Flag", "BranchChoice", "Motion",

@@ -21,8 +21,8 @@ from ..errors import AssemblyError
 from ..linalg import batched_solve_cond
 from ..model import Group
 from ..spec import GROUND, Spec
-from .constraints import wrap_angle, driver_row, joint_blocks, joint_residual
-from .frames import rotate
+from .constraints import driver_row, geometry, joint_residual, wrap_angle
+from .frames import LinkFrames, rotate
 from .path import SweepPath
 from .position import BranchChoice, Poses, first_false, point_global, signature
 
@@ -30,10 +30,6 @@ STARTS = 96          # starting poses for the assembly at the first reference an
 NEWTON_STEPS = 40    # iterations per solve at most
 CHUNK_MAX = 64       # angles per continuation chunk at most
 COARSE = 360         # samples of a run followed one chunk after another; the rest at once
-
-
-def rows(group: Group, driver: str) -> int:
-    return sum(3 if j.name == driver else 2 for j in group.joints)
 
 
 def row_scale(spec: Spec, group: Group, scale: float) -> np.ndarray:
@@ -53,73 +49,94 @@ def equations(spec: Spec, group: Group, r: dict, th: dict, value=None, scale: fl
     """Residual F (n, 3k) and Jacobian J (n, 3k, 3k) of the group at poses ``r``, ``th``
     (dicts over every link, (n, 2) and (n,)); ``value`` (n,) the driven coordinate [rad or m]
     when the group holds the driver. Angle rows are multiplied by ``scale`` (``row_scale``)."""
+    frames = LinkFrames(r, th)
     links = group.links
     col = {l: 3 * i for i, l in enumerate(links)}
-    n = next(iter(th.values())).shape[0]
+    n = frames.n
     m = 3 * len(links)
     F, J = np.zeros((n, m)), np.zeros((n, m, m))
     row = 0
     for joint in group.joints:
-        F[:, row:row + 2] = joint_residual(spec, joint, r, th)
-        blocks, _ = joint_blocks(spec, joint, r, th)
-        for link, blk in blocks.items():
-            if link in col:
-                J[:, row:row + 2, col[link]:col[link] + 3] = blk
+        F[:, row:row + 2] = joint_residual(spec, joint, frames)
+        geometry(spec, joint, frames).write_blocks(
+            {l: J[:, row:row + 2, col[l]:col[l] + 3].transpose(1, 2, 0)
+             for l in joint.links if l in col})
         row += 2
         if joint.name == group.driver:
-            now, dblocks, _ = driver_row(spec, r, th)
+            now, dblocks, _ = driver_row(spec, frames)
             gap = now - value
             F[:, row] = wrap_angle(gap) if spec.driver.kind == "R" else gap
             for link, blk in dblocks.items():
                 if link in col:
-                    J[:, row, col[link]:col[link] + 3] = blk
+                    J[:, row, col[link]:col[link] + 3] = blk.T
             row += 1
     rs = row_scale(spec, group, scale)
     return F * rs, J * rs[:, None]
 
 
-def velocity_system(spec: Spec, group: Group, r: dict, th: dict):
-    """The group's velocity matrix A (n, 3k, 3k), the blocks of known links [(rows, link,
-    (n, r, 3))] for the right-hand sides, and the driver row's index (None without one)."""
-    links = group.links
-    col = {l: 3 * i for i, l in enumerate(links)}
-    n = next(iter(th.values())).shape[0]
-    m = 3 * len(links)
-    A = np.zeros((n, m, m))
-    known, drow, row = [], None, 0
-    for joint in group.joints:
-        blocks, _ = joint_blocks(spec, joint, r, th)
-        for link, blk in blocks.items():
+class RateEquations:
+    """A group's velocity and acceleration equations at the poses ``frames``, angle-last:
+    A qdot = -J_known qdot_known and A qddot = gamma - J_known qddot_known (the driver's
+    rate and acceleration go on row ``drow``, None without the driver joint).
+
+    Rows follow ``group.joints`` (2 per joint, 3 for the driver joint), columns
+    ``group.links`` (x, y, theta each). ``rows``: each joint's rows; ``known``: [(rows, link,
+    (r, 3, n))] the Jacobian blocks of links solved before (ground's, whose rates are zero,
+    left out). Each joint's geometry is computed once, for the blocks and for gamma."""
+
+    def __init__(self, spec: Spec, group: Group, frames: LinkFrames):
+        self.spec, self.group, self.frames = spec, group, frames
+        self.m = 3 * len(group.links)
+        self.geometry = [geometry(spec, joint, frames) for joint in group.joints]
+        self.rows: list[slice] = []
+        self.known: list = []
+        self.drow = self._driver = None
+        row = 0
+        for joint, geo in zip(group.joints, self.geometry):
+            self.rows.append(slice(row, row + 2))
+            known = {l: np.zeros((2, 3, frames.n)) for l in joint.links
+                     if l not in group.links and l != GROUND}
+            geo.write_blocks(known)
+            self.known += [(self.rows[-1], l, blk) for l, blk in known.items()]
+            row += 2
+            if joint.name == group.driver:
+                self.drow = row
+                _, self._driver, _ = driver_row(spec, frames)
+                self.known += [(slice(row, row + 1), l, blk[None])
+                               for l, blk in self._driver.items()
+                               if l not in group.links and l != GROUND]
+                row += 1
+
+    def matrix(self) -> np.ndarray:
+        """The velocity matrix A (3k, 3k, n)."""
+        col = {l: 3 * i for i, l in enumerate(self.group.links)}
+        A = np.zeros((self.m, self.m, self.frames.n))
+        for rows, joint, geo in zip(self.rows, self.group.joints, self.geometry):
+            geo.write_blocks({l: A[rows, col[l]:col[l] + 3] for l in joint.links if l in col})
+        for link, blk in (self._driver or {}).items():
             if link in col:
-                A[:, row:row + 2, col[link]:col[link] + 3] = blk
-            else:
-                known.append((slice(row, row + 2), link, blk))
-        row += 2
-        if joint.name == group.driver:
-            _, dblocks, _ = driver_row(spec, r, th)
-            for link, blk in dblocks.items():
-                if link in col:
-                    A[:, row, col[link]:col[link] + 3] = blk
-                else:
-                    known.append((slice(row, row + 1), link, blk[:, None, :]))
-            drow = row
-            row += 1
-    return A, known, drow
+                A[self.drow, col[link]:col[link] + 3] = blk
+        return A
 
+    def known_part(self, lin: dict, ang: dict) -> np.ndarray:
+        """J_known qdot_known (or qddot) (3k, n) from the known links' rates ``lin`` (n, 2)
+        [m/s or m/s^2] and ``ang`` (n,) [rad/s or rad/s^2]."""
+        out = np.zeros((self.m, self.frames.n))
+        for rows, link, blk in self.known:
+            q = lin[link]
+            out[rows] += blk[:, 0] * q[:, 0] + blk[:, 1] * q[:, 1] + blk[:, 2] * ang[link]
+        return out
 
-def gamma(spec: Spec, group: Group, r: dict, th: dict, v: dict, w: dict) -> np.ndarray:
-    """The part of each constraint's second time derivative not in J qddot (n, 3k), from the
-    velocities ``v``, ``w`` of every link (the group's own included)."""
-    n = next(iter(th.values())).shape[0]
-    out = np.zeros((n, rows(group, group.driver or "")))
-    row = 0
-    for joint in group.joints:
-        out[:, row:row + 2] = joint_blocks(spec, joint, r, th, v, w)[1]
-        row += 2
-        if joint.name == group.driver:
-            out[:, row] = driver_row(spec, r, th, v, w)[2]
-            row += 1
-    return out
+    def gamma(self, v: dict, w: dict) -> np.ndarray:
+        """The part of each constraint's second time derivative not in J qddot (3k, n), from
+        the velocities ``v`` (n, 2) [m/s], ``w`` (n,) [rad/s] of every link (the group's own
+        included)."""
+        out = np.empty((self.m, self.frames.n))
+        for rows, geo in zip(self.rows, self.geometry):
+            out[rows] = geo.gamma(v, w)
+        if self.drow is not None:
+            out[self.drow] = driver_row(self.spec, self.frames, v, w)[2]
+        return out
 
 
 # ------------------------------------------------------------------------ Newton groups

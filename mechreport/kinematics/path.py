@@ -49,6 +49,8 @@ class SweepPath:
         """For every off-grid angle: its index, the grid indices just below and above it (by
         angle, wrapping for whole turns) and the interpolation weight of the upper one."""
         off = np.flatnonzero(~self.on_grid)
+        if not off.size:
+            return off, off, off, np.zeros(0)
         grid = np.flatnonzero(self.on_grid)
         ga = self.wrapped(self.angles[grid])
         order = np.argsort(ga)

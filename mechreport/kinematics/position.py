@@ -22,7 +22,7 @@ import numpy as np
 
 from ..spec import GROUND, Joint, Spec
 from ..model import Dyad
-from .frames import cross, dot, norm, perp, rotate
+from .frames import Trig, cross, dot, norm, perp, rotate, rotate_cs
 from .path import SweepPath
 
 Poses = dict  # link name -> (r (n, 2) origin [m], theta (n,) [rad])
@@ -51,9 +51,14 @@ class BranchChoice:
     closes: bool = True
 
 
-def point_global(poses: Poses, link: str, local) -> np.ndarray:
+def point_global(poses: Poses, link: str, local, trig: Trig | None = None) -> np.ndarray:
+    """Global position (n, 2) [m] of the point at ``local`` in ``link``'s frame (the frame's
+    own point as it is: it never turns, and its origin is the global one). ``trig``: the
+    link angles' cos and sin, if remembered."""
     r, th = poses[link]
-    return r + rotate(local, th)
+    if link == GROUND:
+        return r + np.asarray(local, float)
+    return r + (rotate(local, th) if trig is None else trig.rotate(local, th))
 
 
 def _points(spec: Spec, link: str) -> dict:
@@ -96,13 +101,17 @@ def _angle(v) -> np.ndarray:
     return np.arctan2(v[..., 1], v[..., 0])
 
 
-def _pin_pose(pivot, local_pivot, theta):
-    return pivot - rotate(local_pivot, theta), theta
-
-
-def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
+def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses, trig: Trig | None = None
+                    ) -> list[Poses]:
     """One or two candidate poses of the dyad's links for every angle; NaN where it cannot
-    close."""
+    close. ``trig`` remembers the cos and sin of the angles (the known links' and the
+    candidates'), for :func:`signature`."""
+    trig = trig if trig is not None else Trig()
+    rotate = trig.rotate
+
+    def pin_pose(pivot, local_pivot, theta):
+        return pivot - rotate(local_pivot, theta), theta
+
     kind = dyad.kind
     (i, j), (oi, oj), inner = dyad.links, dyad.outer, dyad.inner
     if kind in ("TRR", "TTR"):  # normalise: the R outer joint on link i
@@ -112,7 +121,7 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
 
     def pivot(outer: Joint, link: str):
         known = _other(outer, link)
-        return point_global(poses, known, _points(spec, known)[outer.name])
+        return point_global(poses, known, _points(spec, known)[outer.name], trig)
 
     out: list[Poses] = []
     if kind == "RRR":
@@ -131,7 +140,7 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
             jp = ki + a[:, None] * unit + sign * h[:, None] * perp(unit)
             thi = np.arctan2(*(jp - ki)[:, ::-1].T) - _angle(mi - ei)
             thj = np.arctan2(*(jp - kj)[:, ::-1].T) - _angle(mj - ej)
-            out.append({i: _pin_pose(ki, ei, thi), j: _pin_pose(kj, ej, thj)})
+            out.append({i: pin_pose(ki, ei, thi), j: pin_pose(kj, ej, thj)})
     elif kind == "RRT":
         ki = pivot(oi, i)
         ei, mi = np.array(pi[oi.name]), np.array(pi[inner.name])
@@ -149,7 +158,7 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
         for sign in (1, -1):
             jp = foot + sign * h[:, None] * u
             thi = np.arctan2(*(jp - ki)[:, ::-1].T) - _angle(mi - ei)
-            out.append({i: _pin_pose(ki, ei, thi), j: (jp - rotate(mj, thj), thj)})
+            out.append({i: pin_pose(ki, ei, thi), j: (jp - rotate(mj, thj), thj)})
     elif kind == "RTR":
         g, s = inner.guide, inner.slider
         og, os_ = (oi, oj) if g == i else (oj, oi)
@@ -169,7 +178,7 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
         base = np.arctan2(d[:, 1], d[:, 0]) - _angle(nl)
         for sign in (1, -1):
             th = base + sign * half
-            out.append({g: _pin_pose(kg, pg[og.name], th), s: _pin_pose(ks, ps[os_.name], th)})
+            out.append({g: pin_pose(kg, pg[og.name], th), s: pin_pose(ks, ps[os_.name], th)})
     elif kind == "TRT":
         thi, thj = poses[_other(oi, i)][1], poses[_other(oj, j)][1]
         n1, c1 = t_line(spec, oi, i, poses, thi)
@@ -192,11 +201,22 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses) -> list[Poses]:
     return out
 
 
-def signature(spec: Spec, links, cand: Poses) -> np.ndarray:
+def signature(spec: Spec, links, cand: Poses, trig: Trig | None = None) -> np.ndarray:
     """Global positions of every named point of ``links`` (a dyad's, a group's) in poses
-    ``cand``, flattened: (n, 2 P)."""
-    cols = [point_global(cand, l, p) for l in links for p in spec.link(l).points.values()]
+    ``cand``, flattened: (n, 2 P) [m], in the order of :func:`signature_points`. Each angle
+    array's cos and sin are computed once (``trig``: remembered from the candidates)."""
+    trig = trig if trig is not None else Trig()
+    cols = []
+    for link in links:
+        r, th = cand[link]
+        c, s = trig(th)
+        cols += [r + rotate_cs(p, c, s) for p in spec.link(link).points.values()]
     return np.concatenate(cols, axis=1)
+
+
+def signature_points(spec: Spec, links) -> list[tuple[str, str]]:
+    """(point, link) of each pair of signature columns."""
+    return [(p, l) for l in links for p in spec.link(l).points]
 
 
 def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
@@ -209,7 +229,7 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
     chosen, and the cut runs. ``sig``: the candidates' signatures, if already computed."""
     name = f"{dyad.label} ({', '.join(dyad.links)})"
     sig = sig if sig is not None else [signature(spec, dyad.links, c) for c in cands]
-    finite = np.all(np.isfinite(np.concatenate(sig, axis=1)), axis=1)
+    finite = np.logical_and.reduce([np.isfinite(s).all(axis=1) for s in sig])
     runs = [run[:first_false(finite[run])] for run in runs]
     n = len(path.angles)
     reached = np.zeros(n, bool)
@@ -220,15 +240,19 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
             reached[run] = True
     else:
         sign, rule = _pick_branch(spec, dyad, cands, sig, path)
-        closes = True
+        ring = None
         if path.periodic and len(runs[0]) == len(path.runs[0]):   # a whole turn: back home?
-            closes = _closes(sig, runs[0], path.travel[0])
+            ring = _ring_flips(sig, runs[0], path.travel[0])
+        closes = ring is None or int(np.sum(ring)) % 2 == 0
         choice = BranchChoice(name, dyad.kind, sign, rule, closes)
-        for run, travel in zip(runs, path.travel):
+        for k, (run, travel) in enumerate(zip(runs, path.travel)):
             todo = ~reached[run]
             if not todo.any():   # a full turn forward leaves nothing for the backward run
                 continue
-            flips = _flips(sig[0][run], sig[1][run], travel[:len(run)])
+            if k == 0 and ring is not None:    # the whole turn's flips, but the step home
+                flips = ring[:len(run) - 1]
+            else:
+                flips = _flips(sig[0][run], sig[1][run], travel[:len(run)])
             parity = np.concatenate([[0], np.cumsum(flips)]) % 2
             plus = (parity == 0) == (sign == 1)
             use_plus[run[todo]] = plus[todo]
@@ -249,13 +273,14 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
     return chosen, choice, runs
 
 
-def _closes(sig: list[np.ndarray], run: np.ndarray, travel: np.ndarray) -> bool:
-    """Whether the branch followed along a whole-turn ``run`` (from the reference angle, all
-    the way round) comes back to the branch it started on: an even number of label swaps
-    over the run and the step back to its start."""
+def _ring_flips(sig: list[np.ndarray], run: np.ndarray, travel: np.ndarray) -> np.ndarray:
+    """The label swaps (len(run),) along a whole-turn ``run`` (from the reference angle, all
+    the way round) and on the step back to its start: the branch comes back to the one it
+    started on if their number is even. Those before the last are the run's own flips
+    (:func:`_flips` decides each interval from the angles before it only)."""
     ring = np.concatenate([run, run[:1]])
     t = np.concatenate([travel[:len(run)], [360.0]])
-    return int(np.sum(_flips(sig[0][ring], sig[-1][ring], t))) % 2 == 0
+    return _flips(sig[0][ring], sig[-1][ring], t)
 
 
 def first_false(mask: np.ndarray) -> int:
@@ -282,7 +307,7 @@ def _pick_branch(spec: Spec, dyad: Dyad, cands: list[Poses], sig: list[np.ndarra
         where = ""
         if apart.size:
             k = int(apart[0])
-            named = [(p, l) for l in dyad.links for p in spec.link(l).points]
+            named = signature_points(spec, dyad.links)
             gap = np.abs(sig[0][k] - sig[1][k]).reshape(-1, 2).max(axis=1)
             p_name, p_link = named[int(np.argmax(gap))]   # the point the branches move most
             taken = cands[0] if default == 1 else cands[1]
@@ -297,36 +322,51 @@ def _pick_branch(spec: Spec, dyad: Dyad, cands: list[Poses], sig: list[np.ndarra
         return default, "undecided: " + why
     if not hints:
         return default, "default: " + DEFAULT_BRANCH_RULES[kind]
+    column = {key: 2 * i for i, key in enumerate(signature_points(spec, dyad.links))}
     err = []
-    for cand in cands:
+    for s in sig:
         e = 0.0
         for p, target in hints.items():
-            link = spec.point_owner(p)
-            pos = point_global(cand, link, spec.link(link).points[p])[ref]
+            at = column[(p, spec.point_owner(p))]
+            pos = s[ref, at:at + 2]
             e += float(np.sum((pos - np.asarray(target)) ** 2))
         err.append(e)
     return (1 if err[0] <= err[1] else -1), "hint: " + ", ".join(hints)
 
 
-def _flips(xp: np.ndarray, xm: np.ndarray, angles: np.ndarray) -> np.ndarray:
+def _flips(xp: np.ndarray, xm: np.ndarray, angles: np.ndarray,
+           carried: tuple[bool, bool] | None = None) -> np.ndarray:
     """For each interval k -> k+1 (n-1,): True where the branch labels swap roles.
 
     The tracked branch's last three positions (k-2, k-1, k) predict k+1 by quadratic
     extrapolation (two points where only two are known); a flip is where, for both labels, the
     other candidate is nearer the prediction and the candidates are close (a touch). The
     history must follow the tracked branch, so its labels at k-1 and k-2 depend on the flips
-    before k: every case is decided, and ``_resolve`` picks the applicable ones."""
+    before k: every case is decided, and ``_resolve`` picks the applicable ones.
+
+    ``carried``: the flips of the first two intervals, decided already (the samples go on from
+    the last three of a run followed before, whose earlier samples decided them); the others
+    follow as along the whole run."""
     n = len(angles)
     flips = np.zeros(max(n - 1, 0), bool)
+    if carried is not None:
+        flips[:2] = carried[:len(flips[:2])]
     if n < 3:
         return flips
 
     def norm(x: np.ndarray) -> np.ndarray:  # over the flattened point coordinates
         return np.sqrt(np.sum(x * x, axis=1))
 
+    scratch = np.empty((n - 1, xp.shape[1]))
+
+    def dist(a: np.ndarray, b: np.ndarray) -> np.ndarray:   # |a - b| per row, for screening
+        d = np.subtract(a, b, out=scratch[:len(a)])
+        return np.sqrt(np.einsum("ij,ij->i", d, d))
+
     X = (xp, xm)
-    step = norm(xp[2:] - xp[1:-1]) + norm(xm[2:] - xm[1:-1])
-    gap = np.minimum(norm(xp[1:-1] - xm[1:-1]), norm(xp[2:] - xm[2:]))
+    apart = dist(xp[1:], xm[1:])
+    step = dist(xp[2:], xp[1:-1]) + dist(xm[2:], xm[1:-1])
+    gap = np.minimum(apart[:-1], apart[1:])
     decide = np.zeros((2, 2, n - 2), bool)   # [flip before k, flip before k-1, interval k-1]
     J = np.flatnonzero(gap <= 2 * step)      # only where the candidates are close (a touch)
     if J.size == 0:            # no touch: no flip (what _resolve gives for all-False)
@@ -353,12 +393,16 @@ def _flips(xp: np.ndarray, xm: np.ndarray, angles: np.ndarray) -> np.ndarray:
                 pred = np.where(use, quad, pred)
                 votes += norm(other[J + 2] - pred) < norm(same[J + 2] - pred)
             decide[a, b, J] = votes == 2
-    flips[1:] = _resolve(decide)
+    if carried is None:
+        flips[1:] = _resolve(decide)
+    else:   # the first interval decided here is the third: from the state the two carried
+        flips[2:] = _resolve(decide[:, :, 1:], 2 * int(carried[1]) + int(carried[0]))
     return flips
 
 
-def _resolve(decide: np.ndarray) -> np.ndarray:
-    """f[k] = decide[f[k-1], f[k-2], k] with f[-1] = f[-2] = False, vectorised.
+def _resolve(decide: np.ndarray, start: int = 0) -> np.ndarray:
+    """f[k] = decide[f[k-1], f[k-2], k] from the state ``start`` = 2 f[-1] + f[-2] (default:
+    f[-1] = f[-2] = False), vectorised.
 
     Each step maps the state s = 2 f[k-1] + f[k-2] to 2 f[k] + f[k-1]; the states follow from
     the prefix compositions of these maps, computed by doubling (log2(n) gathers)."""
@@ -373,4 +417,4 @@ def _resolve(decide: np.ndarray) -> np.ndarray:
     while d < m:
         maps[d:] = np.take_along_axis(maps[d:], maps[:-d], axis=1)
         d *= 2
-    return (maps[:, 0] >> 1).astype(bool)
+    return (maps[:, start] >> 1).astype(bool)

@@ -22,6 +22,7 @@ from ..spec import GROUND, Spec
 from ..spec.stack import stack_specs
 from . import TRUST_RTOL, _rates, driver_pose, kinematic_error
 from .constraints import joint_residual
+from .frames import LinkFrames
 from .path import sweep_path
 from .position import dyad_candidates, signature, track_branches
 from .result import Kinematics, Motion, motion_of
@@ -121,8 +122,9 @@ def _closed(mech: Mechanism, r: dict, th: dict) -> np.ndarray:
     with np.errstate(invalid="ignore"):
         scale = 1e-3 + np.max(np.stack([np.abs(x).max(axis=1) for x in r.values()]), axis=0)
         ok = np.ones(len(scale), bool)
+        frames = LinkFrames(r, th)
         for joint in mech.spec.joints:
-            gap = joint_residual(mech.spec, joint, r, th)
+            gap = joint_residual(mech.spec, joint, frames)
             if joint.type == "R":
                 ok &= np.hypot(gap[:, 0], gap[:, 1]) <= 1e-9 * scale
             else:
