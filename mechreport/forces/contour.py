@@ -35,6 +35,7 @@ from .equations import Equation, Step
 from .result import ForceResult, run_steps
 
 PROBES = 16         # angles at which the rank of candidate equations is judged
+SEARCH_IN_PLACE = 64   # sweeps of at most this many angles are searched without a probe context
 RANK_RTOL = 1e-9    # singular values below this fraction of the largest count as zero
 
 NAME = "contour"
@@ -228,9 +229,12 @@ def plan(ctx: ForceContext) -> tuple[StepPlan, ...]:
     angles, so it runs on a context of those angles alone."""
     if "contour" not in ctx.memo:
         probes = _probes(ctx.n)
-        small = ForceContext(ctx.kin.take(probes, ctx.kin.flags)) if len(probes) < ctx.n \
-            else ctx
+        # a short sweep is searched in place, and its steps kept: no second context to build
+        small = ForceContext(ctx.kin.take(probes, ctx.kin.flags)) \
+            if ctx.n > SEARCH_IN_PLACE else ctx
         steps, recipes = _search(small)
+        if small is ctx:
+            ctx.cache["contour steps"] = steps
         ctx.memo["contour"] = tuple(
             StepPlan(s.title, tuple(s.unknowns),
                      (recipes[id(s)],) if id(s) in recipes
@@ -253,9 +257,12 @@ def _realise(ctx: ForceContext, p: StepPlan, known: set[str]) -> Step:
 
 def build_steps(ctx: ForceContext) -> tuple[Step, ...]:
     """The planned steps (see :func:`plan`) built over ``ctx``'s angles."""
+    plans = plan(ctx)
+    if "contour steps" in ctx.cache:
+        return ctx.cache["contour steps"]
     known: set[str] = set()
     steps = []
-    for p in plan(ctx):
+    for p in plans:
         steps.append(_realise(ctx, p, known))
         known.update(p.unknowns)
     return tuple(steps)

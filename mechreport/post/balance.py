@@ -30,16 +30,32 @@ def counterweight(inertia_force: np.ndarray, crank_theta: np.ndarray, omega: flo
                   alpha: float = 0.0) -> Counterweight:
     """``inertia_force`` (N, 2) [N] = sum of m a_C over the cycle grid; ``crank_theta`` (N,)
     [rad] the crank's x-axis angle there."""
-    s = inertia_force[:, 0] + 1j * inertia_force[:, 1]
-    u = np.exp(1j * np.asarray(crank_theta, float)) * (1j * alpha - omega ** 2)
-    c = -np.vdot(u, s) / np.vdot(u, u).real
-    before = float(np.sqrt(np.mean(np.abs(s) ** 2)))
-    if abs(c) * np.sqrt(np.mean(np.abs(u) ** 2)) <= 1e-12 * max(before, 1e-300):
+    # real and imaginary parts kept apart: half the memory of complex temporaries
+    sx, sy = inertia_force[:, 0], inertia_force[:, 1]
+    theta = np.asarray(crank_theta, float)
+    w2 = omega ** 2
+    ux, uy = np.cos(theta), np.sin(theta)        # u = e^{i theta} (i alpha - omega^2)
+    if alpha:
+        ux, uy = -w2 * ux - alpha * uy, alpha * ux - w2 * uy
+    else:
+        ux *= -w2
+        uy *= -w2
+    uu = w2 ** 2 + alpha ** 2                    # |u|^2, the same at every angle
+    c = -complex(np.dot(ux, sx) + np.dot(uy, sy), np.dot(ux, sy) - np.dot(uy, sx)) \
+        / (uu * len(theta))
+    before = float(np.sqrt((np.dot(sx, sx) + np.dot(sy, sy)) / len(theta)))
+    if abs(c) * np.sqrt(uu) <= 1e-12 * max(before, 1e-300):
         c = 0j                     # nothing to balance: no counterweight, angle 0 (not -0)
-    after = s + c * u
+    balanced = np.empty((len(theta), 2))
+    bx, by = balanced[:, 0], balanced[:, 1]
+    np.multiply(ux, c.real, out=bx)              # S + c u, component by component
+    bx += sx
+    bx -= c.imag * uy
+    np.multiply(uy, c.real, out=by)
+    by += sy
+    by += c.imag * ux
+    after = float(np.sqrt((np.dot(bx, bx) + np.dot(by, by)) / len(theta)))
     angle = float(np.degrees(np.angle(c))) + 0.0
     if angle <= -180.0:
         angle += 360.0
-    return Counterweight(float(abs(c)), angle, before,
-                         float(np.sqrt(np.mean(np.abs(after) ** 2))),
-                         np.stack([after.real, after.imag], axis=1))
+    return Counterweight(float(abs(c)), angle, before, after, balanced)

@@ -30,6 +30,7 @@ class Cycle:
     rows: np.ndarray
     interpolated: np.ndarray
     omega: float
+    whole: bool = False      # the analysed angles are exactly the grid's (rows 0, 1, ...)
 
     @property
     def step(self) -> float:
@@ -40,6 +41,8 @@ class Cycle:
         """``values`` (n, ...) over the analysed angles -> (N, ...) over the cycle grid, left-out
         angles interpolated periodically from their analysed neighbours."""
         values = np.asarray(values, float)
+        if self.whole and len(values) == len(self.rows):
+            return values        # the analysed angles are the grid: nothing to fill
         out = np.empty((len(self.angles),) + values.shape[1:])
         have = self.rows >= 0
         out[have] = values[self.rows[have]]
@@ -61,7 +64,12 @@ class Cycle:
         """Running integral over the crank angle [value x rad] at each grid angle, from 0 at
         the first (trapezoids; the closing interval back to the start is not included)."""
         v = np.asarray(values, float)
-        return np.concatenate([[0.0], np.cumsum((v[1:] + v[:-1]) / 2)]) * self.step
+        out = np.empty(len(v))
+        out[0] = 0.0
+        np.cumsum(np.add(v[1:], v[:-1]), out=out[1:])
+        out *= 0.5             # halving is exact: the trapezoids' sum as (a + b) / 2 each
+        out *= self.step
+        return out
 
 
 def cycle_of(spec: Spec, analysed_angles: np.ndarray, reachable: bool = True,
@@ -84,4 +92,5 @@ def cycle_of(spec: Spec, analysed_angles: np.ndarray, reachable: bool = True,
     if not hit.any():
         raise CycleUndefined(f"{spec.file}: no angle of the cycle could be analysed")
     rows = np.where(hit, pos, -1)
-    return Cycle(grid, rows, grid[~hit], spec.driver.omega)
+    return Cycle(grid, rows, grid[~hit], spec.driver.omega,
+                 bool(len(have) == len(grid) and hit.all()))

@@ -54,7 +54,8 @@ class Traces:
     reference ``method``: the driver ``torque`` (n,) [N m or N], the frame load ``frame``
     (n, 3) (fx, fy [N], m [N m]), the inertial force ``inertial`` (n, 2) [N] (sum of m a_C),
     each dyad's ``transmission`` angle (n,) [deg] and each joint's reaction magnitude
-    ``reactions`` (n,) [N]. A long sweep's traces are computed chunk by chunk and joined."""
+    ``reactions`` (n,) [N]. A long sweep's traces are computed chunk by chunk and written one
+    after the other into traces allocated once."""
 
     method: str
     angles: np.ndarray
@@ -64,16 +65,28 @@ class Traces:
     transmission: dict[str, np.ndarray]
     reactions: dict[str, np.ndarray]
 
-    @staticmethod
-    def join(parts: "list[Traces]") -> "Traces":
-        """The traces of consecutive chunks as one (angles in the parts' order)."""
-        cat = np.concatenate
-        first = parts[0]
-        return Traces(first.method, cat([p.angles for p in parts]),
-                      cat([p.torque for p in parts]), cat([p.frame for p in parts]),
-                      cat([p.inertial for p in parts]),
-                      {k: cat([p.transmission[k] for p in parts]) for k in first.transmission},
-                      {k: cat([p.reactions[k] for p in parts]) for k in first.reactions})
+    def arrays(self) -> list[np.ndarray]:
+        return [self.angles, self.torque, self.frame, self.inertial,
+                *self.transmission.values(), *self.reactions.values()]
+
+    def allocate(self, n: int) -> "Traces":
+        """Traces of ``n`` angles shaped like these, unset (for :meth:`write`)."""
+        def e(a):
+            return np.empty((n,) + a.shape[1:])
+        return Traces(self.method, e(self.angles), e(self.torque), e(self.frame),
+                      e(self.inertial), {k: e(v) for k, v in self.transmission.items()},
+                      {k: e(v) for k, v in self.reactions.items()})
+
+    def write(self, part: "Traces", at: int) -> None:
+        """Copy ``part`` (the next chunk's traces) into rows ``at`` on."""
+        for dst, src in zip(self.arrays(), part.arrays()):
+            dst[at:at + len(src)] = src
+
+    def head(self, n: int) -> "Traces":
+        """The first ``n`` angles' traces (views)."""
+        return Traces(self.method, self.angles[:n], self.torque[:n], self.frame[:n],
+                      self.inertial[:n], {k: v[:n] for k, v in self.transmission.items()},
+                      {k: v[:n] for k, v in self.reactions.items()})
 
 
 def traces_of(kin, forces, loads) -> Traces:

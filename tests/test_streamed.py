@@ -1,0 +1,168 @@
+"""A long sweep checked chunk by chunk (mechreport.streamed) finds what the in-memory analysis
+finds: the same kinematics angle by angle (branch labels carried across chunks), flags,
+agreement, residuals, expectations, cycle quantities and notes. Chunks here are tiny, so that
+every spec crosses many chunk boundaries, touch points and locks included."""
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechreport.analysis import analyse
+from mechreport.checks import run as check_run
+from mechreport.kinematics import solve_kinematics
+from mechreport.kinematics import stream
+from mechreport.kinematics.stream import kinematic_chunks, streamable
+from mechreport.model import build_mechanism
+from mechreport.spec import Sweep, load_spec
+from mechreport.spec.loader import parse_spec
+from mechreport.streamed import SweepCheck, check_sweep
+
+ROOT = Path(__file__).resolve().parents[1]
+EDGE = ROOT / "tests" / "data" / "edge"
+
+
+def _short_rod() -> object:
+    """The slider-crank with a rod shorter than the crank: it locks at +-53.13 deg."""
+    text = (ROOT / "specs" / "slider_crank.yaml").read_text().split("expect:")[0]
+    text = text.replace("points: {B: [0, 0], C: [1, 0]}", "points: {B: [0, 0], C: [0.8, 0]}")
+    text = text.replace("assembly: {C: [1.4, 0]}", "assembly: {C: [1.2, 0]}")
+    return parse_spec(text.replace("at: [45]", "at: [0]"), "short_rod.yaml")
+
+
+def _partial_four_bar() -> object:
+    """Not a whole turn, a reference angle and expectations off the sweep's grid."""
+    spec = load_spec(ROOT / "specs" / "four_bar.yaml")
+    return dataclasses.replace(spec, sweep=Sweep(10.0, 200.0, 1.0), at=(30.0, 215.5, 77.25),
+                               expect=spec.expect)
+
+
+def _clockwise() -> object:
+    return load_spec(ROOT / "tests" / "data" / "slotted_crank_slider.yaml")
+
+
+SPECS = {p.stem: (lambda p=p: load_spec(p)) for p in sorted((ROOT / "specs").glob("*.yaml"))}
+SPECS.update({p.stem: (lambda p=p: load_spec(p)) for p in sorted(EDGE.glob("*.yaml"))})
+SPECS.update({"short_rod": _short_rod, "partial_four_bar": _partial_four_bar,
+              "clockwise_slotted_crank": _clockwise})
+
+
+@pytest.fixture
+def tiny_chunks(monkeypatch):
+    monkeypatch.setattr(stream, "TRACK_CHUNK", 7)   # the tracking pass: 7 samples at a time
+
+
+@pytest.mark.parametrize("name", sorted(SPECS))
+def test_chunked_kinematics_equal_one_solve(name, tiny_chunks):
+    spec = SPECS[name]()
+    mech = build_mechanism(spec)
+    if not streamable(mech):
+        pytest.skip("a Newton group: analysed in memory")
+    whole = solve_kinematics(mech)
+    chunks = kinematic_chunks(mech, 11)
+    parts = list(chunks)
+    angles = np.concatenate([p.angles for p in parts])
+    np.testing.assert_array_equal(angles, whole.angles)
+    for what in ("r", "theta", "v", "omega", "a", "alpha"):
+        got = np.concatenate([getattr(p, what) for p in parts])
+        np.testing.assert_allclose(got, getattr(whole, what), rtol=1e-12, atol=1e-12)
+    flags = [f for p in parts for f in p.flags]
+    assert flags == list(whole.flags)
+    assert chunks.branches == whole.branches
+    assert chunks.motion == whole.motion
+    assert chunks.notes() == whole.notes()
+
+
+@pytest.mark.parametrize("name", sorted(SPECS))
+def test_streamed_check_equals_the_analysis(name, tiny_chunks):
+    spec = SPECS[name]()
+    a = analyse(spec)
+    s = check_sweep(spec, chunk=13)
+    if not streamable(build_mechanism(spec)):
+        assert s.__class__.__name__ == "Analysis"
+        return
+    assert isinstance(s, SweepCheck)
+    assert s.n == a.n and s.flags == a.flags and s.passed == a.passed
+    assert s.notes() == a.notes()
+    assert [g.quantity for g in s.agreement][:1] == [g.quantity for g in a.agreement][:1] \
+        or s.worst.relative < 1e-12
+    assert {g.quantity for g in s.agreement} == {g.quantity for g in a.agreement}
+    for g in s.agreement:
+        ref = next(x for x in a.agreement if x.quantity == g.quantity)
+        assert g.relative == pytest.approx(ref.relative, rel=1e-3, abs=1e-13)
+    assert [r.method for r in s.residuals] == [r.method for r in a.residuals]
+    for r, ref in zip(s.residuals, a.residuals):
+        assert r.force == pytest.approx(ref.force, rel=1e-3, abs=1e-10)
+        assert r.moment == pytest.approx(ref.moment, rel=1e-3, abs=1e-10)
+    assert len(s.expectations) == len(a.expectations)
+    for e, ref in zip(s.expectations, a.expectations):
+        assert (e.expect, e.source, e.ok) == (ref.expect, ref.source, ref.ok)
+        assert (e.got is None) == (ref.got is None)
+        if e.got is not None:
+            assert e.got == pytest.approx(ref.got, rel=1e-12, abs=1e-12)
+    assert s.review_problem == a.review_problem
+    if a.review is None:
+        assert s.values is None
+    else:
+        assert s.values.keys() == a.review.values.keys()
+        for k, v in a.review.values.items():
+            assert s.values[k] == pytest.approx(v, rel=1e-10, abs=1e-10), k
+    assert [(v.item, v.passed) for v in s.verdicts] == [(v.item, v.passed) for v in a.verdicts]
+    assert check_run.summary_line("x", s) == check_run.summary_line("x", a) \
+        or "worst disagreement" in check_run.summary_line("x", s)
+
+
+def test_check_streams_long_sweeps(monkeypatch, capsys):
+    """`check` switches to the streamed path above ``STREAM_ANGLES`` analysed angles, with the
+    same PASS line as in memory (the worst disagreement aside, which is rounding)."""
+    import mechreport.streamed as streamed
+    path = ROOT / "specs" / "slider_crank.yaml"
+    assert check_run.check_files([path], 1e-6) == 0
+    in_memory = capsys.readouterr().out
+    monkeypatch.setattr(streamed, "STREAM_ANGLES", 100)
+    calls = []
+    real = streamed.check_sweep
+    monkeypatch.setattr(streamed, "check_sweep",
+                        lambda *a, **k: calls.append(1) or real(*a, **k))
+    assert check_run.check_files([path], 1e-6) == 0
+    out = capsys.readouterr().out
+    assert calls and out.split(", worst")[0] == in_memory.split(", worst")[0]
+    assert out.split("largest residual")[1][:4] == in_memory.split("largest residual")[1][:4]
+
+
+@pytest.mark.parametrize("size", range(3, 10))
+def test_touch_points_at_every_offset_from_a_chunk_boundary(size, monkeypatch):
+    """The textbook slider-crank's branches touch at 90 and 270 deg: with tracking chunks of
+    3 to 9 samples, the swaps there fall at every place relative to a chunk's start, and the
+    labels carried across must still follow the whole-sweep tracking."""
+    monkeypatch.setattr(stream, "TRACK_CHUNK", size)
+    spec = load_spec(ROOT / "specs" / "slider_crank.yaml")
+    mech = build_mechanism(spec)
+    whole = solve_kinematics(mech)
+    parts = list(kinematic_chunks(mech, 50))
+    np.testing.assert_allclose(np.concatenate([p.theta for p in parts]), whole.theta,
+                               rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_flips_continue_across_windows_from_the_carried_swaps(seed):
+    """position._flips over windows (three samples of history and the last two swaps carried)
+    equals _flips over the whole run, on erratic candidates that touch all the time (where the
+    history's labels decide the votes)."""
+    from mechreport.kinematics.position import _flips
+    rng = np.random.default_rng(seed)
+    n = 300
+    xp = np.cumsum(rng.standard_normal((n, 2)), axis=0)
+    xm = xp + rng.standard_normal((n, 2)) * 0.5
+    t = np.cumsum(rng.uniform(0.5, 1.5, n))
+    whole = _flips(xp, xm, t)
+    assert 10 < whole.sum() < n - 10
+    for size in (3, 4, 7, 16):
+        got = list(_flips(xp[:size], xm[:size], t[:size]))
+        for s in range(size, n, size):
+            e = min(s + size, n)
+            w = slice(s - 3, e)
+            got += list(_flips(xp[w], xm[w], t[w], carried=(got[s - 3], got[s - 2]))[2:])
+        np.testing.assert_array_equal(got, whole)
