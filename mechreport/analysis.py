@@ -101,8 +101,9 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> 
     kin = _require_angles(kin)
     rev, why = design_review(kin, forces, ctx.loads)
     values = rev.values if rev is not None else None
-    return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces),
-                    residuals(ctx, forces),
+    res = residuals(ctx, forces)
+    ctx.cache.clear()   # the actions and equations the methods shared: rebuilt if asked for
+    return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces), res,
                     check_expectations(kin, forces, kin.flags, values, why), tol, rev, why,
                     tuple(verdicts(spec.design, values, why)))
 

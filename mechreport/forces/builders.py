@@ -103,7 +103,12 @@ def normal_constraint(ctx: ForceContext, joint: Joint) -> Equation:
 
 
 def newton_euler_equations(ctx: ForceContext, link: str) -> list[Equation]:
-    """m a_C = sum F (x and y) and I_C alpha = sum M_C for one link (textbook 4.26-4.27)."""
+    """m a_C = sum F (x and y) and I_C alpha = sum M_C for one link (textbook 4.26-4.27);
+    built once per context (the Newton-Euler method and the residual check share them)."""
+    return list(ctx.once(("newton-euler", link), lambda: tuple(_newton_euler(ctx, link))))
+
+
+def _newton_euler(ctx: ForceContext, link: str) -> list[Equation]:
     s = ctx.links[link]
     acts = ctx.actions_on([link], inertia=False)
     tag = body_tag(ctx, [link])

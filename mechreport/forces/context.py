@@ -86,8 +86,18 @@ class ForceContext:
             return np.broadcast_to(np.asarray(self.spec.ground[name]), (self.n, 2))
         return self.kin.named_point(name).r
 
+    def once(self, key: tuple, build):
+        """``build()``, computed once per context and ``key`` (actions are immutable)."""
+        if key not in self.cache:
+            self.cache[key] = build()
+        return self.cache[key]
+
     def reaction(self, joint: Joint, on: str) -> list[Action]:
         """The joint's reaction as it acts on link ``on`` (one of its links)."""
+        return list(self.once(("reaction", joint.name, on),
+                               lambda: tuple(self._reaction(joint, on))))
+
+    def _reaction(self, joint: Joint, on: str) -> list[Action]:
         a, b = joint.links
         sign = 1.0 if on == b else -1.0
         src, dst = (a, b) if on == b else (b, a)
@@ -100,18 +110,27 @@ class ForceContext:
         return acts
 
     def gravity_action(self, link: str) -> Action:
+        return self.once(("gravity", link), lambda: self._gravity_action(link))
+
+    def _gravity_action(self, link: str) -> Action:
         s = self.links[link]
         return Action(f"G{s.number}", "force", "gravity", link, s.r, f"C{s.number}",
                       value=np.broadcast_to(scaled(s.mass, self.gravity), (self.n, 2)))
 
     def inertia_actions(self, link: str) -> list[Action]:
         """d'Alembert inertia force -m a_C at the centre of mass and couple -I alpha."""
+        return list(self.once(("inertia", link), lambda: tuple(self._inertia_actions(link))))
+
+    def _inertia_actions(self, link: str) -> list[Action]:
         s = self.links[link]
         return [Action(f"Fin{s.number}", "force", "inertia", link, s.r, f"C{s.number}",
                        value=-scaled(s.mass, s.a)),
                 Action(f"Min{s.number}", "couple", "inertia", link, value=-s.inertia * s.alpha)]
 
     def load_actions(self, link: str) -> list[Action]:
+        return list(self.once(("loads", link), lambda: tuple(self._load_actions(link))))
+
+    def _load_actions(self, link: str) -> list[Action]:
         acts = []
         for ld in self.loads:
             if ld.link != link:
@@ -134,6 +153,9 @@ class ForceContext:
         moving link; for an R driver between moving links, M on the second and -M on the
         first (the motor sits on the first); for a T driver, the push F along the line at the
         slider's point, +F on the second link and -F on the first."""
+        return list(self.once(("driver", link), lambda: tuple(self._driver_actions(link))))
+
+    def _driver_actions(self, link: str) -> list[Action]:
         d = self.spec.driver
         if link not in d.links:
             return []
