@@ -34,12 +34,14 @@ def solve_forces(kin: Kinematics, methods=None,
         return {name: METHODS[name].solve(ctx).lean(ctx) for name in names}
     if contour.NAME in names:
         contour.plan(ctx)         # chosen once, over the whole sweep's probe angles
-    chunks = [ForceContext(kin.take(slice(a, a + CHUNK), kin.flags))
-              for a in range(0, kin.n, CHUNK)]
-    for c in chunks:
+    parts: dict[str, list[ForceResult]] = {name: [] for name in names}
+    for a in range(0, kin.n, CHUNK):    # one chunk's context at a time: all methods, then gone
+        c = ForceContext(kin.take(slice(a, a + CHUNK), kin.flags))
         c.memo = ctx.memo
-    return {name: ForceResult.join([METHODS[name].solve(c).lean(c) for c in chunks], ctx)
-            for name in names}
+        for name in names:
+            parts[name].append(METHODS[name].solve(c).lean(ctx))
+        del c
+    return {name: ForceResult.join(parts[name], ctx) for name in names}
 
 
 __all__ = ["METHODS", "solve_forces", "ForceContext", "ForceResult", "JointReaction",
