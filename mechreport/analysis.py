@@ -81,11 +81,17 @@ class Analysis:
 
     @property
     def passed(self) -> bool:
-        worst = self.worst
-        return (all(e.ok for e in self.expectations)
-                and all(v.passed for v in self.verdicts)
-                and (worst is None or worst.relative <= self.tol)
-                and self.kinematics.n > 0)
+        return passes(self)
+
+
+def passes(result) -> bool:
+    """A check's verdict on an analysis (or a streamed sweep's check): every expectation and
+    design verdict met, the methods agreeing within its ``tol``, at least one angle analysed."""
+    worst = result.worst
+    return (all(e.ok for e in result.expectations)
+            and all(v.passed for v in result.verdicts)
+            and (worst is None or worst.relative <= result.tol)
+            and result.n > 0)
 
 
 def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> Analysis:

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .analysis import DEFAULT_TOL, Analysis, analyse, no_angle_error, solve_trusted
+from .analysis import DEFAULT_TOL, Analysis, analyse, no_angle_error, passes, solve_trusted
 from .checks import Agreement, ExpectationResult, Residual, residuals
 from .checks.agreement import finish, merge, spreads
 from .checks.expectations import at_angle, check_cycle, left_out
@@ -59,11 +59,7 @@ class SweepCheck:
 
     @property
     def passed(self) -> bool:
-        worst = self.worst
-        return (all(e.ok for e in self.expectations)
-                and all(v.passed for v in self.verdicts)
-                and (worst is None or worst.relative <= self.tol)
-                and self.n > 0)
+        return passes(self)
 
     def notes(self) -> list[str]:
         return list(self.kinematic_notes)
