@@ -166,3 +166,20 @@ def test_flips_continue_across_windows_from_the_carried_swaps(seed):
             w = slice(s - 3, e)
             got += list(_flips(xp[w], xm[w], t[w], carried=(got[s - 3], got[s - 2]))[2:])
         np.testing.assert_array_equal(got, whole)
+
+
+@pytest.mark.parametrize("step", [180, 120, 90, 60])
+def test_whole_turn_closure_on_sweeps_of_a_few_angles(step, monkeypatch):
+    """A change-point four-bar comes back on its other branch after a turn, however few the
+    sweep's angles: with 2 to 6 samples the tracking's history is shorter than the three
+    samples a window carries, and the step home must still be judged from the run's start."""
+    monkeypatch.setattr(stream, "TRACK_CHUNK", 4)
+    text = (EDGE / "change_point_four_bar.yaml").read_text()
+    text = text.replace("step: 1}", f"step: {step}}}").replace("at: [90]", "at: [180]")
+    spec = parse_spec(text, "few_angles.yaml")
+    whole = solve_kinematics(build_mechanism(spec))
+    chunks = kinematic_chunks(build_mechanism(spec), 3)
+    assert chunks.branches == whole.branches
+    if step == 180:    # (coarser sweeps may step over the change point unseen, either way)
+        assert not all(b.closes for b in whole.branches)
+    assert check_sweep(spec, chunk=3).review_problem == analyse(spec).review_problem

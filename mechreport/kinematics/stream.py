@@ -140,18 +140,9 @@ class _Follow:
     def labels(self, xp: np.ndarray, xm: np.ndarray, t: np.ndarray) -> np.ndarray:
         """Whether candidate + is the followed branch (m,) at the next ``m`` samples of the
         run (signatures ``xp``, ``xm``, travel ``t``)."""
-        if self.tail is None:      # the run's first samples
-            swaps = np.concatenate([[False, False], _flips(xp, xm, t)])
-            new = np.concatenate([[0], swaps[2:]]).astype(int)
-        else:
-            tp, tm, tt = self.tail
-            known = _flips(np.concatenate([tp, xp]), np.concatenate([tm, xm]),
-                           np.concatenate([tt, t]), carried=self.swaps)
-            swaps = np.concatenate([[False], known])       # [.., last two known, new ...]
-            new = known[2:].astype(int)
-        parity = (self.parity + np.cumsum(new)) % 2
+        incoming = self._swaps(xp, xm, t)     # the swap into each new sample
+        parity = (self.parity + np.cumsum(incoming)) % 2
         self.parity = int(parity[-1]) if len(parity) else self.parity
-        self.swaps = (bool(swaps[-2]), bool(swaps[-1]))
         if self.tail is not None:
             xp, xm, t = (np.concatenate([a, b]) for a, b in zip(self.tail, (xp, xm, t)))
         self.tail = (xp[-3:], xm[-3:], t[-3:])
@@ -160,10 +151,27 @@ class _Follow:
     def ring_swap(self, head: tuple, turn: float = 360.0) -> bool:
         """Whether the labels swap on the step from the run's last sample back to its first
         (``head``: both candidates' signatures there), a whole turn on."""
-        tp, tm, tt = self.tail
-        known = _flips(np.concatenate([tp, head[0]]), np.concatenate([tm, head[1]]),
-                       np.concatenate([tt, [turn]]), carried=self.swaps)
-        return bool(known[-1])
+        return bool(self._swaps(head[0], head[1], np.array([turn]))[-1])
+
+    def _swaps(self, xp: np.ndarray, xm: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """The label swap (m,) on the interval into each of the next samples (0 into the run's
+        first), and the last two swaps kept for the next call. With three samples of history
+        the window goes on from the carried swaps; with fewer, the history is the whole run so
+        far, and the run's swaps are decided again from its start."""
+        n_tail = 0 if self.tail is None else len(self.tail[0])
+        if n_tail:
+            tp, tm, tt = self.tail
+            xp, xm, t = np.concatenate([tp, xp]), np.concatenate([tm, xm]), np.concatenate([tt, t])
+        if n_tail == 3:
+            known = _flips(xp, xm, t, carried=self.swaps)
+            incoming, history = known[2:], known
+        else:
+            run = _flips(xp, xm, t)             # every swap of the run from its start
+            incoming = run[n_tail - 1:] if n_tail else np.concatenate([[False], run])
+            history = run
+        history = np.concatenate([[False, False], history])
+        self.swaps = (bool(history[-2]), bool(history[-1]))
+        return incoming.astype(int)
 
 
 class _Tracker:
