@@ -19,11 +19,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from .analysis import DEFAULT_TOL, Analysis, analyse, no_angle_error, passes, solve_trusted
 from .checks import Agreement, ExpectationResult, Residual, residuals
 from .checks.agreement import finish, merge, spreads
-from .checks.expectations import at_angle, check_cycle, left_out
+from .checks.expectations import at_angle, check_cycle, judge, left_out
 from .forces import METHODS, ForceContext, contour
+from .forces.result import slider_point
 from .kinematics import Flag
 from .kinematics.stream import kinematic_chunks, streamable
 from .model import build_mechanism
@@ -83,7 +86,8 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     flags: list[Flag] = []
     parts: dict = {}
     worst: dict[str, list[float]] = {}
-    found: dict[int, list[ExpectationResult]] = {}
+    found: dict[int, list] = {}       # expect index -> its results (or a slider's inputs)
+    top: dict[tuple[str, str], float] = {}   # (method, T joint) -> largest force component
     traces: Traces | None = None          # every chunk's, one after the other
     n = 0
     timed = [(i, e) for i, e in enumerate(spec.expect) if e.angle is not None]
@@ -98,9 +102,18 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
         for r in residuals(ctx, forces):
             w = worst.setdefault(r.method, [0.0, 0.0])
             w[0], w[1] = max(w[0], r.force), max(w[1], r.moment)
+        for name, res in forces.items():     # slider points are judged against these
+            for j, r in res.reactions.items():
+                if r.moment is not None:
+                    top[name, j] = max(top.get((name, j), 0.0),
+                                       float(np.max(np.abs(r.fx))), float(np.max(np.abs(r.fy))))
         for i, e in timed:
             k = kin.index_of(e.angle)
-            if k is not None:
+            if k is None:
+                continue
+            if _slider_point(e):
+                found[i] = _slider_inputs(e, ctx, forces, k)
+            else:
                 found[i] = at_angle(e, kin, forces, k)
         part = traces_of(kin, forces, ctx.loads)
         if traces is None:
@@ -118,8 +131,41 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     for i, e in enumerate(spec.expect):
         if e.angle is None:
             expectations.append(check_cycle(e, values, why))
+        elif i not in found:
+            expectations += left_out(e, spec, flags)
+        elif _slider_point(e):
+            expectations += _judge_slider(e, spec, found[i], top)
         else:
-            expectations += found.get(i) or left_out(e, spec, flags)
+            expectations += found[i]
     return SweepCheck(spec, n, tuple(flags), finish(parts),
                       [Residual(m, f, mo) for m, (f, mo) in worst.items()], expectations, tol,
                       values, why, tuple(verdicts(spec.design, values, why)), chunks.notes())
+
+
+def _slider_point(e) -> bool:
+    """Whether expectation ``e`` is on a T joint's point of application (joint.J.px or py):
+    defined against the largest force over the whole sweep, so judged at the end."""
+    parts = e.quantity.split(".")
+    return len(parts) == 3 and parts[0] == "joint" and parts[2] in ("px", "py")
+
+
+def _slider_inputs(e, ctx: ForceContext, forces, k: int) -> dict:
+    """What each method's slider point at row ``k`` is made of: (context at that angle, fx,
+    fy, m); the point is computed when the sweep's largest force is known."""
+    joint = e.quantity.split(".")[1]
+    one = ForceContext(ctx.kin.take([k], ()))
+    out = {}
+    for name, res in forces.items():
+        r = res.reactions.get(joint)
+        if r is not None and r.moment is not None:
+            out[name] = (one, r.fx[k:k + 1], r.fy[k:k + 1], r.moment[k:k + 1])
+    return out
+
+
+def _judge_slider(e, spec: Spec, inputs: dict, top: dict) -> list[ExpectationResult]:
+    joint, axis = e.quantity.split(".")[1:]
+    sources = {}
+    for name, (one, fx, fy, m) in inputs.items():
+        px, py = slider_point(one, spec.joint(joint), fx, fy, m, top[name, joint])
+        sources[name] = float((px if axis == "px" else py)[0])
+    return judge(e, sources, spec)

@@ -183,3 +183,37 @@ def test_whole_turn_closure_on_sweeps_of_a_few_angles(step, monkeypatch):
     if step == 180:    # (coarser sweeps may step over the change point unseen, either way)
         assert not all(b.closes for b in whole.branches)
     assert check_sweep(spec, chunk=3).review_problem == analyse(spec).review_problem
+
+
+def test_slider_point_is_judged_against_the_whole_sweeps_largest_force():
+    """A press load of 1e9 N acts only from 0 to 20 deg; at 200 deg the slider's force is
+    below 1e-12 of the sweep's largest, so its point of application is undefined, in memory and
+    streamed alike (a chunk's own largest force would have defined it)."""
+    text = """mechreport: 1
+name: slider-crank with a short, huge press load
+gravity: [0, 0]
+ground: {A: [0, 0], O: [0, 0]}
+links:
+  crank: {points: {A: [0, 0], B: [1, 0]}, mass: 0.001, com: [0.5, 0], inertia: 1e-4}
+  rod: {points: {B: [0, 0], C: [2, 0]}, mass: 0.001, com: [1, 0], inertia: 1e-4}
+  slider: {points: {C: [0, 0]}, mass: 0.001, com: [0, 0], inertia: 1e-4}
+joints:
+  A: {type: R, links: [ground, crank]}
+  B: {type: R, links: [crank, rod]}
+  C: {type: R, links: [rod, slider]}
+  C_T: {type: T, links: [ground, slider], point: C, line: {through: O, direction: 0}}
+driver: {joint: A, omega: 1}
+sweep: {start: 0, stop: 360, step: 1}
+at: [45]
+assembly: {C: [2.5, 0]}
+loads:
+  - {type: force, name: press, link: slider, point: C, direction: [-1, 0],
+     profile: [[0, 1e9], [20, 1e9], [21, 0], [359, 0]]}
+expect:
+  - {angle: 200, quantity: joint.C_T.px, value: 1.1, tol: 1e-6}
+"""
+    spec = parse_spec(text, "press.yaml")
+    a, s = analyse(spec), check_sweep(spec, chunk=13)
+    assert [e.message for e in a.expectations] == [e.message for e in s.expectations]
+    assert s.expectations and all(e.got is None and "undefined" in e.message
+                                  for e in s.expectations)

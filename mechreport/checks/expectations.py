@@ -63,7 +63,6 @@ def at_angle(e: Expectation, kin: Kinematics, results: dict[str, ForceResult],
              k: int) -> list[ExpectationResult]:
     """An instantaneous expectation checked at row ``k`` of ``kin``: against the kinematics,
     or against every force method that computes its quantity."""
-    spec = kin.mechanism.spec
     if e.quantity.startswith(("point.", "link.")):
         sources = {"kinematics": kinematic_value(kin, e.quantity, k)}
     else:
@@ -72,6 +71,11 @@ def at_angle(e: Expectation, kin: Kinematics, results: dict[str, ForceResult],
             values = res.quantity(e.quantity)
             if values is not None:
                 sources[name] = float(values[k])
+    return judge(e, sources, kin.mechanism.spec)
+
+
+def judge(e: Expectation, sources: dict[str, float], spec) -> list[ExpectationResult]:
+    """An instantaneous expectation against the value each source computed at its angle."""
     out = []
     for source, got in sources.items():
         if not np.isfinite(got):

@@ -144,14 +144,17 @@ class ForceResult:
         return out
 
 
-def slider_point(ctx, joint, fx: np.ndarray, fy: np.ndarray, m: np.ndarray):
+def slider_point(ctx, joint, fx: np.ndarray, fy: np.ndarray, m: np.ndarray,
+                 top: float | None = None):
     """Where a T joint's force (fx, fy) and couple m about the slider's point act as one force
-    on the sliding line: (px, py) [m], NaN where the force vanishes (below 1e-12 of the
-    largest over the sweep) and the point is undefined."""
+    on the sliding line: (px, py) [m], NaN where the force vanishes (below 1e-12 of ``top``,
+    the largest force component over the sweep, by default over these angles) and the point
+    is undefined."""
     u = rotate(joint.line.direction, ctx.kin.theta[:, ctx.num(joint.guide)])
     f = np.stack([fx, fy], axis=1)
     s = cross(u, f)
-    scale = np.maximum(np.max(np.abs(f), initial=0.0), 1e-300)
+    top = np.max(np.abs(f), initial=0.0) if top is None else top
+    scale = np.maximum(top, 1e-300)
     with np.errstate(divide="ignore", invalid="ignore"):
         t = np.where(np.abs(s) > 1e-12 * scale, m / s, np.nan)
     p = ctx.joint_points[joint.name] + t[:, None] * u
