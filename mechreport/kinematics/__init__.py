@@ -8,6 +8,8 @@ out.
 """
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 
 from ..errors import AssemblyError
@@ -86,7 +88,9 @@ def finish(mech: Mechanism, phi_deg: np.ndarray, r: dict, th: dict, branches, mo
         out = np.stack([d[k] for k in order], axis=1)
         return out if not problems else out[keep]
 
-    flags = tuple(Flag(float(phi_deg[k]), why, kind) for k, (kind, why) in sorted(problems.items()))
+    # many angles share a reason (those beyond one lock): one string for all of them
+    flags = tuple(Flag(float(phi_deg[k]), sys.intern(why), kind)
+                  for k, (kind, why) in sorted(problems.items()))
     return Kinematics(mech, phi_deg[keep], stack(r), stack(th), stack(v), stack(w), stack(acc),
                       stack(al), flags, tuple(branches), motion, error[keep])
 
