@@ -16,7 +16,7 @@ from mechreport.kinematics.dyadsolve import DyadSystem
 from mechreport.kinematics.frames import LinkFrames, Trig, rotate
 from mechreport.kinematics.groups import RateEquations
 from mechreport.kinematics.path import sweep_path
-from mechreport.kinematics.position import _flips, _ring_flips, dyad_candidates, signature
+from mechreport.kinematics.position import label_swaps, ring_swaps, dyad_candidates, signature
 from mechreport.linalg import SINGULAR_COND, Equilibrated
 from mechreport.model import build_mechanism
 from mechreport.spec import GROUND, Sweep, load_spec
@@ -146,8 +146,8 @@ def test_whole_turn_flips_are_the_runs_own(name):
     cands = dyad_candidates(spec, dyad, {k: (kin_r[k], kin_th[k]) for k in kin_r})
     sig = [signature(spec, dyad.links, c) for c in cands]
     run, travel = path.runs[0], path.travel[0]
-    ring = _ring_flips(sig, run, travel)
-    own = _flips(sig[0][run], sig[1][run], travel[:len(run)])
+    ring = ring_swaps(sig, run, travel)
+    own = label_swaps(sig[0][run], sig[1][run], travel[:len(run)])
     np.testing.assert_array_equal(ring[:-1], own)
     if name == "slider_crank":
         assert own.any()          # a touch: the labels swap

@@ -148,23 +148,23 @@ def test_touch_points_at_every_offset_from_a_chunk_boundary(size, monkeypatch):
 
 @pytest.mark.parametrize("seed", range(5))
 def test_flips_continue_across_windows_from_the_carried_swaps(seed):
-    """position._flips over windows (three samples of history and the last two swaps carried)
-    equals _flips over the whole run, on erratic candidates that touch all the time (where the
+    """position.label_swaps over windows (three samples of history and the last two swaps carried)
+    equals label_swaps over the whole run, on erratic candidates that touch all the time (where the
     history's labels decide the votes)."""
-    from mechreport.kinematics.position import _flips
+    from mechreport.kinematics.position import label_swaps
     rng = np.random.default_rng(seed)
     n = 300
     xp = np.cumsum(rng.standard_normal((n, 2)), axis=0)
     xm = xp + rng.standard_normal((n, 2)) * 0.5
     t = np.cumsum(rng.uniform(0.5, 1.5, n))
-    whole = _flips(xp, xm, t)
+    whole = label_swaps(xp, xm, t)
     assert 10 < whole.sum() < n - 10
     for size in (3, 4, 7, 16):
-        got = list(_flips(xp[:size], xm[:size], t[:size]))
+        got = list(label_swaps(xp[:size], xm[:size], t[:size]))
         for s in range(size, n, size):
             e = min(s + size, n)
             w = slice(s - 3, e)
-            got += list(_flips(xp[w], xm[w], t[w], carried=(got[s - 3], got[s - 2]))[2:])
+            got += list(label_swaps(xp[w], xm[w], t[w], carried=(got[s - 3], got[s - 2]))[2:])
         np.testing.assert_array_equal(got, whole)
 
 

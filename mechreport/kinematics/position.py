@@ -239,10 +239,10 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
         for run in runs:
             reached[run] = True
     else:
-        sign, rule = _pick_branch(spec, dyad, cands, sig, path)
+        sign, rule = pick_branch(spec, dyad, cands, sig, path)
         ring = None
         if path.periodic and len(runs[0]) == len(path.runs[0]):   # a whole turn: back home?
-            ring = _ring_flips(sig, runs[0], path.travel[0])
+            ring = ring_swaps(sig, runs[0], path.travel[0])
         closes = ring is None or int(np.sum(ring)) % 2 == 0
         choice = BranchChoice(name, dyad.kind, sign, rule, closes)
         for k, (run, travel) in enumerate(zip(runs, path.travel)):
@@ -252,7 +252,7 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
             if k == 0 and ring is not None:    # the whole turn's flips, but the step home
                 flips = ring[:len(run) - 1]
             else:
-                flips = _flips(sig[0][run], sig[1][run], travel[:len(run)])
+                flips = label_swaps(sig[0][run], sig[1][run], travel[:len(run)])
             parity = np.concatenate([[0], np.cumsum(flips)]) % 2
             plus = (parity == 0) == (sign == 1)
             use_plus[run[todo]] = plus[todo]
@@ -273,14 +273,14 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
     return chosen, choice, runs
 
 
-def _ring_flips(sig: list[np.ndarray], run: np.ndarray, travel: np.ndarray) -> np.ndarray:
+def ring_swaps(sig: list[np.ndarray], run: np.ndarray, travel: np.ndarray) -> np.ndarray:
     """The label swaps (len(run),) along a whole-turn ``run`` (from the reference angle, all
     the way round) and on the step back to its start: the branch comes back to the one it
     started on if their number is even. Those before the last are the run's own flips
-    (:func:`_flips` decides each interval from the angles before it only)."""
+    (:func:`label_swaps` decides each interval from the angles before it only)."""
     ring = np.concatenate([run, run[:1]])
     t = np.concatenate([travel[:len(run)], [360.0]])
-    return _flips(sig[0][ring], sig[-1][ring], t)
+    return label_swaps(sig[0][ring], sig[-1][ring], t)
 
 
 def first_false(mask: np.ndarray) -> int:
@@ -288,7 +288,7 @@ def first_false(mask: np.ndarray) -> int:
     return int(bad[0]) if bad.size else len(mask)
 
 
-def _pick_branch(spec: Spec, dyad: Dyad, cands: list[Poses], sig: list[np.ndarray],
+def pick_branch(spec: Spec, dyad: Dyad, cands: list[Poses], sig: list[np.ndarray],
                  path: SweepPath) -> tuple[int, str]:
     """The branch sign at the first reference angle and the rule that chose it. Where the two
     branches meet there (a singular position), no hint can decide: say so, take the default
@@ -334,7 +334,7 @@ def _pick_branch(spec: Spec, dyad: Dyad, cands: list[Poses], sig: list[np.ndarra
     return (1 if err[0] <= err[1] else -1), "hint: " + ", ".join(hints)
 
 
-def _flips(xp: np.ndarray, xm: np.ndarray, angles: np.ndarray,
+def label_swaps(xp: np.ndarray, xm: np.ndarray, angles: np.ndarray,
            carried: tuple[bool, bool] | None = None) -> np.ndarray:
     """For each interval k -> k+1 (n-1,): True where the branch labels swap roles.
 

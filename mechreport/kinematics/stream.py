@@ -27,7 +27,7 @@ from ..model import Mechanism
 from ..spec import GROUND
 from . import driver_pose, finish, require_closes_at_ref
 from .path import SweepPath, sweep_path
-from .position import (BranchChoice, _flips, _pick_branch, dyad_candidates, first_false,
+from .position import (BranchChoice, label_swaps, pick_branch, dyad_candidates, first_false,
                        signature)
 from .result import Kinematics, Motion, motion_of
 
@@ -163,10 +163,10 @@ class _Follow:
             tp, tm, tt = self.tail
             xp, xm, t = np.concatenate([tp, xp]), np.concatenate([tm, xm]), np.concatenate([tt, t])
         if n_tail == 3:
-            known = _flips(xp, xm, t, carried=self.swaps)
+            known = label_swaps(xp, xm, t, carried=self.swaps)
             incoming, history = known[2:], known
         else:
-            run = _flips(xp, xm, t)             # every swap of the run from its start
+            run = label_swaps(xp, xm, t)             # every swap of the run from its start
             incoming = run[n_tail - 1:] if n_tail else np.concatenate([[False], run])
             history = run
         history = np.concatenate([[False, False], history])
@@ -272,7 +272,7 @@ class _Tracker:
 
     def _choose(self, dyad, cands: list[dict], sig: list[np.ndarray],
                 part: np.ndarray) -> None:
-        """The branch at the first reference angle (``part[0]``), by ``_pick_branch`` over the
+        """The branch at the first reference angle (``part[0]``), by ``pick_branch`` over the
         chunk that starts there."""
         name = f"{dyad.label} ({', '.join(dyad.links)})"
         if len(cands) == 1:
@@ -280,7 +280,7 @@ class _Tracker:
             return
         local = SimpleNamespace(ref=0, runs=(np.arange(len(part)),),
                                 angles=self.path.angles[part])
-        sign, rule = _pick_branch(self.spec, dyad, cands, sig, local)
+        sign, rule = pick_branch(self.spec, dyad, cands, sig, local)
         self.choices[dyad.label] = BranchChoice(name, dyad.kind, sign, rule)
         self.follow[dyad.label] = _Follow(sign)
 
