@@ -28,8 +28,27 @@ from .spec import Spec, load_spec
 DEFAULT_TOL = 1e-6
 
 
+class Checked:
+    """The check's verdict on a result with ``agreement`` (worst first), ``expectations``,
+    ``verdicts``, ``tol`` and ``n`` angles analysed: an Analysis or a streamed sweep's check."""
+
+    @property
+    def worst(self) -> Agreement | None:
+        return self.agreement[0] if self.agreement else None
+
+    @property
+    def passed(self) -> bool:
+        """Every expectation and design verdict met, the methods agreeing within ``tol``, at
+        least one angle analysed."""
+        worst = self.worst
+        return (all(e.ok for e in self.expectations)
+                and all(v.passed for v in self.verdicts)
+                and (worst is None or worst.relative <= self.tol)
+                and self.n > 0)
+
+
 @dataclass(frozen=True)
-class Analysis:
+class Analysis(Checked):
     """Everything known about one spec. ``forces`` by method name; ``flags`` the angles left
     out (kinematic or force singularities) with reasons."""
 
@@ -75,23 +94,6 @@ class Analysis:
         """What a reader must know before the numbers (see ``Kinematics.notes``)."""
         return self.kinematics.notes()
 
-    @property
-    def worst(self) -> Agreement | None:
-        return self.agreement[0] if self.agreement else None
-
-    @property
-    def passed(self) -> bool:
-        return passes(self)
-
-
-def passes(result) -> bool:
-    """A check's verdict on an analysis (or a streamed sweep's check): every expectation and
-    design verdict met, the methods agreeing within its ``tol``, at least one angle analysed."""
-    worst = result.worst
-    return (all(e.ok for e in result.expectations)
-            and all(v.passed for v in result.verdicts)
-            and (worst is None or worst.relative <= result.tol)
-            and result.n > 0)
 
 
 def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> Analysis:

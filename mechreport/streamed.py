@@ -21,7 +21,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .analysis import DEFAULT_TOL, Analysis, analyse, no_angle_error, passes, solve_trusted
+from .analysis import (DEFAULT_TOL, Analysis, Checked, analyse, no_angle_error,
+                       solve_trusted)
 from .checks import Agreement, ExpectationResult, Residual, residuals
 from .checks.agreement import finish, merge, spreads
 from .checks.expectations import at_angle, check_cycle, judge, left_out
@@ -38,7 +39,7 @@ CHUNK = 8192              # angles analysed together
 
 
 @dataclass(frozen=True)
-class SweepCheck:
+class SweepCheck(Checked):
     """What a check of one spec found, without the per-angle results: ``n`` angles analysed,
     ``flags`` those left out, the agreement table (worst first), each method's largest
     residuals, the expectations, the design review's cycle quantities ``values`` (None when
@@ -55,14 +56,6 @@ class SweepCheck:
     review_problem: str
     verdicts: tuple[Verdict, ...]
     kinematic_notes: list[str] = field(default_factory=list)
-
-    @property
-    def worst(self) -> Agreement | None:
-        return self.agreement[0] if self.agreement else None
-
-    @property
-    def passed(self) -> bool:
-        return passes(self)
 
     def notes(self) -> list[str]:
         return list(self.kinematic_notes)

@@ -14,6 +14,7 @@ the worked solution sheets, so each term keeps its symbol, application point and
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 
@@ -191,21 +192,17 @@ def triangular_blocks(step: Step) -> list[Step]:
     every angle. ``[step]`` when it does not split or has no perfect matching (a structurally
     singular system is left whole, to be reported singular)."""
     key = (tuple(step.unknowns), tuple(tuple(eq.unknown_names()) for eq in step.equations))
-    order = _BLOCKS.get(key)
-    if order is None:
-        order = _BLOCKS[key] = _block_order(*key)
+    order = _block_order(*key)
     if len(order) <= 1:
         return [step]
     return [Step(step.title, [step.unknowns[c] for c in cols],
                  [step.equations[r] for r in rows], step.bodies) for rows, cols in order]
 
 
-_BLOCKS: dict[tuple, list[tuple[list[int], list[int]]]] = {}   # structure -> block order
-
-
+@lru_cache(maxsize=4096)
 def _block_order(unknowns: tuple[str, ...], uses: tuple[tuple[str, ...], ...]):
-    """[(equation rows, unknown columns)] per block in solving order; one block when the
-    structure has no perfect matching."""
+    """((equation rows), (unknown columns)) per block in solving order, once per structure;
+    one block when the structure has no perfect matching."""
     m = len(unknowns)
     col = {u: j for j, u in enumerate(unknowns)}
     pattern = [sorted({col[u] for u in names if u in col}) for names in uses]
@@ -220,11 +217,11 @@ def _block_order(unknowns: tuple[str, ...], uses: tuple[tuple[str, ...], ...]):
                     return True
         return False
     if len(uses) != m or not all(augment(r, set()) for r in range(m)):
-        return [(list(range(len(uses))), list(range(m)))]
+        return ((tuple(range(len(uses))), tuple(range(m))),)
     matched = {owner[c]: c for c in range(m)}       # row -> its column
     needs = [[owner[c] for c in pattern[r] if c != matched[r]] for r in range(m)]
     blocks = _strong_components(needs)              # dependencies first (Tarjan)
-    return [(sorted(b), sorted(matched[r] for r in b)) for b in blocks]
+    return tuple((tuple(sorted(b)), tuple(sorted(matched[r] for r in b))) for b in blocks)
 
 
 def _strong_components(edges: list[list[int]]) -> list[list[int]]:

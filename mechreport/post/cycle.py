@@ -30,7 +30,6 @@ class Cycle:
     rows: np.ndarray
     interpolated: np.ndarray
     omega: float
-    whole: bool = False      # the analysed angles are exactly the grid's (rows 0, 1, ...)
 
     @property
     def step(self) -> float:
@@ -41,8 +40,8 @@ class Cycle:
         """``values`` (n, ...) over the analysed angles -> (N, ...) over the cycle grid, left-out
         angles interpolated periodically from their analysed neighbours."""
         values = np.asarray(values, float)
-        if self.whole and len(values) == len(self.rows):
-            return values        # the analysed angles are the grid: nothing to fill
+        if not len(self.interpolated) and len(values) == len(self.rows):
+            return values        # the analysed angles are the grid's (rows 0, 1, ...)
         out = np.empty((len(self.angles),) + values.shape[1:])
         have = self.rows >= 0
         out[have] = values[self.rows[have]]
@@ -92,5 +91,4 @@ def cycle_of(spec: Spec, analysed_angles: np.ndarray, reachable: bool = True,
     if not hit.any():
         raise CycleUndefined(f"{spec.file}: no angle of the cycle could be analysed")
     rows = np.where(hit, pos, -1)
-    return Cycle(grid, rows, grid[~hit], spec.driver.omega,
-                 bool(len(have) == len(grid) and hit.all()))
+    return Cycle(grid, rows, grid[~hit], spec.driver.omega)
