@@ -5,13 +5,17 @@ the angle axis contiguously, and the equilibration's row and column maxima reduc
 contiguous runs instead of short last axes (measured 6-10x faster for 6x6 and 17x17 than the
 angle-first layout). LAPACK then solves each angle's matrix from a view; 1x1 and 2x2 systems
 (most blocks of the force methods' block triangular systems) are solved in closed form over
-the angle axis, 3-4x faster than LAPACK's per-matrix call.
+the angle axis, 3-4x faster than LAPACK's per-matrix call. Larger systems whose rows are
+partly the same at every angle (force balances, coefficients +-1) have those rows eliminated
+once for all angles (:class:`ConstantRows`); what is left is most often 2x2 or smaller.
 """
 from __future__ import annotations
 
 import numpy as np
 
 SINGULAR_COND = 1e10  # equilibrated condition number above which an angle is flagged singular
+CONSTANT_PIVOT_COND = 100.0   # largest condition number of an eliminated constant block
+CONSTANT_GROWTH = 4.0         # largest |K_P^-1 K_Q| entry of an eliminated constant block
 
 
 class Equilibrated:
@@ -31,7 +35,8 @@ class Equilibrated:
         absA = np.abs(At)
         rs = absA.max(axis=1)                  # (m, n); NaN or inf where a row is not finite
         rs[rs == 0] = 1.0
-        As = np.divide(At, rs[:, None, :])
+        with np.errstate(invalid="ignore"):    # inf / inf: an overflow angle, replaced below
+            As = np.divide(At, rs[:, None, :])
         np.abs(As, out=absA)
         cs = absA.max(axis=0)                  # (m, n)
         cs[cs == 0] = 1.0
@@ -42,12 +47,18 @@ class Equilibrated:
             As[:, :, self.overflow] = np.eye(m)[:, :, None]
         self.rs, self.cs, self.As = rs, cs, As   # all angle-last
         self.exact = np.zeros(n, bool)         # exactly singular (a zero pivot), found on solve
+        self.schur = ConstantRows.of(At, self.overflow) if m >= 3 else None
 
     def _solve(self, rhs: np.ndarray) -> np.ndarray:
         """Every angle's system for right-hand sides rhs (m, k, n) -> y (m, k, n), both
-        angle-last; inf at bad angles. LAPACK, except 1x1 and 2x2 in closed form (LAPACK's
-        per-matrix cost is most of theirs)."""
-        if self.m <= 2:
+        angle-last; inf at bad angles. Systems with constant rows through
+        :class:`ConstantRows`; the others by LAPACK, except 1x1 and 2x2 in closed form
+        (LAPACK's per-matrix cost is most of theirs)."""
+        if self.schur is not None:        # solved unscaled: A x = rs rhs, y = cs x
+            with np.errstate(invalid="ignore", over="ignore"):   # overflow angles: inf
+                y = self.schur.solve(rhs * self.rs[:, None, :]) * self.cs[:, None, :]
+            self.exact |= self.schur.exact
+        elif self.m <= 2:
             y, exact = _closed_form(self.As, rhs)
             self.exact |= exact
         else:
@@ -102,6 +113,101 @@ class Equilibrated:
             return np.zeros((self.n, 0, B.shape[2]))
         y = self._solve(B.transpose(1, 2, 0) / self.rs[:, None, :])
         return (y / self.cs[:, None, :]).transpose(2, 0, 1)
+
+
+class ConstantRows:
+    """A system ``At`` (m, m, n) whose rows ``R`` are the same numbers at every angle (a
+    force balance in x or y has coefficients +-1 on the reactions; a slider's couple appears
+    alone in its link's moment equation), solved by eliminating them once for all angles.
+
+    With ``P`` the unknowns the constant rows are pivoted on (complete pivoting over the
+    constant block K = [K_P K_Q]), ``N`` the other rows and ``Q`` the other unknowns:
+    x_P = K_P^-1 b_R - M x_Q with M = K_P^-1 K_Q, and the Schur complement
+    (A_NQ - A_NP M) x_Q = b_N - A_NP K_P^-1 b_R, of size m - |R|, most often 2x2 or
+    smaller, is solved in closed form (LAPACK above 2). The constant block is accepted only
+    when it is well conditioned and M's entries are small (bounded growth, as with partial
+    pivoting); otherwise :meth:`of` returns None and the whole system goes to the general
+    solve. Removes LAPACK's per-matrix cost from Newton-Euler's and the dyad method's
+    blocks."""
+
+    def __init__(self, At, rows, others, pivots, rest, Kinv, M):
+        self.rows, self.others, self.pivots, self.rest = rows, others, pivots, rest
+        self.Kinv, self.M = Kinv, M
+        self.A_NP = At[np.ix_(others, pivots)]                      # (q, p, n)
+        S = At[np.ix_(others, rest)] - np.einsum("ipn,pq->iqn", self.A_NP, M)
+        self.S = S if len(rest) <= 2 else Equilibrated(S)
+        self.exact = np.zeros(At.shape[2], bool)
+
+    @staticmethod
+    def of(At: np.ndarray, bad: np.ndarray) -> "ConstantRows | None":
+        """The elimination for ``At`` if it has usable constant rows, else None. ``bad``
+        (n,) marks angles whose coefficients are not finite (left out of the comparison;
+        their results are discarded by the caller)."""
+        m, _, n = At.shape
+        good = np.flatnonzero(~bad)
+        if good.size == 0:
+            return None
+        first = At[:, :, good[0]]
+        if good.size < n:                  # the bad angles take a good angle's numbers
+            At = At.copy()
+            At[:, :, bad] = first[:, :, None]
+        same = (At == first[:, :, None]).all(axis=2).all(axis=1)
+        rows = np.flatnonzero(same & np.isfinite(first).all(axis=1))
+        if rows.size == 0:
+            return None
+        K = first[rows]
+        pivots = _complete_pivots(K)
+        if pivots is None:
+            return None
+        rest = np.array([j for j in range(m) if j not in set(pivots)], int)
+        pivots = np.array(pivots, int)
+        K_P = K[:, pivots]
+        if np.linalg.cond(K_P) > CONSTANT_PIVOT_COND:
+            return None
+        Kinv = np.linalg.inv(K_P)
+        M = Kinv @ K[:, rest]
+        if M.size and np.max(np.abs(M)) > CONSTANT_GROWTH:
+            return None
+        others = np.array([i for i in range(m) if i not in set(rows.tolist())], int)
+        return ConstantRows(At, rows, others, pivots, rest, Kinv, M)
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        """x (m, k, n) with A x = rhs (m, k, n), unscaled; ``exact`` marks the angles where
+        the Schur complement is exactly singular."""
+        c = np.einsum("ij,jkn->ikn", self.Kinv, rhs[self.rows])       # K_P^-1 b_R
+        x = np.empty(rhs.shape)
+        if len(self.rest):
+            bs = rhs[self.others] - np.einsum("ipn,pkn->ikn", self.A_NP, c)
+            if isinstance(self.S, Equilibrated):
+                xq = self.S._solve(bs / self.S.rs[:, None, :]) / self.S.cs[:, None, :]
+                exact = self.S.exact | self.S.overflow
+            else:
+                xq, exact = _closed_form(self.S, bs)
+            self.exact |= exact
+            x[self.rest] = xq
+            c -= np.einsum("pq,qkn->pkn", self.M, xq)
+        x[self.pivots] = c
+        return x
+
+
+def _complete_pivots(K: np.ndarray) -> list[int] | None:
+    """The column each row of the constant block K (p, m) is pivoted on, by Gaussian
+    elimination with complete pivoting; None if K has not full row rank."""
+    W = K.astype(float).copy()
+    p, m = W.shape
+    top = np.max(np.abs(W), initial=0.0)
+    free_rows, free_cols = list(range(p)), list(range(m))
+    out = []
+    for _ in range(p):
+        sub = np.abs(W[np.ix_(free_rows, free_cols)])
+        i, j = np.unravel_index(np.argmax(sub), sub.shape)
+        if not sub[i, j] > 1e-12 * top:
+            return None
+        r, c = free_rows.pop(i), free_cols.pop(j)
+        for k in free_rows:
+            W[k] -= W[k, c] / W[r, c] * W[r]
+        out.append(c)
+    return out
 
 
 def _closed_form(At: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

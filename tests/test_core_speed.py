@@ -163,11 +163,12 @@ def test_blockwise_solve_equals_the_whole_system(name, method):
 
 
 @pytest.mark.parametrize("m", [1, 2])
-def test_closed_form_small_solves_equal_lapack(m):
+def test_closed_form_small_solves_equal_lapack(m, monkeypatch):
     """1x1 and 2x2 systems are solved by Cramer's rule: same answer and condition estimate
     as the LAPACK path (3x3 systems padded with an identity row and column), exactly singular
     ones NaN with an infinite condition number."""
     from mechreport.linalg import batched_solve_cond
+    _lapack_only(monkeypatch)        # the padding rows are constant: keep them for LAPACK
     rng = np.random.default_rng(7)
     n = 500
     A = rng.standard_normal((n, m, m)) * 10.0 ** rng.uniform(-3, 3, (n, m, 1))
@@ -183,3 +184,106 @@ def test_closed_form_small_solves_equal_lapack(m):
     np.testing.assert_allclose(x[ok], ref[ok, :m], rtol=1e-10)
     assert np.all(np.isinf(cond[:2])) and np.all(np.isnan(x[:2]))
     assert np.all(np.isfinite(cond[ok]))
+
+
+def _lapack_only(monkeypatch):
+    """Every system of size 3 and more through LAPACK (no constant rows eliminated)."""
+    from mechreport import linalg
+    monkeypatch.setattr(linalg.ConstantRows, "of", staticmethod(lambda At, bad: None))
+
+
+def _with_constant_rows(rng, n: int, p: int, q: int) -> np.ndarray:
+    """Systems (m, m, n), angle-last: ``p`` rows of +-1 and 0, the same at every angle (force
+    balances), over ``q`` rows that vary (moment equations, lever arms over six decades)."""
+    m = p + q
+    while True:
+        K = rng.choice([-1.0, 0.0, 1.0], size=(p, m), p=[0.3, 0.4, 0.3])
+        if p == 0 or np.linalg.matrix_rank(K[:, :p]) == p:
+            break
+    A = np.empty((m, m, n))
+    A[:p] = K[:, :, None]
+    A[p:] = rng.standard_normal((q, m, n)) * 10.0 ** rng.uniform(-3, 3, (q, 1, n))
+    perm = rng.permutation(m)                  # constant rows anywhere, not first
+    return A[perm]
+
+
+@pytest.mark.parametrize("p,q", [(4, 0), (5, 1), (5, 2), (4, 3), (2, 5)])
+def test_constant_rows_eliminated_equal_lapack(p, q, monkeypatch):
+    """Systems whose constant rows are eliminated once for all angles (``ConstantRows``)
+    give LAPACK's solution and condition estimate, to rounding."""
+    from mechreport.linalg import Equilibrated
+    rng = np.random.default_rng(11 + p + 10 * q)
+    n = 400
+    A = _with_constant_rows(rng, n, p, q)
+    b = rng.standard_normal((n, p + q))
+    fast = Equilibrated(A)
+    assert fast.schur is not None and len(fast.schur.rest) == q
+    x, cond = fast.solve_cond(b)
+    _lapack_only(monkeypatch)
+    ref, ref_cond = Equilibrated(A).solve_cond(b)
+    ok = ref_cond < 1e8
+    assert ok.mean() > 0.9
+    err = np.abs(x - ref)[ok] / np.max(np.abs(ref[ok]), axis=1, keepdims=True)
+    assert np.all(err <= 1e-14 * ref_cond[ok, None])
+    np.testing.assert_allclose(cond[ok], ref_cond[ok], rtol=1e-6)
+
+
+def test_constant_rows_singular_and_non_finite_angles(monkeypatch):
+    """An angle where the Schur complement is exactly singular, and one whose coefficients
+    are not finite, come out as the LAPACK path has them: NaN values, an infinite or NaN
+    condition number; the other angles are untouched."""
+    from mechreport.linalg import Equilibrated
+    rng = np.random.default_rng(5)
+    n, p, q = 50, 4, 2
+    A = _with_constant_rows(rng, n, p, q)
+    fast = Equilibrated(A)
+    rows = fast.schur.rows
+    others = fast.schur.others
+    A[others[0], :, 7] = A[rows[0], :, 7]       # a varying row equal to a constant one
+    A[others[1], 0, 9] = np.inf
+    b = rng.standard_normal((n, p + q))
+    fast = Equilibrated(A)
+    assert fast.schur is not None
+    x, cond = fast.solve_cond(b)
+    _lapack_only(monkeypatch)
+    ref, ref_cond = Equilibrated(A).solve_cond(b)
+    assert np.isinf(cond[7]) and np.isinf(ref_cond[7])
+    assert np.isnan(cond[9]) and np.isnan(ref_cond[9])
+    assert np.all(np.isnan(x[[7, 9]])) and np.all(np.isnan(ref[[7, 9]]))
+    ok = np.ones(n, bool)
+    ok[[7, 9]] = False
+    np.testing.assert_allclose(x[ok], ref[ok], rtol=1e-9, atol=1e-12)
+
+
+def test_ill_conditioned_constant_rows_are_left_to_lapack():
+    """Constant rows are pivoted on their largest entries; nearly dependent ones are not
+    eliminated (the whole system goes to the general solve)."""
+    from mechreport.linalg import ConstantRows
+    rng = np.random.default_rng(3)
+    n = 20
+    A = rng.standard_normal((3, 3, n))
+    A[0] = np.array([1e-3, 1.0, 0.0])[:, None]
+    A[1] = np.array([1.0, 0.0, 1e-3])[:, None]
+    fine = ConstantRows.of(A, np.zeros(n, bool))
+    assert fine is not None and sorted(fine.pivots) == [0, 1] and list(fine.rest) == [2]
+    A[1] = np.array([1e-3, 1.0 + 1e-9, 0.0])[:, None]     # nearly the first row
+    assert ConstantRows.of(A, np.zeros(n, bool)) is None
+
+
+@pytest.mark.parametrize("name", ["r_rtr_rtr", "four_bar", "slider_crank"])
+def test_force_blocks_of_three_and_more_eliminate_constant_rows(name):
+    """Newton-Euler's and the dyad method's blocks (force balances with +-1 coefficients)
+    reach LAPACK only through their Schur complements, 2x2 or smaller: the path that removed
+    LAPACK's per-matrix cost stays taken."""
+    from mechreport.forces.equations import step_system, triangular_blocks
+    from mechreport.linalg import Equilibrated
+    kin = solve_kinematics(build_mechanism(load_spec(ROOT / "specs" / f"{name}.yaml")))
+    ctx = ForceContext(kin)
+    for method in ("newton_euler", "dyad"):
+        res = METHODS[method].solve(ctx)
+        for block in (b for s in METHODS[method].build_steps(ctx)
+                      for b in triangular_blocks(s)):
+            if len(block.unknowns) >= 3:
+                A, _ = step_system(block, res.values(), kin.n)
+                schur = Equilibrated(A).schur
+                assert schur is not None and len(schur.rest) <= 2, (method, block.unknowns)
