@@ -68,6 +68,12 @@ def _at_centre(ctx: ForceContext, act: Action, p: np.ndarray) -> bool:
     return memo[key][0]
 
 
+def with_moment(ctx: ForceContext, acts: list[Action], p: np.ndarray) -> list[Action]:
+    """The actions that enter a moment equation about point ``p`` (n, 2): all but the forces
+    applied at ``p`` itself, which have no moment (the text leaves them out)."""
+    return [a for a in acts if not _at_centre(ctx, a, p)]
+
+
 def force_equation(ctx: ForceContext, bodies, acts: list[Action], axis: str,
                    direction: np.ndarray | None = None, kind: str = "force") -> Equation:
     """sum F^(bodies) . axis = 0; ``axis`` x or y, or a named sliding ``direction`` (n, 2)."""
@@ -81,9 +87,7 @@ def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
                     at: np.ndarray | None = None) -> Equation:
     """sum M_about^(bodies) = 0 (moments about the named point ``about``)."""
     p = ctx.point_of(about) if at is None else at
-    # a force applied at the moment centre itself has no moment: leave it out, as the text does
-    terms = [moment_term(a, p, ctx.n, about_name=about) for a in acts
-             if not _at_centre(ctx, a, p)]
+    terms = [moment_term(a, p, ctx.n, about_name=about) for a in with_moment(ctx, acts, p)]
     return Equation(f"sum M_{about}^{body_tag(ctx, bodies)}", "moment", tuple(bodies), terms,
                     about=about)
 

@@ -29,7 +29,8 @@ import numpy as np
 from ..errors import UnsupportedMechanism
 from ..model import Loop, all_loops
 from ..spec import GROUND, Joint
-from .builders import force_equation, moment_equation, normal_constraint, sliding_direction
+from .builders import (force_equation, moment_equation, normal_constraint, sliding_direction,
+                       with_moment)
 from .context import ForceContext, reaction_unknowns
 from .equations import Equation, Step
 from .result import ForceResult, run_steps
@@ -82,44 +83,64 @@ def _rank(rows: np.ndarray) -> np.ndarray:
     return np.sum(s > RANK_RTOL * top, axis=1)
 
 
+def _needs(ctx: ForceContext, w: Joint, body: list[str]) -> frozenset[str]:
+    """The unknowns the equation cut at ``w`` for ``body`` names (its ``unknown_names``),
+    read from the actions without building the equation."""
+    acts = ctx.actions_on(body, inertia=True, exclude=(w.name,))
+    if w.type == "R":
+        acts = with_moment(ctx, acts, ctx.point_of(w.point))
+    else:                                   # a projection: couples have none
+        acts = [a for a in acts if a.kind == "force"]
+    return frozenset(u for a in acts for u in a.unknowns)
+
+
 def _candidates(ctx: ForceContext, loop: Loop, joint: Joint, unknowns: list[str],
-                known: set[str], cache: dict) -> list[Equation]:
+                known: set[str]) -> list[tuple[str, tuple[str, ...]]]:
     """The equations along ``loop`` cut at ``joint``, in the text's order (alternately along
-    paths I and II), that involve ``unknowns`` and nothing else not yet known."""
+    paths I and II), that involve ``unknowns`` and nothing else not yet known: as keys (W,
+    body) for :func:`_built`, which builds only those the selection tries."""
     x = [j.name for j in loop.joints].index(joint.name)
     paths = [list(_path(loop, x, True)), list(_path(loop, x, False))]
     out = []
     for w, body in (p[k] for k in range(max(map(len, paths))) for p in paths if k < len(p)):
-        key = (w.name, tuple(body))
-        if key not in cache:
-            cache[key] = _equation(ctx, w, body)
-            _recipes(cache)[id(cache[key])] = ("cut", w.name, tuple(body))
-        eq = cache[key]
-        needed = set(eq.unknown_names())
+        needed = _needs(ctx, w, body)
         if needed & set(unknowns) and needed <= set(unknowns) | known:
-            out.append(eq)
+            out.append((w.name, tuple(body)))
     return out
 
 
-def _select(unknowns: list[str], chosen: list[Equation], candidates: list[Equation],
+def _built(ctx: ForceContext, key: tuple[str, tuple[str, ...]], cache: dict) -> Equation:
+    """The equation cut at joint ``key[0]`` for the body ``key[1]``, built once per search."""
+    if key not in cache:
+        cache[key] = _equation(ctx, ctx.spec.joint(key[0]), list(key[1]))
+        _recipes(cache)[id(cache[key])] = ("cut", *key)
+    return cache[key]
+
+
+def _select(unknowns: list[str], chosen: list[Equation], candidates: list, build,
             probes: np.ndarray) -> list[Equation] | None:
-    """Independent equations for ``unknowns`` from ``candidates``, after ``chosen``: a
-    candidate is taken first only where it adds rank at every probe angle, then, for what is
-    still missing, where it adds rank at most of them (independent except at isolated angles,
-    which the solve then flags). None if there are not enough."""
+    """Independent equations for ``unknowns`` from ``candidates`` (keys, built by ``build``
+    when tried), after ``chosen``: a candidate is taken first only where it adds rank at
+    every probe angle, then, for what is still missing, where it adds rank at most of them
+    (independent except at isolated angles, which the solve then flags). None if there are
+    not enough."""
+    rows = [_rows(e, unknowns, probes) for e in chosen]
     chosen = list(chosen)
-    rank = _rank(np.stack([_rows(e, unknowns, probes) for e in chosen], axis=1)) if chosen \
-        else np.zeros(len(probes), int)
+    taken: set = set()
+    rank = _rank(np.stack(rows, axis=1)) if rows else np.zeros(len(probes), int)
     for share in (1.0, 0.5):
-        for eq in candidates:
+        for key in candidates:
             if len(chosen) == len(unknowns):
                 break
-            if any(eq is c for c in chosen):
+            if key in taken:
                 continue
-            trial = np.stack([_rows(e, unknowns, probes) for e in chosen + [eq]], axis=1)
-            new = _rank(trial)
+            eq = build(key)
+            row = _rows(eq, unknowns, probes)
+            new = _rank(np.stack(rows + [row], axis=1))
             if np.mean(new > rank) >= share and np.mean(new > rank) > 0:
                 chosen.append(eq)
+                rows.append(row)
+                taken.add(key)
                 rank = new
     return chosen if len(chosen) == len(unknowns) else None
 
@@ -136,8 +157,8 @@ def _try_joint(ctx: ForceContext, loop: Loop, joint: Joint, known: set[str],
     """Enough independent equations along ``loop`` for ``joint``'s unknowns, or None."""
     unknowns = _unknowns(ctx, [joint])
     start = [_normal(ctx, joint, cache)] if joint.type == "T" else []
-    chosen = _select(unknowns, start, _candidates(ctx, loop, joint, unknowns, known, cache),
-                     probes)
+    chosen = _select(unknowns, start, _candidates(ctx, loop, joint, unknowns, known),
+                     lambda key: _built(ctx, key, cache), probes)
     if chosen is None:
         return None
     return Step(f"Joint {joint.name} (loop {loop.label(ctx.spec)})", unknowns, chosen,
@@ -151,13 +172,13 @@ def _try_joints(ctx: ForceContext, joints, loops: list[Loop], known: set[str],
     any of them."""
     unknowns = _unknowns(ctx, joints)
     start = [_normal(ctx, j, cache) for j in joints if j.type == "T"]
-    candidates: list[Equation] = []
+    candidates: list = []
     for joint in joints:
         for loop in (l for l in loops if joint.name in {j.name for j in l.joints}):
-            for eq in _candidates(ctx, loop, joint, unknowns, known, cache):
-                if not any(eq is c for c in candidates):
-                    candidates.append(eq)
-    chosen = _select(unknowns, start, candidates, probes)
+            for key in _candidates(ctx, loop, joint, unknowns, known):
+                if key not in candidates:
+                    candidates.append(key)
+    chosen = _select(unknowns, start, candidates, lambda key: _built(ctx, key, cache), probes)
     if chosen is None:
         return None
     names = ", ".join(j.name for j in joints)
