@@ -137,10 +137,10 @@ def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = ""
         values["cycle.shaking.force_rms"] = cyc.rms(f)
         values["cycle.shaking.moment_max"] = float(np.max(np.abs(sample(tr.frame[:, 2]))))
     angles = {label: sample(ta) for label, ta in tr.transmission.items()}
+    del f                 # a long sweep's review holds as few full-length arrays as it can
     if angles:
-        pooled = np.concatenate(list(angles.values()))
-        values["cycle.transmission_angle.min"] = float(np.min(pooled))
-        values["cycle.transmission_angle.max"] = float(np.max(pooled))
+        values["cycle.transmission_angle.min"] = min(float(np.min(a)) for a in angles.values())
+        values["cycle.transmission_angle.max"] = max(float(np.max(a)) for a in angles.values())
     inertial = sample(tr.inertial)
     crank = np.radians(cyc.angles)    # a crank's x-axis angle is the cycle's crank angle
     cw = counterweight(inertial, crank, omega, spec.driver.alpha)
