@@ -174,7 +174,8 @@ class ConstantRows:
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         """x (m, k, n) with A x = rhs (m, k, n), unscaled; ``exact`` marks the angles where
         the Schur complement is exactly singular."""
-        c = np.einsum("ij,jkn->ikn", self.Kinv, rhs[self.rows])       # K_P^-1 b_R
+        _, k, n = rhs.shape
+        c = (self.Kinv @ rhs[self.rows].reshape(len(self.rows), -1)).reshape(-1, k, n)
         x = np.empty(rhs.shape)
         if len(self.rest):
             bs = rhs[self.others] - np.einsum("ipn,pkn->ikn", self.A_NP, c)
@@ -185,7 +186,7 @@ class ConstantRows:
                 xq, exact = _closed_form(self.S, bs)
             self.exact |= exact
             x[self.rest] = xq
-            c -= np.einsum("pq,qkn->pkn", self.M, xq)
+            c -= (self.M @ xq.reshape(len(self.rest), -1)).reshape(c.shape)
         x[self.pivots] = c
         return x
 

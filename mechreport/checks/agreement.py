@@ -67,18 +67,21 @@ def spreads(results: dict[str, ForceResult]) -> Spreads:
     for q, per in by_q.items():
         names = list(per)
         stack = np.stack([per[m] for m in names])          # (methods, n)
-        top = float(np.max(np.abs(stack), initial=0.0))
         if len(per) < 2:                # its magnitude still sets its kind's scale
+            top = float(np.max(np.abs(stack), initial=0.0))
             out[q] = Spread(0.0, (names[0], names[0]), 0.0, top, 1)
             continue
         if stack.shape[1] == 0:
             continue
-        hi, lo = np.argmax(stack, axis=0), np.argmin(stack, axis=0)
-        spread = np.max(stack, axis=0) - np.min(stack, axis=0)
+        hi, lo = np.max(stack, axis=0), np.min(stack, axis=0)
+        top = float(np.maximum(np.max(hi), -np.min(lo)))  # max |stack|; NaN if any is NaN
+        spread = hi - lo
         finite = np.isfinite(spread)
         # a NaN never agrees: it is the worst disagreement there is, not none
         k = int(np.argmax(spread)) if finite.all() else int(np.flatnonzero(~finite)[0])
-        pair = (names[hi[k]], names[lo[k]]) if spread[k] > 0 else (names[0], names[1])
+        at = stack[:, k]
+        pair = (names[int(np.argmax(at))], names[int(np.argmin(at))]) if spread[k] > 0 \
+            else (names[0], names[1])
         out[q] = Spread(float(spread[k]), pair, float(angles[k]), top, len(names))
     return out
 

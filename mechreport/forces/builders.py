@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kinematics.frames import cross, perp, rotate, scaled
+from ..kinematics.frames import cross, perp, project, rotate, scaled
 from ..spec import Joint
 from .context import ForceContext
 from .equations import Action, Equation, Term
@@ -24,12 +24,12 @@ def force_term(act: Action, d: np.ndarray, side: str = "rhs") -> Term | None:
     if act.kind != "force":
         return None
     if act.direction is not None:      # one unknown magnitude along a known direction
-        return Term(act, act.sign * np.einsum("ni,ni->n", act.direction, d)[:, None],
+        return Term(act, act.sign * project(act.direction, d)[:, None],
                     np.zeros(d.shape[0]), side, direction=d, kind="projection")
     if act.unknowns:
         return Term(act, act.sign * d, np.zeros(d.shape[0]), side, direction=d,
                     kind="projection")
-    return Term(act, np.zeros((d.shape[0], 0)), np.einsum("ni,ni->n", act.value, d), side,
+    return Term(act, np.zeros((d.shape[0], 0)), project(act.value, d), side,
                 direction=d, kind="projection")
 
 
@@ -185,7 +185,7 @@ def read_term(t: Term) -> tuple[Piece, ...]:
         if act.kind == "force":                       # m (a . d)
             a = t.factor("accel")
             return (Piece(_per_row(t.factor("mass"), n), _axis_comp(t.direction),
-                          value=np.einsum("ni,ni->n", a, np.broadcast_to(t.direction, a.shape))),)
+                          value=project(a, np.broadcast_to(t.direction, a.shape))),)
         return (Piece(_per_row(t.factor("inertia"), n), value=t.factor("alpha")),)
     if t.kind == "couple":
         if act.unknowns:
@@ -197,7 +197,7 @@ def read_term(t: Term) -> tuple[Piece, ...]:
     if t.kind == "projection":
         d = np.broadcast_to(t.direction, (n, 2))
         if act.direction is not None:
-            return (Piece(np.einsum("ni,ni->n", act.direction, d), "", act.unknowns[0],
+            return (Piece(project(act.direction, d), "", act.unknowns[0],
                           act.sign),)
         return tuple(Piece(d[:, i], c, u, s, v) for i, (c, u, s, v) in enumerate(parts))
     if t.kind == "moment":

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..kinematics.frames import project
 from .context import ForceContext
 from .equations import Action, Equation, Step, Term
 from .result import ForceResult, run_steps
@@ -36,7 +37,7 @@ def power_equation(ctx: ForceContext) -> Equation:
             if act.kind == "force":  # inertia and weight act at the centre of mass
                 v = s.v if act.category != "load" else \
                     ctx.kin.named_point(act.at_name, link.name).v   # loads: their own point
-                terms.append(Term(act, np.zeros((n, 0)), np.einsum("ni,ni->n", act.value, v),
+                terms.append(Term(act, np.zeros((n, 0)), project(act.value, v),
                                   rate=v, kind="power"))
             else:
                 terms.append(Term(act, np.zeros((n, 0)), act.value * s.omega, rate=s.omega,

@@ -41,6 +41,15 @@ def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
 
 
+def project(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a . b (n,) for vectors (n, 2), summed as ``np.einsum("ni,ni->n")`` sums them (from +0,
+    so never -0), bit for bit, without einsum's per-call cost (5x for these shapes)."""
+    out = a[..., 0] * b[..., 0]
+    out += a[..., 1] * b[..., 1]
+    out += 0.0
+    return out
+
+
 def norm(a: np.ndarray) -> np.ndarray:
     return np.hypot(a[..., 0], a[..., 1])
 
