@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kinematics.frames import cross, perp, project, rotate, scaled
+from ..kinematics.frames import cross, perp, project, scaled
 from ..spec import Joint
 from .context import ForceContext
 from .equations import Action, Equation, Term
@@ -94,7 +94,7 @@ def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
 
 def sliding_direction(ctx: ForceContext, joint: Joint) -> np.ndarray:
     """Unit direction (n, 2) of a T joint's line in the global frame."""
-    return rotate(joint.line.direction, ctx.kin.theta[:, ctx.num(joint.guide)])
+    return ctx.kin.to_global(joint.line.direction, ctx.num(joint.guide))
 
 
 def normal_constraint(ctx: ForceContext, joint: Joint) -> Equation:

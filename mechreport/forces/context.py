@@ -15,7 +15,7 @@ import numpy as np
 
 from ..kinematics import Kinematics
 from ..model import Mechanism
-from ..kinematics.frames import rotate, scaled
+from ..kinematics.frames import scaled
 from ..spec import GROUND, Joint
 from .equations import Action
 from .loads import AppliedLoad, evaluate_loads
@@ -167,7 +167,7 @@ class ForceContext:
         if d.kind == "R":
             return [Action("M", "couple", "driver", link, unknowns=unknown, sign=sign)]
         joint = self.spec.joint(d.joint)
-        u = rotate(joint.line.direction, self.kin.theta[:, self.num(joint.guide)])
+        u = self.kin.to_global(joint.line.direction, self.num(joint.guide))
         return [Action("Fd", "force", "driver", link, self.joint_points[joint.name],
                        joint.point, unknowns=unknown, sign=sign, direction=u)]
 

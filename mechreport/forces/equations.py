@@ -113,11 +113,15 @@ class Equation:
         """Residual sum(rhs) - sum(lhs) (n,) with every unknown taken from ``values``."""
         total = 0.0
         for t in self.terms:
-            s = 1.0 if t.side == "rhs" else -1.0
             part = t.const.copy()
             for k, u in enumerate(t.action.unknowns):
-                part = part + t.coeffs[:, k] * values[u]
-            total = total + s * part
+                part += t.coeffs[:, k] * values[u]
+            if isinstance(total, float):
+                total = total + part if t.side == "rhs" else total - part
+            elif t.side == "rhs":
+                total += part
+            else:
+                total -= part
         return total
 
 

@@ -9,7 +9,7 @@ import numpy as np
 from ..forces import ForceResult
 from ..forces.context import joint_point
 from ..kinematics import Kinematics
-from ..kinematics.frames import cross, rotate
+from ..kinematics.frames import cross
 from ..spec import GROUND
 
 
@@ -55,7 +55,7 @@ def frame_load(kin: Kinematics, res: ForceResult, loads=()) -> FrameLoad:
         m = m - np.asarray(res.driver_torque, float)
     elif d.kind == "T" and GROUND in d.links:   # the actuator pushes the frame back
         joint = spec.joint(d.joint)
-        u = rotate(joint.line.direction, kin.theta[:, kin.index(joint.guide)])
+        u = kin.to_global(joint.line.direction, kin.index(joint.guide))
         sign = 1.0 if d.links[1] == GROUND else -1.0
         f = sign * np.asarray(res.driver_torque, float)[:, None] * u
         fx, fy = fx + f[:, 0], fy + f[:, 1]

@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..kinematics import Kinematics
-from ..kinematics.frames import dot, perp, rotate
+from ..kinematics.frames import dot, perp
 
 
 def _fold(angle_rad: np.ndarray) -> np.ndarray:
@@ -41,6 +41,6 @@ def transmission_angles(kin: Kinematics) -> dict[str, np.ndarray]:
             guide_joint = dyad.outer[slide]
             inner = kin.named_point(dyad.inner.point, rod_link).r
             a = inner - kin.named_point(dyad.outer[rod].point, rod_link).r
-            u = rotate(guide_joint.line.direction, kin.theta[:, kin.index(guide_joint.guide)])
+            u = kin.to_global(guide_joint.line.direction, kin.index(guide_joint.guide))
             out[dyad.label] = _fold(_line_angle(a, perp(u)))
     return out
