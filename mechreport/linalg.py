@@ -11,6 +11,8 @@ once for all angles (:class:`ConstantRows`); what is left is most often 2x2 or s
 """
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 SINGULAR_COND = 1e10  # equilibrated condition number above which an angle is flagged singular
@@ -36,18 +38,27 @@ class Equilibrated:
         rs = absA.max(axis=1)                  # (m, n); NaN or inf where a row is not finite
         rs[rs == 0] = 1.0
         with np.errstate(invalid="ignore"):    # inf / inf: an overflow angle, replaced below
-            As = np.divide(At, rs[:, None, :])
-        np.abs(As, out=absA)
+            absA /= rs[:, None, :]
         cs = absA.max(axis=0)                  # (m, n)
         cs[cs == 0] = 1.0
-        As /= cs[None, :, :]
+        absA /= cs[None, :, :]                 # |As|
         # non-finite input (a pose that could not be solved) is singular, never a LAPACK error
         self.overflow = ~np.isfinite(rs).all(axis=0)
         if self.overflow.any():
-            As[:, :, self.overflow] = np.eye(m)[:, :, None]
-        self.rs, self.cs, self.As = rs, cs, As   # all angle-last
+            absA[:, :, self.overflow] = np.eye(m)[:, :, None]
+        self.fro = np.sqrt(np.einsum("ijn,ijn->n", absA, absA))   # ||As||_F (n,)
+        del absA
+        self.rs, self.cs = rs, cs              # all angle-last
         self.exact = np.zeros(n, bool)         # exactly singular (a zero pivot), found on solve
         self.schur = ConstantRows.of(At, self.overflow) if m >= 3 else None
+        self.As = None                         # the scaled matrices, for the solves that use them
+        if self.schur is None:
+            with np.errstate(invalid="ignore"):
+                As = np.divide(At, rs[:, None, :])
+            As /= cs[None, :, :]
+            if self.overflow.any():
+                As[:, :, self.overflow] = np.eye(m)[:, :, None]
+            self.As = As
 
     def _solve(self, rhs: np.ndarray) -> np.ndarray:
         """Every angle's system for right-hand sides rhs (m, k, n) -> y (m, k, n), both
@@ -99,7 +110,7 @@ class Equilibrated:
         with np.errstate(over="ignore", invalid="ignore"):
             probe = np.sqrt(np.einsum("ikn,ikn->kn", y[:, 1:], y[:, 1:])) \
                 / PROBE_NORMS[m][:, None]
-            cond = np.sqrt(np.einsum("ijn,ijn->n", self.As, self.As)) * np.max(probe, axis=0)
+            cond = self.fro * np.max(probe, axis=0)
             x = y[:, 0, :] / self.cs
         cond[~np.isfinite(cond)] = np.inf
         cond[overflow] = np.nan
@@ -156,20 +167,8 @@ class ConstantRows:
         if rows.size == 0:
             return None
         K = first[rows]
-        pivots = _complete_pivots(K)
-        if pivots is None:
-            return None
-        rest = np.array([j for j in range(m) if j not in set(pivots)], int)
-        pivots = np.array(pivots, int)
-        K_P = K[:, pivots]
-        if np.linalg.cond(K_P) > CONSTANT_PIVOT_COND:
-            return None
-        Kinv = np.linalg.inv(K_P)
-        M = Kinv @ K[:, rest]
-        if M.size and np.max(np.abs(M)) > CONSTANT_GROWTH:
-            return None
-        others = np.array([i for i in range(m) if i not in set(rows.tolist())], int)
-        return ConstantRows(At, rows, others, pivots, rest, Kinv, M)
+        plan = _constant_plan(m, tuple(rows.tolist()), K.shape, K.tobytes())
+        return None if plan is None else ConstantRows(At, rows, *plan)
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         """x (m, k, n) with A x = rhs (m, k, n), unscaled; ``exact`` marks the angles where
@@ -189,6 +188,30 @@ class ConstantRows:
             c -= (self.M @ xq.reshape(len(self.rest), -1)).reshape(c.shape)
         x[self.pivots] = c
         return x
+
+
+@lru_cache(maxsize=1024)
+def _constant_plan(m: int, rows: tuple[int, ...], shape: tuple[int, int], data: bytes):
+    """(others, pivots, rest, K_P^-1, M) for the constant rows ``rows`` of an m x m system,
+    whose coefficients K (``shape``) are ``data``; None if they are not to be eliminated.
+    The same few constant blocks come back every analysis: planned once each (read-only)."""
+    K = np.frombuffer(data, float).reshape(shape)
+    pivots = _complete_pivots(K)
+    if pivots is None:
+        return None
+    rest = np.array([j for j in range(m) if j not in set(pivots)], int)
+    pivots = np.array(pivots, int)
+    K_P = K[:, pivots]
+    if np.linalg.cond(K_P) > CONSTANT_PIVOT_COND:
+        return None
+    Kinv = np.linalg.inv(K_P)
+    M = Kinv @ K[:, rest]
+    if M.size and np.max(np.abs(M)) > CONSTANT_GROWTH:
+        return None
+    others = np.array([i for i in range(m) if i not in set(rows)], int)
+    for a in (rest, pivots, Kinv, M, others):
+        a.setflags(write=False)
+    return others, pivots, rest, Kinv, M
 
 
 def _complete_pivots(K: np.ndarray) -> list[int] | None:
