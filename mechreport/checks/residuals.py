@@ -30,10 +30,21 @@ def residuals(ctx: ForceContext, results: dict[str, ForceResult]) -> list[Residu
         part = ctx if ctx.n <= CHUNK else ForceContext(ctx.kin.take(cut, ctx.kin.flags))
         equations = [eq for link in ctx.spec.links
                      for eq in newton_euler_equations(part, link.name)]
-        for name in worst:
-            values = {k: v[cut] for k, v in results[name].values().items()}
+        for names in _same_unknowns(results, worst):    # every method's at once
+            per = [results[name].values() for name in names]
+            values = {k: np.stack([v[k][cut] for v in per]) for k in per[0]}
             for eq in equations:
-                r = float(np.max(np.abs(eq.evaluate(values)), initial=0.0))
+                r = np.max(np.abs(eq.evaluate(values)), axis=-1, initial=0.0)
                 k = 1 if eq.kind == "moment" else 0
-                worst[name][k] = max(worst[name][k], r)
+                for name, largest in zip(names, np.broadcast_to(r, len(names))):
+                    worst[name][k] = max(worst[name][k], float(largest))
     return [Residual(name, force, moment) for name, (force, moment) in worst.items()]
+
+
+def _same_unknowns(results: dict[str, ForceResult], names) -> list[list[str]]:
+    """The methods ``names`` grouped by the unknowns their results name (all of them, as a
+    rule: every method with reactions solves the same ones)."""
+    groups: dict[tuple, list[str]] = {}
+    for name in names:
+        groups.setdefault(tuple(results[name].values()), []).append(name)
+    return list(groups.values())

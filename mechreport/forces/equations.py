@@ -110,13 +110,19 @@ class Equation:
         return names
 
     def evaluate(self, values: dict[str, np.ndarray]) -> np.ndarray:
-        """Residual sum(rhs) - sum(lhs) (n,) with every unknown taken from ``values``."""
+        """Residual sum(rhs) - sum(lhs) (n,) with every unknown taken from ``values`` (n,);
+        (k, n) for values given as (k, n): k solutions at once, each summed as alone."""
         total = 0.0
         for t in self.terms:
-            part = t.const.copy()
+            part = t.const
             for k, u in enumerate(t.action.unknowns):
-                part += t.coeffs[:, k] * values[u]
-            if isinstance(total, float):
+                product = t.coeffs[:, k] * values[u]
+                if part is t.const:
+                    part = part + product
+                else:
+                    part += product
+            if isinstance(total, float) or total.shape != np.broadcast_shapes(total.shape,
+                                                                              part.shape):
                 total = total + part if t.side == "rhs" else total - part
             elif t.side == "rhs":
                 total += part
