@@ -187,9 +187,38 @@ def test_closed_form_small_solves_equal_lapack(m, monkeypatch):
 
 
 def _lapack_only(monkeypatch):
-    """Every system of size 3 and more through LAPACK (no constant rows eliminated)."""
+    """Every system of size 3 and more through LAPACK (no constant rows eliminated, no row
+    operations over the angle axis)."""
     from mechreport import linalg
     monkeypatch.setattr(linalg.ConstantRows, "of", staticmethod(lambda At, bad: None))
+    monkeypatch.setattr(linalg, "SMALL_LU", 2)
+
+
+@pytest.mark.parametrize("m", [3, 4, 5, 6])
+def test_small_systems_by_row_operations_equal_lapack(m, monkeypatch):
+    """Systems up to SMALL_LU solved by Gaussian elimination with partial pivoting over the
+    angle axis: LAPACK's solution and condition estimate to rounding; an exactly singular
+    angle (a zero column) NaN with an infinite condition number, as LAPACK has it."""
+    from mechreport.linalg import SMALL_LU, Equilibrated
+    assert m <= SMALL_LU
+    rng = np.random.default_rng(20 + m)
+    n = 600
+    A = rng.standard_normal((m, m, n)) * 10.0 ** rng.uniform(-3, 3, (m, 1, n))
+    A[:, 1, 0] = 0.0                      # exactly singular
+    A[0, :, 1] = A[1, :, 1]               # two equal rows: singular in exact arithmetic
+    b = rng.standard_normal((n, m))
+    fast = Equilibrated(A)
+    assert fast.schur is None             # no constant rows: the row-operation path
+    x, cond = fast.solve_cond(b)
+    _lapack_only(monkeypatch)
+    ref, ref_cond = Equilibrated(A).solve_cond(b)
+    assert np.isinf(cond[0]) and np.isinf(ref_cond[0]) and np.all(np.isnan(x[0]))
+    assert not cond[1] < 1e10 and not ref_cond[1] < 1e10
+    ok = ref_cond < 1e8
+    assert ok.mean() > 0.9
+    err = np.abs(x - ref)[ok] / np.max(np.abs(ref[ok]), axis=1, keepdims=True)
+    assert np.all(err <= 1e-14 * ref_cond[ok, None])
+    np.testing.assert_allclose(cond[ok], ref_cond[ok], rtol=1e-6)
 
 
 def _with_constant_rows(rng, n: int, p: int, q: int) -> np.ndarray:
