@@ -20,7 +20,7 @@ from mechreport.errors import AnalysisError, AssemblyError, MechreportError
 from mechreport.forces import solve_forces
 from mechreport.kinematics import solve_kinematics
 from mechreport.model import build_mechanism
-from mechreport.spec import load_spec, parse_spec
+from mechreport.spec import parse_spec
 
 ROOT = Path(__file__).resolve().parents[1]
 SLIDER_CRANK = (ROOT / "specs" / "slider_crank.yaml").read_text()

@@ -10,7 +10,6 @@ by the glob in conftest.py):
 """
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 
 import numpy as np

@@ -15,7 +15,7 @@ from dataclasses import fields, is_dataclass
 
 import pytest
 
-from mechreport.errors import AssemblyError, SpecError, UnsupportedMechanism
+from mechreport.errors import AssemblyError, SpecError
 from mechreport.kinematics import solve_kinematics
 from mechreport.model import build_mechanism
 from mechreport.spec import load_spec, parse_spec
