@@ -47,7 +47,9 @@ def moment_term(act: Action, about: np.ndarray, n: int, side: str = "rhs",
         return Term(act, act.sign * cross(lever, act.direction)[:, None], np.zeros(n), side,
                     lever=lever, kind="moment", factors=named)
     if act.unknowns:
-        coeffs = act.sign * perp(lever)
+        coeffs = perp(lever)
+        if act.sign != 1.0:
+            coeffs *= act.sign
         return Term(act, coeffs, np.zeros(n), side, lever=lever, kind="moment", factors=named)
     return Term(act, np.zeros((n, 0)), cross(lever, act.value), side, lever=lever,
                 kind="moment", factors=named)

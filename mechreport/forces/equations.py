@@ -169,15 +169,19 @@ def step_system(step: Step, known: dict[str, np.ndarray], n: int, columns: int =
     b = np.zeros((m, columns, n))
     for row, eq in enumerate(step.equations):
         for t in eq.terms:
-            s = 1.0 if t.side == "rhs" else -1.0
+            # a lhs term enters negated: added where a rhs term is subtracted (the same bits
+            # as multiplying by -1 first, without the temporary)
+            rhs = t.side == "rhs"
             c = 0 if column is None else column(t)
             if c is not None:
-                b[row, c] -= s * t.const
+                (np.subtract if rhs else np.add)(b[row, c], t.const, out=b[row, c])
             for k, u in enumerate(t.action.unknowns):
                 if u in col:
-                    A[row, col[u]] += s * t.coeffs[:, k]
+                    (np.add if rhs else np.subtract)(A[row, col[u]], t.coeffs[:, k],
+                                                      out=A[row, col[u]])
                 elif u in known:
-                    b[row] -= s * t.coeffs[:, k] * known[u]
+                    (np.subtract if rhs else np.add)(b[row], t.coeffs[:, k] * known[u],
+                                                     out=b[row])
                 else:
                     raise ValueError(f"{step.title}: equation '{eq.label}' needs {u}, "
                                      "which is neither solved here nor known")
