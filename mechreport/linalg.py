@@ -23,7 +23,7 @@ import numpy as np
 
 SINGULAR_COND = 1e10  # equilibrated condition number above which an angle is flagged singular
 CONSTANT_PIVOT_COND = 100.0   # largest condition number of an eliminated constant block
-CONSTANT_GROWTH = 4.0         # largest |K_P^-1 K_Q| entry of an eliminated constant block
+CONSTANT_GROWTH = 4.0         # largest entry of K_P^-1 and K_P^-1 K_Q of an eliminated block
 SMALL_LU = 6                  # largest system solved by row operations over the angle axis
 
 
@@ -39,6 +39,7 @@ class Equilibrated:
     input that overflowed, or a pose that could not be solved). Singular angles get NaN."""
 
     def __init__(self, At: np.ndarray):
+        At = np.asarray(At, np.float64)
         m, _, n = At.shape
         self.m, self.n = m, n
         absA = np.abs(At)
@@ -57,7 +58,7 @@ class Equilibrated:
         del absA
         self.rs, self.cs = rs, cs              # all angle-last
         self.exact = np.zeros(n, bool)         # exactly singular (a zero pivot), found on solve
-        self.schur = ConstantRows.of(At, self.overflow) if m >= 3 else None
+        self.schur = ConstantRows.of(At, rs, self.overflow) if m >= 3 else None
         self.As = None                         # the scaled matrices, for the solves that use them
         if self.schur is None:
             with np.errstate(invalid="ignore"):
@@ -73,9 +74,9 @@ class Equilibrated:
         :class:`ConstantRows`; 1x1 and 2x2 in closed form; up to ``SMALL_LU`` by row
         operations over the angle axis (LAPACK's per-matrix cost is most of theirs); larger
         ones by LAPACK."""
-        if self.schur is not None:        # solved unscaled: A x = rs rhs, y = cs x
+        if self.schur is not None:        # rows scaled, columns not: y = cs x
             with np.errstate(invalid="ignore", over="ignore"):   # overflow angles: inf
-                y = self.schur.solve(rhs * self.rs[:, None, :]) * self.cs[:, None, :]
+                y = self.schur.solve(rhs) * self.cs[:, None, :]
             self.exact |= self.schur.exact
         elif self.m <= 2:
             y, exact = _closed_form(self.As, rhs)
@@ -138,33 +139,42 @@ class Equilibrated:
 
 
 class ConstantRows:
-    """A system ``At`` (m, m, n) whose rows ``R`` are the same numbers at every angle (a
-    force balance in x or y has coefficients +-1 on the reactions; a slider's couple appears
-    alone in its link's moment equation), solved by eliminating them once for all angles.
+    """A system ``At`` (m, m, n) whose rows ``R`` are the same at every angle and made of
+    +-1 and 0 only (a force balance in x or y: the reactions' components with coefficient
+    +-1; a slider's couple alone in its link's moment equation), solved by eliminating those
+    rows once for all angles.
 
-    With ``P`` the unknowns the constant rows are pivoted on (complete pivoting over the
-    constant block K = [K_P K_Q]), ``N`` the other rows and ``Q`` the other unknowns:
+    The system is taken with its rows scaled to a largest entry of 1 (the unit rows are
+    unchanged), so nothing overflows whatever the scale of the others. With ``P`` the
+    unknowns the constant rows are pivoted on (complete pivoting over the constant block
+    K = [K_P K_Q]), ``N`` the other rows and ``Q`` the other unknowns:
     x_P = K_P^-1 b_R - M x_Q with M = K_P^-1 K_Q, and the Schur complement
-    (A_NQ - A_NP M) x_Q = b_N - A_NP K_P^-1 b_R, of size m - |R|, most often 2x2 or
-    smaller, is solved in closed form (LAPACK above 2). The constant block is accepted only
-    when it is well conditioned and M's entries are small (bounded growth, as with partial
-    pivoting); otherwise :meth:`of` returns None and the whole system goes to the general
-    solve. Removes LAPACK's per-matrix cost from Newton-Euler's and the dyad method's
-    blocks."""
+    (A_NQ - A_NP M) x_Q = b_N - A_NP K_P^-1 b_R, of size m - |R| (most often 2x2 or
+    smaller), is solved equilibrated (:class:`Equilibrated`: no overflow of its
+    determinant, whatever the scale).
 
-    def __init__(self, At, rows, others, pivots, rest, Kinv, M):
+    Why it is as accurate as partial pivoting: with rows of +-1 and 0, a row's scale is 1, so
+    the multipliers of the equilibrated system are those of A_NP K_P^-1 relative to each
+    varying row's own largest entry, bounded by |K_P^-1|. The block is accepted only when
+    K_P^-1 and M are small (at most ``CONSTANT_GROWTH``) and K_P well conditioned; rows with
+    other constant numbers (a fixed lever arm) are left with the varying rows. Otherwise
+    :meth:`of` returns None and the whole system goes to the general solve."""
+
+    def __init__(self, At, rs, rows, others, pivots, rest, Kinv, M):
         self.rows, self.others, self.pivots, self.rest = rows, others, pivots, rest
         self.Kinv, self.M = Kinv, M
-        self.A_NP = At[np.ix_(others, pivots)]                      # (q, p, n)
-        S = At[np.ix_(others, rest)] - np.einsum("ipn,pq->iqn", self.A_NP, M)
-        self.S = S if len(rest) <= 2 else Equilibrated(S)
+        scale = rs[others][:, None, :]
+        self.A_NP = At[np.ix_(others, pivots)] / scale              # (q, p, n), rows scaled
+        S = At[np.ix_(others, rest)] / scale
+        S -= np.einsum("ipn,pq->iqn", self.A_NP, M)
+        self.S = Equilibrated(S) if len(rest) else None
         self.exact = np.zeros(At.shape[2], bool)
 
     @staticmethod
-    def of(At: np.ndarray, bad: np.ndarray) -> "ConstantRows | None":
-        """The elimination for ``At`` if it has usable constant rows, else None. ``bad``
-        (n,) marks angles whose coefficients are not finite (left out of the comparison;
-        their results are discarded by the caller)."""
+    def of(At: np.ndarray, rs: np.ndarray, bad: np.ndarray) -> "ConstantRows | None":
+        """The elimination for ``At`` with row scales ``rs`` (m, n) if it has usable constant
+        rows, else None. ``bad`` (n,) marks angles whose coefficients are not finite (left
+        out of the comparison; their results are discarded by the caller)."""
         m, _, n = At.shape
         good = np.flatnonzero(~bad)
         if good.size == 0:
@@ -173,28 +183,31 @@ class ConstantRows:
         if good.size < n:                  # the bad angles take a good angle's numbers
             At = At.copy()
             At[:, :, bad] = first[:, :, None]
-        same = (At == first[:, :, None]).all(axis=2).all(axis=1)
-        rows = np.flatnonzero(same & np.isfinite(first).all(axis=1))
+            rs = rs.copy()
+            rs[:, bad] = rs[:, good[:1]]
+        unit = ((first == 0) | (np.abs(first) == 1)).all(axis=1) & (first != 0).any(axis=1)
+        if not unit.any():
+            return None
+        same = (At[unit] == first[unit][:, :, None]).all(axis=2).all(axis=1)
+        rows = np.flatnonzero(unit)[same]
         if rows.size == 0:
             return None
         K = first[rows]
         plan = _constant_plan(m, tuple(rows.tolist()), K.shape, K.tobytes())
-        return None if plan is None else ConstantRows(At, rows, *plan)
+        return None if plan is None else ConstantRows(At, rs, rows, *plan)
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
-        """x (m, k, n) with A x = rhs (m, k, n), unscaled; ``exact`` marks the angles where
-        the Schur complement is exactly singular."""
+        """x (m, k, n) with A x = rs rhs for right-hand sides rhs (m, k, n) already divided
+        by the row scales; ``exact`` marks the angles where the Schur complement is exactly
+        singular."""
         _, k, n = rhs.shape
         c = (self.Kinv @ rhs[self.rows].reshape(len(self.rows), -1)).reshape(-1, k, n)
         x = np.empty(rhs.shape)
-        if len(self.rest):
+        if self.S is not None:
+            S = self.S
             bs = rhs[self.others] - np.einsum("ipn,pkn->ikn", self.A_NP, c)
-            if isinstance(self.S, Equilibrated):
-                xq = self.S._solve(bs / self.S.rs[:, None, :]) / self.S.cs[:, None, :]
-                exact = self.S.exact | self.S.overflow
-            else:
-                xq, exact = _closed_form(self.S, bs)
-            self.exact |= exact
+            xq = S._solve(bs / S.rs[:, None, :]) / S.cs[:, None, :]
+            self.exact |= S.exact | S.overflow
             x[self.rest] = xq
             c -= (self.M @ xq.reshape(len(self.rest), -1)).reshape(c.shape)
         x[self.pivots] = c
@@ -204,20 +217,22 @@ class ConstantRows:
 @lru_cache(maxsize=1024)
 def _constant_plan(m: int, rows: tuple[int, ...], shape: tuple[int, int], data: bytes):
     """(others, pivots, rest, K_P^-1, M) for the constant rows ``rows`` of an m x m system,
-    whose coefficients K (``shape``) are ``data``; None if they are not to be eliminated.
-    The same few constant blocks come back every analysis: planned once each (read-only)."""
-    K = np.frombuffer(data, float).reshape(shape)
+    whose coefficients K (``shape``, float64 +-1 and 0) are ``data``; None if they are not to
+    be eliminated. The same few constant blocks come back every analysis: planned once each
+    (read-only)."""
+    K = np.frombuffer(data, np.float64).reshape(shape)
     pivots = _complete_pivots(K)
     if pivots is None:
         return None
     rest = np.array([j for j in range(m) if j not in set(pivots)], int)
     pivots = np.array(pivots, int)
     K_P = K[:, pivots]
-    if np.linalg.cond(K_P) > CONSTANT_PIVOT_COND:
+    if not np.linalg.cond(K_P) <= CONSTANT_PIVOT_COND:
         return None
     Kinv = np.linalg.inv(K_P)
     M = Kinv @ K[:, rest]
-    if M.size and np.max(np.abs(M)) > CONSTANT_GROWTH:
+    if not (np.max(np.abs(Kinv)) <= CONSTANT_GROWTH
+            and np.max(np.abs(M), initial=0.0) <= CONSTANT_GROWTH):
         return None
     others = np.array([i for i in range(m) if i not in set(rows)], int)
     for a in (rest, pivots, Kinv, M, others):
