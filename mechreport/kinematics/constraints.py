@@ -109,10 +109,13 @@ def geometry(spec: Spec, joint: Joint, frames: LinkFrames) -> RGeometry | TGeome
     return TGeometry(g, s, u, perp(u), s_p, s_l, e)
 
 
-def joint_residual(spec: Spec, joint: Joint, frames: LinkFrames) -> np.ndarray:
+def joint_residual(spec: Spec, joint: Joint, frames: LinkFrames,
+                   geo: RGeometry | TGeometry | None = None) -> np.ndarray:
     """How far a joint is from closing (n, 2): an R joint's point gap [m]; a T joint's relative
-    angle [rad, wrapped] and the slider point's offset from the line [m]."""
-    geo = geometry(spec, joint, frames)
+    angle [rad, wrapped] and the slider point's offset from the line [m]. ``geo``: the joint's
+    :func:`geometry` at ``frames``, if already computed."""
+    if geo is None:
+        geo = geometry(spec, joint, frames)
     if isinstance(geo, RGeometry):
         return (frames.r[geo.a] + geo.sa) - (frames.r[geo.b] + geo.sb)
     gap = wrap_angle(frames.th[geo.slider] - frames.th[geo.guide])

@@ -57,8 +57,9 @@ def equations(spec: Spec, group: Group, r: dict, th: dict, value=None, scale: fl
     F, J = np.zeros((n, m)), np.zeros((n, m, m))
     row = 0
     for joint in group.joints:
-        F[:, row:row + 2] = joint_residual(spec, joint, frames)
-        geometry(spec, joint, frames).write_blocks(
+        geo = geometry(spec, joint, frames)       # for the residual and the Jacobian
+        F[:, row:row + 2] = joint_residual(spec, joint, frames, geo)
+        geo.write_blocks(
             {l: J[:, row:row + 2, col[l]:col[l] + 3].transpose(1, 2, 0)
              for l in joint.links if l in col})
         row += 2
