@@ -147,3 +147,19 @@ def test_4_6_torque_by_source_at_45_deg():
     assert parts["inertia"]["driver.torque"][k] == pytest.approx(3, abs=1e-12)
     assert parts["gravity"]["driver.torque"][k] == pytest.approx(5 * np.sqrt(2), abs=1e-12)
     assert parts["load 1"]["driver.torque"][k] == pytest.approx(100 * np.sqrt(2), abs=1e-12)
+
+
+def test_equal_peaks_are_reported_at_the_first_angle():
+    """Two peaks equal to rounding (a symmetric mechanism's shaking force peaks at 74 and
+    106 deg) are reported at the first, whichever is larger by the last bit: a report does
+    not change between runs whose numbers differ by rounding only. A peak larger by more
+    than rounding is still the one reported."""
+    from mechreport.post.torque import peak
+    angles = np.array([0.0, 74.0, 90.0, 106.0])
+    top = 1.445
+    for later in (top * (1 + 4e-16), top, top * (1 - 4e-16)):
+        values = np.array([0.2, top, 1.0, later])
+        assert peak(angles, values).angle == 74.0
+        assert peak(angles, -values).angle == 74.0
+    assert peak(angles, np.array([0.2, top, 1.0, top * (1 + 1e-9)])).angle == 106.0
+    assert np.isnan(peak(angles, np.array([0.2, np.nan, 1.0, 2.0])).value)

@@ -16,11 +16,27 @@ class Peak:
     angle: float
 
 
+TIE_RTOL = 1e-12   # values this close to the largest tie with it: the first angle is reported
+
+
+def first_largest(v: np.ndarray) -> int:
+    """Index of the first value within ``TIE_RTOL`` of the largest of ``v`` (a NaN: the first
+    NaN). Equal peaks, such as a symmetric mechanism's, are reported at the first of them,
+    not at whichever the last bit of rounding favours, so that a report does not change
+    between runs whose numbers differ by rounding only."""
+    k = int(np.argmax(v))
+    top = v[k]
+    if np.isfinite(top):
+        k = int(np.argmax(v >= top - TIE_RTOL * abs(top)))
+    return k
+
+
 def peak(angles: np.ndarray, values: np.ndarray) -> Peak | None:
-    """Signed value of largest magnitude and its angle; None for an empty sweep."""
+    """Signed value of largest magnitude and its angle (the first, on a tie); None for an
+    empty sweep."""
     if len(values) == 0:
         return None
-    k = int(np.argmax(np.abs(values)))
+    k = first_largest(np.abs(values))
     return Peak(float(values[k]), float(angles[k]))
 
 
@@ -44,7 +60,7 @@ def torque_stats(res: ForceResult, omega: np.ndarray) -> TorqueStats | None:
     if len(t) == 0:
         return None
     ang = res.angles
-    kmin, kmax = int(np.argmin(t)), int(np.argmax(t))
+    kmin, kmax = first_largest(-t), first_largest(t)
     return TorqueStats(float(np.mean(t)), float(np.sqrt(np.mean(t**2))), peak(ang, t),
                        Peak(float(t[kmin]), float(ang[kmin])),
                        Peak(float(t[kmax]), float(ang[kmax])), float(np.mean(t * omega)))
