@@ -150,7 +150,7 @@ def give_back_free_memory() -> None:
     if _TRIM is None:
         try:
             _TRIM = ctypes.CDLL(None).malloc_trim
-        except (OSError, AttributeError):       # not glibc: nothing to give back this way
+        except (OSError, AttributeError, TypeError):   # not glibc: nothing to give back
             _TRIM = False
     if _TRIM:
         _TRIM(0)
