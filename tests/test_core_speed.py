@@ -380,3 +380,17 @@ def test_force_blocks_of_three_and_more_eliminate_constant_rows(name):
                 A, _ = step_system(block, res.values(), kin.n)
                 schur = Equilibrated(A).schur
                 assert schur is not None and len(schur.rest) <= 2, (method, block.unknowns)
+
+
+def test_allocator_setting_respects_the_environment(monkeypatch):
+    """The glibc setting made at import (keep freed memory for reuse) is skipped when the
+    user set glibc's own variables or MECHREPORT_MALLOC=default."""
+    import mechreport
+    for name, value in (("MECHREPORT_MALLOC", "default"), ("MALLOC_TRIM_THRESHOLD_", "0"),
+                        ("MALLOC_MMAP_THRESHOLD_", "131072")):
+        with monkeypatch.context() as m:
+            m.setenv(name, value)
+            assert mechreport._keep_freed_memory() is False
+    import platform
+    if platform.libc_ver()[0] == "glibc":        # applied where it can be
+        assert mechreport._keep_freed_memory() is True
