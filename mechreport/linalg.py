@@ -309,6 +309,24 @@ def _closed_form(At: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarra
     return y, det == 0
 
 
+def solve_cond(At: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """x (n, m) and the condition number estimate (n,) for systems At (m, m, n) angle-last
+    and b (n, m): :meth:`Equilibrated.solve_cond`, with a 1x1 system answered directly (its
+    equilibrated matrix is +-1, its condition number exactly 1; the same bits as the general
+    path at a fraction of its numpy calls)."""
+    if At.shape[0] != 1:
+        return Equilibrated(At).solve_cond(b)
+    a = np.asarray(At[0, 0], np.float64)
+    rs = np.abs(a)                       # the row scale, as Equilibrated takes it
+    rs[rs == 0] = 1.0
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        q = b[:, 0] / rs                 # the scaled right-hand side
+        x = q / (a / rs)                 # a / rs is +-1 (0 where singular)
+    cond = np.where(np.isfinite(rs) & np.isfinite(q), np.where(a == 0, np.inf, 1.0), np.nan)
+    x[~(cond < SINGULAR_COND)] = np.nan
+    return x[:, None], cond
+
+
 def angle_last(A: np.ndarray) -> np.ndarray:
     """(n, m, m) -> (m, m, n), contiguous."""
     return np.ascontiguousarray(A.transpose(1, 2, 0))

@@ -95,17 +95,20 @@ def _needs(ctx: ForceContext, w: Joint, body: list[str]) -> frozenset[str]:
 
 
 def _candidates(ctx: ForceContext, loop: Loop, joint: Joint, unknowns: list[str],
-                known: set[str]) -> list[tuple[str, tuple[str, ...]]]:
+                known: set[str], cache: dict) -> list[tuple[str, tuple[str, ...]]]:
     """The equations along ``loop`` cut at ``joint``, in the text's order (alternately along
     paths I and II), that involve ``unknowns`` and nothing else not yet known: as keys (W,
     body) for :func:`_built`, which builds only those the selection tries."""
     x = [j.name for j in loop.joints].index(joint.name)
     paths = [list(_path(loop, x, True)), list(_path(loop, x, False))]
+    needs = cache.setdefault("needs", {})        # the same cuts come back joint after joint
     out = []
     for w, body in (p[k] for k in range(max(map(len, paths))) for p in paths if k < len(p)):
-        needed = _needs(ctx, w, body)
-        if needed & set(unknowns) and needed <= set(unknowns) | known:
-            out.append((w.name, tuple(body)))
+        key = (w.name, tuple(body))
+        if key not in needs:
+            needs[key] = _needs(ctx, w, body)
+        if needs[key] & set(unknowns) and needs[key] <= set(unknowns) | known:
+            out.append(key)
     return out
 
 
@@ -157,7 +160,7 @@ def _try_joint(ctx: ForceContext, loop: Loop, joint: Joint, known: set[str],
     """Enough independent equations along ``loop`` for ``joint``'s unknowns, or None."""
     unknowns = _unknowns(ctx, [joint])
     start = [_normal(ctx, joint, cache)] if joint.type == "T" else []
-    chosen = _select(unknowns, start, _candidates(ctx, loop, joint, unknowns, known),
+    chosen = _select(unknowns, start, _candidates(ctx, loop, joint, unknowns, known, cache),
                      lambda key: _built(ctx, key, cache), probes)
     if chosen is None:
         return None
@@ -175,7 +178,7 @@ def _try_joints(ctx: ForceContext, joints, loops: list[Loop], known: set[str],
     candidates: list = []
     for joint in joints:
         for loop in (l for l in loops if joint.name in {j.name for j in l.joints}):
-            for key in _candidates(ctx, loop, joint, unknowns, known):
+            for key in _candidates(ctx, loop, joint, unknowns, known, cache):
                 if key not in candidates:
                     candidates.append(key)
     chosen = _select(unknowns, start, candidates, lambda key: _built(ctx, key, cache), probes)

@@ -18,7 +18,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..linalg import SINGULAR_COND, Equilibrated
+from ..linalg import SINGULAR_COND, solve_cond
 
 
 
@@ -191,7 +191,7 @@ def step_system(step: Step, known: dict[str, np.ndarray], n: int, columns: int =
 def solve_step(step: Step, known: dict[str, np.ndarray], n: int) -> Solution:
     """Solve one step for all angles at once (see :func:`step_system`)."""
     A, b = step_system(step, known, n)
-    x, cond = Equilibrated(A).solve_cond(b[:, 0].T)
+    x, cond = solve_cond(A, b[:, 0].T)
     return Solution({u: x[:, i] for i, u in enumerate(step.unknowns)}, cond)
 
 
