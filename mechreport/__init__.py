@@ -11,7 +11,6 @@ import os as _os
 _os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
-
 def _keep_freed_memory() -> bool:
     """Let glibc keep freed memory for reuse instead of handing it back to the system at
     once (whether it was applied).
