@@ -130,12 +130,13 @@ class Equilibrated:
         return x.T, cond
 
     def solve_many(self, B: np.ndarray) -> np.ndarray:
-        """X (n, m, k) for several right-hand sides B (n, m, k), for angles already known to
-        be regular (a superposition of loads over a solved system)."""
+        """X (m, k, n) for several right-hand sides B (m, k, n), both angle-last, for angles
+        already known to be regular (a superposition of loads over a solved system; a
+        Schur complement's solve); inf where not finite or exactly singular."""
         if self.m == 0:
-            return np.zeros((self.n, 0, B.shape[2]))
-        y = self._solve(B.transpose(1, 2, 0) / self.rs[:, None, :])
-        return (y / self.cs[:, None, :]).transpose(2, 0, 1)
+            return np.zeros(B.shape)
+        with np.errstate(invalid="ignore", over="ignore"):
+            return self._solve(B / self.rs[:, None, :]) / self.cs[:, None, :]
 
 
 class ConstantRows:
@@ -204,10 +205,8 @@ class ConstantRows:
         c = (self.Kinv @ rhs[self.rows].reshape(len(self.rows), -1)).reshape(-1, k, n)
         x = np.empty(rhs.shape)
         if self.S is not None:
-            S = self.S
-            bs = rhs[self.others] - np.einsum("ipn,pkn->ikn", self.A_NP, c)
-            xq = S._solve(bs / S.rs[:, None, :]) / S.cs[:, None, :]
-            self.exact |= S.exact | S.overflow
+            xq = self.S.solve_many(rhs[self.others] - np.einsum("ipn,pkn->ikn", self.A_NP, c))
+            self.exact |= self.S.exact | self.S.overflow
             x[self.rest] = xq
             c -= (self.M @ xq.reshape(len(self.rest), -1)).reshape(c.shape)
         x[self.pivots] = c
@@ -243,7 +242,7 @@ def _constant_plan(m: int, rows: tuple[int, ...], shape: tuple[int, int], data: 
 def _complete_pivots(K: np.ndarray) -> list[int] | None:
     """The column each row of the constant block K (p, m) is pivoted on, by Gaussian
     elimination with complete pivoting; None if K has not full row rank."""
-    W = K.astype(float).copy()
+    W = K.astype(float)
     p, m = W.shape
     top = np.max(np.abs(W), initial=0.0)
     free_rows, free_cols = list(range(p)), list(range(m))
@@ -342,7 +341,7 @@ def batched_solve(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]
 def batched_solve_cond(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Solve A x = b for A (n, m, m) and b (n, m); x (n, m) and the condition number
     estimate (n,) of the equilibrated matrix (see :class:`Equilibrated`)."""
-    return Equilibrated(angle_last(A)).solve_cond(b)
+    return solve_cond(angle_last(A), b)
 
 
 PROBES = np.random.default_rng(20261121).standard_normal((64, 2))

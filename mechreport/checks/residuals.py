@@ -25,14 +25,15 @@ def residuals(ctx: ForceContext, results: dict[str, ForceResult]) -> list[Residu
     from ..forces import CHUNK
     worst: dict[str, list[float]] = {name: [0.0, 0.0] for name, res in results.items()
                                      if res.reactions}
+    solved = {name: results[name].values() for name in worst}   # unknown -> values (n,)
     for a in range(0, ctx.n, CHUNK):
         cut = slice(a, a + CHUNK)
         part = ctx if ctx.n <= CHUNK else ForceContext(ctx.kin.take(cut, ctx.kin.flags))
         equations = [eq for link in ctx.spec.links
                      for eq in newton_euler_equations(part, link.name)]
-        for names in _same_unknowns(results, worst):    # every method's at once
-            per = [results[name].values() for name in names]
-            values = {k: np.stack([v[k][cut] for v in per]) for k in per[0]}
+        for names in _same_unknowns(solved):    # every method's at once
+            values = {k: np.stack([solved[name][k][cut] for name in names])
+                      for k in solved[names[0]]}
             for eq in equations:
                 r = np.max(np.abs(eq.evaluate(values)), axis=-1, initial=0.0)
                 k = 1 if eq.kind == "moment" else 0
@@ -41,10 +42,10 @@ def residuals(ctx: ForceContext, results: dict[str, ForceResult]) -> list[Residu
     return [Residual(name, force, moment) for name, (force, moment) in worst.items()]
 
 
-def _same_unknowns(results: dict[str, ForceResult], names) -> list[list[str]]:
-    """The methods ``names`` grouped by the unknowns their results name (all of them, as a
-    rule: every method with reactions solves the same ones)."""
+def _same_unknowns(solved: dict[str, dict]) -> list[list[str]]:
+    """The methods of ``solved`` (method -> its values by unknown) grouped by the unknowns
+    they name (all of them, as a rule: every method with reactions solves the same ones)."""
     groups: dict[tuple, list[str]] = {}
-    for name in names:
-        groups.setdefault(tuple(results[name].values()), []).append(name)
+    for name, values in solved.items():
+        groups.setdefault(tuple(values), []).append(name)
     return list(groups.values())

@@ -167,7 +167,7 @@ class ForceContext:
         if d.kind == "R":
             return [Action("M", "couple", "driver", link, unknowns=unknown, sign=sign)]
         joint = self.spec.joint(d.joint)
-        u = self.kin.to_global(joint.line.direction, self.num(joint.guide))
+        u = self.kin.frames.rotate(joint.guide, joint.line.direction)
         return [Action("Fd", "force", "driver", link, self.joint_points[joint.name],
                        joint.point, unknowns=unknown, sign=sign, direction=u)]
 

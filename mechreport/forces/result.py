@@ -150,7 +150,7 @@ def slider_point(ctx, joint, fx: np.ndarray, fy: np.ndarray, m: np.ndarray,
     on the sliding line: (px, py) [m], NaN where the force vanishes (below 1e-12 of ``top``,
     the largest force component over the sweep, by default over these angles) and the point
     is undefined."""
-    u = ctx.kin.to_global(joint.line.direction, ctx.num(joint.guide))
+    u = ctx.kin.frames.rotate(joint.guide, joint.line.direction)
     f = np.stack([fx, fy], axis=1)
     s = cross(u, f)
     top = np.max(np.abs(f), initial=0.0) if top is None else top

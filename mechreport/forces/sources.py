@@ -46,7 +46,7 @@ def split_by_source(ctx: ForceContext, res: ForceResult) -> dict[str, dict[str, 
         return None if src is None else col[src]
     for step in (b for s in res.steps for b in triangular_blocks(s)):
         A, b = step_system(step, known, ctx.n, len(sources), column)
-        X = Equilibrated(A).solve_many(b.transpose(2, 0, 1))     # (n, m, S)
+        X = Equilibrated(A).solve_many(b)                        # (m, S, n)
         for i, u in enumerate(step.unknowns):
-            known[u] = X[:, i, :].T
+            known[u] = X[i]
     return {s: {u: parts[k] for u, parts in known.items()} for s, k in col.items()}

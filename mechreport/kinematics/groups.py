@@ -15,6 +15,8 @@ Newton cannot follow the motion even one sample ahead: the group locks there.
 """
 from __future__ import annotations
 
+from functools import cached_property
+
 import numpy as np
 
 from ..errors import AssemblyError
@@ -48,31 +50,17 @@ def row_scale(spec: Spec, group: Group, scale: float) -> np.ndarray:
 def equations(spec: Spec, group: Group, r: dict, th: dict, value=None, scale: float = 1.0):
     """Residual F (n, 3k) and Jacobian J (n, 3k, 3k) of the group at poses ``r``, ``th``
     (dicts over every link, (n, 2) and (n,)); ``value`` (n,) the driven coordinate [rad or m]
-    when the group holds the driver. Angle rows are multiplied by ``scale`` (``row_scale``)."""
-    frames = LinkFrames(r, th)
-    links = group.links
-    col = {l: 3 * i for i, l in enumerate(links)}
-    n = frames.n
-    m = 3 * len(links)
-    F, J = np.zeros((n, m)), np.zeros((n, m, m))
-    row = 0
-    for joint in group.joints:
-        geo = geometry(spec, joint, frames)       # for the residual and the Jacobian
-        F[:, row:row + 2] = joint_residual(spec, joint, frames, geo)
-        geo.write_blocks(
-            {l: J[:, row:row + 2, col[l]:col[l] + 3].transpose(1, 2, 0)
-             for l in joint.links if l in col})
-        row += 2
-        if joint.name == group.driver:
-            now, dblocks, _ = driver_row(spec, frames)
-            gap = now - value
-            F[:, row] = wrap_angle(gap) if spec.driver.kind == "R" else gap
-            for link, blk in dblocks.items():
-                if link in col:
-                    J[:, row, col[link]:col[link] + 3] = blk.T
-            row += 1
+    when the group holds the driver. Angle rows are multiplied by ``scale`` (``row_scale``).
+    The Jacobian is the velocity matrix (:meth:`RateEquations.matrix`)."""
+    eqs = RateEquations(spec, group, LinkFrames(r, th))
+    F = np.zeros((eqs.frames.n, eqs.m))
+    for rows, joint, geo in zip(eqs.rows, group.joints, eqs.geometry):
+        F[:, rows] = joint_residual(spec, joint, eqs.frames, geo)
+    if eqs.drow is not None:
+        gap = eqs.driver_value - value
+        F[:, eqs.drow] = wrap_angle(gap) if spec.driver.kind == "R" else gap
     rs = row_scale(spec, group, scale)
-    return F * rs, J * rs[:, None]
+    return F * rs, eqs.matrix().transpose(2, 0, 1) * rs[:, None]
 
 
 class RateEquations:
@@ -83,30 +71,38 @@ class RateEquations:
     Rows follow ``group.joints`` (2 per joint, 3 for the driver joint), columns
     ``group.links`` (x, y, theta each). ``rows``: each joint's rows; ``known``: [(rows, link,
     (r, 3, n))] the Jacobian blocks of links solved before (ground's, whose rates are zero,
-    left out). Each joint's geometry is computed once, for the blocks and for gamma."""
+    left out), built when first asked for; ``driver_value`` (n,) the driven coordinate at the
+    poses. Each joint's geometry is computed once, for the blocks and for gamma."""
 
     def __init__(self, spec: Spec, group: Group, frames: LinkFrames):
         self.spec, self.group, self.frames = spec, group, frames
         self.m = 3 * len(group.links)
         self.geometry = [geometry(spec, joint, frames) for joint in group.joints]
         self.rows: list[slice] = []
-        self.known: list = []
-        self.drow = self._driver = None
+        self.drow = self._driver = self.driver_value = None
         row = 0
-        for joint, geo in zip(group.joints, self.geometry):
+        for joint in group.joints:
             self.rows.append(slice(row, row + 2))
-            known = {l: np.zeros((2, 3, frames.n)) for l in joint.links
-                     if l not in group.links and l != GROUND}
-            geo.write_blocks(known)
-            self.known += [(self.rows[-1], l, blk) for l, blk in known.items()]
             row += 2
             if joint.name == group.driver:
                 self.drow = row
-                _, self._driver, _ = driver_row(spec, frames)
-                self.known += [(slice(row, row + 1), l, blk[None])
-                               for l, blk in self._driver.items()
-                               if l not in group.links and l != GROUND]
+                self.driver_value, self._driver, _ = driver_row(spec, frames)
                 row += 1
+
+    @cached_property
+    def known(self) -> list:
+        """[(rows, link, (r, 3, n))]: see the class docstring."""
+        out = []
+        links = self.group.links
+        for rows, joint, geo in zip(self.rows, self.group.joints, self.geometry):
+            blocks = {l: np.zeros((2, 3, self.frames.n)) for l in joint.links
+                      if l not in links and l != GROUND}
+            geo.write_blocks(blocks)
+            out += [(rows, l, blk) for l, blk in blocks.items()]
+            if joint.name == self.group.driver:
+                out += [(slice(self.drow, self.drow + 1), l, blk[None])
+                        for l, blk in self._driver.items() if l not in links and l != GROUND]
+        return out
 
     def matrix(self) -> np.ndarray:
         """The velocity matrix A (3k, 3k, n)."""

@@ -229,7 +229,7 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
     chosen, and the cut runs. ``sig``: the candidates' signatures, if already computed."""
     name = f"{dyad.label} ({', '.join(dyad.links)})"
     sig = sig if sig is not None else [signature(spec, dyad.links, c) for c in cands]
-    finite = np.logical_and.reduce([np.isfinite(s).all(axis=1) for s in sig])
+    finite = dyad_closes(sig)
     runs = [run[:first_false(finite[run])] for run in runs]
     n = len(path.angles)
     reached = np.zeros(n, bool)
@@ -259,18 +259,39 @@ def track_branches(spec: Spec, dyad: Dyad, cands: list[Poses], path: SweepPath,
             reached[run] = True
     off, lo, hi, w = path.off_grid_neighbours()
     if off.size:
-        pick = [np.where(use_plus[k][:, None], sig[0][k], sig[-1][k]) for k in (lo, hi)]
-        guess = (1 - w)[:, None] * pick[0] + w[:, None] * pick[1]
         if len(cands) == 2:
-            use_plus[off] = (np.sum((sig[0][off] - guess) ** 2, axis=1)
-                             <= np.sum((sig[1][off] - guess) ** 2, axis=1))
+            use_plus[off] = nearer_plus([x[off] for x in sig], [x[lo] for x in sig],
+                                        [x[hi] for x in sig], use_plus[lo], use_plus[hi], w)
         reached[off] = reached[lo] & reached[hi] & finite[off]
-    chosen: Poses = {}
-    for link in dyad.links:
+    return chosen_poses(cands, dyad.links, use_plus, reached), choice, runs
+
+
+def dyad_closes(sig: list[np.ndarray]) -> np.ndarray:
+    """Where a dyad closes (n,) bool: every candidate's signature is finite."""
+    return np.logical_and.reduce([np.isfinite(x).all(axis=1) for x in sig])
+
+
+def chosen_poses(cands: list[Poses], links, use_plus: np.ndarray, reached: np.ndarray
+                 ) -> Poses:
+    """Each link's pose from candidate + where ``use_plus``, else from the other; NaN where
+    not ``reached``."""
+    out: Poses = {}
+    for link in links:
         r = np.where(use_plus[:, None], cands[0][link][0], cands[-1][link][0])
         th = np.where(use_plus, cands[0][link][1], cands[-1][link][1])
-        chosen[link] = (np.where(reached[:, None], r, np.nan), np.where(reached, th, np.nan))
-    return chosen, choice, runs
+        out[link] = (np.where(reached[:, None], r, np.nan), np.where(reached, th, np.nan))
+    return out
+
+
+def nearer_plus(at: list[np.ndarray], lo: list[np.ndarray], hi: list[np.ndarray],
+                plus_lo: np.ndarray, plus_hi: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """At angles off the tracking grid: whether candidate + is nearer than the other to the
+    tracked branch interpolated (weight ``w`` on the upper neighbour) between the grid
+    neighbours. ``at``, ``lo``, ``hi``: both candidates' signatures there; ``plus_lo``,
+    ``plus_hi``: whether + is the branch at the neighbours."""
+    pick = [np.where(p[:, None], x[0], x[-1]) for p, x in ((plus_lo, lo), (plus_hi, hi))]
+    guess = (1 - w)[:, None] * pick[0] + w[:, None] * pick[1]
+    return np.sum((at[0] - guess) ** 2, axis=1) <= np.sum((at[1] - guess) ** 2, axis=1)
 
 
 def ring_swaps(sig: list[np.ndarray], run: np.ndarray, travel: np.ndarray) -> np.ndarray:

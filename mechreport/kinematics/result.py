@@ -2,12 +2,13 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 import numpy as np
 
 from ..model import Mechanism
 from ..spec import GROUND
-from .frames import perp, rotate_cs
+from .frames import LinkFrames, perp
 from .position import BranchChoice
 
 
@@ -123,7 +124,6 @@ class Kinematics:
     motion: Motion | None = None
     error: np.ndarray | None = None   # (n,) estimated relative error of the accelerations
     _memo: dict = field(init=False, default_factory=dict, repr=False, compare=False)
-    _trig: dict = field(init=False, default_factory=dict, repr=False, compare=False)
 
     @property
     def n(self) -> int:
@@ -139,7 +139,7 @@ class Kinematics:
         key = (link, id(local)) if np.ndim(local) > 1 else (link, *map(float, local))
         if key not in self._memo:
             k = self.index(link)
-            s = self.to_global(local, k)
+            s = self.frames.rotate(link, local)
             w, al = self.omega[:, k][:, None], self.alpha[:, k][:, None]
             state = PointState(self.r[:, k] + s, self.v[:, k] + w * perp(s),
                                self.a[:, k] + al * perp(s) - w**2 * s)
@@ -149,13 +149,14 @@ class Kinematics:
             self._memo[(key, "local")] = local     # keeps id(local) from being reused
         return self._memo[key]
 
-    def to_global(self, v, k: int) -> np.ndarray:
-        """A vector ``v`` (2,) or (n, 2) given in the frame of link number ``k``, in the global
-        frame (n, 2): R(theta_k) v, with the link's cos and sin computed once."""
-        if k not in self._trig:
-            th = self.theta[:, k]
-            self._trig[k] = (np.cos(th), np.sin(th))
-        return rotate_cs(v, *self._trig[k])
+    @cached_property
+    def frames(self) -> LinkFrames:
+        """Every link's frame by name (``frames.rotate(link, v)`` turns a vector of the link's
+        frame into the global one), each link's cos and sin computed once."""
+        spec = self.mechanism.spec
+        names = [GROUND] + [link.name for link in spec.links]
+        return LinkFrames({l: self.r[:, spec.number(l)] for l in names},
+                          {l: self.theta[:, spec.number(l)] for l in names})
 
     def carry_points(self, source: "Kinematics", rows: slice) -> None:
         """Take the point states ``source`` has computed, at its ``rows`` (this kinematics'

@@ -27,8 +27,8 @@ from ..model import Mechanism
 from ..spec import GROUND
 from . import driver_pose, finish, require_closes_at_ref
 from .path import SweepPath, sweep_path
-from .position import (BranchChoice, label_swaps, pick_branch, dyad_candidates, first_false,
-                       signature)
+from .position import (BranchChoice, chosen_poses, dyad_candidates, dyad_closes, first_false,
+                       label_swaps, nearer_plus, pick_branch, signature)
 from .result import Kinematics, Motion, motion_of
 
 TRACK_CHUNK = 65536   # samples per chunk of the branch-tracking pass (at least 3)
@@ -91,8 +91,8 @@ class KinematicChunks:
                 chosen = driver_pose(spec, self.angles[idx] * spec.driver.unit)
             else:
                 cands = dyad_candidates(spec, group.dyad, {k: (r[k], th[k]) for k in r})
-                chosen = _pick(cands, group.dyad.links, self.plus[group.dyad.label][idx],
-                               self.reached[g][idx])
+                chosen = chosen_poses(cands, group.dyad.links, self.plus[group.dyad.label][idx],
+                                      self.reached[g][idx])
             for link, (rr, tt) in chosen.items():
                 r[link], th[link] = rr, tt
         return finish(self.mech, self.angles[idx], r, th, self.branches, self.motion)
@@ -113,17 +113,6 @@ def kinematic_chunks(mech: Mechanism, size: int) -> KinematicChunks:
                            tuple(tracker.choices[g.dyad.label] for g in mech.groups
                                  if g.dyad is not None),
                            motion_of(path, runs, spec.driver.omega, spec.axis_unit))
-
-
-def _pick(cands: list[dict], links, use: np.ndarray, reached: np.ndarray) -> dict:
-    """Each link's pose from candidate + where ``use``, else the other; NaN where not
-    ``reached`` (as ``track_branches`` returns them)."""
-    out = {}
-    for link in links:
-        r = np.where(use[:, None], cands[0][link][0], cands[-1][link][0])
-        th = np.where(use, cands[0][link][1], cands[-1][link][1])
-        out[link] = (np.where(reached[:, None], r, np.nan), np.where(reached, th, np.nan))
-    return out
 
 
 @dataclass
@@ -252,7 +241,7 @@ class _Tracker:
         spec = self.spec
         cands = dyad_candidates(spec, dyad, known)
         sig = [signature(spec, dyad.links, c) for c in cands]
-        closed = first_false(np.logical_and.reduce([np.isfinite(x).all(axis=1) for x in sig]))
+        closed = first_false(dyad_closes(sig))
         if first:                  # the first sample is the first reference angle
             require_closes_at_ref(spec, dyad, cands, 0)
             self._choose(dyad, cands, sig, part)
@@ -268,7 +257,7 @@ class _Tracker:
             if first:
                 self.head[label] = (sig[0][:1], sig[1][:1])
         reached[part] = True
-        return _pick(cands, dyad.links, self.plus[label][part], reached[part]), closed
+        return chosen_poses(cands, dyad.links, self.plus[label][part], reached[part]), closed
 
     def _choose(self, dyad, cands: list[dict], sig: list[np.ndarray],
                 part: np.ndarray) -> None:
@@ -303,15 +292,11 @@ class _Tracker:
                 dyad = group.dyad
                 cands = dyad_candidates(spec, dyad, {k: (r[k], th[k]) for k in r})
                 sig = [signature(spec, dyad.links, c) for c in cands]
-                finite = np.logical_and.reduce([np.isfinite(x).all(axis=1) for x in sig])
                 plus, reached = self.plus[dyad.label], self.reached[g]
-                pick = [np.where(plus[k][:, None], sig[0][rows], sig[-1][rows])
-                        for k, rows in ((lo, slice(m, 2 * m)), (hi, slice(2 * m, None)))]
-                guess = (1 - w)[:, None] * pick[0] + w[:, None] * pick[1]
-                if len(cands) == 2:
-                    plus[off] = (np.sum((sig[0][:m] - guess) ** 2, axis=1)
-                                 <= np.sum((sig[1][:m] - guess) ** 2, axis=1))
-                reached[off] = reached[lo] & reached[hi] & finite[:m]
-                chosen = _pick(cands, dyad.links, plus[idx], reached[idx])
+                if len(cands) == 2:    # rows: the off-grid angles, then their neighbours
+                    plus[off] = nearer_plus([x[:m] for x in sig], [x[m:2 * m] for x in sig],
+                                            [x[2 * m:] for x in sig], plus[lo], plus[hi], w)
+                reached[off] = reached[lo] & reached[hi] & dyad_closes(sig)[:m]
+                chosen = chosen_poses(cands, dyad.links, plus[idx], reached[idx])
             for link, (rr, tt) in chosen.items():
                 r[link], th[link] = rr, tt

@@ -55,7 +55,7 @@ def frame_load(kin: Kinematics, res: ForceResult, loads=()) -> FrameLoad:
         m = m - np.asarray(res.driver_torque, float)
     elif d.kind == "T" and GROUND in d.links:   # the actuator pushes the frame back
         joint = spec.joint(d.joint)
-        u = kin.to_global(joint.line.direction, kin.index(joint.guide))
+        u = kin.frames.rotate(joint.guide, joint.line.direction)
         sign = 1.0 if d.links[1] == GROUND else -1.0
         f = sign * np.asarray(res.driver_torque, float)[:, None] * u
         fx, fy = fx + f[:, 0], fy + f[:, 1]

@@ -41,6 +41,6 @@ def transmission_angles(kin: Kinematics) -> dict[str, np.ndarray]:
             guide_joint = dyad.outer[slide]
             inner = kin.named_point(dyad.inner.point, rod_link).r
             a = inner - kin.named_point(dyad.outer[rod].point, rod_link).r
-            u = kin.to_global(guide_joint.line.direction, kin.index(guide_joint.guide))
+            u = kin.frames.rotate(guide_joint.guide, guide_joint.line.direction)
             out[dyad.label] = _fold(_line_angle(a, perp(u)))
     return out
