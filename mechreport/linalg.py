@@ -14,6 +14,10 @@ what nothing cheaper can:
 - systems up to ``SMALL_LU`` by Gaussian elimination with partial pivoting, one row
   operation at a time over the angle axis (LAPACK's algorithm; 2-5x faster at these sizes);
 - LAPACK solves the rest, each angle's matrix from a view.
+
+A chain of blocks (a method's systems, solved in turn) has many 1x1 and 2x2 systems whose
+matrices do not depend on the earlier results: :func:`prepare_small` equilibrates and probes
+them together, so that what is left per block is its own right-hand side.
 """
 from __future__ import annotations
 
@@ -324,6 +328,93 @@ def solve_cond(At: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     cond = np.where(np.isfinite(rs) & np.isfinite(q), np.where(a == 0, np.inf, 1.0), np.nan)
     x[~(cond < SINGULAR_COND)] = np.nan
     return x[:, None], cond
+
+
+class SmallSystem:
+    """A 1x1 or 2x2 system prepared with others (:func:`prepare_small`): slice ``part`` of
+    their group. What is left per right-hand side is its own solve, the same operations as
+    :func:`solve_cond` on it alone."""
+
+    def __init__(self, group: "_SmallGroup", part: slice):
+        self.group, self.part = group, part
+
+    def solve_cond(self, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        g, part = self.group, self.part
+        rs = g.rs[:, part]
+        cond = g.cond[part].copy()
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            q = b.T / rs                              # (m, n)
+            if g.m == 1:                              # solve_cond's direct 1x1 path
+                x = q / g.unit[part]
+                cond[~np.isfinite(q[0])] = np.nan
+            else:
+                overflow = ~np.isfinite(q).all(axis=0)
+                if overflow.any():
+                    q[:, overflow] = 0.0
+                    cond[overflow] = np.nan
+                a, bb, c, d = (v[part] for v in g.entries)
+                det = g.det[part]
+                x = np.empty(q.shape)
+                x[0] = (d * q[0] - bb * q[1]) / det   # _closed_form's Cramer's rule
+                x[1] = (a * q[1] - c * q[0]) / det
+                x /= g.cs[:, part]
+        x[:, ~(cond < SINGULAR_COND)] = np.nan
+        return x.T, cond
+
+
+class _SmallGroup:
+    """Systems of one size m <= 2 concatenated along the angle axis (m, m, N), equilibrated
+    and solved for :class:`Equilibrated`'s probes at once: per angle the very operations of
+    :func:`solve_cond`, so each slice's condition number is the one it would get alone."""
+
+    def __init__(self, At: np.ndarray):
+        self.m = m = At.shape[0]
+        if m == 1:                                # as solve_cond's direct path
+            a = At[0, 0]
+            rs = np.abs(a)
+            rs[rs == 0] = 1.0
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+                self.unit = a / rs
+            self.rs = rs[None, :]
+            self.cond = np.where(np.isfinite(rs), np.where(a == 0, np.inf, 1.0), np.nan)
+            return
+        eq = Equilibrated(At)
+        rhs = np.broadcast_to(PROBES[:m, :, None], (m, 2, At.shape[2]))
+        y = eq._solve(rhs)
+        with np.errstate(over="ignore", invalid="ignore"):
+            probe = np.sqrt(np.einsum("ikn,ikn->kn", y, y)) / PROBE_NORMS[m][:, None]
+            cond = eq.fro * np.max(probe, axis=0)
+        cond[~np.isfinite(cond)] = np.inf
+        cond[eq.overflow] = np.nan
+        self.cond, self.rs, self.cs = cond, eq.rs, eq.cs
+        As = eq.As
+        self.entries = (As[0, 0], As[0, 1], As[1, 0], As[1, 1])
+        with np.errstate(over="ignore", invalid="ignore"):
+            self.det = As[0, 0] * As[1, 1] - As[0, 1] * As[1, 0]
+
+
+def prepare_small(systems: list[np.ndarray]) -> list[SmallSystem]:
+    """1x1 and 2x2 systems At (m, m, n), all over the same n angles, each ready to be solved
+    for one right-hand side: ``prepare_small(systems)[k].solve_cond(b)`` equals
+    ``solve_cond(systems[k], b)`` bit for bit.
+
+    A method's chain of blocks has many such systems; their matrices do not depend on the
+    earlier blocks' results (only their right-hand sides do), so those of one size are
+    equilibrated, solved for the probes and judged together, concatenated along the angle
+    axis: one pass of numpy calls for all of them instead of one each (the calls' own cost
+    is most of the time of short sweeps)."""
+    out: list[SmallSystem | None] = [None] * len(systems)
+    for m in (1, 2):
+        ks = [k for k, A in enumerate(systems) if A.shape[0] == m]
+        if not ks:
+            continue
+        n = systems[ks[0]].shape[2]
+        group = _SmallGroup(np.concatenate([systems[k] for k in ks], axis=2, dtype=np.float64))
+        for i, k in enumerate(ks):
+            out[k] = SmallSystem(group, slice(i * n, (i + 1) * n))
+    if any(s is None for s in out):
+        raise ValueError("prepare_small takes 1x1 and 2x2 systems only")
+    return out
 
 
 def angle_last(A: np.ndarray) -> np.ndarray:

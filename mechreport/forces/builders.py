@@ -8,10 +8,8 @@ import numpy as np
 
 from ..kinematics.frames import cross, perp, project, scaled
 from ..spec import Joint
-from .context import ForceContext
+from .context import AXES, ForceContext
 from .equations import Action, Equation, Term
-
-AXES = {"x": np.array([1.0, 0.0]), "y": np.array([0.0, 1.0])}
 
 
 def body_tag(ctx: ForceContext, bodies) -> str:
@@ -55,31 +53,34 @@ def moment_term(act: Action, about: np.ndarray, n: int, side: str = "rhs",
                 kind="moment", factors=named)
 
 
-def _at_centre(ctx: ForceContext, act: Action, p: np.ndarray) -> bool:
-    """Whether force ``act`` is applied at point ``p`` at every angle (asked of the same
-    arrays again and again: the answer is kept in ``ctx.cache``)."""
-    if act.kind != "force":
-        return False
-    if act.at is p:
-        return True
-    memo = ctx.cache.setdefault("at centre", {})
-    key = (id(act.at), id(p))
-    if key not in memo:
-        scale = 1.0 + float(np.max(np.abs(p)))
-        memo[key] = (bool(np.all(np.abs(act.at - p) <= 1e-12 * scale)), act.at, p)
-    return memo[key][0]
-
-
 def with_moment(ctx: ForceContext, acts: list[Action], p: np.ndarray) -> list[Action]:
     """The actions that enter a moment equation about point ``p`` (n, 2): all but the forces
-    applied at ``p`` itself, which have no moment (the text leaves them out)."""
-    return [a for a in acts if not _at_centre(ctx, a, p)]
+    applied at ``p`` itself, which have no moment (the text leaves them out). Whether a force
+    is applied at ``p`` at every angle is asked of the same arrays again and again: the
+    answer is kept in ``ctx.cache``."""
+    memo = ctx.cache.get("at centre")
+    if memo is None:
+        memo = ctx.cache["at centre"] = {}
+    out = []
+    for act in acts:
+        at = act.at
+        if act.kind != "force":
+            out.append(act)
+        elif at is not p:
+            key = (id(at), id(p))
+            hit = memo.get(key)
+            if hit is None:     # the arrays are kept with the answer: their ids stay theirs
+                scale = 1.0 + float(np.abs(p).max(initial=0.0))
+                hit = memo[key] = (bool((np.abs(at - p) <= 1e-12 * scale).all()), at, p)
+            if not hit[0]:
+                out.append(act)
+    return out
 
 
 def force_equation(ctx: ForceContext, bodies, acts: list[Action], axis: str,
                    direction: np.ndarray | None = None, kind: str = "force") -> Equation:
     """sum F^(bodies) . axis = 0; ``axis`` x or y, or a named sliding ``direction`` (n, 2)."""
-    d = np.broadcast_to(AXES[axis], (ctx.n, 2)) if direction is None else direction
+    d = ctx.axis(axis) if direction is None else direction
     terms = [t for t in (force_term(a, d) for a in acts) if t is not None]
     label = f"sum F^{body_tag(ctx, bodies)} . {axis}"
     return Equation(label, kind, tuple(bodies), terms, axis=axis)
@@ -122,7 +123,7 @@ def _newton_euler(ctx: ForceContext, link: str) -> list[Equation]:
     lhs = Action(f"m{s.number} aC{s.number}", "force", "inertia", link, s.r, f"C{s.number}",
                  value=scaled(s.mass, s.a))
     for axis, k in (("x", 0), ("y", 1)):
-        d = np.broadcast_to(AXES[axis], (ctx.n, 2))
+        d = ctx.axis(axis)
         terms = [Term(lhs, np.zeros((ctx.n, 0)), s.mass * s.a[:, k], "lhs", direction=d,
                       kind="inertia", factors=(("mass", s.mass), ("accel", s.a)))]
         terms += [t for t in (force_term(a, d) for a in acts) if t is not None]

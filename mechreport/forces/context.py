@@ -20,6 +20,7 @@ from ..spec import GROUND, Joint
 from .equations import Action
 from .loads import AppliedLoad, evaluate_loads
 
+AXES = {"x": np.array([1.0, 0.0]), "y": np.array([0.0, 1.0])}
 DRIVER_TORQUE = "driver.torque"   # an R driver's unknown; a T driver's is "driver.force"
 
 
@@ -77,6 +78,13 @@ class ForceContext:
     def joint_points(self) -> dict[str, np.ndarray]:
         """Where each joint's reaction acts (n, 2): the pin, or the slider's point."""
         return {j.name: joint_point(self.kin, j) for j in self.spec.joints}
+
+    def axis(self, name: str) -> np.ndarray:
+        """The global unit vector ``x`` or ``y`` at every angle (n, 2), read-only."""
+        key = ("axis", name)
+        if key not in self.cache:
+            self.cache[key] = np.broadcast_to(AXES[name], (self.n, 2))
+        return self.cache[key]
 
     def point_of(self, name: str) -> np.ndarray:
         """Global position (n, 2) of a joint point or named point."""

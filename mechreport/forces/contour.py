@@ -86,7 +86,7 @@ def _rank(rows: np.ndarray) -> np.ndarray:
 def _needs(ctx: ForceContext, w: Joint, body: list[str]) -> frozenset[str]:
     """The unknowns the equation cut at ``w`` for ``body`` names (its ``unknown_names``),
     read from the actions without building the equation."""
-    acts = ctx.actions_on(body, inertia=True, exclude=(w.name,))
+    acts = [a for a in ctx.actions_on(body, inertia=True, exclude=(w.name,)) if a.unknowns]
     if w.type == "R":
         acts = with_moment(ctx, acts, ctx.point_of(w.point))
     else:                                   # a projection: couples have none
@@ -102,12 +102,15 @@ def _candidates(ctx: ForceContext, loop: Loop, joint: Joint, unknowns: list[str]
     x = [j.name for j in loop.joints].index(joint.name)
     paths = [list(_path(loop, x, True)), list(_path(loop, x, False))]
     needs = cache.setdefault("needs", {})        # the same cuts come back joint after joint
+    wanted = set(unknowns)
+    usable = wanted | known
     out = []
     for w, body in (p[k] for k in range(max(map(len, paths))) for p in paths if k < len(p)):
         key = (w.name, tuple(body))
-        if key not in needs:
-            needs[key] = _needs(ctx, w, body)
-        if needs[key] & set(unknowns) and needs[key] <= set(unknowns) | known:
+        need = needs.get(key)
+        if need is None:
+            need = needs[key] = _needs(ctx, w, body)
+        if need & wanted and need <= usable:
             out.append(key)
     return out
 
@@ -140,7 +143,8 @@ def _select(unknowns: list[str], chosen: list[Equation], candidates: list, build
             eq = build(key)
             row = _rows(eq, unknowns, probes)
             new = _rank(np.stack(rows + [row], axis=1))
-            if np.mean(new > rank) >= share and np.mean(new > rank) > 0:
+            gain = np.count_nonzero(new > rank) / len(probes)   # the share of probes
+            if gain >= share and gain > 0:
                 chosen.append(eq)
                 rows.append(row)
                 taken.add(key)

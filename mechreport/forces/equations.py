@@ -18,7 +18,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..linalg import SINGULAR_COND, solve_cond
+from ..linalg import SINGULAR_COND, prepare_small, solve_cond
 
 
 
@@ -57,7 +57,7 @@ TERM_KINDS = {
 }
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Term:
     """One action's contribution to one equation: ``coeffs @ x[unknowns] + const``.
 
@@ -78,6 +78,17 @@ class Term:
     rate: np.ndarray | None = None   # power terms: the velocity (n, 2) or omega (n,) it works on
     kind: str = ""                   # one of TERM_KINDS ("" only for terms built elsewhere)
     factors: tuple = ()              # ((name, value), ...): the named factors not above
+
+    def __init__(self, action: Action, coeffs: np.ndarray, const: np.ndarray,
+                 side: str = "rhs", lever: np.ndarray | None = None,
+                 direction: np.ndarray | None = None, rate: np.ndarray | None = None,
+                 kind: str = "", factors: tuple = ()):
+        # the generated frozen __init__ sets each field through object.__setattr__, at
+        # twice the cost (hundreds of terms per analysis): the instance dict is written
+        d = self.__dict__
+        d["action"], d["coeffs"], d["const"], d["side"] = action, coeffs, const, side
+        d["lever"], d["direction"], d["rate"] = lever, direction, rate
+        d["kind"], d["factors"] = kind, factors
 
     def factor(self, name: str, default=None):
         """The named factor ``name`` (see ``factors``), or ``default``."""
@@ -154,38 +165,55 @@ class Solution:
         return ~(self.cond < SINGULAR_COND)
 
 
-def step_system(step: Step, known: dict[str, np.ndarray], n: int, columns: int = 1,
-                column=None) -> tuple[np.ndarray, np.ndarray]:
-    """The step's matrix A (m, m, n), angle-last, and right-hand sides b (m, columns, n).
-
-    Unknowns solved by earlier steps are ``known``: (n,) values, or (columns, n) parts. A
-    term's constant goes to right-hand side ``column(term)`` (0 by default; None leaves it
-    out)."""
+def step_matrix(step: Step, n: int) -> np.ndarray:
+    """The step's matrix A (m, m, n), angle-last: each equation's coefficients on the step's
+    own unknowns (those of earlier steps go to the right-hand side, :func:`step_rhs`)."""
     m = len(step.unknowns)
     if len(step.equations) != m:
         raise ValueError(f"{step.title}: {len(step.equations)} equations for {m} unknowns")
     col = {u: i for i, u in enumerate(step.unknowns)}
     A = np.zeros((m, m, n))
-    b = np.zeros((m, columns, n))
     for row, eq in enumerate(step.equations):
         for t in eq.terms:
-            # a lhs term enters negated: added where a rhs term is subtracted (the same bits
+            # a lhs term enters negated: subtracted where a rhs term is added (the same bits
             # as multiplying by -1 first, without the temporary)
-            rhs = t.side == "rhs"
+            add = np.add if t.side == "rhs" else np.subtract
+            for k, u in enumerate(t.action.unknowns):
+                j = col.get(u)
+                if j is not None:
+                    add(A[row, j], t.coeffs[:, k], out=A[row, j])
+    return A
+
+
+def step_rhs(step: Step, known: dict[str, np.ndarray], n: int, columns: int = 1,
+             column=None) -> np.ndarray:
+    """The step's right-hand sides b (m, columns, n), angle-last: the terms' constants and
+    the unknowns solved by earlier steps, ``known`` as (n,) values or (columns, n) parts. A
+    term's constant goes to right-hand side ``column(term)`` (0 by default; None leaves it
+    out)."""
+    col = set(step.unknowns)
+    b = np.zeros((len(step.equations), columns, n))
+    for row, eq in enumerate(step.equations):
+        for t in eq.terms:
+            sub = np.subtract if t.side == "rhs" else np.add
             c = 0 if column is None else column(t)
             if c is not None:
-                (np.subtract if rhs else np.add)(b[row, c], t.const, out=b[row, c])
+                sub(b[row, c], t.const, out=b[row, c])
             for k, u in enumerate(t.action.unknowns):
                 if u in col:
-                    (np.add if rhs else np.subtract)(A[row, col[u]], t.coeffs[:, k],
-                                                      out=A[row, col[u]])
-                elif u in known:
-                    (np.subtract if rhs else np.add)(b[row], t.coeffs[:, k] * known[u],
-                                                     out=b[row])
-                else:
+                    continue
+                if u not in known:
                     raise ValueError(f"{step.title}: equation '{eq.label}' needs {u}, "
                                      "which is neither solved here nor known")
-    return A, b
+                sub(b[row], t.coeffs[:, k] * known[u], out=b[row])
+    return b
+
+
+def step_system(step: Step, known: dict[str, np.ndarray], n: int, columns: int = 1,
+                column=None) -> tuple[np.ndarray, np.ndarray]:
+    """The step's matrix A (m, m, n) and right-hand sides b (m, columns, n): see
+    :func:`step_matrix` and :func:`step_rhs`."""
+    return step_matrix(step, n), step_rhs(step, known, n, columns, column)
 
 
 def solve_step(step: Step, known: dict[str, np.ndarray], n: int) -> Solution:
@@ -193,6 +221,25 @@ def solve_step(step: Step, known: dict[str, np.ndarray], n: int) -> Solution:
     A, b = step_system(step, known, n)
     x, cond = solve_cond(A, b[:, 0].T)
     return Solution({u: x[:, i] for i, u in enumerate(step.unknowns)}, cond)
+
+
+def solve_chain(blocks: list[Step], n: int) -> tuple[dict[str, np.ndarray], list[Solution]]:
+    """Solve ``blocks`` in turn, each with the values found by those before it: every
+    unknown's values (n,), and each block's Solution. The same numbers as :func:`solve_step`
+    block by block; the 1x1 and 2x2 blocks' matrices, which do not depend on earlier values,
+    are prepared together first (:func:`mechreport.linalg.prepare_small`)."""
+    small = [k for k, blk in enumerate(blocks) if 1 <= len(blk.unknowns) <= 2]
+    prepared = dict(zip(small, prepare_small([step_matrix(blocks[k], n) for k in small])))
+    known: dict[str, np.ndarray] = {}
+    out = []
+    for k, block in enumerate(blocks):
+        b = step_rhs(block, known, n)[:, 0].T
+        x, cond = prepared[k].solve_cond(b) if k in prepared \
+            else solve_cond(step_matrix(block, n), b)
+        sol = Solution({u: x[:, i] for i, u in enumerate(block.unknowns)}, cond)
+        known.update(sol.values)
+        out.append(sol)
+    return known, out
 
 
 def triangular_blocks(step: Step) -> list[Step]:

@@ -183,13 +183,12 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
 def run_steps(method: str, ctx, steps) -> ForceResult:
     """Solve ``steps`` in order, each with the values found by those before it, block by
     block (``triangular_blocks``); the condition number is the product of the blocks'."""
-    from .equations import solve_step, triangular_blocks
-    known: dict[str, np.ndarray] = {}
+    from .equations import solve_chain, triangular_blocks
+    known, solutions = solve_chain([b for step in steps for b in triangular_blocks(step)],
+                                   ctx.n)
     singular = np.zeros(ctx.n, bool)
     cond = np.ones(ctx.n)
-    for block in (b for step in steps for b in triangular_blocks(step)):
-        sol = solve_step(block, known, ctx.n)
-        known.update(sol.values)
+    for sol in solutions:
         singular |= sol.singular
         with np.errstate(over="ignore", invalid="ignore"):
             cond = cond * sol.cond
