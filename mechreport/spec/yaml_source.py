@@ -120,6 +120,23 @@ def resolve_plain(value: str) -> Any:
     return value
 
 
+def _is_plain(event) -> bool:
+    """Whether ``event`` is a plain scalar (no quotes, tag or anchor): its value is
+    :func:`resolve_plain` of its text, with nothing to check."""
+    return (type(event) is ScalarEvent and event.tag is None and event.anchor is None
+            and event.implicit[0])
+
+
+def _plain_name(event) -> str | None:
+    """The key ``event`` names when it is a plain scalar that reads as text; None when it
+    needs :meth:`Source._key` (quoted, tagged, a number, a collection ...)."""
+    if _is_plain(event):
+        value = resolve_plain(event.value)
+        if isinstance(value, str):
+            return value
+    return None
+
+
 def _kind(value: Any) -> str:
     return "true/false" if isinstance(value, bool) else "a number"
 
@@ -289,8 +306,7 @@ class Source:
             lines = self.lines
             item = self._next()
             while not isinstance(item, SequenceEndEvent):
-                if (type(item) is ScalarEvent and item.tag is None and item.anchor is None
-                        and item.implicit[0]):       # fast path: a plain scalar item
+                if _is_plain(item):                  # fast path: a plain scalar item
                     if record:
                         lines[path + (len(out),)] = item.start_mark.line + 1
                     out.append(resolve_plain(item.value))
@@ -305,7 +321,9 @@ class Source:
         mapping: dict = {}
         key_event = self._next()
         while not isinstance(key_event, MappingEndEvent):
-            key = self._key(key_event, path, depth, record)
+            key = _plain_name(key_event)          # fast path: a plain name
+            if key is None:
+                key = self._key(key_event, path, depth, record)
             value_event = self._next()
             if key is None:                       # refused (reported): skip its value
                 self._node(value_event, path, depth + 1, False)
@@ -319,7 +337,10 @@ class Source:
                 child = path + (key,)
                 if record:
                     self.lines[child] = key_event.start_mark.line + 1
-                mapping[key] = self._node(value_event, child, depth + 1, record)
+                if _is_plain(value_event):        # fast path: a plain value (its line: the key's)
+                    mapping[key] = resolve_plain(value_event.value)
+                else:
+                    mapping[key] = self._node(value_event, child, depth + 1, record)
             key_event = self._next()
         return mapping
 
