@@ -165,12 +165,14 @@ class ConstantRows:
     other constant numbers (a fixed lever arm) are left with the varying rows. Otherwise
     :meth:`of` returns None and the whole system goes to the general solve."""
 
-    def __init__(self, At, rs, rows, others, pivots, rest, Kinv, M):
+    def __init__(self, At, rs, rows, others, pivots, rest, Kinv, M, at_np, at_nq):
         self.rows, self.others, self.pivots, self.rest = rows, others, pivots, rest
         self.Kinv, self.M = Kinv, M
+        q, n = len(others), At.shape[2]
+        flat = At.reshape(-1, n)
         scale = rs[others][:, None, :]
-        self.A_NP = At[np.ix_(others, pivots)] / scale              # (q, p, n), rows scaled
-        S = At[np.ix_(others, rest)] / scale
+        self.A_NP = flat[at_np].reshape(q, -1, n) / scale          # (q, p, n), rows scaled
+        S = flat[at_nq].reshape(q, -1, n) / scale
         S -= np.einsum("ipn,pq->iqn", self.A_NP, M)
         self.S = Equilibrated(S) if len(rest) else None
         self.exact = np.zeros(At.shape[2], bool)
@@ -219,10 +221,10 @@ class ConstantRows:
 
 @lru_cache(maxsize=1024)
 def _constant_plan(m: int, rows: tuple[int, ...], shape: tuple[int, int], data: bytes):
-    """(others, pivots, rest, K_P^-1, M) for the constant rows ``rows`` of an m x m system,
-    whose coefficients K (``shape``, float64 +-1 and 0) are ``data``; None if they are not to
-    be eliminated. The same few constant blocks come back every analysis: planned once each
-    (read-only)."""
+    """(others, pivots, rest, K_P^-1, M, and where A_NP and A_NQ are in A flattened to
+    (m * m, n)) for the constant rows ``rows`` of an m x m system, whose coefficients K
+    (``shape``, float64 +-1 and 0) are ``data``; None if they are not to be eliminated. The
+    same few constant blocks come back every analysis: planned once each (read-only)."""
     K = np.frombuffer(data, np.float64).reshape(shape)
     pivots = _complete_pivots(K)
     if pivots is None:
@@ -238,9 +240,11 @@ def _constant_plan(m: int, rows: tuple[int, ...], shape: tuple[int, int], data: 
             and np.max(np.abs(M), initial=0.0) <= CONSTANT_GROWTH):
         return None
     others = np.array([i for i in range(m) if i not in set(rows)], int)
-    for a in (rest, pivots, Kinv, M, others):
+    at_np = np.add.outer(others * m, pivots).ravel()   # A[others][:, pivots] in A (m * m, n)
+    at_nq = np.add.outer(others * m, rest).ravel()
+    for a in (rest, pivots, Kinv, M, others, at_np, at_nq):
         a.setflags(write=False)
-    return others, pivots, rest, Kinv, M
+    return others, pivots, rest, Kinv, M, at_np, at_nq
 
 
 def _complete_pivots(K: np.ndarray) -> list[int] | None:

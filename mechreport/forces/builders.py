@@ -97,7 +97,7 @@ def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
 
 def sliding_direction(ctx: ForceContext, joint: Joint) -> np.ndarray:
     """Unit direction (n, 2) of a T joint's line in the global frame."""
-    return ctx.kin.frames.rotate(joint.guide, joint.line.direction)
+    return ctx.line_direction(joint)
 
 
 def normal_constraint(ctx: ForceContext, joint: Joint) -> Equation:

@@ -86,6 +86,16 @@ class ForceContext:
             self.cache[key] = np.broadcast_to(AXES[name], (self.n, 2))
         return self.cache[key]
 
+    def line_direction(self, joint: Joint) -> np.ndarray:
+        """Unit direction (n, 2) of T joint ``joint``'s line in the global frame, read-only
+        (every method and the slider's point ask for it)."""
+        key = ("line", joint.name)
+        if key not in self.cache:
+            u = self.kin.frames.rotate(joint.guide, joint.line.direction)
+            u.setflags(write=False)
+            self.cache[key] = u
+        return self.cache[key]
+
     def point_of(self, name: str) -> np.ndarray:
         """Global position (n, 2) of a joint point or named point."""
         if name in self.joint_points:
@@ -175,7 +185,7 @@ class ForceContext:
         if d.kind == "R":
             return [Action("M", "couple", "driver", link, unknowns=unknown, sign=sign)]
         joint = self.spec.joint(d.joint)
-        u = self.kin.frames.rotate(joint.guide, joint.line.direction)
+        u = self.line_direction(joint)
         return [Action("Fd", "force", "driver", link, self.joint_points[joint.name],
                        joint.point, unknowns=unknown, sign=sign, direction=u)]
 

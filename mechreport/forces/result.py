@@ -150,7 +150,7 @@ def slider_point(ctx, joint, fx: np.ndarray, fy: np.ndarray, m: np.ndarray,
     on the sliding line: (px, py) [m], NaN where the force vanishes (below 1e-12 of ``top``,
     the largest force component over the sweep, by default over these angles) and the point
     is undefined."""
-    u = ctx.kin.frames.rotate(joint.guide, joint.line.direction)
+    u = ctx.line_direction(joint)
     f = np.stack([fx, fy], axis=1)
     s = cross(u, f)
     top = np.max(np.abs(f), initial=0.0) if top is None else top
@@ -188,8 +188,8 @@ def run_steps(method: str, ctx, steps) -> ForceResult:
                                    ctx.n)
     singular = np.zeros(ctx.n, bool)
     cond = np.ones(ctx.n)
-    for sol in solutions:
-        singular |= sol.singular
-        with np.errstate(over="ignore", invalid="ignore"):
+    with np.errstate(over="ignore", invalid="ignore"):
+        for sol in solutions:
+            singular |= sol.singular
             cond = cond * sol.cond
     return make_result(method, ctx, known, steps, singular, cond)
