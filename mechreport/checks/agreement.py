@@ -57,33 +57,40 @@ Spreads = dict   # quantity -> Spread (n_methods 1: only its magnitude counts)
 
 
 def spreads(results: dict[str, ForceResult]) -> Spreads:
-    """Each quantity's :class:`Spread` over the results' angles."""
+    """Each quantity's :class:`Spread` over the results' angles (the quantities given by the
+    same methods, as a rule every reaction component, judged together)."""
     by_q: dict[str, dict[str, np.ndarray]] = {}
     for name, res in results.items():
         for q, values in res.values().items():
             by_q.setdefault(q, {})[name] = values
     angles = next(iter(results.values())).angles if results else np.zeros(0)
-    out: Spreads = {}
+    groups: dict[tuple[str, ...], list[str]] = {}
     for q, per in by_q.items():
-        names = list(per)
-        stack = np.stack([per[m] for m in names])          # (methods, n)
-        if len(per) < 2:                # its magnitude still sets its kind's scale
-            top = float(np.max(np.abs(stack), initial=0.0))
-            out[q] = Spread(0.0, (names[0], names[0]), 0.0, top, 1)
+        groups.setdefault(tuple(per), []).append(q)
+    found: Spreads = {}
+    for names, qs in groups.items():
+        stack = np.array([[by_q[q][m] for m in names] for q in qs], float)  # (Q, methods, n)
+        if len(names) < 2:              # its magnitude still sets its kind's scale
+            tops = np.abs(stack).max(axis=(1, 2), initial=0.0).tolist()
+            found.update((q, Spread(0.0, (names[0], names[0]), 0.0, top, 1))
+                         for q, top in zip(qs, tops))
             continue
-        if stack.shape[1] == 0:
+        if stack.shape[2] == 0:
             continue
-        hi, lo = np.max(stack, axis=0), np.min(stack, axis=0)
-        top = float(np.maximum(np.max(hi), -np.min(lo)))  # max |stack|; NaN if any is NaN
+        hi, lo = stack.max(axis=1), stack.min(axis=1)                      # (Q, n)
+        top = np.maximum(hi.max(axis=1), -lo.min(axis=1))   # max |stack|; NaN if any is NaN
         spread = hi - lo
-        finite = np.isfinite(spread)
+        bad = ~np.isfinite(spread)
         # a NaN never agrees: it is the worst disagreement there is, not none
-        k = int(np.argmax(spread)) if finite.all() else int(np.flatnonzero(~finite)[0])
-        at = stack[:, k]
-        pair = (names[int(np.argmax(at))], names[int(np.argmin(at))]) if spread[k] > 0 \
-            else (names[0], names[1])
-        out[q] = Spread(float(spread[k]), pair, float(angles[k]), top, len(names))
-    return out
+        k = np.where(bad.any(axis=1), bad.argmax(axis=1), spread.argmax(axis=1))
+        rows = np.arange(len(qs))
+        at = stack[rows, :, k]                                              # (Q, methods)
+        worst = spread[rows, k].tolist()
+        first, last = at.argmax(axis=1).tolist(), at.argmin(axis=1).tolist()
+        for q, w, i, j, kk, t in zip(qs, worst, first, last, k.tolist(), top.tolist()):
+            pair = (names[i], names[j]) if w > 0 else (names[0], names[1])
+            found[q] = Spread(w, pair, float(angles[kk]), t, len(names))
+    return {q: found[q] for q in by_q if q in found}
 
 
 def merge(a: Spreads, b: Spreads) -> Spreads:

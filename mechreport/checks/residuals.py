@@ -35,10 +35,11 @@ def residuals(ctx: ForceContext, results: dict[str, ForceResult]) -> list[Residu
             values = {k: np.stack([solved[name][k][cut] for name in names])
                       for k in solved[names[0]]}
             for eq in equations:
-                r = np.max(np.abs(eq.evaluate(values)), axis=-1, initial=0.0)
+                r = np.abs(eq.evaluate(values)).max(axis=-1, initial=0.0)
                 k = 1 if eq.kind == "moment" else 0
-                for name, largest in zip(names, np.broadcast_to(r, len(names))):
-                    worst[name][k] = max(worst[name][k], float(largest))
+                largest = r.tolist() if r.ndim else [float(r)] * len(names)
+                for name, value in zip(names, largest):
+                    worst[name][k] = max(worst[name][k], value)
     return [Residual(name, force, moment) for name, (force, moment) in worst.items()]
 
 

@@ -132,8 +132,7 @@ class Equation:
                     part = part + product
                 else:
                     part += product
-            if isinstance(total, float) or total.shape != np.broadcast_shapes(total.shape,
-                                                                              part.shape):
+            if isinstance(total, float) or total.ndim < part.ndim:   # (n,) meets (k, n)
                 total = total + part if t.side == "rhs" else total - part
             elif t.side == "rhs":
                 total += part
