@@ -216,6 +216,8 @@ def _require_finite_inputs(ctx: ForceContext) -> None:
                                        * np.ones((ctx.n, 1))))]
         arrays += [(f"load {ld.symbol}", ld.force if ld.force is not None else ld.moment)
                    for ld in ctx.loads]
+    if np.isfinite(np.concatenate([np.ravel(v) for _, v in arrays])).all():
+        return                      # as a rule: every value at once, then none one by one
     for what, values in arrays:
         ok = np.isfinite(values).reshape(ctx.n, -1).all(axis=1)
         if not ok.all():
@@ -235,6 +237,8 @@ def _require_finite(kin: Kinematics, forces: dict[str, ForceResult]) -> None:
               for link in spec.links for what in ("r", "theta", "v", "omega", "a", "alpha")]
     arrays += [(f"{q} ({name})", v) for name, res in forces.items()
                for q, v in res.values().items()]
+    if np.isfinite(np.concatenate([np.ravel(v) for _, v in arrays])).all():
+        return                      # as a rule: every value at once, then none one by one
     for what, values in arrays:
         ok = np.isfinite(values)
         if not ok.all():

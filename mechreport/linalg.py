@@ -171,8 +171,8 @@ class ConstantRows:
         q, n = len(others), At.shape[2]
         flat = At.reshape(-1, n)
         scale = rs[others][:, None, :]
-        self.A_NP = flat[at_np].reshape(q, -1, n) / scale          # (q, p, n), rows scaled
-        S = flat[at_nq].reshape(q, -1, n) / scale
+        self.A_NP = flat[at_np].reshape(q, len(pivots), n) / scale   # (q, p, n), rows scaled
+        S = flat[at_nq].reshape(q, len(rest), n) / scale
         S -= np.einsum("ipn,pq->iqn", self.A_NP, M)
         self.S = Equilibrated(S) if len(rest) else None
         self.exact = np.zeros(At.shape[2], bool)

@@ -112,14 +112,15 @@ def merge(a: Spreads, b: Spreads) -> Spreads:
 
 def finish(parts: Spreads) -> list[Agreement]:
     """The agreement table from the spreads over the whole sweep, worst first."""
+    kinds = {q: _kind(q) for q in parts}
     kind_scale: dict[str, float] = {}
     for q, s in parts.items():
-        kind_scale[_kind(q)] = max(kind_scale.get(_kind(q), 0.0), s.top)
+        kind_scale[kinds[q]] = max(kind_scale.get(kinds[q], 0.0), s.top)
     out = []
     for q, s in parts.items():
         if s.n_methods < 2:
             continue
-        scale = max(s.top, SCALE_FLOOR * kind_scale[_kind(q)])
+        scale = max(s.top, SCALE_FLOOR * kind_scale[kinds[q]])
         if not (np.isfinite(s.spread) and np.isfinite(scale)):
             rel = float("inf")
         else:

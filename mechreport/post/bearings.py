@@ -54,6 +54,6 @@ def bearing_load(f_cycle: np.ndarray, rating: float | None = None,
                  rpm: float | None = None) -> BearingLoad:
     """Statistics of |F| sampled over one turn on a uniform grid ``f_cycle`` (N,) [N]."""
     f = np.abs(np.asarray(f_cycle, float))
-    feq = float(np.mean(f ** 3) ** (1.0 / 3.0))
+    feq = float((f ** 3).mean() ** (1.0 / 3.0))
     life = rating_life_h(rating, feq, rpm) if rating is not None and rpm else None
-    return BearingLoad(float(np.max(f)), float(np.mean(f)), feq, life)
+    return BearingLoad(float(f.max()), float(f.mean()), feq, life)
