@@ -9,7 +9,7 @@ import numpy as np
 from ..kinematics.frames import cross, perp, project, scaled
 from ..spec import Joint
 from .context import AXES, ForceContext
-from .equations import Action, Equation, Term
+from .equations import Action, Equation, Term, no_coefficients, no_constant
 
 
 def body_tag(ctx: ForceContext, bodies) -> str:
@@ -23,9 +23,9 @@ def force_term(act: Action, d: np.ndarray, side: str = "rhs") -> Term | None:
         return None
     if act.direction is not None:      # one unknown magnitude along a known direction
         return Term(act, act.sign * project(act.direction, d)[:, None],
-                    np.zeros(d.shape[0]), side, direction=d, kind="projection")
+                    no_constant(d.shape[0]), side, direction=d, kind="projection")
     if act.unknowns:
-        return Term(act, act.sign * d, np.zeros(d.shape[0]), side, direction=d,
+        return Term(act, act.sign * d, no_constant(d.shape[0]), side, direction=d,
                     kind="projection")
     return Term(act, np.zeros((d.shape[0], 0)), project(act.value, d), side,
                 direction=d, kind="projection")
@@ -37,19 +37,19 @@ def moment_term(act: Action, about: np.ndarray, n: int, side: str = "rhs",
     (CCW positive)."""
     if act.kind == "couple":
         if act.unknowns:
-            return Term(act, np.full((n, 1), act.sign), np.zeros(n), side, kind="couple")
-        return Term(act, np.zeros((n, 0)), np.asarray(act.value, float), side, kind="couple")
+            return Term(act, np.full((n, 1), act.sign), no_constant(n), side, kind="couple")
+        return Term(act, no_coefficients(n), np.asarray(act.value, float), side, kind="couple")
     lever = act.at - about
     named = (("about", about_name),)
     if act.direction is not None:
-        return Term(act, act.sign * cross(lever, act.direction)[:, None], np.zeros(n), side,
+        return Term(act, act.sign * cross(lever, act.direction)[:, None], no_constant(n), side,
                     lever=lever, kind="moment", factors=named)
     if act.unknowns:
         coeffs = perp(lever)
         if act.sign != 1.0:
             coeffs *= act.sign
-        return Term(act, coeffs, np.zeros(n), side, lever=lever, kind="moment", factors=named)
-    return Term(act, np.zeros((n, 0)), cross(lever, act.value), side, lever=lever,
+        return Term(act, coeffs, no_constant(n), side, lever=lever, kind="moment", factors=named)
+    return Term(act, no_coefficients(n), cross(lever, act.value), side, lever=lever,
                 kind="moment", factors=named)
 
 
@@ -104,7 +104,7 @@ def normal_constraint(ctx: ForceContext, joint: Joint) -> Equation:
     """A T joint's reaction has no component along its line: F . Delta = 0."""
     act = ctx.reaction(joint, joint.slider)[0]
     d = sliding_direction(ctx, joint)
-    term = Term(act, d.copy(), np.zeros(ctx.n), direction=d, kind="projection")
+    term = Term(act, d.copy(), no_constant(ctx.n), direction=d, kind="projection")
     return Equation(f"{act.symbol} . Delta_{joint.name} = 0", "constraint", (joint.slider,),
                     [term], axis=f"Delta_{joint.name}")
 
@@ -124,14 +124,14 @@ def _newton_euler(ctx: ForceContext, link: str) -> list[Equation]:
                  value=scaled(s.mass, s.a))
     for axis, k in (("x", 0), ("y", 1)):
         d = ctx.axis(axis)
-        terms = [Term(lhs, np.zeros((ctx.n, 0)), s.mass * s.a[:, k], "lhs", direction=d,
+        terms = [Term(lhs, no_coefficients(ctx.n), s.mass * s.a[:, k], "lhs", direction=d,
                       kind="inertia", factors=(("mass", s.mass), ("accel", s.a)))]
         terms += [t for t in (force_term(a, d) for a in acts) if t is not None]
         out.append(Equation(f"m{s.number} aC{s.number}{axis} = sum F^{tag} . {axis}", "force",
                             (link,), terms, axis=axis))
     lhs = Action(f"IC{s.number} alpha{s.number}", "couple", "inertia", link,
                  value=s.inertia * s.alpha)
-    terms = [Term(lhs, np.zeros((ctx.n, 0)), lhs.value, "lhs", kind="inertia",
+    terms = [Term(lhs, no_coefficients(ctx.n), lhs.value, "lhs", kind="inertia",
                   factors=(("inertia", s.inertia), ("alpha", s.alpha)))]
     terms += [moment_term(a, s.r, ctx.n, about_name=f"C{s.number}") for a in acts]
     out.append(Equation(f"IC{s.number} alpha{s.number} = sum M_C{s.number}^{tag}", "moment",

@@ -22,6 +22,23 @@ from ..linalg import SINGULAR_COND, prepare_small, solve_cond
 
 
 
+@lru_cache(maxsize=16)
+def no_constant(n: int) -> np.ndarray:
+    """The constant part (n,) of a term that has none: zeros, read-only and shared by every
+    such term over n angles (which lets the solver pass it over)."""
+    zero = np.zeros(n)
+    zero.setflags(write=False)
+    return zero
+
+
+@lru_cache(maxsize=16)
+def no_coefficients(n: int) -> np.ndarray:
+    """The coefficients (n, 0) of a term on no unknown: read-only and shared."""
+    none = np.zeros((n, 0))
+    none.setflags(write=False)
+    return none
+
+
 @dataclass(frozen=True)
 class Action:
     """A force or couple acting on a link.
@@ -191,11 +208,12 @@ def step_rhs(step: Step, known: dict[str, np.ndarray], n: int, columns: int = 1,
     term's constant goes to right-hand side ``column(term)`` (0 by default; None leaves it
     out)."""
     col = set(step.unknowns)
+    zero = no_constant(n)           # b - 0 is b: terms without a constant are passed over
     b = np.zeros((len(step.equations), columns, n))
     for row, eq in enumerate(step.equations):
         for t in eq.terms:
             sub = np.subtract if t.side == "rhs" else np.add
-            c = 0 if column is None else column(t)
+            c = None if t.const is zero else 0 if column is None else column(t)
             if c is not None:
                 sub(b[row, c], t.const, out=b[row, c])
             for k, u in enumerate(t.action.unknowns):

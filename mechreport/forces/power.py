@@ -12,7 +12,7 @@ import numpy as np
 
 from ..kinematics.frames import project
 from .context import ForceContext
-from .equations import Action, Equation, Step, Term
+from .equations import Action, Equation, Step, Term, no_coefficients, no_constant
 from .result import ForceResult, run_steps
 
 NAME = "power"
@@ -29,7 +29,7 @@ def power_equation(ctx: ForceContext) -> Equation:
     driver = next(a for link in ctx.spec.driver.links for a in ctx.driver_actions(link))
     driver = Action(driver.symbol, driver.kind, "driver", ctx.spec.driver.link,
                     unknowns=driver.unknowns)
-    terms.append(Term(driver, rate[:, None].copy(), np.zeros(n), rate=rate, kind="power"))
+    terms.append(Term(driver, rate[:, None].copy(), no_constant(n), rate=rate, kind="power"))
     for link in ctx.spec.links:
         s = ctx.links[link.name]
         for act in ctx.inertia_actions(link.name) + [ctx.gravity_action(link.name)] + \
@@ -37,10 +37,10 @@ def power_equation(ctx: ForceContext) -> Equation:
             if act.kind == "force":  # inertia and weight act at the centre of mass
                 v = s.v if act.category != "load" else \
                     ctx.kin.named_point(act.at_name, link.name).v   # loads: their own point
-                terms.append(Term(act, np.zeros((n, 0)), project(act.value, v),
+                terms.append(Term(act, no_coefficients(n), project(act.value, v),
                                   rate=v, kind="power"))
             else:
-                terms.append(Term(act, np.zeros((n, 0)), act.value * s.omega, rate=s.omega,
+                terms.append(Term(act, no_coefficients(n), act.value * s.omega, rate=s.omega,
                                   kind="power"))
     return Equation("sum P = M omega1 + sum F . v + sum M omega = 0", "power",
                     tuple(l.name for l in ctx.spec.links), terms)
