@@ -471,3 +471,27 @@ def test_chain_of_blocks_equals_block_by_block():
             assert values.keys() == known.keys()
             for u in known:
                 np.testing.assert_array_equal(values[u], known[u], err_msg=f"{name} {method} {u}")
+
+
+def test_spreads_judged_together_equal_one_quantity_at_a_time(monkeypatch):
+    """checks.agreement judges the quantities given by the same methods together, in slices
+    of at most STACK_LIMIT values: one quantity per slice gives the same spreads, pairs and
+    angles, with a NaN (the worst disagreement) and a tie of methods included."""
+    import importlib      # mechreport.checks.agreement: in its package, a function's name too
+    ag = importlib.import_module("mechreport.checks.agreement")
+    spec = load_spec(ROOT / "specs" / "r_rtr_rtr.yaml")
+    kin = solve_kinematics(build_mechanism(spec))
+    forces = solve_forces(kin)
+    nan = dataclasses.replace(forces["dyad"], driver_torque=forces["dyad"].driver_torque.copy())
+    nan.driver_torque[5] = np.nan
+    for results in (forces, {**forces, "dyad": nan}):
+        together = ag.spreads(results)
+        monkeypatch.setattr(ag, "STACK_LIMIT", 1)
+        alone = ag.spreads(results)
+        monkeypatch.undo()
+        assert list(together) == list(alone)
+        for q in together:
+            a, b = together[q], alone[q]
+            assert (a.methods, a.angle, a.n_methods) == (b.methods, b.angle, b.n_methods), q
+            np.testing.assert_array_equal([a.spread, a.top], [b.spread, b.top], err_msg=q)
+    assert np.isnan(ag.spreads({**forces, "dyad": nan})["driver.torque"].spread)

@@ -16,6 +16,7 @@ from ..forces import ForceResult
 from ..quantities import unit_kind
 
 SCALE_FLOOR = 1e-3
+STACK_LIMIT = 1 << 21   # most values (16 MB) judged at once
 
 
 def _kind(quantity: str) -> str:
@@ -68,29 +69,38 @@ def spreads(results: dict[str, ForceResult]) -> Spreads:
     for q, per in by_q.items():
         groups.setdefault(tuple(per), []).append(q)
     found: Spreads = {}
-    for names, qs in groups.items():
-        stack = np.array([[by_q[q][m] for m in names] for q in qs], float)  # (Q, methods, n)
-        if len(names) < 2:              # its magnitude still sets its kind's scale
-            tops = np.abs(stack).max(axis=(1, 2), initial=0.0).tolist()
-            found.update((q, Spread(0.0, (names[0], names[0]), 0.0, top, 1))
-                         for q, top in zip(qs, tops))
-            continue
-        if stack.shape[2] == 0:
-            continue
-        hi, lo = stack.max(axis=1), stack.min(axis=1)                      # (Q, n)
-        top = np.maximum(hi.max(axis=1), -lo.min(axis=1))   # max |stack|; NaN if any is NaN
-        spread = hi - lo
-        bad = ~np.isfinite(spread)
-        # a NaN never agrees: it is the worst disagreement there is, not none
-        k = np.where(bad.any(axis=1), bad.argmax(axis=1), spread.argmax(axis=1))
-        rows = np.arange(len(qs))
-        at = stack[rows, :, k]                                              # (Q, methods)
-        worst = spread[rows, k].tolist()
-        first, last = at.argmax(axis=1).tolist(), at.argmin(axis=1).tolist()
-        for q, w, i, j, kk, t in zip(qs, worst, first, last, k.tolist(), top.tolist()):
-            pair = (names[i], names[j]) if w > 0 else (names[0], names[1])
-            found[q] = Spread(w, pair, float(angles[kk]), t, len(names))
+    n = len(angles)
+    for names, every in groups.items():
+        step = max(1, STACK_LIMIT // max(len(names) * n, 1))
+        for qs in (every[i:i + step] for i in range(0, len(every), step)):
+            found.update(_spreads(by_q, names, qs, angles))
     return {q: found[q] for q in by_q if q in found}
+
+
+def _spreads(by_q: dict, names: tuple[str, ...], qs: list[str], angles) -> Spreads:
+    """The spreads of quantities ``qs``, each given by the methods ``names``, judged at once."""
+    stack = np.array([[by_q[q][m] for m in names] for q in qs], float)  # (Q, methods, n)
+    if len(names) < 2:              # its magnitude still sets its kind's scale
+        tops = np.abs(stack).max(axis=(1, 2), initial=0.0).tolist()
+        return {q: Spread(0.0, (names[0], names[0]), 0.0, top, 1)
+                for q, top in zip(qs, tops)}
+    if stack.shape[2] == 0:
+        return {}
+    hi, lo = stack.max(axis=1), stack.min(axis=1)                      # (Q, n)
+    top = np.maximum(hi.max(axis=1), -lo.min(axis=1))   # max |stack|; NaN if any is NaN
+    spread = hi - lo
+    bad = ~np.isfinite(spread)
+    # a NaN never agrees: it is the worst disagreement there is, not none
+    k = np.where(bad.any(axis=1), bad.argmax(axis=1), spread.argmax(axis=1))
+    rows = np.arange(len(qs))
+    at = stack[rows, :, k]                                              # (Q, methods)
+    worst = spread[rows, k].tolist()
+    first, last = at.argmax(axis=1).tolist(), at.argmin(axis=1).tolist()
+    found: Spreads = {}
+    for q, w, i, j, kk, t in zip(qs, worst, first, last, k.tolist(), top.tolist()):
+        pair = (names[i], names[j]) if w > 0 else (names[0], names[1])
+        found[q] = Spread(w, pair, float(angles[kk]), t, len(names))
+    return found
 
 
 def merge(a: Spreads, b: Spreads) -> Spreads:
