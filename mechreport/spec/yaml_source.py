@@ -215,13 +215,16 @@ class Source:
         self.lines: dict[Path, int] = {}
         self.problems: list[Problem] = []
         self._parser = _CParser(text) if _CParser is not None else _PyParser(text)
+        self._next = self._parser.get_event     # the next event (malformed YAML raises)
         try:
             self.data = self._document()
+        except yaml.YAMLError as exc:
+            raise self._malformed(exc) from None
         finally:
             dispose = getattr(self._parser, "dispose", None)
             if dispose is not None:
                 dispose()
-            self._parser = None
+            self._parser = self._next = None
 
     def line(self, path: Path) -> int | None:
         """Line of ``path``, or of its nearest ancestor that has one."""
@@ -261,12 +264,6 @@ class Source:
         return None
 
     # -- events -----------------------------------------------------------------------------
-
-    def _next(self):
-        try:
-            return self._parser.get_event()
-        except yaml.YAMLError as exc:
-            raise self._malformed(exc) from None
 
     def _document(self) -> Any:
         self._next()                                   # stream start
