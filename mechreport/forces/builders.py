@@ -27,7 +27,7 @@ def force_term(act: Action, d: np.ndarray, side: str = "rhs") -> Term | None:
     if act.unknowns:
         return Term(act, act.sign * d, no_constant(d.shape[0]), side, direction=d,
                     kind="projection")
-    return Term(act, np.zeros((d.shape[0], 0)), project(act.value, d), side,
+    return Term(act, no_coefficients(d.shape[0]), project(act.value, d), side,
                 direction=d, kind="projection")
 
 

@@ -21,7 +21,6 @@ import numpy as np
 from ..linalg import SINGULAR_COND, prepare_small, solve_cond
 
 
-
 @lru_cache(maxsize=16)
 def no_constant(n: int) -> np.ndarray:
     """The constant part (n,) of a term that has none: zeros, read-only and shared by every
@@ -101,7 +100,7 @@ class Term:
                  direction: np.ndarray | None = None, rate: np.ndarray | None = None,
                  kind: str = "", factors: tuple = ()):
         # the generated frozen __init__ sets each field through object.__setattr__, at
-        # twice the cost (hundreds of terms per analysis): the instance dict is written
+        # twice this cost, for hundreds of terms per analysis: the dict is written directly
         d = self.__dict__
         d["action"], d["coeffs"], d["const"], d["side"] = action, coeffs, const, side
         d["lever"], d["direction"], d["rate"] = lever, direction, rate
