@@ -495,3 +495,25 @@ def test_spreads_judged_together_equal_one_quantity_at_a_time(monkeypatch):
             assert (a.methods, a.angle, a.n_methods) == (b.methods, b.angle, b.n_methods), q
             np.testing.assert_array_equal([a.spread, a.top], [b.spread, b.top], err_msg=q)
     assert np.isnan(ag.spreads({**forces, "dyad": nan})["driver.torque"].spread)
+
+
+def test_contour_rank_of_one_row_equals_the_svd():
+    """The contour search's rank of a single row (a zero test, where no entry is near the
+    SVD's floor) is the SVD's count: zero rows, -0 and huge entries; with subnormal rows the
+    SVD itself decides."""
+    from mechreport.forces import contour
+
+    def svd_rank(rows):
+        s = np.linalg.svd(rows, compute_uv=False)
+        return np.sum(s > contour.RANK_RTOL * np.maximum(s[:, :1], 1e-300), axis=1)
+    rng = np.random.default_rng(3)
+    rows = rng.standard_normal((400, 1, 3)) * 10.0 ** rng.uniform(-280, 300, (400, 1, 1))
+    rows[:50] = 0.0
+    rows[50:60, 0, 1:] = 0.0
+    rows[70:80, 0, 0] = -0.0
+    tiny = rows.copy()
+    tiny[60:70] = 5e-324
+    tiny[80:90] = 1e-305
+    for case in (rows, tiny):
+        np.testing.assert_array_equal(contour._rank(case), svd_rank(case))
+    assert contour._rank(tiny)[60:70].sum() == 0      # below the floor: no rank

@@ -78,6 +78,10 @@ def _rows(eq: Equation, unknowns: list[str], probes: np.ndarray) -> np.ndarray:
 
 def _rank(rows: np.ndarray) -> np.ndarray:
     """Numerical rank (P,) of each probe's matrix ``rows`` (P, r, k)."""
+    if rows.shape[1] == 1:      # one row: its only singular value is its norm
+        big = np.abs(rows[:, 0]).max(axis=1, initial=0.0)
+        if np.isfinite(big).all() and not ((big > 0) & (big < 1e-290)).any():
+            return (big > 0).astype(int)    # zero, or far above the floor below
     s = np.linalg.svd(rows, compute_uv=False)
     top = np.maximum(s[:, :1], 1e-300)
     return np.sum(s > RANK_RTOL * top, axis=1)
