@@ -216,8 +216,8 @@ def _require_finite_inputs(ctx: ForceContext) -> None:
                                        * np.ones((ctx.n, 1))))]
         arrays += [(f"load {ld.symbol}", ld.force if ld.force is not None else ld.moment)
                    for ld in ctx.loads]
-    if np.isfinite(np.concatenate([np.ravel(v) for _, v in arrays])).all():
-        return                      # as a rule: every value at once, then none one by one
+    if _all_finite([v for _, v in arrays]):
+        return                      # as a rule: nothing to name
     for what, values in arrays:
         ok = np.isfinite(values).reshape(ctx.n, -1).all(axis=1)
         if not ok.all():
@@ -229,6 +229,14 @@ def _require_finite_inputs(ctx: ForceContext) -> None:
                 "lengths, speeds, gravity and loads)")
 
 
+def _all_finite(arrays: list[np.ndarray]) -> bool:
+    """Whether every value of ``arrays`` is finite: at once for short sweeps (one numpy call
+    instead of one per array), array by array where joining them would take memory."""
+    if sum(np.size(v) for v in arrays) <= 1 << 20:
+        return bool(np.isfinite(np.concatenate([np.ravel(v) for v in arrays])).all())
+    return all(np.isfinite(v).all() for v in arrays)
+
+
 def _require_finite(kin: Kinematics, forces: dict[str, ForceResult]) -> None:
     """Raise ``AnalysisError`` naming the first non-finite value of any result (quantity,
     method, angle): a NaN must never reach a check or a report as a number."""
@@ -237,8 +245,8 @@ def _require_finite(kin: Kinematics, forces: dict[str, ForceResult]) -> None:
               for link in spec.links for what in ("r", "theta", "v", "omega", "a", "alpha")]
     arrays += [(f"{q} ({name})", v) for name, res in forces.items()
                for q, v in res.values().items()]
-    if np.isfinite(np.concatenate([np.ravel(v) for _, v in arrays])).all():
-        return                      # as a rule: every value at once, then none one by one
+    if _all_finite([v for _, v in arrays]):
+        return                      # as a rule: nothing to name
     for what, values in arrays:
         ok = np.isfinite(values)
         if not ok.all():
