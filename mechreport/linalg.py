@@ -413,9 +413,13 @@ def prepare_small(systems: list[np.ndarray]) -> list[SmallSystem]:
         if not ks:
             continue
         n = systems[ks[0]].shape[2]
-        group = _SmallGroup(np.concatenate([systems[k] for k in ks], axis=2, dtype=np.float64))
-        for i, k in enumerate(ks):
-            out[k] = SmallSystem(group, slice(i * n, (i + 1) * n))
+        # over one angle each, alone: einsum sums ||As||_F's squares in another order for one
+        # angle than for several (the condition number's last bit)
+        for part in ([ks] if n > 1 else [[k] for k in ks]):
+            group = _SmallGroup(np.concatenate([systems[k] for k in part], axis=2,
+                                               dtype=np.float64))
+            for i, k in enumerate(part):
+                out[k] = SmallSystem(group, slice(i * n, (i + 1) * n))
     if any(s is None for s in out):
         raise ValueError("prepare_small takes 1x1 and 2x2 systems only")
     return out

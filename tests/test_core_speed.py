@@ -415,18 +415,19 @@ def test_one_by_one_systems_answered_directly_equal_the_general_path():
     assert np.array_equal(np.signbit(x), np.signbit(ref))
 
 
+@pytest.mark.parametrize("n", [300, 1])
 @pytest.mark.parametrize("m", [1, 2])
-def test_small_systems_prepared_together_equal_one_by_one(m):
+def test_small_systems_prepared_together_equal_one_by_one(m, n):
     """linalg.prepare_small equilibrates and probes a chain's 1x1 and 2x2 systems together:
     each still gets the bits linalg.solve_cond gives it alone (solutions, their signs, and
     condition numbers), over extreme scales, singular and non-finite angles in the matrices
     and in the right-hand sides."""
     from mechreport import linalg
     rng = np.random.default_rng(7 + m)
-    n, k = 300, 5
+    k = 5
 
     def system():
-        A = rng.standard_normal((m, m, n)) * 10.0 ** rng.uniform(-150, 150, (m, 1, n))
+        A = rng.standard_normal((m, m, 300)) * 10.0 ** rng.uniform(-150, 150, (m, 1, 300))
         A[:, :, :10] = 0.0                               # zero matrices: singular
         A[:, :, 10:15] = np.nan
         A[0, 0, 15:20] = np.inf
@@ -435,13 +436,19 @@ def test_small_systems_prepared_together_equal_one_by_one(m):
             A[1, :, 25:30] = A[0, :, 25:30] * 3.0        # dependent rows: exactly singular
             A[1, :, 30:35] = A[0, :, 30:35] * (1 + 1e-12)   # near-singular
         return A
-    systems = [system() for _ in range(k)]
-    prepared = linalg.prepare_small(systems)
-    for A, p in zip(systems, prepared):
-        b = rng.standard_normal((n, m)) * 10.0 ** rng.uniform(-150, 150, (n, 1))
+
+    def rhs():
+        b = rng.standard_normal((300, m)) * 10.0 ** rng.uniform(-150, 150, (300, 1))
         b[40:45] = np.nan
         b[45:50, 0] = np.inf
         b[50:55] = 0.0
+        return b
+    systems, rhss = [system() for _ in range(k)], [rhs() for _ in range(k)]
+    if n == 1:      # every angle a system of its own (einsum sums one angle in another order)
+        systems = [A[:, :, j:j + 1] for A in systems for j in range(300)]
+        rhss = [b[j:j + 1] for b in rhss for j in range(300)]
+    prepared = linalg.prepare_small(systems)
+    for A, b, p in zip(systems, rhss, prepared):
         x, cond = p.solve_cond(b)
         with np.errstate(all="ignore"):
             ref, ref_cond = linalg.solve_cond(A, b)
@@ -499,8 +506,8 @@ def test_spreads_judged_together_equal_one_quantity_at_a_time(monkeypatch):
 
 def test_contour_rank_of_one_row_equals_the_svd():
     """The contour search's rank of a single row (a zero test, where no entry is near the
-    SVD's floor) is the SVD's count: zero rows, -0 and huge entries; with subnormal rows the
-    SVD itself decides."""
+    SVD's floor or overflow) is the SVD's count: zero rows, -0 and large entries; with
+    subnormal rows, or a row whose length overflows, the SVD itself decides."""
     from mechreport.forces import contour
 
     def svd_rank(rows):
@@ -514,6 +521,8 @@ def test_contour_rank_of_one_row_equals_the_svd():
     tiny = rows.copy()
     tiny[60:70] = 5e-324
     tiny[80:90] = 1e-305
-    for case in (rows, tiny):
+    huge = rows.copy()
+    huge[90:95] = 1.5e308                 # the row's length overflows: the SVD counts none
+    for case in (rows, tiny, huge):
         np.testing.assert_array_equal(contour._rank(case), svd_rank(case))
     assert contour._rank(tiny)[60:70].sum() == 0      # below the floor: no rank

@@ -80,8 +80,8 @@ def _rank(rows: np.ndarray) -> np.ndarray:
     """Numerical rank (P,) of each probe's matrix ``rows`` (P, r, k)."""
     if rows.shape[1] == 1:      # one row: its only singular value is its norm
         big = np.abs(rows[:, 0]).max(axis=1, initial=0.0)
-        if np.isfinite(big).all() and not ((big > 0) & (big < 1e-290)).any():
-            return (big > 0).astype(int)    # zero, or far above the floor below
+        if ((big == 0) | ((big > 1e-290) & (big < 1e290))).all():
+            return (big > 0).astype(int)    # zero, or far from the SVD's floor and overflow
     s = np.linalg.svd(rows, compute_uv=False)
     top = np.maximum(s[:, :1], 1e-300)
     return np.sum(s > RANK_RTOL * top, axis=1)

@@ -21,7 +21,7 @@ import numpy as np
 from ..linalg import SINGULAR_COND, prepare_small, solve_cond
 
 
-@lru_cache(maxsize=16)
+@lru_cache(maxsize=4)
 def no_constant(n: int) -> np.ndarray:
     """The constant part (n,) of a term that has none: zeros, read-only and shared by every
     such term over n angles (which lets the solver pass it over)."""
@@ -30,7 +30,7 @@ def no_constant(n: int) -> np.ndarray:
     return zero
 
 
-@lru_cache(maxsize=16)
+@lru_cache(maxsize=4)
 def no_coefficients(n: int) -> np.ndarray:
     """The coefficients (n, 0) of a term on no unknown: read-only and shared."""
     none = np.zeros((n, 0))
