@@ -483,7 +483,7 @@ def test_chain_of_blocks_equals_block_by_block():
 def test_spreads_judged_together_equal_one_quantity_at_a_time(monkeypatch):
     """checks.agreement judges the quantities given by the same methods together, in slices
     of at most STACK_LIMIT values: one quantity per slice gives the same spreads, pairs and
-    angles, with a NaN (the worst disagreement) and a tie of methods included."""
+    angles, a NaN (the worst disagreement) included."""
     import importlib      # mechreport.checks.agreement: in its package, a function's name too
     ag = importlib.import_module("mechreport.checks.agreement")
     spec = load_spec(ROOT / "specs" / "r_rtr_rtr.yaml")
