@@ -123,15 +123,21 @@ class Equilibrated:
         rhs[:, 0, overflow] = 0.0
         y = self._solve(rhs)
         y[:, :, overflow] = np.inf
+        cond = self._probed_cond(y[:, 1:])
         with np.errstate(over="ignore", invalid="ignore"):
-            probe = np.sqrt(np.einsum("ikn,ikn->kn", y[:, 1:], y[:, 1:])) \
-                / PROBE_NORMS[m][:, None]
-            cond = self.fro * np.max(probe, axis=0)
             x = y[:, 0, :] / self.cs
-        cond[~np.isfinite(cond)] = np.inf
         cond[overflow] = np.nan
         x[:, ~(cond < SINGULAR_COND)] = np.nan
         return x.T, cond
+
+    def _probed_cond(self, y: np.ndarray) -> np.ndarray:
+        """The condition number estimate (n,) from the solutions y (m, 2, n) for the probes:
+        ||As||_F max_k ||y_k|| / ||z_k||, inf where not finite."""
+        with np.errstate(over="ignore", invalid="ignore"):
+            probe = np.sqrt(np.einsum("ikn,ikn->kn", y, y)) / PROBE_NORMS[self.m][:, None]
+            cond = self.fro * np.max(probe, axis=0)
+        cond[~np.isfinite(cond)] = np.inf
+        return cond
 
     def solve_many(self, B: np.ndarray) -> np.ndarray:
         """X (m, k, n) for several right-hand sides B (m, k, n), both angle-last, for angles
@@ -308,36 +314,39 @@ def _closed_form(At: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarra
         if At.shape[0] == 1:
             a = At[0, 0]
             return rhs / a, a == 0
-        a, b, c, d = At[0, 0], At[0, 1], At[1, 0], At[1, 1]
-        det = a * d - b * c
-        y = np.empty(rhs.shape)
-        y[0] = (d * rhs[0] - b * rhs[1]) / det
-        y[1] = (a * rhs[1] - c * rhs[0]) / det
-    return y, det == 0
+        det = _determinant(At)
+        return _cramer(At, det, rhs), det == 0
+
+
+def _determinant(At: np.ndarray) -> np.ndarray:
+    """Determinants (n,) of 2x2 systems At (2, 2, n)."""
+    return At[0, 0] * At[1, 1] - At[0, 1] * At[1, 0]
+
+
+def _cramer(At: np.ndarray, det: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """Cramer's rule for 2x2 systems At (2, 2, n) of determinants ``det`` (n,): y shaped as
+    the right-hand sides ``rhs`` (2, ..., n) (call it where errors are ignored)."""
+    y = np.empty(rhs.shape)
+    y[0] = (At[1, 1] * rhs[0] - At[0, 1] * rhs[1]) / det
+    y[1] = (At[0, 0] * rhs[1] - At[1, 0] * rhs[0]) / det
+    return y
 
 
 def solve_cond(At: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """x (n, m) and the condition number estimate (n,) for systems At (m, m, n) angle-last
-    and b (n, m): :meth:`Equilibrated.solve_cond`, with a 1x1 system answered directly (its
-    equilibrated matrix is +-1, its condition number exactly 1; the same bits as the general
-    path at a fraction of its numpy calls)."""
+    and b (n, m): :meth:`Equilibrated.solve_cond`, with a 1x1 system answered directly
+    (:class:`SmallSystem`: its equilibrated matrix is +-1, its condition number exactly 1;
+    the same bits as the general path at a fraction of its numpy calls)."""
     if At.shape[0] != 1:
         return Equilibrated(At).solve_cond(b)
-    a = np.asarray(At[0, 0], np.float64)
-    rs = np.abs(a)                       # the row scale, as Equilibrated takes it
-    rs[rs == 0] = 1.0
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        q = b[:, 0] / rs                 # the scaled right-hand side
-        x = q / (a / rs)                 # a / rs is +-1 (0 where singular)
-    cond = np.where(np.isfinite(rs) & np.isfinite(q), np.where(a == 0, np.inf, 1.0), np.nan)
-    x[~(cond < SINGULAR_COND)] = np.nan
-    return x[:, None], cond
+    return prepare_small([At])[0].solve_cond(b)
 
 
 class SmallSystem:
     """A 1x1 or 2x2 system prepared with others (:func:`prepare_small`): slice ``part`` of
-    their group. What is left per right-hand side is its own solve, the same operations as
-    :func:`solve_cond` on it alone."""
+    their group. What is left per right-hand side is its own solve: a 2x2 by the operations
+    :meth:`Equilibrated.solve_cond` does on it alone, a 1x1 answered directly (its
+    equilibrated matrix is +-1)."""
 
     def __init__(self, group: "_SmallGroup", part: slice):
         self.group, self.part = group, part
@@ -348,7 +357,7 @@ class SmallSystem:
         cond = g.cond[part].copy()
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             q = b.T / rs                              # (m, n)
-            if g.m == 1:                              # solve_cond's direct 1x1 path
+            if g.m == 1:                              # a / rs is +-1 (0 where singular)
                 x = q / g.unit[part]
                 cond[~np.isfinite(q[0])] = np.nan
             else:
@@ -356,12 +365,7 @@ class SmallSystem:
                 if overflow.any():
                     q[:, overflow] = 0.0
                     cond[overflow] = np.nan
-                a, bb, c, d = (v[part] for v in g.entries)
-                det = g.det[part]
-                x = np.empty(q.shape)
-                x[0] = (d * q[0] - bb * q[1]) / det   # _closed_form's Cramer's rule
-                x[1] = (a * q[1] - c * q[0]) / det
-                x /= g.cs[:, part]
+                x = _cramer(g.As[:, :, part], g.det[part], q) / g.cs[:, part]
         x[:, ~(cond < SINGULAR_COND)] = np.nan
         return x.T, cond
 
@@ -373,7 +377,7 @@ class _SmallGroup:
 
     def __init__(self, At: np.ndarray):
         self.m = m = At.shape[0]
-        if m == 1:                                # as solve_cond's direct path
+        if m == 1:              # the equilibrated matrix is +-1: no probe to solve
             a = At[0, 0]
             rs = np.abs(a)
             rs[rs == 0] = 1.0
@@ -383,18 +387,12 @@ class _SmallGroup:
             self.cond = np.where(np.isfinite(rs), np.where(a == 0, np.inf, 1.0), np.nan)
             return
         eq = Equilibrated(At)
-        rhs = np.broadcast_to(PROBES[:m, :, None], (m, 2, At.shape[2]))
-        y = eq._solve(rhs)
-        with np.errstate(over="ignore", invalid="ignore"):
-            probe = np.sqrt(np.einsum("ikn,ikn->kn", y, y)) / PROBE_NORMS[m][:, None]
-            cond = eq.fro * np.max(probe, axis=0)
-        cond[~np.isfinite(cond)] = np.inf
+        cond = eq._probed_cond(eq._solve(np.broadcast_to(PROBES[:m, :, None],
+                                                          (m, 2, At.shape[2]))))
         cond[eq.overflow] = np.nan
-        self.cond, self.rs, self.cs = cond, eq.rs, eq.cs
-        As = eq.As
-        self.entries = (As[0, 0], As[0, 1], As[1, 0], As[1, 1])
+        self.cond, self.rs, self.cs, self.As = cond, eq.rs, eq.cs, eq.As
         with np.errstate(over="ignore", invalid="ignore"):
-            self.det = As[0, 0] * As[1, 1] - As[0, 1] * As[1, 0]
+            self.det = _determinant(eq.As)
 
 
 def prepare_small(systems: list[np.ndarray]) -> list[SmallSystem]:
