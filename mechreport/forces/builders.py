@@ -81,18 +81,41 @@ def force_equation(ctx: ForceContext, bodies, acts: list[Action], axis: str,
                    direction: np.ndarray | None = None, kind: str = "force") -> Equation:
     """sum F^(bodies) . axis = 0; ``axis`` x or y, or a named sliding ``direction`` (n, 2)."""
     d = ctx.axis(axis) if direction is None else direction
-    terms = [t for t in (force_term(a, d) for a in acts) if t is not None]
-    label = f"sum F^{body_tag(ctx, bodies)} . {axis}"
-    return Equation(label, kind, tuple(bodies), terms, axis=axis)
+
+    def build() -> Equation:
+        terms = [t for t in (force_term(a, d) for a in acts) if t is not None]
+        label = f"sum F^{body_tag(ctx, bodies)} . {axis}"
+        return Equation(label, kind, tuple(bodies), terms, axis=axis)
+    return _shared(ctx, ("force", tuple(bodies), axis, kind, id(d), *map(id, acts)),
+                   (d, acts), build)
 
 
 def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
                     at: np.ndarray | None = None) -> Equation:
     """sum M_about^(bodies) = 0 (moments about the named point ``about``)."""
     p = ctx.point_of(about) if at is None else at
-    terms = [moment_term(a, p, ctx.n, about_name=about) for a in with_moment(ctx, acts, p)]
-    return Equation(f"sum M_{about}^{body_tag(ctx, bodies)}", "moment", tuple(bodies), terms,
-                    about=about)
+    acts = with_moment(ctx, acts, p)     # (the same equation from more actions: shared)
+
+    def build() -> Equation:
+        terms = [moment_term(a, p, ctx.n, about_name=about) for a in acts]
+        return Equation(f"sum M_{about}^{body_tag(ctx, bodies)}", "moment", tuple(bodies),
+                        terms, about=about)
+    return _shared(ctx, ("moment", tuple(bodies), about, id(p), *map(id, acts)), (p, acts),
+                   build)
+
+
+def _shared(ctx: ForceContext, key: tuple, keep, build) -> Equation:
+    """``build()``, once per context and ``key``: the methods write many of the same
+    equations (d'Alembert's, the dyad method's and the contour's moments of one link about
+    its joint), which they then share, as they share actions. ``keep`` holds the arrays and
+    actions whose ids are in the key, so that those ids stay theirs."""
+    memo = ctx.cache.get("equations")
+    if memo is None:
+        memo = ctx.cache["equations"] = {}
+    hit = memo.get(key)
+    if hit is None:
+        hit = memo[key] = (build(), keep)
+    return hit[0]
 
 
 def sliding_direction(ctx: ForceContext, joint: Joint) -> np.ndarray:
@@ -102,11 +125,13 @@ def sliding_direction(ctx: ForceContext, joint: Joint) -> np.ndarray:
 
 def normal_constraint(ctx: ForceContext, joint: Joint) -> Equation:
     """A T joint's reaction has no component along its line: F . Delta = 0."""
-    act = ctx.reaction(joint, joint.slider)[0]
-    d = sliding_direction(ctx, joint)
-    term = Term(act, d.copy(), no_constant(ctx.n), direction=d, kind="projection")
-    return Equation(f"{act.symbol} . Delta_{joint.name} = 0", "constraint", (joint.slider,),
-                    [term], axis=f"Delta_{joint.name}")
+    def build() -> Equation:
+        act = ctx.reaction(joint, joint.slider)[0]
+        d = sliding_direction(ctx, joint)
+        term = Term(act, d.copy(), no_constant(ctx.n), direction=d, kind="projection")
+        return Equation(f"{act.symbol} . Delta_{joint.name} = 0", "constraint",
+                        (joint.slider,), [term], axis=f"Delta_{joint.name}")
+    return _shared(ctx, ("normal", joint.name), None, build)
 
 
 def newton_euler_equations(ctx: ForceContext, link: str) -> list[Equation]:
