@@ -526,3 +526,87 @@ def test_contour_rank_of_one_row_equals_the_svd():
     for case in (rows, tiny, huge):
         np.testing.assert_array_equal(contour._rank(case), svd_rank(case))
     assert contour._rank(tiny)[60:70].sum() == 0      # below the floor: no rank
+
+
+def _both_selections(monkeypatch):
+    """Make the contour search run the structural and the numerical selection side by side
+    and record whether they chose the same equation objects."""
+    from mechreport.forces import contour
+    numeric = contour._select_numeric
+    compared = []
+
+    def select(unknowns, chosen, candidates, build, probes, needs):
+        by_structure = contour_select(unknowns, chosen, candidates, build, probes, needs)
+        by_numbers = numeric(unknowns, chosen, candidates, build, probes)
+        compared.append((by_structure is None and by_numbers is None)
+                        or (by_structure is not None and by_numbers is not None
+                            and list(map(id, by_structure)) == list(map(id, by_numbers))))
+        return by_structure
+    contour_select = contour._select
+    monkeypatch.setattr(contour, "_select", select)
+    return compared
+
+
+@pytest.mark.parametrize("path", sorted((ROOT / "specs").glob("*.yaml"))
+                         + sorted((ROOT / "tests" / "data").rglob("*.yaml")),
+                         ids=lambda p: p.stem)
+def test_contour_structural_selection_equals_the_numerical_one(path, monkeypatch):
+    """The contour search picks its equations by structural rank and checks them with one
+    rank test: on every spec (short sweeps searched in place, and the probe context of a
+    long one), every selection, failed ones included, is the one the candidate-by-candidate
+    numerical selection makes."""
+    from mechreport.forces import contour
+    compared = _both_selections(monkeypatch)
+    spec = load_spec(path)
+    for step in (spec.sweep.step, (spec.sweep.stop - spec.sweep.start) / 30):
+        kin = solve_kinematics(build_mechanism(dataclasses.replace(
+            spec, sweep=dataclasses.replace(spec.sweep, step=step))))
+        if kin.n == 0:
+            continue
+        contour.plan(ForceContext(kin))
+    assert compared and all(compared)
+    # the unknowns the structure reads from the actions are those of the equation built
+    ctx = ForceContext(kin)
+    cuts = [r for p in contour.plan(ctx) for r in p.recipes if r[0] == "cut"]
+    assert cuts
+    for _, w, body in cuts:
+        joint = spec.joint(w)
+        eq = contour._equation(ctx, joint, list(body))
+        assert contour._needs(ctx, joint, list(body)) == set(eq.unknown_names()), (w, body)
+
+
+def _fake_equation(label, row):
+    """An equation over unknowns a, b, c whose coefficients are ``row`` (P, 3) at P probes."""
+    from mechreport.forces.equations import Action, Equation, Term
+    act = Action(label, "force", "reaction", "link", unknowns=("a", "b", "c"))
+    return Equation(label, "force", ("link",), [Term(act, np.asarray(row, float),
+                                                     np.zeros(len(row)))])
+
+
+def test_contour_selection_falls_back_to_the_numbers_where_structure_misleads():
+    """Where the structure promises rank the numbers do not have (a multiple of a row taken;
+    a row that vanishes at one probe angle), the numerical selection decides: the result is
+    the candidate-by-candidate one."""
+    from mechreport.forces import contour
+    P = 4
+    probes = np.arange(P)
+    one = np.ones(P)
+    rows = {
+        "e1": np.stack([one, one, 0 * one], axis=1),
+        "twice": np.stack([2 * one, 2 * one, 0 * one], axis=1),    # 2 e1: dependent
+        "gap": np.stack([one, -one, 0 * one], axis=1) * np.array([1, 1, 0, 1])[:, None],
+        "b": np.stack([0 * one, one, 0 * one], axis=1),
+        "c": np.stack([0 * one, 0 * one, one], axis=1),
+    }
+    eqs = {k: _fake_equation(k, v) for k, v in rows.items()}
+    needs = {k: frozenset({"a", "b", "c"}) for k in rows}
+    needs["b"], needs["c"] = frozenset({"b"}), frozenset({"c"})
+    for order in (["e1", "twice", "b", "c"], ["e1", "gap", "c", "b"], ["gap", "c", "e1"],
+                  ["c", "twice"], ["e1", "twice"]):
+        got = contour._select(["a", "b", "c"], [], order, eqs.__getitem__, probes, needs)
+        want = contour._select_numeric(["a", "b", "c"], [], order, eqs.__getitem__, probes)
+        assert (got is None) == (want is None), order
+        if got is not None:
+            assert [e.label for e in got] == [e.label for e in want], order
+    assert [e.label for e in contour._select(["a", "b", "c"], [], ["e1", "twice", "b", "c"],
+                                             eqs.__getitem__, probes, needs)] == ["e1", "b", "c"]

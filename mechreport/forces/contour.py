@@ -128,12 +128,74 @@ def _built(ctx: ForceContext, key: tuple[str, tuple[str, ...]], cache: dict) -> 
 
 
 def _select(unknowns: list[str], chosen: list[Equation], candidates: list, build,
-            probes: np.ndarray) -> list[Equation] | None:
+            probes: np.ndarray, needs: dict) -> list[Equation] | None:
     """Independent equations for ``unknowns`` from ``candidates`` (keys, built by ``build``
-    when tried), after ``chosen``: a candidate is taken first only where it adds rank at
-    every probe angle, then, for what is still missing, where it adds rank at most of them
-    (independent except at isolated angles, which the solve then flags). None if there are
-    not enough."""
+    when taken; ``needs[key]`` the unknowns each names), after ``chosen``: a candidate is
+    taken first only where it adds rank at every probe angle, then, for what is still
+    missing, where it adds rank at most of them (independent except at isolated angles,
+    which the solve then flags). None if there are not enough.
+
+    The rank is judged on the structure first (:func:`_structural`), which needs no numbers:
+    if the equations it picks are independent at every probe angle, they are exactly those the
+    numerical selection (:func:`_select_numeric`) would pick (taking rows from a matrix of
+    full row rank keeps full rank, and a candidate that adds no structural rank adds none at
+    any angle), at one rank test instead of one per candidate. Otherwise the numerical
+    selection decides."""
+    start = [frozenset(e.unknown_names()) for e in chosen]
+    keys = _structural(unknowns, start, candidates, needs)
+    if keys is None:
+        return _select_numeric(unknowns, chosen, candidates, build, probes)
+    if len(start) + len(keys) < len(unknowns):
+        return None     # not enough even by structure: no angle has the rank (greedy is
+        #                 maximal: the sets of equations matched to unknowns form a matroid)
+    picked = list(chosen) + [build(key) for key in keys]
+    rows = np.stack([_rows(e, unknowns, probes) for e in picked], axis=1)
+    if (_rank(rows) == len(unknowns)).all():
+        return picked
+    return _select_numeric(unknowns, chosen, candidates, build, probes)
+
+
+def _structural(unknowns: list[str], start: list[frozenset], candidates: list,
+                needs: dict) -> list | None:
+    """The candidates (keys) the greedy selection takes by structural rank, after the
+    equations naming ``start``: each one that can be matched to an unknown of its own
+    (Kuhn's augmenting path, the matching of those before it rearranged if need be), until
+    every unknown is. None if the ``start`` equations cannot all be matched (the numerical
+    selection keeps them whatever their rank)."""
+    col = {u: k for k, u in enumerate(unknowns)}
+    patterns: list[list[int]] = []
+    owner = [-1] * len(unknowns)           # unknown column -> the row matched to it
+
+    def augment(row: int, seen: set[int]) -> bool:
+        for c in patterns[row]:
+            if c not in seen:
+                seen.add(c)
+                if owner[c] < 0 or augment(owner[c], seen):
+                    owner[c] = row
+                    return True
+        return False
+
+    def add(names) -> bool:
+        patterns.append([col[u] for u in names if u in col])
+        if augment(len(patterns) - 1, set()):
+            return True
+        patterns.pop()
+        return False
+
+    if not all(add(names) for names in start):
+        return None
+    taken = []
+    for key in candidates:
+        if len(patterns) == len(unknowns):
+            break
+        if add(needs[key]):
+            taken.append(key)
+    return taken
+
+
+def _select_numeric(unknowns: list[str], chosen: list[Equation], candidates: list, build,
+                    probes: np.ndarray) -> list[Equation] | None:
+    """:func:`_select` by the numerical rank at the probe angles, candidate by candidate."""
     rows = [_rows(e, unknowns, probes) for e in chosen]
     chosen = list(chosen)
     taken: set = set()
@@ -169,7 +231,8 @@ def _try_joint(ctx: ForceContext, loop: Loop, joint: Joint, known: set[str],
     unknowns = _unknowns(ctx, [joint])
     start = [_normal(ctx, joint, cache)] if joint.type == "T" else []
     chosen = _select(unknowns, start, _candidates(ctx, loop, joint, unknowns, known, cache),
-                     lambda key: _built(ctx, key, cache), probes)
+                     lambda key: _built(ctx, key, cache), probes,
+                     cache.setdefault("needs", {}))
     if chosen is None:
         return None
     return Step(f"Joint {joint.name} (loop {loop.label(ctx.spec)})", unknowns, chosen,
@@ -189,7 +252,8 @@ def _try_joints(ctx: ForceContext, joints, loops: list[Loop], known: set[str],
             for key in _candidates(ctx, loop, joint, unknowns, known, cache):
                 if key not in candidates:
                     candidates.append(key)
-    chosen = _select(unknowns, start, candidates, lambda key: _built(ctx, key, cache), probes)
+    chosen = _select(unknowns, start, candidates, lambda key: _built(ctx, key, cache), probes,
+                     cache.setdefault("needs", {}))
     if chosen is None:
         return None
     names = ", ".join(j.name for j in joints)
