@@ -5,10 +5,11 @@ change of a few percent can be measured in one run.
 
     .venv/bin/python bench/bench_instructions.py [SPEC_NAME ...]   (default: r_rtr_rtr)
 
-Needs valgrind (Debian package valgrind); each spec takes about a minute under it. Each
+Needs valgrind (Debian package valgrind); each spec takes a few minutes under it. Each
 stage is counted over 5 runs after 3 warm-up runs in the same process (the structure
 caches warm, as for the second spec of a batch), less the cost of switching the count on
-and off. Not a test.
+and off. The force stages follow ``solve_forces``: every method's equations, then their
+small blocks prepared together, then each method's solve. Not a test.
 """
 from __future__ import annotations
 
@@ -21,8 +22,8 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-STAGES = ("empty", "parse", "kinematics", "context", "newton_euler", "dalembert", "dyad",
-          "contour", "power", "checks", "analyse")
+STAGES = ("empty", "parse", "kinematics", "context", "equations", "prepare", "newton_euler",
+          "dalembert", "dyad", "contour", "power", "checks", "analyse")
 RUNS, WARM = 5, 3
 
 
@@ -33,6 +34,8 @@ def _child(name: str, stage: str) -> None:
     from mechreport.checks.agreement import agreement
     from mechreport.checks.residuals import residuals
     from mechreport.forces import METHODS, ForceContext
+    from mechreport.forces.equations import prepare_blocks
+    from mechreport.forces.result import chain, method_steps
     from mechreport.kinematics import solve_kinematics
     from mechreport.model import build_mechanism
     from mechreport.post.review import design_review
@@ -70,6 +73,13 @@ def _child(name: str, stage: str) -> None:
         at("context", True)
         ctx = ForceContext(kin)
         at("context", False)
+        at("equations", True)        # every method's steps, as solve_forces builds them
+        chains = [chain(ctx, method_steps(ctx, method, module.build_steps))
+                  for method, module in METHODS.items()]
+        at("equations", False)
+        at("prepare", True)          # and their small blocks, prepared together
+        ctx.cache["small systems"] = prepare_blocks(chains, ctx.n)
+        at("prepare", False)
         forces = {}
         for method, module in METHODS.items():
             at(method, True)

@@ -480,6 +480,40 @@ def test_chain_of_blocks_equals_block_by_block():
                 np.testing.assert_array_equal(values[u], known[u], err_msg=f"{name} {method} {u}")
 
 
+@pytest.mark.parametrize("n", [36, 1])
+def test_methods_prepared_together_equal_each_method_alone(n):
+    """solve_forces prepares every method's small blocks in one pass, and the blocks the
+    methods share once: each method's numbers and condition numbers are bit for bit those
+    of the method solved alone on a fresh context, and nothing of the pass is kept."""
+    from mechreport.forces.equations import prepare_blocks
+    from mechreport.forces.result import chain
+    for name in ("r_rtr_rtr", "stephenson3_six_bar", "hydraulic_boom"):
+        spec = load_spec(ROOT / "specs" / f"{name}.yaml")
+        w = spec.sweep
+        step = (w.stop - w.start) / n if n > 1 else 1.0
+        sweep = dataclasses.replace(w, step=step, stop=w.stop if n > 1 else w.start)
+        kin = solve_kinematics(build_mechanism(dataclasses.replace(
+            spec, sweep=sweep, at=(w.start,), expect=())))
+        ctx = ForceContext(kin)
+        together = solve_forces(kin, ctx=ctx)
+        assert "small systems" not in ctx.cache
+        for method, module in METHODS.items():
+            alone = module.solve(ForceContext(kin))
+            va, vt = alone.values(), together[method].values()
+            assert va.keys() == vt.keys()
+            for q in va:
+                np.testing.assert_array_equal(vt[q], va[q], err_msg=f"{name} {method} {q}")
+            np.testing.assert_array_equal(together[method].cond, alone.cond)
+    # R-RTR-RTR: the sliders' couples and the crank's blocks, shared, are prepared once
+    ctx = ForceContext(solve_kinematics(build_mechanism(load_spec(
+        ROOT / "specs" / "r_rtr_rtr.yaml"))))
+    chains = [chain(ctx, module.build_steps(ctx)) for module in METHODS.values()]
+    prepared = prepare_blocks(chains, ctx.n)
+    small = [b for c in chains for b in c if len(b.unknowns) <= 2]
+    assert set(prepared) == {id(b) for b in small}
+    assert len({id(s) for s in prepared.values()}) < len(small)
+
+
 def test_spreads_judged_together_equal_one_quantity_at_a_time(monkeypatch):
     """checks.agreement judges the quantities given by the same methods together, in slices
     of at most STACK_LIMIT values: one quantity per slice gives the same spreads, pairs and

@@ -8,8 +8,8 @@ from types import ModuleType
 from ..kinematics import Kinematics
 from . import contour, dalembert, dyad, newton_euler, power
 from .context import ForceContext
-from .equations import Equation, Step, Term
-from .result import ForceResult, JointReaction
+from .equations import Equation, Step, Term, prepare_blocks
+from .result import ForceResult, JointReaction, chain, method_steps
 
 METHODS: dict[str, ModuleType] = {m.NAME: m for m in (newton_euler, dalembert, dyad, contour,
                                                       power)}
@@ -31,17 +31,36 @@ def solve_forces(kin: Kinematics, methods=None,
         raise ValueError(f"unknown method(s) {', '.join(unknown)}; valid: {', '.join(METHODS)}")
     ctx = ForceContext(kin) if ctx is None else ctx
     if kin.n <= CHUNK:
-        return {name: METHODS[name].solve(ctx).lean(ctx) for name in names}
+        return _solve_all(ctx, names, ctx)
     if contour.NAME in names:
         contour.plan(ctx)         # chosen once, over the whole sweep's probe angles
     parts: dict[str, list[ForceResult]] = {name: [] for name in names}
     for a in range(0, kin.n, CHUNK):    # one chunk's context at a time: all methods, then gone
         c = ForceContext(kin.take(slice(a, a + CHUNK), kin.flags))
         c.memo = ctx.memo
-        for name in names:
-            parts[name].append(METHODS[name].solve(c).lean(ctx))
+        for name, res in _solve_all(c, names, ctx).items():
+            parts[name].append(res)
         del c
     return {name: ForceResult.join(parts[name], ctx) for name in names}
+
+
+def _solve_all(ctx: ForceContext, names: list[str], source: ForceContext,
+               ) -> dict[str, ForceResult]:
+    """The named methods over ``ctx``, their results lean with ``source``. Every method's
+    1x1 and 2x2 blocks are prepared together first (``equations.prepare_blocks``: the same
+    numbers, one pass of numpy calls for all of them, a block that several methods share
+    prepared once); a method that cannot build its equations says so when it runs."""
+    try:
+        chains = [chain(ctx, method_steps(ctx, name, METHODS[name].build_steps))
+                  for name in names]
+    except Exception:   # noqa: BLE001 - raised again, in the methods' order, by its run
+        chains = None
+    if chains is not None:
+        ctx.cache["small systems"] = prepare_blocks(chains, ctx.n)
+    try:
+        return {name: METHODS[name].solve(ctx).lean(source) for name in names}
+    finally:
+        ctx.cache.pop("small systems", None)     # their arrays: as large as the sweep
 
 
 __all__ = ["METHODS", "solve_forces", "ForceContext", "ForceResult", "JointReaction",

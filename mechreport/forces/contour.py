@@ -33,7 +33,7 @@ from .builders import (force_equation, moment_equation, normal_constraint, slidi
                        with_moment)
 from .context import ForceContext, reaction_unknowns
 from .equations import Equation, Step
-from .result import ForceResult, run_steps
+from .result import ForceResult, method_steps, run_steps
 
 PROBES = 16         # angles at which the rank of candidate equations is judged
 SEARCH_IN_PLACE = 64   # sweeps of at most this many angles are searched without a probe context
@@ -417,4 +417,4 @@ def _search(ctx: ForceContext) -> tuple[tuple[Step, ...], dict[int, tuple]]:
 
 
 def solve(ctx: ForceContext) -> ForceResult:
-    return run_steps(NAME, ctx, build_steps(ctx))
+    return run_steps(NAME, ctx, method_steps(ctx, NAME, build_steps))

@@ -22,7 +22,7 @@ from ..model import Dyad, Group
 from .builders import force_equation, moment_equation, normal_constraint, sliding_direction
 from .context import ForceContext, reaction_unknowns
 from .equations import Step
-from .result import ForceResult, run_steps
+from .result import ForceResult, method_steps, run_steps
 
 NAME = "dyad"
 TITLE = "Dyad (Assur groups)"
@@ -107,4 +107,4 @@ def build_steps(ctx: ForceContext) -> tuple[Step, ...]:
 
 
 def solve(ctx: ForceContext) -> ForceResult:
-    return run_steps(NAME, ctx, build_steps(ctx))
+    return run_steps(NAME, ctx, method_steps(ctx, NAME, build_steps))

@@ -18,7 +18,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..linalg import SINGULAR_COND, prepare_small, solve_cond
+from ..linalg import SINGULAR_COND, SmallSystem, prepare_small, solve_cond
 
 
 @lru_cache(maxsize=4)
@@ -239,23 +239,49 @@ def solve_step(step: Step, known: dict[str, np.ndarray], n: int) -> Solution:
     return Solution({u: x[:, i] for i, u in enumerate(step.unknowns)}, cond)
 
 
-def solve_chain(blocks: list[Step], n: int) -> tuple[dict[str, np.ndarray], list[Solution]]:
+def solve_chain(blocks: list[Step], n: int, prepared: dict | None = None,
+                ) -> tuple[dict[str, np.ndarray], list[Solution]]:
     """Solve ``blocks`` in turn, each with the values found by those before it: every
     unknown's values (n,), and each block's Solution. The same numbers as :func:`solve_step`
-    block by block; the 1x1 and 2x2 blocks' matrices, which do not depend on earlier values,
-    are prepared together first (:func:`mechreport.linalg.prepare_small`)."""
-    small = [k for k, blk in enumerate(blocks) if 1 <= len(blk.unknowns) <= 2]
-    prepared = dict(zip(small, prepare_small([step_matrix(blocks[k], n) for k in small])))
+    block by block. The 1x1 and 2x2 blocks' matrices do not depend on earlier values: they
+    are prepared together first (:func:`prepare_blocks`), unless ``prepared`` has them
+    already (by ``id`` of the block)."""
+    prepared = {} if prepared is None else prepared
+    missing = [blk for blk in blocks if 1 <= len(blk.unknowns) <= 2 and id(blk) not in prepared]
+    if missing:
+        prepared = {**prepared, **prepare_blocks([missing], n)}
     known: dict[str, np.ndarray] = {}
     out = []
-    for k, block in enumerate(blocks):
+    for block in blocks:
         b = step_rhs(block, known, n)[:, 0].T
-        x, cond = prepared[k].solve_cond(b) if k in prepared \
+        small = prepared.get(id(block))
+        x, cond = small.solve_cond(b) if small is not None \
             else solve_cond(step_matrix(block, n), b)
         sol = Solution({u: x[:, i] for i, u in enumerate(block.unknowns)}, cond)
         known.update(sol.values)
         out.append(sol)
     return known, out
+
+
+def prepare_blocks(chains: list[list[Step]], n: int) -> dict[int, SmallSystem]:
+    """The 1x1 and 2x2 blocks of ``chains`` (several methods' blocks) ready to be solved for
+    their right-hand sides, by ``id`` of the block (the caller keeps the blocks): prepared all
+    together (:func:`mechreport.linalg.prepare_small`: one pass of numpy calls instead of one
+    per chain, the same numbers), and a block of the same equations for the same unknowns as
+    another (methods share equations) prepared once."""
+    index: dict[tuple, int] = {}
+    matrices: list[np.ndarray] = []
+    where: list[tuple[int, int]] = []
+    for blocks in chains:
+        for blk in blocks:
+            if 1 <= len(blk.unknowns) <= 2:
+                key = (tuple(map(id, blk.equations)), tuple(blk.unknowns))
+                if key not in index:
+                    index[key] = len(matrices)
+                    matrices.append(step_matrix(blk, n))
+                where.append((id(blk), index[key]))
+    systems = prepare_small(matrices) if matrices else []
+    return {b: systems[i] for b, i in where}
 
 
 def triangular_blocks(step: Step) -> list[Step]:

@@ -13,7 +13,7 @@ from __future__ import annotations
 from .builders import newton_euler_equations, normal_constraint
 from .context import ForceContext, reaction_unknowns
 from .equations import Step
-from .result import ForceResult, run_steps
+from .result import ForceResult, method_steps, run_steps
 
 NAME = "newton_euler"
 TITLE = "Newton-Euler"
@@ -33,4 +33,4 @@ def build_steps(ctx: ForceContext) -> tuple[Step, ...]:
 
 
 def solve(ctx: ForceContext) -> ForceResult:
-    return run_steps(NAME, ctx, build_steps(ctx))
+    return run_steps(NAME, ctx, method_steps(ctx, NAME, build_steps))

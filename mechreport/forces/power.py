@@ -13,7 +13,7 @@ import numpy as np
 from ..kinematics.frames import project
 from .context import ForceContext
 from .equations import Action, Equation, Step, Term, no_coefficients, no_constant
-from .result import ForceResult, run_steps
+from .result import ForceResult, method_steps, run_steps
 
 NAME = "power"
 TITLE = "Power balance"
@@ -53,4 +53,4 @@ def build_steps(ctx: ForceContext) -> tuple[Step, ...]:
 
 
 def solve(ctx: ForceContext) -> ForceResult:
-    return run_steps(NAME, ctx, build_steps(ctx))
+    return run_steps(NAME, ctx, method_steps(ctx, NAME, build_steps))

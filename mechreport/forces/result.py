@@ -182,10 +182,11 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
 
 def run_steps(method: str, ctx, steps) -> ForceResult:
     """Solve ``steps`` in order, each with the values found by those before it, block by
-    block (``triangular_blocks``); the condition number is the product of the blocks'."""
-    from .equations import solve_chain, triangular_blocks
-    known, solutions = solve_chain([b for step in steps for b in triangular_blocks(step)],
-                                   ctx.n)
+    block (:func:`chain`); the condition number is the product of the blocks'. Small blocks
+    another method's run prepared with these (``ctx.cache["small systems"]``, see
+    :func:`mechreport.forces.solve_forces`) are not prepared again."""
+    from .equations import solve_chain
+    known, solutions = solve_chain(chain(ctx, steps), ctx.n, ctx.cache.get("small systems"))
     singular = np.zeros(ctx.n, bool)
     cond = np.ones(ctx.n)
     with np.errstate(over="ignore", invalid="ignore"):
@@ -193,3 +194,20 @@ def run_steps(method: str, ctx, steps) -> ForceResult:
             singular |= sol.singular
             cond = cond * sol.cond
     return make_result(method, ctx, known, steps, singular, cond)
+
+
+def method_steps(ctx, method: str, build) -> tuple[Step, ...]:
+    """``build(ctx)``, the steps of ``method``, once per context (what a method's ``solve``
+    solves, and what :func:`mechreport.forces.solve_forces` prepares beforehand)."""
+    return ctx.once(("steps", method), lambda: tuple(build(ctx)))
+
+
+def chain(ctx, steps) -> list[Step]:
+    """``steps`` as the chain of square blocks solved in turn (each step's
+    ``triangular_blocks``), once per context and ``steps`` (kept with them: their ids stay
+    theirs)."""
+    from .equations import triangular_blocks
+    key = ("chain", id(steps))
+    if key not in ctx.cache:
+        ctx.cache[key] = (steps, [b for step in steps for b in triangular_blocks(step)])
+    return ctx.cache[key][1]
