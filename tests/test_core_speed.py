@@ -644,3 +644,31 @@ def test_contour_selection_falls_back_to_the_numbers_where_structure_misleads():
             assert [e.label for e in got] == [e.label for e in want], order
     assert [e.label for e in contour._select(["a", "b", "c"], [], ["e1", "twice", "b", "c"],
                                              eqs.__getitem__, probes, needs)] == ["e1", "b", "c"]
+
+
+def test_contour_selection_equals_the_numbers_where_structure_falls_short_or_is_near_rank():
+    """Two cases an adversarial review found: too few equations by structure, where the
+    numerical selection's second pass still takes two rows of one unknown that add rank at
+    different angles; and a set whose smallest singular value is within rounding of the
+    rank threshold, where a subset falls below it. Both go to the numerical selection."""
+    from mechreport.forces import contour
+    from mechreport.forces.equations import Action, Equation, Term
+
+    def eq(label, row, unknowns):
+        act = Action(label, "force", "reaction", "link", unknowns=unknowns)
+        return Equation(label, "force", ("link",), [Term(act, np.asarray(row, float),
+                                                         np.zeros(len(row)))])
+    eqs = {"r1": eq("r1", [[1.0, 0.0], [0.0, 0.0]], ("a", "b")),
+           "r2": eq("r2", [[0.0, 0.0], [1.0, 0.0]], ("a", "b"))}
+    needs = {"r1": frozenset({"a"}), "r2": frozenset({"a"})}
+    got = contour._select(["a", "b"], [], ["r1", "r2"], eqs.__getitem__, np.arange(2), needs)
+    assert [e.label for e in got] == ["r1", "r2"]
+    M = np.array([[2.136261400290193e-10, -9.127772506153829e-10, 3.481401140932097e-10],
+                  [-0.8337553361356009, -0.35607590279527473, -0.4219739220780606],
+                  [-0.5091325079640706, 0.20011902008450655, 0.8371000341265268]])
+    assert contour._rank(M[None]) == 3 and contour._rank(M[None, :2]) == 1
+    u = ("a", "b", "c")
+    eqs = {f"k{i}": eq(f"k{i}", M[i][None, :], u) for i in range(3)}
+    needs = {k: frozenset(u) for k in eqs}
+    assert contour._select(list(u), [], list(eqs), eqs.__getitem__, np.arange(1), needs) \
+        == contour._select_numeric(list(u), [], list(eqs), eqs.__getitem__, np.arange(1))

@@ -76,15 +76,16 @@ def _rows(eq: Equation, unknowns: list[str], probes: np.ndarray) -> np.ndarray:
     return row
 
 
-def _rank(rows: np.ndarray) -> np.ndarray:
-    """Numerical rank (P,) of each probe's matrix ``rows`` (P, r, k)."""
+def _rank(rows: np.ndarray, rtol: float = RANK_RTOL) -> np.ndarray:
+    """Numerical rank (P,) of each probe's matrix ``rows`` (P, r, k): its singular values
+    above ``rtol`` times the largest."""
     if rows.shape[1] == 1:      # one row: its only singular value is its norm
         big = np.abs(rows[:, 0]).max(axis=1, initial=0.0)
         if ((big == 0) | ((big > 1e-290) & (big < 1e290))).all():
             return (big > 0).astype(int)    # zero, or far from the SVD's floor and overflow
     s = np.linalg.svd(rows, compute_uv=False)
     top = np.maximum(s[:, :1], 1e-300)
-    return np.sum(s > RANK_RTOL * top, axis=1)
+    return np.sum(s > rtol * top, axis=1)
 
 
 def _needs(ctx: ForceContext, w: Joint, body: list[str]) -> frozenset[str]:
@@ -135,23 +136,23 @@ def _select(unknowns: list[str], chosen: list[Equation], candidates: list, build
     missing, where it adds rank at most of them (independent except at isolated angles,
     which the solve then flags). None if there are not enough.
 
-    The rank is judged on the structure first (:func:`_structural`), which needs no numbers:
-    if the equations it picks are independent at every probe angle, they are exactly those the
-    numerical selection (:func:`_select_numeric`) would pick (taking rows from a matrix of
-    full row rank keeps full rank, and a candidate that adds no structural rank adds none at
-    any angle), at one rank test instead of one per candidate. Otherwise the numerical
-    selection decides."""
+    The rank is judged on the structure first (:func:`_structural`), which needs no numbers.
+    If the equations it picks are enough and independent at every probe angle with a margin
+    (singular values above twice ``RANK_RTOL`` of the largest), they are exactly those the
+    numerical selection (:func:`_select_numeric`) takes in its first pass: rows taken from
+    a matrix of full row rank keep full rank (their smallest singular value is no smaller,
+    their largest no larger; the margin covers the SVD's rounding of a small singular value,
+    about eps relative to the largest), and a candidate that adds no structural rank adds
+    none at any angle. That is one rank test instead of one per candidate. Otherwise (too
+    few by structure, where the second pass may still take equations that add rank at some
+    angles only; or not independent enough) the numerical selection decides."""
     start = [frozenset(e.unknown_names()) for e in chosen]
     keys = _structural(unknowns, start, candidates, needs)
-    if keys is None:
-        return _select_numeric(unknowns, chosen, candidates, build, probes)
-    if len(start) + len(keys) < len(unknowns):
-        return None     # not enough even by structure: no angle has the rank (greedy is
-        #                 maximal: the sets of equations matched to unknowns form a matroid)
-    picked = list(chosen) + [build(key) for key in keys]
-    rows = np.stack([_rows(e, unknowns, probes) for e in picked], axis=1)
-    if (_rank(rows) == len(unknowns)).all():
-        return picked
+    if keys is not None and len(start) + len(keys) == len(unknowns):
+        picked = list(chosen) + [build(key) for key in keys]
+        rows = np.stack([_rows(e, unknowns, probes) for e in picked], axis=1)
+        if (_rank(rows, 2 * RANK_RTOL) == len(unknowns)).all():
+            return picked
     return _select_numeric(unknowns, chosen, candidates, build, probes)
 
 
