@@ -87,7 +87,7 @@ def force_equation(ctx: ForceContext, bodies, acts: list[Action], axis: str,
         label = f"sum F^{body_tag(ctx, bodies)} . {axis}"
         return Equation(label, kind, tuple(bodies), terms, axis=axis)
     return _shared(ctx, ("force", tuple(bodies), axis, kind, id(d), *map(id, acts)),
-                   (d, acts), build)
+                   (d, tuple(acts)), build)
 
 
 def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,

@@ -100,8 +100,9 @@ class ForceContext:
         """Global position (n, 2) of a joint point or named point."""
         if name in self.joint_points:
             return self.joint_points[name]
-        if name in self.spec.ground:
-            return np.broadcast_to(np.asarray(self.spec.ground[name]), (self.n, 2))
+        if name in self.spec.ground:     # one array per context (equations keyed by it)
+            return self.once(("ground", name), lambda: np.broadcast_to(
+                np.asarray(self.spec.ground[name]), (self.n, 2)))
         return self.kin.named_point(name).r
 
     def once(self, key: tuple, build):
