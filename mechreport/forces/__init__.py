@@ -1,5 +1,6 @@
 """Stage 4: joint reactions and driver torque by the textbook's four methods plus a power
-balance. Every method module has ``NAME``, ``TITLE``, ``SECTION`` and
+balance. Every method module has ``NAME``, ``TITLE``, ``SECTION``,
+``build_steps(ctx: ForceContext)`` (its labelled systems) and
 ``solve(ctx: ForceContext) -> ForceResult``; they are registered here by name."""
 from __future__ import annotations
 
@@ -53,10 +54,9 @@ def _solve_all(ctx: ForceContext, names: list[str], source: ForceContext,
     try:
         chains = [chain(ctx, method_steps(ctx, name, METHODS[name].build_steps))
                   for name in names]
-    except Exception:   # noqa: BLE001 - raised again, in the methods' order, by its run
-        chains = None
-    if chains is not None:
         ctx.cache["small systems"] = prepare_blocks(chains, ctx.n)
+    except Exception:   # noqa: BLE001 - raised again, in the methods' order, by its run
+        pass
     try:
         return {name: METHODS[name].solve(ctx).lean(source) for name in names}
     finally:
