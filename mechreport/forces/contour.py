@@ -32,7 +32,7 @@ from ..spec import GROUND, Joint
 from .builders import (force_equation, moment_equation, normal_constraint, sliding_direction,
                        with_moment)
 from .context import ForceContext, reaction_unknowns
-from .equations import Equation, Step
+from .equations import Equation, Matching, Step
 from .result import ForceResult, method_steps, run_steps
 
 PROBES = 16         # angles at which the rank of candidate equations is judged
@@ -160,36 +160,18 @@ def _structural(unknowns: list[str], start: list[frozenset], candidates: list,
                 needs: dict) -> list | None:
     """The candidates (keys) the greedy selection takes by structural rank, after the
     equations naming ``start``: each one that can be matched to an unknown of its own
-    (Kuhn's augmenting path, the matching of those before it rearranged if need be), until
-    every unknown is. None if the ``start`` equations cannot all be matched (the numerical
-    selection keeps them whatever their rank)."""
+    (:class:`~mechreport.forces.equations.Matching`), until every unknown is. None if the
+    ``start`` equations cannot all be matched (the numerical selection keeps them whatever
+    their rank)."""
     col = {u: k for k, u in enumerate(unknowns)}
-    patterns: list[list[int]] = []
-    owner = [-1] * len(unknowns)           # unknown column -> the row matched to it
-
-    def augment(row: int, seen: set[int]) -> bool:
-        for c in patterns[row]:
-            if c not in seen:
-                seen.add(c)
-                if owner[c] < 0 or augment(owner[c], seen):
-                    owner[c] = row
-                    return True
-        return False
-
-    def add(names) -> bool:
-        patterns.append([col[u] for u in names if u in col])
-        if augment(len(patterns) - 1, set()):
-            return True
-        patterns.pop()
-        return False
-
-    if not all(add(names) for names in start):
+    matching = Matching(len(unknowns))
+    if not all(matching.add([col[u] for u in names if u in col]) for names in start):
         return None
     taken = []
     for key in candidates:
-        if len(patterns) == len(unknowns):
+        if len(matching) == len(unknowns):
             break
-        if add(needs[key]):
+        if matching.add([col[u] for u in needs[key] if u in col]):
             taken.append(key)
     return taken
 

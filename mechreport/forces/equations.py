@@ -302,6 +302,38 @@ def triangular_blocks(step: Step) -> list[Step]:
                  [step.equations[r] for r in rows], step.bodies) for rows, cols in order]
 
 
+class Matching:
+    """A matching of equations to unknowns, grown one equation at a time: each names the
+    unknown columns it uses, and :meth:`add` matches it to one of them if it can, by Kuhn's
+    augmenting path (rearranging the equations matched before it), which is when it raises
+    the structural rank. ``owner[c]``: the equation matched to column ``c``, or -1."""
+
+    def __init__(self, m: int):
+        self.owner = [-1] * m
+        self.patterns: list[list[int]] = []
+
+    def add(self, columns) -> bool:
+        """Match the next equation, which uses ``columns``; False (and it is left out) if
+        no augmenting path exists."""
+        self.patterns.append(list(columns))
+        if self._augment(len(self.patterns) - 1, set()):
+            return True
+        self.patterns.pop()
+        return False
+
+    def __len__(self) -> int:
+        return len(self.patterns)
+
+    def _augment(self, row: int, seen: set[int]) -> bool:
+        for c in self.patterns[row]:
+            if c not in seen:
+                seen.add(c)
+                if self.owner[c] < 0 or self._augment(self.owner[c], seen):
+                    self.owner[c] = row
+                    return True
+        return False
+
+
 @lru_cache(maxsize=4096)
 def _block_order(unknowns: tuple[str, ...], uses: tuple[tuple[str, ...], ...]):
     """((equation rows), (unknown columns)) per block in solving order, once per structure;
@@ -309,18 +341,10 @@ def _block_order(unknowns: tuple[str, ...], uses: tuple[tuple[str, ...], ...]):
     m = len(unknowns)
     col = {u: j for j, u in enumerate(unknowns)}
     pattern = [sorted({col[u] for u in names if u in col}) for names in uses]
-    owner = [-1] * m                # unknown column -> the equation row matched to it
-
-    def augment(row: int, seen: set[int]) -> bool:   # Kuhn's augmenting path
-        for c in pattern[row]:
-            if c not in seen:
-                seen.add(c)
-                if owner[c] < 0 or augment(owner[c], seen):
-                    owner[c] = row
-                    return True
-        return False
-    if len(uses) != m or not all(augment(r, set()) for r in range(m)):
+    matching = Matching(m)
+    if len(uses) != m or not all(matching.add(p) for p in pattern):
         return ((tuple(range(len(uses))), tuple(range(m))),)
+    owner = matching.owner
     matched = {owner[c]: c for c in range(m)}       # row -> its column
     needs = [[owner[c] for c in pattern[r] if c != matched[r]] for r in range(m)]
     blocks = _strong_components(needs)              # dependencies first (Tarjan)
