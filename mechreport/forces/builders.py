@@ -105,29 +105,19 @@ def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
 
 
 def _shared(ctx: ForceContext, key: tuple, keep, build) -> Equation:
-    """``build()``, once per context and ``key``: the methods write many of the same
-    equations (d'Alembert's, the dyad method's and the contour's moments of one link about
-    its joint), which they then share, as they share actions. ``keep`` holds the arrays and
-    actions whose ids are in the key, so that those ids stay theirs."""
-    memo = ctx.cache.get("equations")
-    if memo is None:
-        memo = ctx.cache["equations"] = {}
-    hit = memo.get(key)
-    if hit is None:
-        hit = memo[key] = (build(), keep)
-    return hit[0]
-
-
-def sliding_direction(ctx: ForceContext, joint: Joint) -> np.ndarray:
-    """Unit direction (n, 2) of a T joint's line in the global frame."""
-    return ctx.line_direction(joint)
+    """``build()``, once per context and ``key`` (:meth:`ForceContext.once`): the methods
+    write many of the same equations (d'Alembert's, the dyad method's and the contour's
+    moments of one link about its joint), which they then share, as they share actions.
+    ``keep`` holds the arrays and actions whose ids are in the key, so that those ids stay
+    theirs."""
+    return ctx.once(("equation", *key), lambda: (build(), keep))[0]
 
 
 def normal_constraint(ctx: ForceContext, joint: Joint) -> Equation:
     """A T joint's reaction has no component along its line: F . Delta = 0."""
     def build() -> Equation:
         act = ctx.reaction(joint, joint.slider)[0]
-        d = sliding_direction(ctx, joint)
+        d = ctx.line_direction(joint)
         term = Term(act, d.copy(), no_constant(ctx.n), direction=d, kind="projection")
         return Equation(f"{act.symbol} . Delta_{joint.name} = 0", "constraint",
                         (joint.slider,), [term], axis=f"Delta_{joint.name}")

@@ -81,20 +81,16 @@ class ForceContext:
 
     def axis(self, name: str) -> np.ndarray:
         """The global unit vector ``x`` or ``y`` at every angle (n, 2), read-only."""
-        key = ("axis", name)
-        if key not in self.cache:
-            self.cache[key] = np.broadcast_to(AXES[name], (self.n, 2))
-        return self.cache[key]
+        return self.once(("axis", name), lambda: np.broadcast_to(AXES[name], (self.n, 2)))
 
     def line_direction(self, joint: Joint) -> np.ndarray:
         """Unit direction (n, 2) of T joint ``joint``'s line in the global frame, read-only
         (every method and the slider's point ask for it)."""
-        key = ("line", joint.name)
-        if key not in self.cache:
+        def build() -> np.ndarray:
             u = self.kin.frames.rotate(joint.guide, joint.line.direction)
             u.setflags(write=False)
-            self.cache[key] = u
-        return self.cache[key]
+            return u
+        return self.once(("line", joint.name), build)
 
     def point_of(self, name: str) -> np.ndarray:
         """Global position (n, 2) of a joint point or named point."""

@@ -29,8 +29,7 @@ import numpy as np
 from ..errors import UnsupportedMechanism
 from ..model import Loop, all_loops
 from ..spec import GROUND, Joint
-from .builders import (force_equation, moment_equation, normal_constraint, sliding_direction,
-                       with_moment)
+from .builders import force_equation, moment_equation, normal_constraint, with_moment
 from .context import ForceContext, reaction_unknowns
 from .equations import Equation, Matching, Step
 from .result import ForceResult, method_steps, run_steps
@@ -64,7 +63,7 @@ def _equation(ctx: ForceContext, w: Joint, body: list[str]) -> Equation:
     acts = ctx.actions_on(body, inertia=True, exclude=(w.name,))
     if w.type == "R":
         return moment_equation(ctx, body, acts, w.point)
-    return force_equation(ctx, body, acts, f"Delta_{w.name}", sliding_direction(ctx, w))
+    return force_equation(ctx, body, acts, f"Delta_{w.name}", ctx.line_direction(w))
 
 
 def _rows(eq: Equation, unknowns: list[str], probes: np.ndarray) -> np.ndarray:

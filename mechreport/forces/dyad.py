@@ -19,7 +19,7 @@ the reactions of all its joints; groups are taken from the last back to the driv
 from __future__ import annotations
 
 from ..model import Dyad, Group
-from .builders import force_equation, moment_equation, normal_constraint, sliding_direction
+from .builders import force_equation, moment_equation, normal_constraint
 from .context import ForceContext, reaction_unknowns
 from .equations import Step
 from .result import ForceResult, method_steps, run_steps
@@ -42,7 +42,7 @@ def _outer_step(ctx: ForceContext, dyad: Dyad) -> Step:
         s = inner.slider
         acts = ctx.actions_on([s], inertia=True, exclude=(inner.name,))
         eqs.append(force_equation(ctx, [s], acts, f"Delta_{inner.name}",
-                                  sliding_direction(ctx, inner), kind="force"))
+                                  ctx.line_direction(inner), kind="force"))
         pin = next(o for o in dyad.outer if o.type == "R")
         eqs.append(moment_equation(ctx, [i, j], both, pin.point))
     eqs += [normal_constraint(ctx, o) for o in dyad.outer if o.type == "T"]

@@ -207,7 +207,5 @@ def chain(ctx, steps) -> list[Step]:
     ``triangular_blocks``), once per context and ``steps`` (kept with them: their ids stay
     theirs)."""
     from .equations import triangular_blocks
-    key = ("chain", id(steps))
-    if key not in ctx.cache:
-        ctx.cache[key] = (steps, [b for step in steps for b in triangular_blocks(step)])
-    return ctx.cache[key][1]
+    return ctx.once(("chain", id(steps)),
+                    lambda: (steps, [b for step in steps for b in triangular_blocks(step)]))[1]
