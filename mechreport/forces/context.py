@@ -202,17 +202,24 @@ class ForceContext:
         body = set(bodies)
         acts: list[Action] = []
         for j in self.spec.joints:
-            if j.name in exclude:
-                continue
-            inside = [l for l in j.links if l in body]
-            if len(inside) == 1:
-                acts.extend(self.reaction(j, inside[0]))
+            a, b = j.links
+            if (a in body) != (b in body) and j.name not in exclude:
+                acts.extend(self.reaction(j, a if a in body else b))
         inner_driver = set(self.spec.driver.links) <= body   # its two sides cancel
         for link in bodies:
-            if inertia:
-                acts.extend(self.inertia_actions(link))
-            acts.append(self.gravity_action(link))
-            acts.extend(self.load_actions(link))
-            if not inner_driver:
-                acts.extend(self.driver_actions(link))
+            acts.extend(self._link_actions(link, inertia, inner_driver))
         return acts
+
+    def _link_actions(self, link: str, inertia: bool, inner_driver: bool) -> tuple:
+        """A link's own actions in a free body: inertia (d'Alembert), gravity, loads, and
+        the driver's effort unless both its links are in the body."""
+        key = ("own", link, inertia, inner_driver)
+        hit = self.cache.get(key)
+        if hit is None:
+            acts = self.inertia_actions(link) if inertia else []
+            acts.append(self.gravity_action(link))
+            acts += self.load_actions(link)
+            if not inner_driver:
+                acts += self.driver_actions(link)
+            hit = self.cache[key] = tuple(acts)
+        return hit
