@@ -674,3 +674,39 @@ def test_contour_selection_equals_the_numbers_where_structure_falls_short_or_is_
     assert contour._select_numeric(list(u), [], list(eqs), eqs.__getitem__, np.arange(1)) \
         is None
     assert contour._select(list(u), [], list(eqs), eqs.__getitem__, np.arange(1), needs) is None
+
+
+def test_forces_at_the_moment_centre_are_those_at_it_at_every_angle():
+    """builders.with_moment leaves out the forces applied at the moment centre: a force
+    apart from it at the first angle is kept without a look at the others; otherwise the
+    whole sweep decides, as the plain rule does (within 1e-12 of 1 m + the centre's largest
+    coordinate at every angle; NaN is never at the centre)."""
+    from mechreport.forces.builders import with_moment
+    from mechreport.forces.equations import Action
+    ctx = ForceContext(solve_kinematics(build_mechanism(load_spec(
+        ROOT / "specs" / "four_bar.yaml"))))
+    n = ctx.n
+    rng = np.random.default_rng(7)
+    p = rng.normal(size=(n, 2)) * 1e3
+    tol = 1e-12 * (1.0 + np.abs(p).max())
+
+    def near(offset):
+        return p + offset
+
+    late = np.zeros((n, 2))
+    late[-1, 1] = 10 * tol                              # apart at the last angle only
+    first = np.zeros((n, 2))
+    first[0, 0] = 10 * tol                              # apart at the first angle only
+    nan = np.zeros((n, 2))
+    nan[n // 2, 0] = np.nan
+    cases = {"same": near(0.0), "within": near(0.5 * tol), "late": near(late),
+             "first": near(first), "nan": near(nan), "far": near(1.0),
+             "nan first": near(np.where(np.arange(n)[:, None] == 0, np.nan, 0.0))}
+    acts = [Action(name, "force", "load", "x", at, value=np.zeros((n, 2)))
+            for name, at in cases.items()]
+    acts.append(Action("M", "couple", "load", "x", value=np.zeros(n)))
+    kept = [a.symbol for a in with_moment(ctx, acts, p)]
+    plain = [a.symbol for a in acts
+             if a.kind != "force" or not (np.abs(a.at - p) <= tol).all()]
+    assert kept == plain == ["late", "first", "nan", "far", "nan first", "M"]
+    assert [a.symbol for a in with_moment(ctx, acts, p)] == kept     # from the memo

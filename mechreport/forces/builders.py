@@ -62,6 +62,7 @@ def with_moment(ctx: ForceContext, acts: list[Action], p: np.ndarray) -> list[Ac
     if memo is None:
         memo = ctx.cache["at centre"] = {}
     out = []
+    tol = None
     for act in acts:
         at = act.at
         if act.kind != "force":
@@ -70,11 +71,24 @@ def with_moment(ctx: ForceContext, acts: list[Action], p: np.ndarray) -> list[Ac
             key = (id(at), id(p))
             hit = memo.get(key)
             if hit is None:     # the arrays are kept with the answer: their ids stay theirs
-                scale = 1.0 + float(np.abs(p).max(initial=0.0))
-                hit = memo[key] = (bool((np.abs(at - p) <= 1e-12 * scale).all()), at, p)
+                if tol is None:
+                    tol = _coincidence_tol(ctx, p)
+                # apart at the first angle (most pairs) needs no look at the others
+                apart = at.size > 0 and not (abs(at.item(0) - p.item(0)) <= tol
+                                             and abs(at.item(1) - p.item(1)) <= tol)
+                same = not apart and bool((np.abs(at - p) <= tol).all())
+                hit = memo[key] = (same, at, p)
             if not hit[0]:
                 out.append(act)
     return out
+
+
+def _coincidence_tol(ctx: ForceContext, p: np.ndarray) -> float:
+    """How close (m) a force's point must be to ``p`` (n, 2) at every angle to be taken as
+    applied there: 1e-12 of (1 m + the largest coordinate of ``p``), once per point."""
+    def build():
+        return 1e-12 * (1.0 + float(np.abs(p).max(initial=0.0))), p
+    return ctx.once(("coincidence tol", id(p)), build)[0]
 
 
 def force_equation(ctx: ForceContext, bodies, acts: list[Action], axis: str,
