@@ -3,7 +3,15 @@ instructions, stage by stage, counted by valgrind's callgrind: unlike CPU time, 
 does not move with the machine's load (here timings vary up to 2x within an hour), so a
 change of a few percent can be measured in one run.
 
-    .venv/bin/python bench/bench_instructions.py [SPEC_NAME ...]   (default: r_rtr_rtr)
+    .venv/bin/python bench/bench_instructions.py [--only STAGE,...] [--against REV]
+                                                 [SPEC_NAME ...]   (default: r_rtr_rtr)
+
+``--only analyse`` counts the whole load and analyse alone (about 15 s a spec, where every
+stage takes a few minutes); ``--against REV`` counts the code of git revision REV too (a
+temporary ``git worktree``, imported first), on the same specs of this checkout, and
+prints both columns: a before/after table in one command. The stages other than analyse
+call the package's internals as they are now: against an older revision, ``--only
+analyse``.
 
 Needs valgrind (Debian package valgrind); each spec takes a few minutes under it. Each
 stage is counted over 5 runs after 3 warm-up runs in the same process (the structure
@@ -19,6 +27,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -31,16 +40,17 @@ def _child(name: str, stage: str) -> None:
     """Run inside valgrind: count ``stage`` of RUNS analyses of specs/NAME.yaml."""
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     from mechreport.analysis import analyse
-    from mechreport.checks.agreement import agreement
-    from mechreport.checks.residuals import residuals
-    from mechreport.forces import METHODS, ForceContext
-    from mechreport.forces.equations import prepare_blocks
-    from mechreport.forces.result import chain, method_steps
-    from mechreport.kinematics import solve_kinematics
-    from mechreport.model import build_mechanism
-    from mechreport.post.review import design_review
     from mechreport.spec import Sweep
     from mechreport.spec.loader import parse_spec
+    if stage not in ("empty", "analyse"):   # as the code is now (older revisions: --only analyse)
+        from mechreport.checks.agreement import agreement
+        from mechreport.checks.residuals import residuals
+        from mechreport.forces import METHODS, ForceContext
+        from mechreport.forces.equations import prepare_blocks
+        from mechreport.forces.result import chain, method_steps
+        from mechreport.kinematics import solve_kinematics
+        from mechreport.model import build_mechanism
+        from mechreport.post.review import design_review
 
     text = (ROOT / "specs" / f"{name}.yaml").read_text()
     pid = str(os.getpid())
@@ -97,16 +107,50 @@ def _child(name: str, stage: str) -> None:
         run(True)
 
 
-def instructions(name: str, stage: str) -> int:
-    """Instructions counted for ``stage`` over RUNS runs (switching cost included)."""
+def instructions(name: str, stage: str, code: Path | None = None) -> int:
+    """Instructions counted for ``stage`` over RUNS runs (switching cost included), of the
+    package in ``code`` (a checkout imported first) or of this one."""
+    env = dict(os.environ)
+    env.setdefault("PYTHONHASHSEED", "0")     # string hashes move the count by about 1 %
+    if code is not None:
+        env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(code),
+                                                          env.get("PYTHONPATH")]))
     out = subprocess.run(
         ["valgrind", "--tool=callgrind", "--instr-atstart=no", "--callgrind-out-file=/dev/null",
          sys.executable, __file__, "--child", name, stage],
-        capture_output=True, text=True, check=False, cwd=ROOT)
+        capture_output=True, text=True, check=False, cwd=code or ROOT, env=env)
     found = re.search(r"Collected\s*:\s*(\d+)", out.stderr)
     if found is None:
         raise SystemExit(f"valgrind gave no count for {name} {stage}:\n{out.stderr[-2000:]}")
     return int(found.group(1))
+
+
+def _counts(name: str, stages: list[str], code: Path | None) -> dict[str, float]:
+    """Million instructions per run of each of ``stages``, switching cost taken off."""
+    switching = instructions(name, "empty", code)
+    return {stage: (instructions(name, stage, code) - switching) / RUNS / 1e6
+            for stage in stages}
+
+
+def _options(argv: list[str]) -> tuple[list[str], str | None, list[str]]:
+    stages, against, names = list(STAGES[1:]), None, []
+    args = iter(argv)
+    for arg in args:
+        if arg in ("--only", "--against"):
+            value = next(args, None)
+            if value is None:
+                raise SystemExit(f"{arg} needs a value")
+            if arg == "--against":
+                against = value
+                continue
+            stages = value.split(",")
+            unknown = [s for s in stages if s not in STAGES[1:]]
+            if unknown:
+                raise SystemExit(f"unknown stage(s) {', '.join(unknown)}; stages: "
+                                 f"{', '.join(STAGES[1:])}")
+        else:
+            names.append(arg)
+    return stages, against, names or ["r_rtr_rtr"]
 
 
 def main() -> None:
@@ -115,16 +159,38 @@ def main() -> None:
         return
     if shutil.which("valgrind") is None or shutil.which("callgrind_control") is None:
         raise SystemExit("bench_instructions needs valgrind (Debian: apt-get install valgrind)")
-    for name in sys.argv[1:] or ["r_rtr_rtr"]:
-        switching = instructions(name, "empty")
-        print(f"{name}: million instructions per spec (load + analyse, 36 angles)")
-        total = 0.0
-        for stage in STAGES[1:]:
-            m = (instructions(name, stage) - switching) / RUNS / 1e6
-            if stage != "analyse":
-                total += m
-            print(f"  {stage:<14}{m:8.2f}")
-        print(f"  {'(sum of stages)':<14}{total:8.2f}")
+    stages, against, names = _options(sys.argv[1:])
+    with tempfile.TemporaryDirectory(prefix="bench-before-") as tmp:
+        before = None
+        if against is not None:
+            before = Path(tmp) / "code"
+            made = subprocess.run(["git", "worktree", "add", "--detach", str(before), against],
+                                  capture_output=True, text=True, cwd=ROOT, check=False)
+            if made.returncode != 0:
+                raise SystemExit(f"git worktree add {against}: {made.stderr.strip()}")
+        try:
+            for name in names:
+                _report(name, stages, before, against)
+        finally:
+            if before is not None:
+                subprocess.run(["git", "worktree", "remove", "--force", str(before)],
+                               capture_output=True, cwd=ROOT, check=False)
+
+
+def _report(name: str, stages: list[str], before: Path | None, against: str | None) -> None:
+    after = _counts(name, stages, None)
+    old = _counts(name, stages, before) if before is not None else None
+    print(f"{name}: million instructions per spec (load + analyse, 36 angles)")
+    if old is not None:
+        print(f"  {'':<14}{against[:8]:>8}{'now':>8}")
+    for stage in stages:
+        print(f"  {stage:<14}" + (f"{old[stage]:8.2f}" if old is not None else "")
+              + f"{after[stage]:8.2f}")
+    parts = [s for s in stages if s != "analyse"]
+    if len(parts) > 1:
+        print(f"  {'(sum of stages)':<14}"
+              + (f"{sum(old[s] for s in parts):8.2f}" if old is not None else "")
+              + f"{sum(after[s] for s in parts):8.2f}")
 
 
 if __name__ == "__main__":
