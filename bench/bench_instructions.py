@@ -21,6 +21,7 @@ small blocks prepared together, then each method's solve. Not a test.
 """
 from __future__ import annotations
 
+import argparse
 import dataclasses
 import os
 import re
@@ -132,25 +133,17 @@ def _counts(name: str, stages: list[str], code: Path | None) -> dict[str, float]
             for stage in stages}
 
 
-def _options(argv: list[str]) -> tuple[list[str], str | None, list[str]]:
-    stages, against, names = list(STAGES[1:]), None, []
-    args = iter(argv)
-    for arg in args:
-        if arg in ("--only", "--against"):
-            value = next(args, None)
-            if value is None:
-                raise SystemExit(f"{arg} needs a value")
-            if arg == "--against":
-                against = value
-                continue
-            stages = value.split(",")
-            unknown = [s for s in stages if s not in STAGES[1:]]
-            if unknown:
-                raise SystemExit(f"unknown stage(s) {', '.join(unknown)}; stages: "
-                                 f"{', '.join(STAGES[1:])}")
-        else:
-            names.append(arg)
-    return stages, against, names or ["r_rtr_rtr"]
+def _options(argv: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description="The fixed cost in CPU instructions.")
+    parser.add_argument("--only", type=lambda v: v.split(","), default=list(STAGES[1:]),
+                        metavar="STAGE,...", help=f"stages: {', '.join(STAGES[1:])}")
+    parser.add_argument("--against", metavar="REV", help="count git revision REV too")
+    parser.add_argument("names", nargs="*", default=["r_rtr_rtr"], metavar="SPEC_NAME")
+    args = parser.parse_args(argv)
+    unknown = [stage for stage in args.only if stage not in STAGES[1:]]
+    if unknown:
+        parser.error(f"unknown stage(s) {', '.join(unknown)}")
+    return args
 
 
 def main() -> None:
@@ -159,7 +152,8 @@ def main() -> None:
         return
     if shutil.which("valgrind") is None or shutil.which("callgrind_control") is None:
         raise SystemExit("bench_instructions needs valgrind (Debian: apt-get install valgrind)")
-    stages, against, names = _options(sys.argv[1:])
+    args = _options(sys.argv[1:])
+    stages, against, names = args.only, args.against, args.names
     with tempfile.TemporaryDirectory(prefix="bench-before-") as tmp:
         before = None
         if against is not None:

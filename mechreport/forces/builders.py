@@ -58,9 +58,7 @@ def with_moment(ctx: ForceContext, acts: list[Action], p: np.ndarray) -> list[Ac
     applied at ``p`` itself, which have no moment (the text leaves them out). Whether a force
     is applied at ``p`` at every angle is asked of the same arrays again and again: the
     answer is kept in ``ctx.cache``."""
-    memo = ctx.cache.get("at centre")
-    if memo is None:
-        memo = ctx.cache["at centre"] = {}
+    memo = ctx.once(("at centre",), dict)
     out = []
     tol = None
     for act in acts:

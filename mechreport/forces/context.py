@@ -188,10 +188,9 @@ class ForceContext:
 
     def actions_on(self, bodies, *, inertia: bool, exclude=()) -> list[Action]:
         """See :meth:`_actions_on`; built once per free body (methods share them)."""
-        key = ("actions", tuple(bodies), inertia, tuple(exclude))
-        if key not in self.cache:
-            self.cache[key] = tuple(self._actions_on(bodies, inertia=inertia, exclude=exclude))
-        return list(self.cache[key])
+        return list(self.once(("actions", tuple(bodies), inertia, tuple(exclude)),
+                              lambda: tuple(self._actions_on(bodies, inertia=inertia,
+                                                             exclude=exclude))))
 
     def _actions_on(self, bodies, *, inertia: bool, exclude=()) -> list[Action]:
         """Every external action on the free body made of ``bodies`` (moving links): reactions
@@ -213,13 +212,11 @@ class ForceContext:
     def _link_actions(self, link: str, inertia: bool, inner_driver: bool) -> tuple:
         """A link's own actions in a free body: inertia (d'Alembert), gravity, loads, and
         the driver's effort unless both its links are in the body."""
-        key = ("own", link, inertia, inner_driver)
-        hit = self.cache.get(key)
-        if hit is None:
+        def build() -> tuple:
             acts = self.inertia_actions(link) if inertia else []
             acts.append(self.gravity_action(link))
             acts += self.load_actions(link)
             if not inner_driver:
                 acts += self.driver_actions(link)
-            hit = self.cache[key] = tuple(acts)
-        return hit
+            return tuple(acts)
+        return self.once(("own", link, inertia, inner_driver), build)
