@@ -414,13 +414,21 @@ def prepare_small(systems: list[np.ndarray]) -> list[SmallSystem]:
         # over one angle each, alone: einsum sums ||As||_F's squares in another order for one
         # angle than for several (the condition number's last bit)
         for part in ([ks] if n > 1 else [[k] for k in ks]):
-            group = _SmallGroup(np.concatenate([systems[k] for k in part], axis=2,
-                                               dtype=np.float64))
-            for i, k in enumerate(part):
-                out[k] = SmallSystem(group, slice(i * n, (i + 1) * n))
+            joined = np.concatenate([systems[k] for k in part], axis=2, dtype=np.float64)
+            for k, system in zip(part, prepare_joined(joined, len(part))):
+                out[k] = system
     if any(s is None for s in out):
         raise ValueError("prepare_small takes 1x1 and 2x2 systems only")
     return out
+
+
+def prepare_joined(At: np.ndarray, count: int) -> list[SmallSystem]:
+    """:func:`prepare_small` for ``count`` 1x1 or 2x2 systems already joined along the angle
+    axis, At (m, m, count n), the k-th over angles [k n, (k + 1) n) (n > 1: see
+    :func:`prepare_small`)."""
+    group = _SmallGroup(At)
+    n = At.shape[2] // count
+    return [SmallSystem(group, slice(i * n, (i + 1) * n)) for i in range(count)]
 
 
 def angle_last(A: np.ndarray) -> np.ndarray:

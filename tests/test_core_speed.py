@@ -480,6 +480,53 @@ def test_chain_of_blocks_equals_block_by_block():
                 np.testing.assert_array_equal(values[u], known[u], err_msg=f"{name} {method} {u}")
 
 
+def _summed_matrix(step, n):
+    """A step's matrix as the plain rule writes it: from 0, each coefficient of a step's
+    unknown added in term order (a lhs term's subtracted)."""
+    col = {u: j for j, u in enumerate(step.unknowns)}
+    A = np.zeros((len(col), len(col), n))
+    for row, eq in enumerate(step.equations):
+        for t in eq.terms:
+            for k, u in enumerate(t.action.unknowns):
+                if u in col:
+                    A[row, col[u]] = (A[row, col[u]] + t.coeffs[:, k] if t.side == "rhs"
+                                      else A[row, col[u]] - t.coeffs[:, k])
+    return A
+
+
+def test_matrices_written_together_equal_the_sum_of_their_terms():
+    """equations.joined_matrices writes the matrices of many blocks in one gather: each is
+    bit for bit (zero signs included) the sum of its terms' coefficients in term order, for
+    every block of every method of the specs, and where one equation names an unknown in
+    two terms, on either side, with -0 among the coefficients."""
+    from mechreport.forces.equations import (Action, Equation, Step, Term, joined_matrices,
+                                             triangular_blocks)
+    for name in ("r_rtr_rtr", "stephenson3_six_bar", "hydraulic_boom"):
+        ctx = ForceContext(solve_kinematics(build_mechanism(load_spec(
+            ROOT / "specs" / f"{name}.yaml"))))
+        blocks = [b for module in METHODS.values() for s in module.build_steps(ctx)
+                  for b in triangular_blocks(s)]
+        for m in {len(b.unknowns) for b in blocks}:
+            same = [b for b in blocks if len(b.unknowns) == m]
+            joined = joined_matrices(same, ctx.n)
+            for i, b in enumerate(same):
+                part = joined[:, :, i * ctx.n:(i + 1) * ctx.n]
+                ref = _summed_matrix(b, ctx.n)
+                assert np.array_equal(part, ref) and np.array_equal(np.signbit(part),
+                                                                    np.signbit(ref)), name
+    n = 4
+    c = np.array([[1.0, -0.0], [-0.0, 2.0], [3.0, 0.0], [-1e-300, 5.0]])
+    a = Action("F", "force", "reaction", "2", unknowns=("u", "v"))
+    eqs = [Equation("e1", "force", ("2",), [Term(a, c, np.zeros(n)),
+                                            Term(a, c[::-1].copy(), np.zeros(n), "lhs"),
+                                            Term(a, -c, np.zeros(n))]),
+           Equation("e2", "force", ("2",), [Term(a, -c, np.zeros(n), "lhs")])]
+    step = Step("test", ["u", "v"], eqs)
+    for A in (joined_matrices([step], n), joined_matrices([step, step], n)[:, :, :n]):
+        ref = _summed_matrix(step, n)
+        assert np.array_equal(A, ref) and np.array_equal(np.signbit(A), np.signbit(ref))
+
+
 @pytest.mark.parametrize("n", [36, 1])
 def test_methods_prepared_together_equal_each_method_alone(n):
     """solve_forces prepares every method's small blocks in one pass, and the blocks the

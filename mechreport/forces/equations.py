@@ -18,7 +18,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..linalg import SINGULAR_COND, SmallSystem, prepare_small, solve_cond
+from ..linalg import SINGULAR_COND, SmallSystem, prepare_joined, prepare_small, solve_cond
 
 
 @lru_cache(maxsize=4)
@@ -183,21 +183,48 @@ class Solution:
 def step_matrix(step: Step, n: int) -> np.ndarray:
     """The step's matrix A (m, m, n), angle-last: each equation's coefficients on the step's
     own unknowns (those of earlier steps go to the right-hand side, :func:`step_rhs`)."""
-    m = len(step.unknowns)
-    if len(step.equations) != m:
-        raise ValueError(f"{step.title}: {len(step.equations)} equations for {m} unknowns")
-    col = {u: i for i, u in enumerate(step.unknowns)}
-    A = np.zeros((m, m, n))
-    for row, eq in enumerate(step.equations):
-        for t in eq.terms:
-            # a lhs term enters negated: subtracted where a rhs term is added (the same bits
-            # as multiplying by -1 first, without the temporary)
-            add = np.add if t.side == "rhs" else np.subtract
-            for k, u in enumerate(t.action.unknowns):
-                j = col.get(u)
-                if j is not None:
-                    add(A[row, j], t.coeffs[:, k], out=A[row, j])
-    return A
+    return joined_matrices([step], n)
+
+
+def joined_matrices(steps: list[Step], n: int) -> np.ndarray:
+    """The matrices of ``steps`` (each m x m, one m for all) joined along the angle axis,
+    A (m, m, k n), step i at angles [i n, (i + 1) n): each entry the sum, in term order,
+    of its coefficients (a lhs term's subtracted), from 0. One gather of every coefficient
+    for all the steps instead of one numpy call per coefficient; an entry with one
+    coefficient (nearly all) is written as 0 + c or 0 - c, the same bits as summing it."""
+    m = len(steps[0].unknowns)
+    k = len(steps)
+    A = np.zeros((m * m * k, n))            # row (r m + c) k + i: A[r, c] of step i
+    into: tuple[list, list] = ([], [])      # destination rows, rhs terms then lhs terms
+    taken: tuple[list, list] = ([], [])     # their coefficients (n,)
+    more = []                               # (row, coefficients, side) of a second one
+    seen: set[int] = set()
+    for i, step in enumerate(steps):
+        if len(step.equations) != m or len(step.unknowns) != m:
+            raise ValueError(f"{step.title}: {len(step.equations)} equations for "
+                             f"{len(step.unknowns)} unknowns")
+        col = {u: j for j, u in enumerate(step.unknowns)}
+        for row, eq in enumerate(step.equations):
+            for t in eq.terms:
+                lhs = t.side != "rhs"
+                for kk, u in enumerate(t.action.unknowns):
+                    j = col.get(u)
+                    if j is None:
+                        continue
+                    at = (row * m + j) * k + i
+                    if at in seen:
+                        more.append((at, t.coeffs[:, kk], lhs))
+                    else:
+                        seen.add(at)
+                        into[lhs].append(at)
+                        taken[lhs].append(t.coeffs[:, kk])
+    if taken[0]:
+        A[into[0]] = np.add(0.0, np.array(taken[0]))       # 0 + c: -0 becomes +0
+    if taken[1]:
+        A[into[1]] = np.subtract(0.0, np.array(taken[1]))  # a lhs term enters negated
+    for at, c, lhs in more:
+        (np.subtract if lhs else np.add)(A[at], c, out=A[at])
+    return A.reshape(m, m, k * n)
 
 
 def step_rhs(step: Step, known: dict[str, np.ndarray], n: int, columns: int = 1,
@@ -210,18 +237,22 @@ def step_rhs(step: Step, known: dict[str, np.ndarray], n: int, columns: int = 1,
     zero = no_constant(n)           # b - 0 is b: terms without a constant are passed over
     b = np.zeros((len(step.equations), columns, n))
     for row, eq in enumerate(step.equations):
+        here = b[row]               # (columns, n), and its first column (n,)
+        first = here[0]
         for t in eq.terms:
             sub = np.subtract if t.side == "rhs" else np.add
-            c = None if t.const is zero else 0 if column is None else column(t)
-            if c is not None:
-                sub(b[row, c], t.const, out=b[row, c])
+            if t.const is not zero:
+                if column is None:
+                    sub(first, t.const, first)
+                elif (c := column(t)) is not None:
+                    sub(here[c], t.const, here[c])
             for k, u in enumerate(t.action.unknowns):
                 if u in col:
                     continue
                 if u not in known:
                     raise ValueError(f"{step.title}: equation '{eq.label}' needs {u}, "
                                      "which is neither solved here nor known")
-                sub(b[row], t.coeffs[:, k] * known[u], out=b[row])
+                sub(here, t.coeffs[:, k] * known[u], here)
     return b
 
 
@@ -267,20 +298,31 @@ def prepare_blocks(chains: list[list[Step]], n: int) -> dict[int, SmallSystem]:
     """The 1x1 and 2x2 blocks of ``chains`` (several methods' blocks) ready to be solved for
     their right-hand sides, by ``id`` of the block (the caller keeps the blocks): prepared all
     together (:func:`mechreport.linalg.prepare_small`: one pass of numpy calls instead of one
-    per chain, the same numbers), and a block of the same equations for the same unknowns as
+    per chain, the same numbers), their matrices written in one pass per size
+    (:func:`joined_matrices`), and a block of the same equations for the same unknowns as
     another (methods share equations) prepared once."""
     index: dict[tuple, int] = {}
-    matrices: list[np.ndarray] = []
+    unique: list[Step] = []
     where: list[tuple[int, int]] = []
     for blocks in chains:
         for blk in blocks:
             if 1 <= len(blk.unknowns) <= 2:
                 key = (tuple(map(id, blk.equations)), tuple(blk.unknowns))
                 if key not in index:
-                    index[key] = len(matrices)
-                    matrices.append(step_matrix(blk, n))
+                    index[key] = len(unique)
+                    unique.append(blk)
                 where.append((id(blk), index[key]))
-    systems = prepare_small(matrices) if matrices else []
+    systems: list = [None] * len(unique)
+    for m in (1, 2):
+        part = [i for i, blk in enumerate(unique) if len(blk.unknowns) == m]
+        if not part:
+            continue
+        if n > 1:
+            ready = prepare_joined(joined_matrices([unique[i] for i in part], n), len(part))
+        else:           # one angle: each alone (see linalg.prepare_small)
+            ready = prepare_small([step_matrix(unique[i], n) for i in part])
+        for i, system in zip(part, ready):
+            systems[i] = system
     return {b: systems[i] for b, i in where}
 
 
