@@ -87,6 +87,25 @@ def _rank(rows: np.ndarray, rtol: float = RANK_RTOL) -> np.ndarray:
     return np.sum(s > rtol * top, axis=1)
 
 
+def _surely_independent(rows: np.ndarray, rtol: float) -> bool:
+    """Whether the square matrices ``rows`` (P, k, k) certainly have, at every probe, every
+    singular value above ``rtol`` times the largest (:func:`_rank` would count k), read from
+    their determinants at a fifth of an SVD's cost: |det| = s_1 ... s_k <= s_min s_max^(k-1)
+    and s_max <= ||A||_F, so s_min / s_max >= |det| / ||A||_F^k. The test asks for twice
+    ``rtol`` there, far above the determinant's rounding (an LU's, of order k^2 eps
+    ||A||_F^k for k <= 8). False (the SVD decides) where it cannot tell: a ratio below that,
+    more than 8 unknowns, or ||A||_F outside 1e-100 to 1e100 (no overflow or underflow on
+    the way), NaN included."""
+    k = rows.shape[1]
+    if rows.shape[2] != k or not 1 <= k <= 8:
+        return False
+    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+        square = np.einsum("pij,pij->p", rows, rows)          # ||A||_F^2
+        if not ((square >= 1e-200) & (square <= 1e200)).all():
+            return False
+        return bool((np.abs(np.linalg.det(rows)) > 2.0 * rtol * square ** (k / 2)).all())
+
+
 def _needs(ctx: ForceContext, w: Joint, body: list[str]) -> frozenset[str]:
     """The unknowns the equation cut at ``w`` for ``body`` names (its ``unknown_names``),
     read from the actions without building the equation."""
@@ -142,7 +161,8 @@ def _select(unknowns: list[str], chosen: list[Equation], candidates: list, build
     a matrix of full row rank keep full rank (their smallest singular value is no smaller,
     their largest no larger; the margin covers the SVD's rounding of a small singular value,
     about eps relative to the largest), and a candidate that adds no structural rank adds
-    none at any angle. That is one rank test instead of one per candidate. Otherwise (too
+    none at any angle. That is one rank test instead of one per candidate, most often read
+    from the determinants (:func:`_surely_independent`), else by the SVD. Otherwise (too
     few by structure, where the second pass may still take equations that add rank at some
     angles only; or not independent enough) the numerical selection decides."""
     start = [frozenset(e.unknown_names()) for e in chosen]
@@ -150,7 +170,8 @@ def _select(unknowns: list[str], chosen: list[Equation], candidates: list, build
     if keys is not None and len(start) + len(keys) == len(unknowns):
         picked = list(chosen) + [build(key) for key in keys]
         rows = np.stack([_rows(e, unknowns, probes) for e in picked], axis=1)
-        if (_rank(rows, 2 * RANK_RTOL) == len(unknowns)).all():
+        if _surely_independent(rows, 2 * RANK_RTOL) \
+                or (_rank(rows, 2 * RANK_RTOL) == len(unknowns)).all():
             return picked
     return _select_numeric(unknowns, chosen, candidates, build, probes)
 
