@@ -75,6 +75,34 @@ def test_dyad_system_gives_equilibrated_lapack_numbers(case):
     assert np.all(np.max(np.abs(xa[ok] - xa_ref[ok]), axis=1) <= 1e-14 * scale)
 
 
+def test_dyads_prepared_together_equal_each_alone():
+    """DyadSystem.joined prepares a mechanism's dyads in one pass: each dyad's solutions and
+    condition numbers are bit for bit those it gets alone, over every spec's dyads joined
+    (different dyad kinds and row orders together), with a pose that could not be solved
+    (NaN), a right-hand side that is not finite and an exactly singular dyad among them."""
+    by_spec: dict[str, list] = {}
+    for name, _, eqs in CASES:
+        by_spec.setdefault(name, []).append(eqs)
+    eqs_all = [e for name in ("slider_crank", "four_bar", "r_rtr_rtr") for e in by_spec[name]]
+    n = min(e.frames.n for e in eqs_all)
+    frames = [LinkFrames({k: x[:n].copy() for k, x in e.frames.r.items()},
+                         {k: x[:n].copy() for k, x in e.frames.th.items()}) for e in eqs_all]
+    frames[0].th[eqs_all[0].group.links[0]][3] = np.nan
+    eqs_all = [RateEquations(e.spec, e.group, f) for e, f in zip(eqs_all, frames)]
+    inner = next(i for i, j in enumerate(eqs_all[1].group.joints)
+                 if set(j.links) == set(eqs_all[1].group.links))
+    eqs_all[1].geometry[inner] = _NoBlocks()                  # exactly singular
+    b = _rhs(n)
+    b[5, 0] = np.inf
+    for joined, eqs in zip(DyadSystem.joined(eqs_all), eqs_all):
+        alone = DyadSystem(eqs)
+        with np.errstate(all="ignore"):
+            got = [*joined.solve_cond(b), joined.solve(b)]
+            want = [*alone.solve_cond(b), alone.solve(b)]
+        for g, w in zip(got, want):
+            assert np.array_equal(g.view(np.uint64), w.view(np.uint64)), eqs.group.label
+
+
 def test_near_singular_dyad_keeps_its_condition_number():
     """The slider-crank with AB = BC near 90 deg: condition numbers up to the singular
     threshold, the same as LAPACK's to round-off times the condition number."""

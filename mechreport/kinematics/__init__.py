@@ -258,6 +258,7 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
                             {k: np.where(finite, t, 0.0) for k, t in th.items()})
     conds: list[tuple[str, np.ndarray]] = []
     size = _newton_scale(mech)
+    systems = _rate_systems(spec, mech.groups, frames, size)
     for group in mech.groups:
         if group.driver is not None and len(group.links) == 1:
             # the driver's link on ground, in closed form (its system is never singular)
@@ -265,20 +266,44 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
             v[link], w[link], acc[link], al[link] = driver_rates(spec, value)
             continue
         label = f"{group.kind} {group.label}"
-        cond = _group_rates(spec, group, frames, size, (v, w), (acc, al))
+        cond = _group_rates(spec, group, *systems[id(group)], (v, w), (acc, al))
         conds.append((label, np.where(finite, cond, np.inf)))
         for k in np.flatnonzero(~(cond < SINGULAR_COND) & finite):
             problems.setdefault(int(k), ("singular", f"{label}: velocity equations singular"))
     return v, w, acc, al, conds
 
 
-def _group_rates(spec, group, frames: LinkFrames, size: float, vel: tuple[dict, dict],
+def _rate_systems(spec, groups, frames: LinkFrames, size: float) -> dict[int, tuple]:
+    """(equations, system, rs, cs) for each group but the driver's crank, by ``id`` of the
+    group: a dyad's solved through its structure (:class:`DyadSystem`, in its own form: rs
+    and cs None), every dyad's prepared together (:meth:`DyadSystem.joined`: one pass of
+    numpy calls for all of them, the same numbers; over a single angle each alone); a Newton
+    group's by :func:`_newton_system`."""
+    out = {}
+    dyads = []
+    for group in groups:
+        if group.driver is not None and len(group.links) == 1:
+            continue
+        eqs = RateEquations(spec, group, frames)
+        if group.dyad is not None:
+            dyads.append((group, eqs))
+        else:
+            out[id(group)] = (eqs, *_newton_system(spec, group, eqs, size))
+    if len(dyads) > 1 and frames.n > 1:
+        systems = DyadSystem.joined([eqs for _, eqs in dyads])
+    else:
+        systems = [DyadSystem(eqs) for _, eqs in dyads]
+    for (group, eqs), system in zip(dyads, systems):
+        out[id(group)] = (eqs, system, None, None)
+    return out
+
+
+def _group_rates(spec, group, eqs: RateEquations, system, rs, cs, vel: tuple[dict, dict],
                  accel: tuple[dict, dict]) -> np.ndarray:
     """Solve one group's velocities and accelerations into ``vel`` (v (n, 2) [m/s], omega
     (n,) [rad/s] by link) and ``accel`` ([m/s^2], [rad/s^2]), zero where its velocity system
-    is singular; returns its condition numbers (n,)."""
-    eqs = RateEquations(spec, group, frames)
-    system, rs, cs = _rate_system(spec, group, eqs, size)
+    is singular, with its equations ``eqs`` and their ``system`` and scales ``rs``, ``cs``
+    (:func:`_rate_systems`); returns its condition numbers (n,)."""
     b_v = eqs.known_part(*vel)
     np.negative(b_v, out=b_v)
     if eqs.drow is not None:
@@ -305,15 +330,12 @@ def _scaled(x: np.ndarray, factors: np.ndarray | None) -> np.ndarray:
     return x if factors is None else x * factors
 
 
-def _rate_system(spec, group, eqs: RateEquations, size: float):
-    """The group's velocity matrices (3k, 3k, n) equilibrated once, for both solves, and the
-    row and column factors (rs (3k, 1), cs (3k,); None for none) its right-hand sides and
-    solutions take: a dyad's in its own form (its error estimate was calibrated in it), solved
-    through its structure (:class:`DyadSystem`); a Newton group's made dimensionless (angle
-    rows as lengths, x and y columns times the mechanism's size ``size``): the same solution,
-    a condition number independent of the mechanism's size."""
-    if group.dyad is not None:
-        return DyadSystem(eqs), None, None
+def _newton_system(spec, group, eqs: RateEquations, size: float):
+    """A Newton group's velocity matrices (3k, 3k, n) equilibrated once, for both solves, and
+    the row and column factors (rs (3k, 1), cs (3k,)) its right-hand sides and solutions
+    take: made dimensionless (angle rows as lengths, x and y columns times the mechanism's
+    size ``size``), the same solution, a condition number independent of the mechanism's
+    size. (A dyad's stays in its own form, its error estimate calibrated in it.)"""
     rs = row_scale(spec, group, size)
     cs = np.tile([size, size, 1.0], len(group.links))
     A = eqs.matrix() * rs[:, None, None] * cs[:, None]   # dimensionless: x = cs * (solution)

@@ -51,18 +51,37 @@ class DyadSystem:
     (``order``: the group's row slices in that order)."""
 
     def __init__(self, eqs):
-        links = eqs.group.links
-        self.n = n = eqs.frames.n
+        self._prepare([eqs])
+
+    @classmethod
+    def joined(cls, eqs_list: list) -> list["DyadSystem"]:
+        """One system per dyad of ``eqs_list`` (each a RateEquations over the same n > 1
+        angles), prepared together: their matrices joined along the angle axis and
+        equilibrated, factored and probed in one pass (each dyad's numbers are those it gets
+        alone: every step is per angle, and einsum sums each angle in the same order for
+        any number of angles above one). What is left per dyad is its own solves."""
+        whole = cls.__new__(cls)
+        whole._prepare(eqs_list)
+        n = eqs_list[0].frames.n
+        return [whole._part(i, n) for i in range(len(eqs_list))]
+
+    def _prepare(self, eqs_list: list) -> None:
+        step = eqs_list[0].frames.n                      # each dyad's angles
+        self.n = n = step * len(eqs_list)
         # D[outer or inner, link, row, column, angle]: P_k, then the inner rows' C_k
         D = np.empty((2, 2, 2, 3, n))
         D.fill(0.0)   # (np.zeros' lazily zeroed pages would be touched twice: read, write)
-        order: list = [None, None, None]
-        for rows, joint, geo in zip(eqs.rows, eqs.group.joints, eqs.geometry):
-            mine = [k for k, l in enumerate(links) if l in joint.links]
-            kind = 1 if len(mine) == 2 else 0
-            geo.write_blocks({links[k]: D[kind, k] for k in mine})
-            order[2 if kind else mine[0]] = rows
-        self.order = order
+        self.orders = []
+        for i, eqs in enumerate(eqs_list):
+            links, here = eqs.group.links, slice(i * step, (i + 1) * step)
+            order: list = [None, None, None]
+            for rows, joint, geo in zip(eqs.rows, eqs.group.joints, eqs.geometry):
+                mine = [k for k, l in enumerate(links) if l in joint.links]
+                kind = 1 if len(mine) == 2 else 0
+                geo.write_blocks({links[k]: D[kind, k, ..., here] for k in mine})
+                order[2 if kind else mine[0]] = rows
+            self.orders.append(order)
+        self.order = self.orders[0]
         self._equilibrate(D)
         P, C = D[0], D[1]
         u, v = P[:, 0], P[:, 1]                          # (link, 3, n)
@@ -79,6 +98,19 @@ class DyadSystem:
         self._scratch = D.reshape(-1)    # D is no longer needed: room for right-hand sides
         self.det = M[0, 0] * M[1, 1] - M[0, 1] * M[1, 0]
         self.exact = (self.det == 0) | ~np.isfinite(inv).all(axis=0)   # exactly singular
+
+    def _part(self, i: int, n: int) -> "DyadSystem":
+        """Dyad ``i`` of a joined system: every array's angles [i n, (i + 1) n), and its
+        own stretch of the scratch memory (24 n numbers, of which a solve uses 18 n)."""
+        part = DyadSystem.__new__(DyadSystem)
+        here = slice(i * n, (i + 1) * n)
+        part.n, part.order = n, self.orders[i]
+        part.rs = tuple(r[..., here] for r in self.rs)
+        part.cs, part.overflow, part.fro = self.cs[:, here], self.overflow[here], self.fro[here]
+        part.N, part.pinv, part.M = self.N[..., here], self.pinv[..., here], self.M[..., here]
+        part.S, part.det, part.exact = self.S[..., here], self.det[here], self.exact[here]
+        part._scratch = self._scratch[24 * n * i:24 * n * (i + 1)]
+        return part
 
     def _equilibrate(self, D: np.ndarray) -> None:
         """Rows, then columns of the 6x6 matrices scaled to a largest entry of 1, in place
