@@ -17,7 +17,7 @@ Needs valgrind (Debian package valgrind); each spec takes a few minutes under it
 stage is counted over 5 runs after 3 warm-up runs in the same process (the structure
 caches warm, as for the second spec of a batch), less the cost of switching the count on
 and off. The force stages follow ``solve_forces``: every method's equations, then their
-small blocks prepared together, then each method's solve. Not a test.
+blocks prepared together, then each method's solve. Not a test.
 """
 from __future__ import annotations
 
@@ -88,8 +88,8 @@ def _child(name: str, stage: str) -> None:
         chains = [chain(ctx, method_steps(ctx, method, module.build_steps))
                   for method, module in METHODS.items()]
         at("equations", False)
-        at("prepare", True)          # and their small blocks, prepared together
-        ctx.cache["small systems"] = prepare_blocks(chains, ctx.n)
+        at("prepare", True)          # and their blocks, prepared together
+        ctx.cache["prepared blocks"] = prepare_blocks(chains, ctx.n)
         at("prepare", False)
         forces = {}
         for method, module in METHODS.items():

@@ -17,7 +17,8 @@ what nothing cheaper can:
 
 A chain of blocks (a method's systems, solved in turn) has many 1x1 and 2x2 systems whose
 matrices do not depend on the earlier results: :func:`prepare_small` equilibrates and probes
-them together, so that what is left per block is its own right-hand side.
+them together, so that what is left per block is its own right-hand side;
+:func:`prepare_large` does the same for larger systems of one size and the same constant rows.
 """
 from __future__ import annotations
 
@@ -71,6 +72,17 @@ class Equilibrated:
             if self.overflow.any():
                 As[:, :, self.overflow] = np.eye(m)[:, :, None]
             self.As = As
+
+    def _part(self, here: slice) -> "Equilibrated":
+        """The systems at angles ``here`` of this batch, sharing its arrays (views): what
+        :func:`prepare_large` hands out for each of the systems it joined."""
+        part = Equilibrated.__new__(Equilibrated)
+        part.m, part.n = self.m, here.stop - here.start
+        part.rs, part.cs = self.rs[:, here], self.cs[:, here]
+        part.overflow, part.fro, part.exact = self.overflow[here], self.fro[here], self.exact[here]
+        part.schur = None if self.schur is None else self.schur._part(here)
+        part.As = None if self.As is None else self.As[:, :, here]
+        return part
 
     def _solve(self, rhs: np.ndarray) -> np.ndarray:
         """Every angle's system for right-hand sides rhs (m, k, n) -> y (m, k, n), both
@@ -198,16 +210,20 @@ class ConstantRows:
             At[:, :, bad] = first[:, :, None]
             rs = rs.copy()
             rs[:, bad] = rs[:, good[:1]]
-        unit = ((first == 0) | (np.abs(first) == 1)).all(axis=1) & (first != 0).any(axis=1)
-        if not unit.any():
-            return None
-        same = (At[unit] == first[unit][:, :, None]).all(axis=2).all(axis=1)
-        rows = np.flatnonzero(unit)[same]
+        rows = _unit_rows(At)
         if rows.size == 0:
             return None
         K = first[rows]
         plan = _constant_plan(m, tuple(rows.tolist()), K.shape, K.tobytes())
         return None if plan is None else ConstantRows(At, rs, rows, *plan)
+
+    def _part(self, here: slice) -> "ConstantRows":
+        """The elimination at angles ``here`` (see :meth:`Equilibrated._part`)."""
+        part = ConstantRows.__new__(ConstantRows)
+        part.__dict__.update(self.__dict__)         # the plan: the same for every angle
+        part.A_NP, part.exact = self.A_NP[..., here], self.exact[here]
+        part.S = None if self.S is None else self.S._part(here)
+        return part
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         """x (m, k, n) with A x = rs rhs for right-hand sides rhs (m, k, n) already divided
@@ -223,6 +239,20 @@ class ConstantRows:
             c -= (self.M @ xq.reshape(len(self.rest), -1)).reshape(c.shape)
         x[self.pivots] = c
         return x
+
+
+def _unit_rows(At: np.ndarray) -> np.ndarray:
+    """The rows of ``At`` (m, m, n) made of +-1 and 0 (not all 0), the same at every angle
+    (NaN never is): :func:`_rows_of` its entries' largest and smallest values."""
+    return np.array(_rows_of(At.max(axis=2).tolist(), At.min(axis=2).tolist()), dtype=np.intp)
+
+
+def _rows_of(top: list, low: list) -> list[int]:
+    """The rows whose largest values ``top`` and smallest ``low`` over the angles (m lists
+    of m numbers) are equal, made of +-1 and 0, not all 0: read as Python numbers, which
+    costs less for an m x m matrix than a dozen numpy calls."""
+    return [r for r, (hi, lo) in enumerate(zip(top, low))
+            if hi == lo and any(hi) and all(x in (0.0, 1.0, -1.0) for x in hi)]
 
 
 @lru_cache(maxsize=1024)
@@ -429,6 +459,45 @@ def prepare_joined(At: np.ndarray, count: int) -> list[SmallSystem]:
     group = _SmallGroup(At)
     n = At.shape[2] // count
     return [SmallSystem(group, slice(i * n, (i + 1) * n)) for i in range(count)]
+
+
+def prepare_large(systems: list[np.ndarray]) -> list[Equilibrated]:
+    """``Equilibrated(At)`` for each of ``systems`` (m, m, n), m >= 3: those of one size and
+    the same constant rows (:class:`ConstantRows`: which rows, and their numbers), all
+    finite, over n > 1 angles, joined along the angle axis and equilibrated and planned
+    together (the second of two Newton-Euler dyad blocks costs a few views, not a few
+    dozen numpy calls). Each is solved as it would be alone: every step is per angle, and
+    the constant rows and their plan are those each has alone."""
+    out: list[Equilibrated | None] = [None] * len(systems)
+    sizes: dict[tuple, list[int]] = {}
+    for k, At in enumerate(systems):
+        sizes.setdefault(At.shape, []).append(k)
+    for (m, _, n), ks in sizes.items():
+        if n < 2 or len(ks) < 2:
+            for k in ks:
+                out[k] = Equilibrated(systems[k])
+            continue
+        joined = np.concatenate([systems[k] for k in ks], axis=2)
+        each = joined.reshape(m, m, len(ks), n)
+        top, low = each.max(axis=3), each.min(axis=3)           # (m, m, k): per system
+        finite = (np.isfinite(top) & np.isfinite(low)).all(axis=(0, 1)).tolist()
+        groups: dict[tuple, list[int]] = {}
+        for i, k in enumerate(ks):
+            if not finite[i]:
+                out[k] = Equilibrated(systems[k])
+                continue
+            hi = top[:, :, i].tolist()
+            rows = _rows_of(hi, low[:, :, i].tolist())
+            groups.setdefault(tuple((r, tuple(hi[r])) for r in rows), []).append(i)
+        for members in groups.values():
+            if len(members) == 1:
+                out[ks[members[0]]] = Equilibrated(systems[ks[members[0]]])
+                continue
+            whole = Equilibrated(joined if len(members) == len(ks) else np.concatenate(
+                [systems[ks[i]] for i in members], axis=2))
+            for j, i in enumerate(members):
+                out[ks[i]] = whole._part(slice(j * n, (j + 1) * n))
+    return out
 
 
 def angle_last(A: np.ndarray) -> np.ndarray:

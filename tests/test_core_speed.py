@@ -460,7 +460,7 @@ def test_small_systems_prepared_together_equal_one_by_one(m, n):
 
 
 def test_chain_of_blocks_equals_block_by_block():
-    """equations.solve_chain (the small blocks prepared together) gives every method's
+    """equations.solve_chain (the blocks prepared together) gives every method's
     unknowns and condition numbers bit for bit as solving its blocks one by one."""
     from mechreport.forces.equations import solve_chain, solve_step, triangular_blocks
     for name in ("r_rtr_rtr", "stephenson3_six_bar", "scotch_yoke"):
@@ -529,7 +529,7 @@ def test_matrices_written_together_equal_the_sum_of_their_terms():
 
 @pytest.mark.parametrize("n", [36, 1])
 def test_methods_prepared_together_equal_each_method_alone(n):
-    """solve_forces prepares every method's small blocks in one pass, and the blocks the
+    """solve_forces prepares every method's blocks together, and the blocks the
     methods share once: each method's numbers and condition numbers are bit for bit those
     of the method solved alone on a fresh context, and nothing of the pass is kept."""
     from mechreport.forces.equations import prepare_blocks
@@ -543,7 +543,7 @@ def test_methods_prepared_together_equal_each_method_alone(n):
             spec, sweep=sweep, at=(w.start,), expect=())))
         ctx = ForceContext(kin)
         together = solve_forces(kin, ctx=ctx)
-        assert "small systems" not in ctx.cache
+        assert "prepared blocks" not in ctx.cache
         for method, module in METHODS.items():
             alone = module.solve(ForceContext(kin))
             va, vt = alone.values(), together[method].values()
@@ -551,14 +551,53 @@ def test_methods_prepared_together_equal_each_method_alone(n):
             for q in va:
                 np.testing.assert_array_equal(vt[q], va[q], err_msg=f"{name} {method} {q}")
             np.testing.assert_array_equal(together[method].cond, alone.cond)
-    # R-RTR-RTR: the sliders' couples and the crank's blocks, shared, are prepared once
+    # R-RTR-RTR: the sliders' couples and the crank's blocks, shared, are prepared once;
+    # Newton-Euler's two 7x7 dyad blocks together
     ctx = ForceContext(solve_kinematics(build_mechanism(load_spec(
         ROOT / "specs" / "r_rtr_rtr.yaml"))))
     chains = [chain(ctx, module.build_steps(ctx)) for module in METHODS.values()]
     prepared = prepare_blocks(chains, ctx.n)
-    small = [b for c in chains for b in c if len(b.unknowns) <= 2]
-    assert set(prepared) == {id(b) for b in small}
-    assert len({id(s) for s in prepared.values()}) < len(small)
+    every = [b for c in chains for b in c]
+    assert set(prepared) == {id(b) for b in every}
+    assert len({id(s) for s in prepared.values()}) < len(every)
+    seven = [prepared[id(b)] for b in every if len(b.unknowns) == 7]
+    assert len(seven) == 2 and seven[0].fro.base is seven[1].fro.base is not None
+
+
+@pytest.mark.parametrize("n", [40, 1])
+def test_large_systems_prepared_together_equal_one_by_one(n):
+    """linalg.prepare_large joins systems of one size and the same constant rows along the
+    angle axis: each still gets the bits Equilibrated gives it alone (solutions with their
+    signs, condition numbers), whether it has constant rows or not, is solved by row
+    operations or by LAPACK, or has singular and near-singular angles; systems with other
+    constant rows, non-finite numbers or a single angle are prepared alone."""
+    from mechreport import linalg
+    rng = np.random.default_rng(5)
+
+    def system(m, unit_rows):
+        A = rng.standard_normal((m, m, n)) * 10.0 ** rng.uniform(-5, 5, (m, 1, n))
+        for r, row in unit_rows.items():
+            A[r] = np.asarray(row, float)[:, None]
+        if n > 1:
+            A[-1, :, 1] = A[-2, :, 1] * 2.0                 # exactly singular at angle 1
+            A[-1, :, 2] = A[-2, :, 2] * (1 + 1e-13)         # near-singular at angle 2
+        return A
+    K = {0: [1, 0, -1, 0], 1: [0, 1, 0, 1]}
+    systems = [system(4, K), system(4, K), system(4, {0: [0, 1, 1, 0]}), system(4, {}),
+               system(4, {}), system(3, {}), system(3, {}), system(8, {}), system(8, {})]
+    bad = system(4, K)
+    bad[0, 1, 0] = np.nan
+    systems.append(bad)
+    prepared = linalg.prepare_large(systems)
+    for A, p in zip(systems, prepared):
+        b = rng.standard_normal((n, A.shape[0]))
+        with np.errstate(all="ignore"):
+            got, want = p.solve_cond(b), linalg.Equilibrated(A).solve_cond(b)
+        for g, w in zip(got, want):
+            assert np.array_equal(g.view(np.uint64), w.view(np.uint64)), A.shape
+    shared = [p.fro.base is not None for p in prepared]
+    assert shared == ([True, True, False, True, True, True, True, True, True, False] if n > 1
+                      else [False] * len(systems))
 
 
 def test_spreads_judged_together_equal_one_quantity_at_a_time(monkeypatch):

@@ -48,19 +48,19 @@ def solve_forces(kin: Kinematics, methods=None,
 def _solve_all(ctx: ForceContext, names: list[str], source: ForceContext,
                ) -> dict[str, ForceResult]:
     """The named methods over ``ctx``, their results lean with ``source``. Every method's
-    1x1 and 2x2 blocks are prepared together first (``equations.prepare_blocks``: the same
-    numbers, one pass of numpy calls for all of them, a block that several methods share
+    blocks are prepared together first (``equations.prepare_blocks``: the same numbers,
+    one pass of numpy calls for those of one size, a block that several methods share
     prepared once); a method that cannot build its equations says so when it runs."""
     try:
         chains = [chain(ctx, method_steps(ctx, name, METHODS[name].build_steps))
                   for name in names]
-        ctx.cache["small systems"] = prepare_blocks(chains, ctx.n)
+        ctx.cache["prepared blocks"] = prepare_blocks(chains, ctx.n)
     except Exception:   # noqa: BLE001 - raised again, in the methods' order, by its run
         pass
     try:
         return {name: METHODS[name].solve(ctx).lean(source) for name in names}
     finally:
-        ctx.cache.pop("small systems", None)     # their arrays: as large as the sweep
+        ctx.cache.pop("prepared blocks", None)     # their arrays: as large as the sweep
 
 
 __all__ = ["METHODS", "solve_forces", "ForceContext", "ForceResult", "JointReaction",

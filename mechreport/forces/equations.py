@@ -18,7 +18,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..linalg import SINGULAR_COND, SmallSystem, prepare_joined, prepare_small, solve_cond
+from ..linalg import (SINGULAR_COND, Equilibrated, SmallSystem, prepare_joined, prepare_large,
+                      prepare_small, solve_cond)
 
 
 @lru_cache(maxsize=4)
@@ -274,39 +275,41 @@ def solve_chain(blocks: list[Step], n: int, prepared: dict | None = None,
                 ) -> tuple[dict[str, np.ndarray], list[Solution]]:
     """Solve ``blocks`` in turn, each with the values found by those before it: every
     unknown's values (n,), and each block's Solution. The same numbers as :func:`solve_step`
-    block by block. The 1x1 and 2x2 blocks' matrices do not depend on earlier values: they
-    are prepared together first (:func:`prepare_blocks`), unless ``prepared`` has them
-    already (by ``id`` of the block)."""
+    block by block. The blocks' matrices do not depend on earlier values: they are prepared
+    together first (:func:`prepare_blocks`), unless ``prepared`` has them already (by ``id``
+    of the block)."""
     prepared = {} if prepared is None else prepared
-    missing = [blk for blk in blocks if 1 <= len(blk.unknowns) <= 2 and id(blk) not in prepared]
+    missing = [blk for blk in blocks if blk.unknowns and id(blk) not in prepared]
     if missing:
         prepared = {**prepared, **prepare_blocks([missing], n)}
     known: dict[str, np.ndarray] = {}
     out = []
     for block in blocks:
         b = step_rhs(block, known, n)[:, 0].T
-        small = prepared.get(id(block))
-        x, cond = small.solve_cond(b) if small is not None \
-            else solve_cond(step_matrix(block, n), b)
+        system = prepared.get(id(block))
+        x, cond = system.solve_cond(b) if system is not None else solve_cond(
+            step_matrix(block, n), b)
         sol = Solution({u: x[:, i] for i, u in enumerate(block.unknowns)}, cond)
         known.update(sol.values)
         out.append(sol)
     return known, out
 
 
-def prepare_blocks(chains: list[list[Step]], n: int) -> dict[int, SmallSystem]:
-    """The 1x1 and 2x2 blocks of ``chains`` (several methods' blocks) ready to be solved for
-    their right-hand sides, by ``id`` of the block (the caller keeps the blocks): prepared all
-    together (:func:`mechreport.linalg.prepare_small`: one pass of numpy calls instead of one
-    per chain, the same numbers), their matrices written in one pass per size
-    (:func:`joined_matrices`), and a block of the same equations for the same unknowns as
-    another (methods share equations) prepared once."""
+def prepare_blocks(chains: list[list[Step]], n: int) -> dict[int, SmallSystem | Equilibrated]:
+    """The blocks of ``chains`` (several methods' blocks) ready to be solved for their
+    right-hand sides, by ``id`` of the block (the caller keeps the blocks), a block of the
+    same equations for the same unknowns as another (methods share equations) prepared
+    once. The 1x1 and 2x2 blocks are prepared all together
+    (:func:`mechreport.linalg.prepare_small`: one pass of numpy calls instead of one per
+    block, the same numbers), their matrices written in one pass per size
+    (:func:`joined_matrices`); larger blocks of one size and the same constant rows too
+    (:func:`mechreport.linalg.prepare_large`)."""
     index: dict[tuple, int] = {}
     unique: list[Step] = []
     where: list[tuple[int, int]] = []
     for blocks in chains:
         for blk in blocks:
-            if 1 <= len(blk.unknowns) <= 2:
+            if blk.unknowns:
                 key = (tuple(map(id, blk.equations)), tuple(blk.unknowns))
                 if key not in index:
                     index[key] = len(unique)
@@ -323,6 +326,9 @@ def prepare_blocks(chains: list[list[Step]], n: int) -> dict[int, SmallSystem]:
             ready = prepare_small([step_matrix(unique[i], n) for i in part])
         for i, system in zip(part, ready):
             systems[i] = system
+    large = [i for i, blk in enumerate(unique) if len(blk.unknowns) > 2]
+    for i, system in zip(large, prepare_large([step_matrix(unique[i], n) for i in large])):
+        systems[i] = system
     return {b: systems[i] for b, i in where}
 
 

@@ -182,11 +182,11 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
 
 def run_steps(method: str, ctx, steps) -> ForceResult:
     """Solve ``steps`` in order, each with the values found by those before it, block by
-    block (:func:`chain`); the condition number is the product of the blocks'. Small blocks
-    another method's run prepared with these (``ctx.cache["small systems"]``, see
+    block (:func:`chain`); the condition number is the product of the blocks'. Blocks
+    prepared with every method's (``ctx.cache["prepared blocks"]``, see
     :func:`mechreport.forces.solve_forces`) are not prepared again."""
     from .equations import solve_chain
-    known, solutions = solve_chain(chain(ctx, steps), ctx.n, ctx.cache.get("small systems"))
+    known, solutions = solve_chain(chain(ctx, steps), ctx.n, ctx.cache.get("prepared blocks"))
     singular = np.zeros(ctx.n, bool)
     cond = np.ones(ctx.n)
     with np.errstate(over="ignore", invalid="ignore"):
