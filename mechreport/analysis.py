@@ -233,7 +233,8 @@ def _all_finite(arrays: list[np.ndarray]) -> bool:
     """Whether every value of ``arrays`` is finite: at once for short sweeps (one numpy call
     instead of one per array), array by array where joining them would take memory."""
     if sum(np.size(v) for v in arrays) <= 1 << 20:
-        return bool(np.isfinite(np.concatenate([np.ravel(v) for v in arrays])).all())
+        return bool(np.isfinite(np.concatenate([np.asarray(v).reshape(-1) for v in arrays]))
+                    .all())
     return all(np.isfinite(v).all() for v in arrays)
 
 
@@ -241,12 +242,13 @@ def _require_finite(kin: Kinematics, forces: dict[str, ForceResult]) -> None:
     """Raise ``AnalysisError`` naming the first non-finite value of any result (quantity,
     method, angle): a NaN must never reach a check or a report as a number."""
     spec = kin.mechanism.spec
+    results = [(name, res.values()) for name, res in forces.items()]
+    whole = [getattr(kin, what) for what in ("r", "theta", "v", "omega", "a", "alpha")]
+    if _all_finite(whole + [v for _, values in results for v in values.values()]):
+        return                      # as a rule: nothing to name (the ground's zeros included)
     arrays = [(f"kinematics {what} of link {link.name}", getattr(kin, what)[:, link.number])
               for link in spec.links for what in ("r", "theta", "v", "omega", "a", "alpha")]
-    arrays += [(f"{q} ({name})", v) for name, res in forces.items()
-               for q, v in res.values().items()]
-    if _all_finite([v for _, v in arrays]):
-        return                      # as a rule: nothing to name
+    arrays += [(f"{q} ({name})", v) for name, values in results for q, v in values.items()]
     for what, values in arrays:
         ok = np.isfinite(values)
         if not ok.all():

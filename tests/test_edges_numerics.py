@@ -53,6 +53,30 @@ def test_non_finite_result_is_an_error_naming_quantity_and_angle():
         analyse(spec)
 
 
+def test_non_finite_result_or_pose_is_named_by_the_final_check():
+    """The last check before any report (analysis._require_finite) looks at every
+    kinematic quantity and every result at once, and names the first one that is not
+    finite, with its method and angle."""
+    from mechreport.analysis import _require_finite, solve_trusted
+    from mechreport.kinematics import solve_kinematics
+    from mechreport.model import build_mechanism
+    kin, _, forces = solve_trusted(solve_kinematics(build_mechanism(slider_crank())))
+    _require_finite(kin, forces)
+    bad = forces["dyad"].reactions["B"].fy.copy()
+    bad[4] = np.nan
+    broken = {**forces, "dyad": dataclasses.replace(
+        forces["dyad"], reactions={**forces["dyad"].reactions, "B": dataclasses.replace(
+            forces["dyad"].reactions["B"], fy=bad)})}
+    with pytest.raises(AnalysisError, match=rf"joint\.B\.fy \(dyad\) is not a finite number "
+                                            rf"at {kin.angles[4]:g} deg"):
+        _require_finite(kin, broken)
+    omega = kin.omega.copy()
+    omega[7, 2] = np.inf
+    with pytest.raises(AnalysisError, match=rf"kinematics omega of link \w+ is not a finite "
+                                            rf"number at {kin.angles[7]:g} deg"):
+        _require_finite(dataclasses.replace(kin, omega=omega), forces)
+
+
 @pytest.mark.filterwarnings("ignore:overflow:RuntimeWarning",
                             "ignore:invalid value:RuntimeWarning")
 def test_non_finite_gravity_is_an_error_not_a_pass():
