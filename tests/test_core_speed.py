@@ -111,6 +111,24 @@ def test_slider_points_are_defined_against_the_whole_sweep():
     second = dataclasses.replace(second, reactions={**second.reactions, "C_T": tiny})
     joined = ForceResult.join([first, second], ctx).reactions["C_T"]
     assert np.isfinite(joined.px[:100]).all() and np.isnan(joined.px[100:]).all()
+    # the largest force is over both components (either may hold it); a NaN leaves every
+    # point undefined: as the plain formula over the stacked force does
+    u, at = ctx.line_direction(ctx.spec.joint("C_T")), ctx.joint_points["C_T"]
+    rng = np.random.default_rng(2)
+    for case in range(4):
+        fx, fy, m = rng.normal(size=(3, kin.n)) * 10.0 ** rng.uniform(-3, 3, (3, 1))
+        fx[:5] *= 1e-13
+        fy[:5] *= 1e-13
+        if case == 3:
+            fy[7] = np.nan
+        f = np.stack([fx, fy], axis=1)
+        s = u[:, 0] * f[:, 1] - u[:, 1] * f[:, 0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = np.where(np.abs(s) > 1e-12 * np.maximum(np.max(np.abs(f), initial=0.0),
+                                                         1e-300), m / s, np.nan)
+        ref = at + t[:, None] * u
+        got = slider_point(ctx, ctx.spec.joint("C_T"), fx, fy, m)
+        np.testing.assert_array_equal(got, (ref[:, 0], ref[:, 1]))
 
 
 # ------------------------------------------------------------ block triangular solves

@@ -6,7 +6,6 @@ from typing import Any
 
 import numpy as np
 
-from ..kinematics.frames import cross
 from .equations import Step
 
 
@@ -151,9 +150,10 @@ def slider_point(ctx, joint, fx: np.ndarray, fy: np.ndarray, m: np.ndarray,
     the largest force component over the sweep, by default over these angles) and the point
     is undefined."""
     u = ctx.line_direction(joint)
-    f = np.stack([fx, fy], axis=1)
-    s = cross(u, f)
-    top = np.max(np.abs(f), initial=0.0) if top is None else top
+    s = u[:, 0] * fy - u[:, 1] * fx                 # u x f
+    if top is None:                                 # (NaN if any component is NaN)
+        a, b = np.abs(fx).max(initial=0.0), np.abs(fy).max(initial=0.0)
+        top = a if a >= b or a != a else b
     scale = np.maximum(top, 1e-300)
     with np.errstate(divide="ignore", invalid="ignore"):
         t = np.where(np.abs(s) > 1e-12 * scale, m / s, np.nan)
