@@ -192,3 +192,27 @@ def test_cached_rotations_are_rotate():
         np.testing.assert_array_equal(trig.rotate(v, th), rotate(v, th))
         np.testing.assert_array_equal(frames.rotate(GROUND, v), rotate(v, np.zeros(50)))
     assert trig(th)[0] is trig(th)[0]
+
+
+@pytest.mark.parametrize("path", SPECS, ids=lambda p: p.stem)
+def test_points_prepared_together_equal_each_alone(path):
+    """Kinematics.prepare_points computes many points' states in one pass: each is bit for
+    bit the state Kinematics.point computes alone, contiguous and read-only (every named
+    point and centre of mass of the spec, ground points included)."""
+    from mechreport.kinematics import solve_kinematics
+    mech = build_mechanism(load_spec(path))
+    kin = solve_kinematics(mech)
+    if kin.n == 0:
+        pytest.skip("no angle solved")
+    spec = mech.spec
+    wanted = [(link.name, link.com) for link in spec.links]
+    wanted += [(link.name, p) for link in spec.links for p in link.points.values()]
+    wanted += [(GROUND, p) for p in spec.ground.values()]
+    alone = dataclasses.replace(kin)
+    together = dataclasses.replace(kin)
+    together.prepare_points(wanted)
+    for link, local in wanted:
+        a, b = alone.point(link, local), together.point(link, local)
+        for x, y in ((a.r, b.r), (a.v, b.v), (a.a, b.a)):
+            assert np.array_equal(x.view(np.uint64), y.view(np.uint64)), (link, local)
+            assert y.flags.c_contiguous and not y.flags.writeable

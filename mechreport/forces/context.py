@@ -26,8 +26,25 @@ DRIVER_TORQUE = "driver.torque"   # an R driver's unknown; a T driver's is "driv
 
 def joint_point(kin: Kinematics, joint: Joint) -> np.ndarray:
     """Where a joint's reaction acts (n, 2) [m]: the pin, or the slider's point."""
-    owner = joint.links[1] if joint.type == "T" or joint.links[0] == GROUND else joint.links[0]
-    return kin.named_point(joint.point, owner).r
+    return kin.named_point(joint.point, _point_owner(joint)).r
+
+
+def _point_owner(joint: Joint) -> str:
+    """The link whose point a joint's reaction acts at."""
+    return joint.links[1] if joint.type == "T" or joint.links[0] == GROUND else joint.links[0]
+
+
+def _points_used(spec, loads) -> list[tuple[str, tuple]]:
+    """(link, local point) of every point the force methods ask for: the centres of mass,
+    where the joints' reactions act, where the loads act."""
+    def local(link: str, name: str):
+        return (spec.ground if link == GROUND else spec.link(link).points)[name]
+    out = [(link.name, link.com) for link in spec.links]
+    for j in spec.joints:
+        owner = _point_owner(j)
+        out.append((owner, local(owner, j.point)))
+    out += [(ld.link, local(ld.link, ld.point)) for ld in loads if ld.force is not None]
+    return out
 
 
 def reaction_unknowns(joint: Joint) -> tuple[str, ...]:
@@ -64,6 +81,7 @@ class ForceContext:
         self.cache: dict = {}    # this context's own: actions per free body, coincidences
         self.gravity = np.asarray(self.spec.gravity, float)
         self.loads: list[AppliedLoad] = evaluate_loads(kin)
+        kin.prepare_points(_points_used(self.spec, self.loads))
         self.links: dict[str, LinkState] = {}
         for link in self.spec.links:
             c = kin.com(link.name)
