@@ -809,6 +809,43 @@ def test_contour_selection_equals_the_numbers_where_structure_falls_short_or_is_
     assert contour._select(list(u), [], list(eqs), eqs.__getitem__, np.arange(1), needs) is None
 
 
+def test_terms_shared_between_equations_are_those_built_for_each():
+    """An action's projection on a direction, and its moment about a point, are built once
+    per context and shared by every equation that holds them: each equation's terms, in
+    every method of three specs, are bit for bit those built afresh for it (its direction;
+    its centre, a joint's point, a centre of mass or a ground point, named as the equation
+    says), and some are shared."""
+    from mechreport.forces.builders import force_term, moment_term
+    for name in ("r_rtr_rtr", "hydraulic_boom", "stephenson3_six_bar"):
+        ctx = ForceContext(solve_kinematics(build_mechanism(load_spec(
+            ROOT / "specs" / f"{name}.yaml"))))
+        seen: dict[int, int] = {}
+        centre_arrays = ([s.r for s in ctx.links.values()] + list(ctx.joint_points.values())
+                         + [ctx.point_of(p) for p in ctx.spec.ground])
+        for module in METHODS.values():
+            for step in module.build_steps(ctx):
+                for eq in step.equations:
+                    for t in eq.terms:
+                        seen[id(t)] = seen.get(id(t), 0) + 1
+                        if t.kind == "projection" and t.side == "rhs" and eq.kind != "constraint":
+                            d = ctx.axis(eq.axis) if eq.axis in ("x", "y") else \
+                                ctx.line_direction(ctx.spec.joint(eq.axis[len("Delta_"):]))
+                            fresh = force_term(t.action, d)
+                        elif t.kind == "moment":
+                            assert t.factor("about") == eq.about, (name, eq.label)
+                            centres = [c for c in centre_arrays
+                                       if np.array_equal(t.action.at - c, t.lever)]
+                            assert centres, (name, eq.label)
+                            fresh = moment_term(t.action, centres[0], ctx.n,
+                                                about_name=t.factor("about"))
+                        else:
+                            continue
+                        for a, b in ((t.coeffs, fresh.coeffs), (t.const, fresh.const)):
+                            assert np.array_equal(np.asarray(a).view(np.uint64),
+                                                  np.asarray(b).view(np.uint64)), eq.label
+        assert max(seen.values()) > 1, name
+
+
 def test_forces_at_the_moment_centre_are_those_at_it_at_every_angle():
     """builders.with_moment leaves out the forces applied at the moment centre: a force
     apart from it at the first angle is kept without a look at the others; otherwise the

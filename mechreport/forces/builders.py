@@ -95,7 +95,7 @@ def force_equation(ctx: ForceContext, bodies, acts: list[Action], axis: str,
     d = ctx.axis(axis) if direction is None else direction
 
     def build() -> Equation:
-        terms = [t for t in (force_term(a, d) for a in acts) if t is not None]
+        terms = _force_terms(ctx, acts, d)
         label = f"sum F^{body_tag(ctx, bodies)} . {axis}"
         return Equation(label, kind, tuple(bodies), terms, axis=axis)
     return _shared(ctx, ("force", tuple(bodies), axis, kind, id(d), *map(id, acts)),
@@ -109,11 +109,32 @@ def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
     acts = with_moment(ctx, acts, p)     # (the same equation from more actions: shared)
 
     def build() -> Equation:
-        terms = [moment_term(a, p, ctx.n, about_name=about) for a in acts]
+        terms = _moment_terms(ctx, acts, p, about)
         return Equation(f"sum M_{about}^{body_tag(ctx, bodies)}", "moment", tuple(bodies),
                         terms, about=about)
     return _shared(ctx, ("moment", tuple(bodies), about, id(p), *map(id, acts)), (p, acts),
                    build)
+
+
+def _force_terms(ctx: ForceContext, acts: list[Action], d: np.ndarray) -> list[Term]:
+    """The force actions' :func:`force_term` on ``d``, each built once per context: an
+    action enters the force equations of every free body that holds it (terms are
+    immutable; several equations share one)."""
+    out = []
+    for a in acts:
+        if a.kind == "force":
+            out.append(ctx.once(("force term", id(a), id(d)),
+                                lambda a=a: (force_term(a, d), a, d))[0])
+    return out
+
+
+def _moment_terms(ctx: ForceContext, acts: list[Action], p: np.ndarray,
+                  about: str) -> list[Term]:
+    """The actions' :func:`moment_term` about point ``p`` named ``about``, each built once
+    per context (see :func:`_force_terms`)."""
+    return [ctx.once(("moment term", id(a), id(p), about),
+                     lambda a=a: (moment_term(a, p, ctx.n, about_name=about), a, p))[0]
+            for a in acts]
 
 
 def _shared(ctx: ForceContext, key: tuple, keep, build) -> Equation:
@@ -153,14 +174,14 @@ def _newton_euler(ctx: ForceContext, link: str) -> list[Equation]:
         d = ctx.axis(axis)
         terms = [Term(lhs, no_coefficients(ctx.n), s.mass * s.a[:, k], "lhs", direction=d,
                       kind="inertia", factors=(("mass", s.mass), ("accel", s.a)))]
-        terms += [t for t in (force_term(a, d) for a in acts) if t is not None]
+        terms += _force_terms(ctx, acts, d)
         out.append(Equation(f"m{s.number} aC{s.number}{axis} = sum F^{tag} . {axis}", "force",
                             (link,), terms, axis=axis))
     lhs = Action(f"IC{s.number} alpha{s.number}", "couple", "inertia", link,
                  value=s.inertia * s.alpha)
     terms = [Term(lhs, no_coefficients(ctx.n), lhs.value, "lhs", kind="inertia",
                   factors=(("inertia", s.inertia), ("alpha", s.alpha)))]
-    terms += [moment_term(a, s.r, ctx.n, about_name=f"C{s.number}") for a in acts]
+    terms += _moment_terms(ctx, acts, s.r, f"C{s.number}")
     out.append(Equation(f"IC{s.number} alpha{s.number} = sum M_C{s.number}^{tag}", "moment",
                         (link,), terms, about=f"C{s.number}"))
     return out
