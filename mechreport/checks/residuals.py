@@ -32,7 +32,7 @@ def residuals(ctx: ForceContext, results: dict[str, ForceResult]) -> list[Residu
         equations = [eq for link in ctx.spec.links
                      for eq in newton_euler_equations(part, link.name)]
         for names in _same_unknowns(solved):    # every method's at once
-            values = {k: np.stack([solved[name][k][cut] for name in names])
+            values = {k: np.array([solved[name][k][cut] for name in names])
                       for k in solved[names[0]]}
             for eq in equations:
                 r = np.abs(eq.evaluate(values)).max(axis=-1, initial=0.0)
