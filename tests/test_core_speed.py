@@ -670,8 +670,8 @@ def test_contour_independence_by_determinant_implies_the_svd_rank():
     """The contour search's check of a chosen set by its determinants: wherever it says the
     square matrices are independent with the margin, the SVD says so too (random matrices
     of 1 to 8 unknowns over many scales and conditions, near-singular and singular ones and
-    out-of-range scales among them; NaN is never independent); and it does say so for well-conditioned sets,
-    which is what makes it worth having."""
+    out-of-range scales among them; NaN is never independent); and it does say so for
+    well-conditioned sets, which is what makes it worth having."""
     from mechreport.forces import contour
     rng = np.random.default_rng(11)
     rtol = 2 * contour.RANK_RTOL
