@@ -22,6 +22,7 @@ from .loads import AppliedLoad, evaluate_loads
 
 AXES = {"x": np.array([1.0, 0.0]), "y": np.array([0.0, 1.0])}
 DRIVER_TORQUE = "driver.torque"   # an R driver's unknown; a T driver's is "driver.force"
+_MISSING = object()               # ForceContext.once: no value yet (None is one)
 
 
 def joint_point(kin: Kinematics, joint: Joint) -> np.ndarray:
@@ -121,9 +122,10 @@ class ForceContext:
 
     def once(self, key: tuple, build):
         """``build()``, computed once per context and ``key`` (actions are immutable)."""
-        if key not in self.cache:
-            self.cache[key] = build()
-        return self.cache[key]
+        value = self.cache.get(key, _MISSING)
+        if value is _MISSING:
+            value = self.cache[key] = build()
+        return value
 
     def reaction(self, joint: Joint, on: str) -> list[Action]:
         """The joint's reaction as it acts on link ``on`` (one of its links)."""
