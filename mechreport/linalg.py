@@ -387,16 +387,21 @@ class SmallSystem:
         cond = g.cond[part].copy()
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             q = b.T / rs                              # (m, n)
+            finite = np.isfinite(q)
+            everywhere = finite.all()                 # (as a rule: nothing to mark)
             if g.m == 1:                              # a / rs is +-1 (0 where singular)
                 x = q / g.unit[part]
-                cond[~np.isfinite(q[0])] = np.nan
+                if not everywhere:
+                    cond[~finite[0]] = np.nan
             else:
-                overflow = ~np.isfinite(q).all(axis=0)
-                if overflow.any():
+                if not everywhere:
+                    overflow = ~finite.all(axis=0)
                     q[:, overflow] = 0.0
                     cond[overflow] = np.nan
                 x = _cramer(g.As[:, :, part], g.det[part], q) / g.cs[:, part]
-        x[:, ~(cond < SINGULAR_COND)] = np.nan
+        regular = cond < SINGULAR_COND
+        if not regular.all():
+            x[:, ~regular] = np.nan
         return x.T, cond
 
 
