@@ -157,7 +157,7 @@ def _force_flags(kin: Kinematics, forces: dict[str, ForceResult]) -> list[Flag]:
                 "represent (check masses, lengths, speeds, gravity and loads)")
         doubtful[name] = ~trusted(kin, res)
         singular |= res.singular
-        worst = np.maximum(worst, np.nan_to_num(cond, nan=np.inf))
+        worst = np.maximum(worst, cond)     # (no NaN: raised above)
     flags = []
     for k in np.flatnonzero(np.any(list(doubtful.values()), axis=0)):
         names = [name for name, bad in doubtful.items() if bad[k]]
