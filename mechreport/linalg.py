@@ -147,7 +147,7 @@ class Equilibrated:
         ||As||_F max_k ||y_k|| / ||z_k||, inf where not finite."""
         with np.errstate(over="ignore", invalid="ignore"):
             probe = np.sqrt(np.einsum("ikn,ikn->kn", y, y)) / PROBE_NORMS[self.m][:, None]
-            cond = self.fro * np.max(probe, axis=0)
+            cond = self.fro * probe.max(axis=0)
         cond[~np.isfinite(cond)] = np.inf
         return cond
 

@@ -149,8 +149,11 @@ class ForceContext:
 
     def _gravity_action(self, link: str) -> Action:
         s = self.links[link]
+        weight = np.empty((self.n, 2))      # (np.broadcast_to costs more than the copy)
+        weight[:] = scaled(s.mass, self.gravity)
+        weight.setflags(write=False)
         return Action(f"G{s.number}", "force", "gravity", link, s.r, f"C{s.number}",
-                      value=np.broadcast_to(scaled(s.mass, self.gravity), (self.n, 2)))
+                      value=weight)
 
     def inertia_actions(self, link: str) -> list[Action]:
         """d'Alembert inertia force -m a_C at the centre of mass and couple -I alpha."""

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..linalg import PROBES, SINGULAR_COND   # the probes of Equilibrated.solve_cond
+from ..linalg import PROBE_NORMS, PROBES, SINGULAR_COND   # Equilibrated's probes
 
 
 def _cross(a: np.ndarray, b: np.ndarray, out: np.ndarray) -> np.ndarray:
@@ -181,8 +181,8 @@ class DyadSystem:
         y[:, :, overflow] = np.inf
         with np.errstate(over="ignore", invalid="ignore"):
             probe = np.sqrt(np.einsum("ikn,ikn->kn", y[:, 1:], y[:, 1:]))
-            probe /= np.sqrt(np.sum(PROBES[:6] ** 2, axis=0))[:, None]
-            cond = self.fro * np.max(probe, axis=0)
+            probe /= PROBE_NORMS[6][:, None]
+            cond = self.fro * probe.max(axis=0)
         cond = np.where(np.isfinite(cond), cond, np.inf)
         cond[overflow] = np.nan
         with np.errstate(over="ignore", invalid="ignore"):
