@@ -75,7 +75,10 @@ class Equilibrated:
 
     def _part(self, here: slice) -> "Equilibrated":
         """The systems at angles ``here`` of this batch, sharing its arrays (views): what
-        :func:`prepare_large` hands out for each of the systems it joined."""
+        :func:`prepare_large` hands out for each of the systems it joined. What a solve
+        writes into them (``exact``; ``As`` set to the identity at exactly singular angles)
+        depends on the matrix alone, at those angles only: parts, and the methods sharing
+        one prepared block, can solve in any order."""
         part = Equilibrated.__new__(Equilibrated)
         part.m, part.n = self.m, here.stop - here.start
         part.rs, part.cs = self.rs[:, here], self.cs[:, here]
@@ -472,7 +475,9 @@ def prepare_large(systems: list[np.ndarray]) -> list[Equilibrated]:
     finite, over n > 1 angles, joined along the angle axis and equilibrated and planned
     together (the second of two Newton-Euler dyad blocks costs a few views, not a few
     dozen numpy calls). Each is solved as it would be alone: every step is per angle, and
-    the constant rows and their plan are those each has alone."""
+    the constant rows and their plan are those each has alone. A system whose constant
+    rows leave a Schur complement of three rows or more is prepared alone: the complement
+    is searched for constant rows in turn, and over joined angles it could find fewer."""
     out: list[Equilibrated | None] = [None] * len(systems)
     sizes: dict[tuple, list[int]] = {}
     for k, At in enumerate(systems):
@@ -493,6 +498,9 @@ def prepare_large(systems: list[np.ndarray]) -> list[Equilibrated]:
                 continue
             hi = top[:, :, i].tolist()
             rows = _rows_of(hi, low[:, :, i].tolist())
+            if rows and m - len(rows) > 2:      # its Schur complement has constant rows of
+                out[k] = Equilibrated(systems[k])   # its own to find: over its angles only
+                continue
             groups.setdefault(tuple((r, tuple(hi[r])) for r in rows), []).append(i)
         for members in groups.values():
             if len(members) == 1:

@@ -93,15 +93,16 @@ def _surely_independent(rows: np.ndarray, rtol: float) -> bool:
     their determinants at a fifth of an SVD's cost: |det| = s_1 ... s_k <= s_min s_max^(k-1)
     and s_max <= ||A||_F, so s_min / s_max >= |det| / ||A||_F^k. The test asks for twice
     ``rtol`` there, far above the determinant's rounding (an LU's, of order k^2 eps
-    ||A||_F^k for k <= 8). False (the SVD decides) where it cannot tell: a ratio below that,
-    more than 8 unknowns, or ||A||_F outside 1e-100 to 1e100 (no overflow or underflow on
-    the way), NaN included."""
+    ||A||_F^k for k <= 8, growth included). False (the SVD decides) where it cannot tell: a
+    ratio below that, more than 8 unknowns, or ||A||_F outside 1e-30 to 1e30, NaN included
+    (within it, ||A||_F^8 and the bound stay far from overflow and underflow: an underflow
+    to 0 would pass any nonzero determinant)."""
     k = rows.shape[1]
     if rows.shape[2] != k or not 1 <= k <= 8:
         return False
     with np.errstate(over="ignore", under="ignore", invalid="ignore"):
         square = np.einsum("pij,pij->p", rows, rows)          # ||A||_F^2
-        if not ((square >= 1e-200) & (square <= 1e200)).all():
+        if not ((square >= 1e-60) & (square <= 1e60)).all():
             return False
         return bool((np.abs(np.linalg.det(rows)) > 2.0 * rtol * square ** (k / 2)).all())
 
