@@ -498,8 +498,8 @@ def prepare_large(systems: list[np.ndarray]) -> list[Equilibrated]:
                 continue
             hi = top[:, :, i].tolist()
             rows = _rows_of(hi, low[:, :, i].tolist())
-            if rows and m - len(rows) > 2:      # its Schur complement has constant rows of
-                out[k] = Equilibrated(systems[k])   # its own to find: over its angles only
+            if rows and m - len(rows) > 2:      # its Schur complement is searched in turn:
+                out[k] = Equilibrated(systems[k])   # over its own angles only
                 continue
             groups.setdefault(tuple((r, tuple(hi[r])) for r in rows), []).append(i)
         for members in groups.values():
