@@ -448,13 +448,9 @@ def prepare_small(systems: list[np.ndarray]) -> list[SmallSystem]:
         ks = [k for k, A in enumerate(systems) if A.shape[0] == m]
         if not ks:
             continue
-        n = systems[ks[0]].shape[2]
-        # over one angle each, alone: einsum sums ||As||_F's squares in another order for one
-        # angle than for several (the condition number's last bit)
-        for part in ([ks] if n > 1 else [[k] for k in ks]):
-            joined = np.concatenate([systems[k] for k in part], axis=2, dtype=np.float64)
-            for k, system in zip(part, prepare_joined(joined, len(part))):
-                out[k] = system
+        joined = np.concatenate([systems[k] for k in ks], axis=2, dtype=np.float64)
+        for k, system in zip(ks, prepare_joined(joined, len(ks))):
+            out[k] = system
     if any(s is None for s in out):
         raise ValueError("prepare_small takes 1x1 and 2x2 systems only")
     return out
@@ -462,11 +458,15 @@ def prepare_small(systems: list[np.ndarray]) -> list[SmallSystem]:
 
 def prepare_joined(At: np.ndarray, count: int) -> list[SmallSystem]:
     """:func:`prepare_small` for ``count`` 1x1 or 2x2 systems already joined along the angle
-    axis, At (m, m, count n), the k-th over angles [k n, (k + 1) n) (n > 1: see
-    :func:`prepare_small`)."""
-    group = _SmallGroup(At)
+    axis, At (m, m, count n), the k-th over angles [k n, (k + 1) n). Systems of one angle
+    are prepared each alone: einsum sums ||As||_F's squares in another order for one angle
+    than for several (the condition number's last bit)."""
     n = At.shape[2] // count
-    return [SmallSystem(group, slice(i * n, (i + 1) * n)) for i in range(count)]
+    if n > 1:
+        group = _SmallGroup(At)
+        return [SmallSystem(group, slice(i * n, (i + 1) * n)) for i in range(count)]
+    return [SmallSystem(_SmallGroup(At[:, :, i * n:(i + 1) * n]), slice(0, n))
+            for i in range(count)]
 
 
 def prepare_large(systems: list[np.ndarray]) -> list[Equilibrated]:
@@ -484,33 +484,25 @@ def prepare_large(systems: list[np.ndarray]) -> list[Equilibrated]:
         sizes.setdefault(At.shape, []).append(k)
     for (m, _, n), ks in sizes.items():
         if n < 2 or len(ks) < 2:
-            for k in ks:
-                out[k] = Equilibrated(systems[k])
             continue
         joined = np.concatenate([systems[k] for k in ks], axis=2)
         each = joined.reshape(m, m, len(ks), n)
         top, low = each.max(axis=3), each.min(axis=3)           # (m, m, k): per system
         finite = (np.isfinite(top) & np.isfinite(low)).all(axis=(0, 1)).tolist()
         groups: dict[tuple, list[int]] = {}
-        for i, k in enumerate(ks):
-            if not finite[i]:
-                out[k] = Equilibrated(systems[k])
-                continue
+        for i in (i for i in range(len(ks)) if finite[i]):
             hi = top[:, :, i].tolist()
             rows = _rows_of(hi, low[:, :, i].tolist())
-            if rows and m - len(rows) > 2:      # its Schur complement is searched in turn:
-                out[k] = Equilibrated(systems[k])   # over its own angles only
-                continue
-            groups.setdefault(tuple((r, tuple(hi[r])) for r in rows), []).append(i)
-        for members in groups.values():
-            if len(members) == 1:
-                out[ks[members[0]]] = Equilibrated(systems[ks[members[0]]])
-                continue
+            # with a Schur complement of 3 rows or more, searched in turn: alone
+            if not rows or m - len(rows) <= 2:
+                groups.setdefault(tuple((r, tuple(hi[r])) for r in rows), []).append(i)
+        for members in (g for g in groups.values() if len(g) > 1):
             whole = Equilibrated(joined if len(members) == len(ks) else np.concatenate(
                 [systems[ks[i]] for i in members], axis=2))
             for j, i in enumerate(members):
                 out[ks[i]] = whole._part(slice(j * n, (j + 1) * n))
-    return out
+    return [Equilibrated(At) if system is None else system
+            for system, At in zip(out, systems)]
 
 
 def angle_last(A: np.ndarray) -> np.ndarray:

@@ -84,9 +84,8 @@ def with_moment(ctx: ForceContext, acts: list[Action], p: np.ndarray) -> list[Ac
 def _coincidence_tol(ctx: ForceContext, p: np.ndarray) -> float:
     """How close (m) a force's point must be to ``p`` (n, 2) at every angle to be taken as
     applied there: 1e-12 of (1 m + the largest coordinate of ``p``), once per point."""
-    def build():
-        return 1e-12 * (1.0 + float(np.abs(p).max(initial=0.0))), p
-    return ctx.once(("coincidence tol", id(p)), build)[0]
+    return ctx.once(("coincidence tol", id(p)),
+                    lambda: 1e-12 * (1.0 + float(np.abs(p).max(initial=0.0))), p)
 
 
 def force_equation(ctx: ForceContext, bodies, acts: list[Action], axis: str,
@@ -98,8 +97,9 @@ def force_equation(ctx: ForceContext, bodies, acts: list[Action], axis: str,
         terms = _force_terms(ctx, acts, d)
         label = f"sum F^{body_tag(ctx, bodies)} . {axis}"
         return Equation(label, kind, tuple(bodies), terms, axis=axis)
-    return _shared(ctx, ("force", tuple(bodies), axis, kind, id(d), *map(id, acts)),
-                   (d, tuple(acts)), build)
+    # (the methods write many of the same equations, and share them as they share actions)
+    return ctx.once(("equation", "force", tuple(bodies), axis, kind, id(d), *map(id, acts)),
+                    build, (d, tuple(acts)))
 
 
 def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
@@ -112,20 +112,16 @@ def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
         terms = _moment_terms(ctx, acts, p, about)
         return Equation(f"sum M_{about}^{body_tag(ctx, bodies)}", "moment", tuple(bodies),
                         terms, about=about)
-    return _shared(ctx, ("moment", tuple(bodies), about, id(p), *map(id, acts)), (p, acts),
-                   build)
+    return ctx.once(("equation", "moment", tuple(bodies), about, id(p), *map(id, acts)),
+                    build, (p, acts))
 
 
 def _force_terms(ctx: ForceContext, acts: list[Action], d: np.ndarray) -> list[Term]:
     """The force actions' :func:`force_term` on ``d``, each built once per context: an
     action enters the force equations of every free body that holds it (terms are
     immutable; several equations share one)."""
-    out = []
-    for a in acts:
-        if a.kind == "force":
-            out.append(ctx.once(("force term", id(a), id(d)),
-                                lambda a=a: (force_term(a, d), a, d))[0])
-    return out
+    return [ctx.once(("force term", id(a), id(d)), lambda a=a: force_term(a, d), (a, d))
+            for a in acts if a.kind == "force"]
 
 
 def _moment_terms(ctx: ForceContext, acts: list[Action], p: np.ndarray,
@@ -133,17 +129,8 @@ def _moment_terms(ctx: ForceContext, acts: list[Action], p: np.ndarray,
     """The actions' :func:`moment_term` about point ``p`` named ``about``, each built once
     per context (see :func:`_force_terms`)."""
     return [ctx.once(("moment term", id(a), id(p), about),
-                     lambda a=a: (moment_term(a, p, ctx.n, about_name=about), a, p))[0]
+                     lambda a=a: moment_term(a, p, ctx.n, about_name=about), (a, p))
             for a in acts]
-
-
-def _shared(ctx: ForceContext, key: tuple, keep, build) -> Equation:
-    """``build()``, once per context and ``key`` (:meth:`ForceContext.once`): the methods
-    write many of the same equations (d'Alembert's, the dyad method's and the contour's
-    moments of one link about its joint), which they then share, as they share actions.
-    ``keep`` holds the arrays and actions whose ids are in the key, so that those ids stay
-    theirs."""
-    return ctx.once(("equation", *key), lambda: (build(), keep))[0]
 
 
 def normal_constraint(ctx: ForceContext, joint: Joint) -> Equation:
@@ -154,7 +141,7 @@ def normal_constraint(ctx: ForceContext, joint: Joint) -> Equation:
         term = Term(act, d.copy(), no_constant(ctx.n), direction=d, kind="projection")
         return Equation(f"{act.symbol} . Delta_{joint.name} = 0", "constraint",
                         (joint.slider,), [term], axis=f"Delta_{joint.name}")
-    return _shared(ctx, ("normal", joint.name), None, build)
+    return ctx.once(("equation", "normal", joint.name), build)
 
 
 def newton_euler_equations(ctx: ForceContext, link: str) -> list[Equation]:

@@ -38,13 +38,11 @@ def _point_owner(joint: Joint) -> str:
 def _points_used(spec, loads) -> list[tuple[str, tuple]]:
     """(link, local point) of every point the force methods ask for: the centres of mass,
     where the joints' reactions act, where the loads act."""
-    def local(link: str, name: str):
-        return (spec.ground if link == GROUND else spec.link(link).points)[name]
     out = [(link.name, link.com) for link in spec.links]
     for j in spec.joints:
         owner = _point_owner(j)
-        out.append((owner, local(owner, j.point)))
-    out += [(ld.link, local(ld.link, ld.point)) for ld in loads if ld.force is not None]
+        out.append((owner, spec.points_of(owner)[j.point]))
+    out += [(ld.link, spec.points_of(ld.link)[ld.point]) for ld in loads if ld.force is not None]
     return out
 
 
@@ -120,11 +118,15 @@ class ForceContext:
                 np.asarray(self.spec.ground[name]), (self.n, 2)))
         return self.kin.named_point(name).r
 
-    def once(self, key: tuple, build):
-        """``build()``, computed once per context and ``key`` (actions are immutable)."""
+    def once(self, key: tuple, build, keep=None):
+        """``build()``, computed once per context and ``key`` (actions are immutable).
+        ``keep``: the objects whose ids are in ``key`` (arrays, actions), kept as long as the
+        answer, so that those ids stay theirs."""
         value = self.cache.get(key, _MISSING)
         if value is _MISSING:
             value = self.cache[key] = build()
+            if keep is not None:
+                self.cache[("kept", key)] = keep
         return value
 
     def reaction(self, joint: Joint, on: str) -> list[Action]:

@@ -19,7 +19,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..linalg import (SINGULAR_COND, Equilibrated, SmallSystem, prepare_joined, prepare_large,
-                      prepare_small, solve_cond)
+                      solve_cond)
 
 
 @lru_cache(maxsize=4)
@@ -299,11 +299,10 @@ def prepare_blocks(chains: list[list[Step]], n: int) -> dict[int, SmallSystem | 
     """The blocks of ``chains`` (several methods' blocks) ready to be solved for their
     right-hand sides, by ``id`` of the block (the caller keeps the blocks), a block of the
     same equations for the same unknowns as another (methods share equations) prepared
-    once. The 1x1 and 2x2 blocks are prepared all together
-    (:func:`mechreport.linalg.prepare_small`: one pass of numpy calls instead of one per
-    block, the same numbers), their matrices written in one pass per size
-    (:func:`joined_matrices`); larger blocks of one size and the same constant rows too
-    (:func:`mechreport.linalg.prepare_large`)."""
+    once. The 1x1 and 2x2 blocks of one size are prepared all together, their matrices
+    written in one pass (:func:`joined_matrices`, :func:`mechreport.linalg.prepare_joined`:
+    one pass of numpy calls instead of one per block, the same numbers); larger blocks of
+    one size and the same constant rows too (:func:`mechreport.linalg.prepare_large`)."""
     index: dict[tuple, int] = {}
     unique: list[Step] = []
     where: list[tuple[int, int]] = []
@@ -318,14 +317,10 @@ def prepare_blocks(chains: list[list[Step]], n: int) -> dict[int, SmallSystem | 
     systems: list = [None] * len(unique)
     for m in (1, 2):
         part = [i for i, blk in enumerate(unique) if len(blk.unknowns) == m]
-        if not part:
-            continue
-        if n > 1:
+        if part:
             ready = prepare_joined(joined_matrices([unique[i] for i in part], n), len(part))
-        else:           # one angle: each alone (see linalg.prepare_small)
-            ready = prepare_small([step_matrix(unique[i], n) for i in part])
-        for i, system in zip(part, ready):
-            systems[i] = system
+            for i, system in zip(part, ready):
+                systems[i] = system
     large = [i for i, blk in enumerate(unique) if len(blk.unknowns) > 2]
     for i, system in zip(large, prepare_large([step_matrix(unique[i], n) for i in large])):
         systems[i] = system

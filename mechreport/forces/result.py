@@ -152,8 +152,7 @@ def slider_point(ctx, joint, fx: np.ndarray, fy: np.ndarray, m: np.ndarray,
     u = ctx.line_direction(joint)
     s = u[:, 0] * fy - u[:, 1] * fx                 # u x f
     if top is None:                                 # (NaN if any component is NaN)
-        a, b = np.abs(fx).max(initial=0.0), np.abs(fy).max(initial=0.0)
-        top = a if a >= b or a != a else b
+        top = np.maximum(np.abs(fx).max(initial=0.0), np.abs(fy).max(initial=0.0))
     scale = np.maximum(top, 1e-300)
     with np.errstate(divide="ignore", invalid="ignore"):
         t = np.where(np.abs(s) > 1e-12 * scale, m / s, np.nan)
@@ -208,4 +207,4 @@ def chain(ctx, steps) -> list[Step]:
     theirs)."""
     from .equations import triangular_blocks
     return ctx.once(("chain", id(steps)),
-                    lambda: (steps, [b for step in steps for b in triangular_blocks(step)]))[1]
+                    lambda: [b for step in steps for b in triangular_blocks(step)], steps)

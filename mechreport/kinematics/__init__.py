@@ -277,8 +277,8 @@ def _rate_systems(spec, groups, frames: LinkFrames, size: float) -> dict[int, tu
     """(equations, system, rs, cs) for each group but the driver's crank, by ``id`` of the
     group: a dyad's solved through its structure (:class:`DyadSystem`, in its own form: rs
     and cs None), every dyad's prepared together (:meth:`DyadSystem.joined`: one pass of
-    numpy calls for all of them, the same numbers; over a single angle each alone); a Newton
-    group's by :func:`_newton_system`."""
+    numpy calls for all of them, the same numbers); a Newton group's by
+    :func:`_newton_system`."""
     out = {}
     dyads = []
     for group in groups:
@@ -289,11 +289,7 @@ def _rate_systems(spec, groups, frames: LinkFrames, size: float) -> dict[int, tu
             dyads.append((group, eqs))
         else:
             out[id(group)] = (eqs, *_newton_system(spec, group, eqs, size))
-    if len(dyads) > 1 and frames.n > 1:
-        systems = DyadSystem.joined([eqs for _, eqs in dyads])
-    else:
-        systems = [DyadSystem(eqs) for _, eqs in dyads]
-    for (group, eqs), system in zip(dyads, systems):
+    for (group, eqs), system in zip(dyads, DyadSystem.joined([eqs for _, eqs in dyads])):
         out[id(group)] = (eqs, system, None, None)
     return out
 

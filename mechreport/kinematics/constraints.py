@@ -23,10 +23,6 @@ from ..spec import GROUND, Joint, Spec
 from .frames import LinkFrames, dot, perp
 
 
-def _pts(spec: Spec, link: str) -> dict:
-    return spec.ground if link == GROUND else spec.link(link).points
-
-
 @dataclass(frozen=True)
 class RGeometry:
     """An R joint between links ``a`` and ``b`` at every angle: the joint's point from each
@@ -99,11 +95,11 @@ def geometry(spec: Spec, joint: Joint, frames: LinkFrames) -> RGeometry | TGeome
     follow from them)."""
     if joint.type == "R":
         a, b = joint.links
-        return RGeometry(a, b, frames.rotate(a, _pts(spec, a)[joint.name]),
-                         frames.rotate(b, _pts(spec, b)[joint.name]))
+        return RGeometry(a, b, frames.rotate(a, spec.points_of(a)[joint.name]),
+                         frames.rotate(b, spec.points_of(b)[joint.name]))
     g, s = joint.guide, joint.slider
     u = frames.rotate(g, joint.line.direction)
-    s_p = frames.rotate(s, _pts(spec, s)[joint.point])
+    s_p = frames.rotate(s, spec.points_of(s)[joint.point])
     s_l = frames.rotate(g, joint.line.through)
     e = (frames.r[s] + s_p) - (frames.r[g] + s_l)
     return TGeometry(g, s, u, perp(u), s_p, s_l, e)

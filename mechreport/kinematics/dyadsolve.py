@@ -51,27 +51,32 @@ class DyadSystem:
     (``order``: the group's row slices in that order)."""
 
     def __init__(self, eqs):
-        self._prepare([eqs])
+        self.order = self._prepare([eqs])[0]
 
     @classmethod
     def joined(cls, eqs_list: list) -> list["DyadSystem"]:
-        """One system per dyad of ``eqs_list`` (each a RateEquations over the same n > 1
-        angles), prepared together: their matrices joined along the angle axis and
-        equilibrated, factored and probed in one pass (each dyad's numbers are those it gets
-        alone: every step is per angle, and einsum sums each angle in the same order for
-        any number of angles above one). What is left per dyad is its own solves."""
+        """One system per dyad of ``eqs_list`` (each a RateEquations over the same angles),
+        prepared together: their matrices joined along the angle axis and equilibrated,
+        factored and probed in one pass (each dyad's numbers are those it gets alone: every
+        step is per angle, and einsum sums each angle in the same order for any number of
+        angles above one; over a single angle each is prepared alone). What is left per
+        dyad is its own solves."""
+        n = eqs_list[0].frames.n if eqs_list else 0
+        if len(eqs_list) < 2 or n < 2:
+            return [cls(eqs) for eqs in eqs_list]
         whole = cls.__new__(cls)
-        whole._prepare(eqs_list)
-        n = eqs_list[0].frames.n
-        return [whole._part(i, n) for i in range(len(eqs_list))]
+        orders = whole._prepare(eqs_list)
+        return [whole._part(i, n, order) for i, order in enumerate(orders)]
 
-    def _prepare(self, eqs_list: list) -> None:
+    def _prepare(self, eqs_list: list) -> list:
+        """Equilibrate and factor the dyads' systems joined along the angle axis; each
+        dyad's row order (see the class docstring)."""
         step = eqs_list[0].frames.n                      # each dyad's angles
         self.n = n = step * len(eqs_list)
         # D[outer or inner, link, row, column, angle]: P_k, then the inner rows' C_k
         D = np.empty((2, 2, 2, 3, n))
         D.fill(0.0)   # (np.zeros' lazily zeroed pages would be touched twice: read, write)
-        self.orders = []
+        orders = []
         for i, eqs in enumerate(eqs_list):
             links, here = eqs.group.links, slice(i * step, (i + 1) * step)
             order: list = [None, None, None]
@@ -80,8 +85,7 @@ class DyadSystem:
                 kind = 1 if len(mine) == 2 else 0
                 geo.write_blocks({links[k]: D[kind, k, ..., here] for k in mine})
                 order[2 if kind else mine[0]] = rows
-            self.orders.append(order)
-        self.order = self.orders[0]
+            orders.append(order)
         self._equilibrate(D)
         P, C = D[0], D[1]
         u, v = P[:, 0], P[:, 1]                          # (link, 3, n)
@@ -98,13 +102,15 @@ class DyadSystem:
         self._scratch = D.reshape(-1)    # D is no longer needed: room for right-hand sides
         self.det = M[0, 0] * M[1, 1] - M[0, 1] * M[1, 0]
         self.exact = (self.det == 0) | ~np.isfinite(inv).all(axis=0)   # exactly singular
+        return orders
 
-    def _part(self, i: int, n: int) -> "DyadSystem":
-        """Dyad ``i`` of a joined system: every array's angles [i n, (i + 1) n), and its
-        own stretch of the scratch memory (24 n numbers, of which a solve uses 18 n)."""
+    def _part(self, i: int, n: int, order: list) -> "DyadSystem":
+        """Dyad ``i`` of a joined system, rows in ``order``: every array's angles [i n,
+        (i + 1) n), and its own stretch of the scratch memory (24 n numbers, of which a
+        solve uses 18 n)."""
         part = DyadSystem.__new__(DyadSystem)
         here = slice(i * n, (i + 1) * n)
-        part.n, part.order = n, self.orders[i]
+        part.n, part.order = n, order
         part.rs = tuple(r[..., here] for r in self.rs)
         part.cs, part.overflow, part.fro = self.cs[:, here], self.overflow[here], self.fro[here]
         part.N, part.pinv, part.M = self.N[..., here], self.pinv[..., here], self.M[..., here]

@@ -245,9 +245,9 @@ def _anchor(spec: Spec, group: Group, link: str, known: Poses, ref: int):
         if j.type == "R" and link in j.links:
             other = j.links[1] if j.links[0] == link else j.links[0]
             if other in known:
-                pts = spec.ground if other == GROUND else spec.link(other).points
                 at = point_global({other: (known[other][0][ref:ref + 1],
-                                           known[other][1][ref:ref + 1])}, other, pts[j.name])
+                                           known[other][1][ref:ref + 1])}, other,
+                                  spec.points_of(other)[j.name])
                 return at[0], spec.link(link).points[j.name]
     return None
 

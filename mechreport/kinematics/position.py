@@ -61,10 +61,6 @@ def point_global(poses: Poses, link: str, local, trig: Trig | None = None) -> np
     return r + (rotate(local, th) if trig is None else trig.rotate(local, th))
 
 
-def _points(spec: Spec, link: str) -> dict:
-    return spec.ground if link == GROUND else spec.link(link).points
-
-
 def _other(joint: Joint, link: str) -> str:
     return joint.links[1] if joint.links[0] == link else joint.links[0]
 
@@ -78,10 +74,10 @@ def t_line(spec: Spec, joint: Joint, unknown: str, poses: Poses, theta_u: np.nda
         guide_r, guide_th = poses[joint.guide]
         n = rotate(n_loc, guide_th)
         through = guide_r + rotate(line.through, guide_th)
-        slider_point = _points(spec, unknown)[joint.point]
+        slider_point = spec.points_of(unknown)[joint.point]
         return n, dot(n, through - rotate(slider_point, theta_u))
     n = rotate(n_loc, theta_u)
-    s = point_global(poses, joint.slider, _points(spec, joint.slider)[joint.point])
+    s = point_global(poses, joint.slider, spec.points_of(joint.slider)[joint.point])
     return n, dot(n, s - rotate(line.through, theta_u))
 
 
@@ -117,11 +113,11 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses, trig: Trig | None = No
     if kind in ("TRR", "TTR"):  # normalise: the R outer joint on link i
         i, j, oi, oj = j, i, oj, oi
         kind = kind[::-1]
-    pi, pj = _points(spec, i), _points(spec, j)
+    pi, pj = spec.points_of(i), spec.points_of(j)
 
     def pivot(outer: Joint, link: str):
         known = _other(outer, link)
-        return point_global(poses, known, _points(spec, known)[outer.name], trig)
+        return point_global(poses, known, spec.points_of(known)[outer.name], trig)
 
     out: list[Poses] = []
     if kind == "RRR":
@@ -163,7 +159,7 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses, trig: Trig | None = No
         g, s = inner.guide, inner.slider
         og, os_ = (oi, oj) if g == i else (oj, oi)
         kg, ks = pivot(og, g), pivot(os_, s)
-        pg, ps = _points(spec, g), _points(spec, s)
+        pg, ps = spec.points_of(g), spec.points_of(s)
         line = inner.line
         nl = perp(np.asarray(line.direction, float))
         a = (np.array(ps[inner.point]) - np.array(ps[os_.name]) - np.array(line.through)

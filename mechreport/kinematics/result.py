@@ -213,8 +213,7 @@ class Kinematics:
         """A named point of ``link`` (default: the first link in spec order that has it)."""
         spec = self.mechanism.spec
         link = link or spec.point_owner(name)
-        pts = spec.ground if link == GROUND else spec.link(link).points
-        return self.point(link, pts[name])
+        return self.point(link, spec.points_of(link)[name])
 
     def com(self, link: str) -> PointState:
         return self.point(link, self.mechanism.spec.link(link).com)

@@ -335,6 +335,10 @@ class Spec:
                 return joint
         raise KeyError(name)
 
+    def points_of(self, link: str) -> dict:
+        """The named points of ``link`` (the ground's, for the ground) in its frame [m]."""
+        return self.ground if link == GROUND else self.link(link).points
+
     def point_owner(self, point: str) -> str | None:
         """The first link, in ``links`` order, that has ``point`` (None if no link has it)."""
         for link in self.links:
