@@ -908,3 +908,39 @@ def test_forces_at_the_moment_centre_are_those_at_it_at_every_angle():
              if a.kind != "force" or not (np.abs(a.at - p) <= tol).all()]
     assert kept == plain == ["late", "first", "nan", "far", "nan first", "M"]
     assert [a.symbol for a in with_moment(ctx, acts, p)] == kept     # from the memo
+
+
+def _shape(mech):
+    """A mechanism's structure by name, every joint checked to be its own spec's."""
+    own = {j.name: j for j in mech.spec.joints}
+
+    def names(joints):
+        assert all(j is own[j.name] for j in joints)
+        return tuple(j.name for j in joints)
+    groups = [(g.links, names(g.joints), g.driver, g.dyad and (g.dyad.links,
+               names(g.dyad.outer), names([g.dyad.inner]))) for g in mech.groups]
+    loops = [[(l.links, names(l.joints)) for l in ls] for ls in (mech.loops, mech.cycles)]
+    return groups, loops
+
+
+def test_structure_found_once_per_topology_equals_a_fresh_one(monkeypatch):
+    """build_mechanism keeps each topology's structure: another spec of the same topology
+    (other numbers) gets it bound to its own joints, equal to one found afresh; another
+    order of the joints is another topology."""
+    import mechreport.model as model
+    from mechreport.spec.loader import parse_spec
+    text = (ROOT / "specs" / "r_rtr_rtr.yaml").read_text()
+    moved = text.replace("C: [0, 0.06]", "C: [0, 0.07]")
+    joints = text.index("  A:   {type: R"), text.index("\ndriver:")
+    lines = text[joints[0]:joints[1]].splitlines(keepends=True)
+    reordered = text[:joints[0]] + "".join(lines[::-1]) + text[joints[1]:]
+    assert moved != text and reordered != text
+    specs = [parse_spec(t, "r_rtr_rtr.yaml") for t in (text, text, moved, reordered)]
+    monkeypatch.setattr(model, "_STRUCTURES", {})
+    kept = [build_mechanism(s) for s in specs]
+    assert len(model._STRUCTURES) == 2                  # the reordered joints: another key
+    for spec, mech in zip(specs, kept):
+        assert mech.spec is spec
+        monkeypatch.setattr(model, "_STRUCTURES", {})
+        assert _shape(mech) == _shape(build_mechanism(spec))
+    assert [g.links for g in kept[0].groups] == [g.links for g in kept[3].groups]

@@ -27,7 +27,7 @@ from itertools import combinations
 import numpy as np
 
 from ..errors import UnsupportedMechanism
-from ..model import Loop, all_loops
+from ..model import Loop
 from ..spec import GROUND, Joint
 from .builders import force_equation, moment_equation, normal_constraint, with_moment
 from .context import ForceContext, reaction_unknowns
@@ -376,7 +376,7 @@ def _search(ctx: ForceContext) -> tuple[tuple[Step, ...], dict[int, tuple]]:
     built (:func:`_recipes`)."""
     spec = ctx.spec
     drv = spec.driver.joint
-    loops = sorted(all_loops(spec), key=lambda l: (drv in {j.name for j in l.joints},
+    loops = sorted(ctx.mech.cycles, key=lambda l: (drv in {j.name for j in l.joints},
                                                   len(l.joints), sorted(j.name for j in l.joints)))
     probes = _probes(ctx.n)
     known: set[str] = set()

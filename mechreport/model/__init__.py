@@ -1,7 +1,7 @@
 """Stage 2: the mechanism model: joint graph, dyads (Assur groups) and loops (contours)."""
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 from ..spec import GROUND, Joint, Spec
 from .dyads import Dyad
@@ -12,11 +12,13 @@ from .groups import Group, decompose_groups
 @dataclass(frozen=True)
 class Mechanism:
     """A validated spec with its structure: Assur groups in solving order (the driver's
-    first) and independent loops."""
+    first), independent loops, and every simple cycle (``cycles``, shortest first: the
+    contour method's candidates)."""
 
     spec: Spec
     groups: tuple[Group, ...]
     loops: tuple[Loop, ...]
+    cycles: tuple[Loop, ...]
 
     @property
     def dyads(self) -> tuple[Dyad, ...]:
@@ -38,15 +40,35 @@ class Mechanism:
         def dyad(d: Dyad | None) -> Dyad | None:
             if d is None:
                 return None
-            return replace(d, outer=rebind(d.outer), inner=own[d.inner.name])
-        groups = tuple(replace(g, joints=rebind(g.joints), dyad=dyad(g.dyad)) for g in self.groups)
-        loops = tuple(replace(l, joints=rebind(l.joints)) for l in self.loops)
-        return Mechanism(spec, groups, loops)
+            return Dyad(d.links, rebind(d.outer), own[d.inner.name])
+        groups = tuple(Group(g.links, rebind(g.joints), g.driver, dyad(g.dyad))
+                       for g in self.groups)
+        return Mechanism(spec, groups, tuple(Loop(l.links, rebind(l.joints)) for l in self.loops),
+                         tuple(Loop(l.links, rebind(l.joints)) for l in self.cycles))
+
+
+# The structure of the last few topologies met, bound to the first spec of each: a batch or a
+# study analyses many specs of one topology, whose structure is found once (it depends on the
+# names, types and links of the joints, the links' order and the driver joint, nothing else).
+_STRUCTURES: dict[tuple, Mechanism] = {}
+_STRUCTURES_KEPT = 64
+
+
+def _topology(spec: Spec) -> tuple:
+    return (tuple(l.name for l in spec.links),
+            tuple((j.name, j.type, j.links) for j in spec.joints), spec.driver.joint)
 
 
 def build_mechanism(spec: Spec) -> Mechanism:
     """Raises ``UnsupportedMechanism`` when the links do not form Assur groups."""
-    return Mechanism(spec, decompose_groups(spec), cycle_basis(spec))
+    key = _topology(spec)
+    known = _STRUCTURES.get(key)
+    if known is None:
+        known = Mechanism(spec, decompose_groups(spec), cycle_basis(spec), all_loops(spec))
+        if len(_STRUCTURES) >= _STRUCTURES_KEPT:
+            _STRUCTURES.clear()
+        _STRUCTURES[key] = known
+    return known if known.spec is spec else known.with_spec(spec)
 
 
 __all__ = ["Mechanism", "build_mechanism", "Dyad", "Group", "Loop", "GROUND", "all_loops"]
