@@ -225,6 +225,30 @@ def test_frame_load_is_the_mechanism_momentum_balance(spec_path):
     np.testing.assert_allclose(frame.m, moment, rtol=0, atol=1e-9 * mscale)
 
 
+def test_newton_rows_solved_together_equal_each_row_alone(monkeypatch):
+    """Damped Newton iterates only the rows not yet converged (a converged row is left as it
+    is): the 96 starting poses of the triad's assembly, solved together, give bit for bit
+    what each start gives alone, where it converges and where it does not."""
+    from mechreport.kinematics import groups, solve_kinematics
+    from mechreport.model import build_mechanism
+    calls = []
+    real = groups.newton
+
+    def keep(*args, **kw):
+        calls.append((args, kw))
+        return real(*args, **kw)
+    monkeypatch.setattr(groups, "newton", keep)
+    solve_kinematics(build_mechanism(load_spec(TRIAD)))
+    (spec, group, q0, known, idx, value, scale), _ = calls[0]      # the assembly's starts
+    assert len(q0) == groups.STARTS
+    q, ok = real(spec, group, q0, known, idx, value, scale, steps=30)
+    assert 0 < ok.sum() < len(ok)              # some converge within 30 steps, some do not
+    for k in range(len(q0)):
+        qk, okk = real(spec, group, q0[k:k + 1], known, idx[k:k + 1], value, scale, steps=30)
+        assert okk[0] == ok[k]
+        np.testing.assert_array_equal(qk[0], q[k])
+
+
 def test_fine_samples_solved_at_once_must_stay_on_the_followed_branch(monkeypatch):
     """A Newton group followed over more than COARSE samples solves the samples between the
     coarse ones at once, each from an interpolated guess. One of them converging elsewhere (an

@@ -158,22 +158,27 @@ def newton(spec: Spec, group: Group, q: np.ndarray, known: Poses, idx: np.ndarra
     """Damped Newton-Raphson from ``q`` (m, 3k) at angle indices ``idx`` (m,); returns the
     solution and where it converged (m,) bool: every residual (lengths [m], angles [rad])
     below 1e-13 of ``scale`` (the mechanism's size); converged rows are then polished by one
-    more step. With ``patience``, it gives up once no further row has converged for that
-    many iterations (for many starting poses, some of which never converge)."""
+    more step. Each iteration evaluates only the rows not converged yet (the rows are
+    independent: a row's result is the one it gets alone). With ``patience``, it gives up
+    once no further row has converged for that many iterations (for many starting poses,
+    some of which never converge)."""
     q = q.copy()
     tol = 1e-13 * scale      # lengths [m]; angle rows [rad] are held to the same number
     done = np.zeros(len(q), bool)
+    active = np.arange(len(q))  # the rows not converged yet: a converged row stays as it is
     best, since = 0, 0
     for _ in range(steps):
-        F, J = _equations_at(spec, group, q, known, idx, value, scale)
-        done = np.max(np.abs(F), axis=1) <= tol
+        F, J = _equations_at(spec, group, q[active], known, idx[active], value, scale)
+        moving = ~(np.max(np.abs(F), axis=1) <= tol)      # (NaN: not converged)
+        done[active[~moving]] = True
         if done.all():
             break
         count = int(done.sum())
         best, since = (count, 0) if count > best else (best, since + 1)
         if patience is not None and best and since >= patience:
             break
-        q = np.where(done[:, None], q, q + _damped_step(J, F, q.shape[1], scale))
+        active = active[moving]
+        q[active] += _damped_step(J[moving], F[moving], q.shape[1], scale)
     if done.any():           # quadratic convergence: one more step reaches round-off
         F, J = _equations_at(spec, group, q[done], known, idx[done], value, scale)
         q[done] += _damped_step(J, F, q.shape[1], scale)
