@@ -122,11 +122,13 @@ def wrap_angle(angle: np.ndarray) -> np.ndarray:
     return (angle + np.pi) % (2 * np.pi) - np.pi
 
 
-def driver_row(spec: Spec, frames: LinkFrames, v=None, w=None):
+def driver_row(spec: Spec, frames: LinkFrames, v=None, w=None,
+               geo: RGeometry | TGeometry | None = None):
     """The driven coordinate's constraint q_d(q) = value: its current value (n,) [rad or m],
     Jacobian blocks {link: (3, n)} and, given velocities, gamma (n,) (the part of its second
     time derivative not in J qddot). R with ground: the moving link's angle (the crank angle);
-    R between moving links: theta_second - theta_first; T: the stroke e . u."""
+    R between moving links: theta_second - theta_first; T: the stroke e . u. ``geo``: the
+    driver joint's :func:`geometry` at ``frames``, if already computed (a T joint's is used)."""
     d = spec.driver
     joint = spec.joint(d.joint)
     th = frames.th
@@ -141,7 +143,8 @@ def driver_row(spec: Spec, frames: LinkFrames, v=None, w=None):
         ba, bb = np.zeros((3, n)), np.zeros((3, n))
         ba[2], bb[2] = -1.0, 1.0
         return th[b] - th[a], {a: ba, b: bb}, (np.zeros(n) if w is not None else None)
-    geo = geometry(spec, joint, frames)
+    if geo is None:
+        geo = geometry(spec, joint, frames)
     g, s = geo.guide, geo.slider
     u, e = geo.u, geo.e
     bs, bg = np.zeros((3, n)), np.zeros((3, n))

@@ -81,12 +81,13 @@ class RateEquations:
         self.rows: list[slice] = []
         self.drow = self._driver = self.driver_value = None
         row = 0
-        for joint in group.joints:
+        for joint, geo in zip(group.joints, self.geometry):
             self.rows.append(slice(row, row + 2))
             row += 2
             if joint.name == group.driver:
                 self.drow = row
-                self.driver_value, self._driver, _ = driver_row(spec, frames)
+                self._driver_geo = geo
+                self.driver_value, self._driver, _ = driver_row(spec, frames, geo=geo)
                 row += 1
 
     @cached_property
@@ -132,7 +133,7 @@ class RateEquations:
         for rows, geo in zip(self.rows, self.geometry):
             out[rows] = geo.gamma(v, w)
         if self.drow is not None:
-            out[self.drow] = driver_row(self.spec, self.frames, v, w)[2]
+            out[self.drow] = driver_row(self.spec, self.frames, v, w, self._driver_geo)[2]
         return out
 
 
