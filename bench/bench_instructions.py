@@ -4,6 +4,7 @@ does not move with the machine's load (here timings vary up to 2x within an hour
 change of a few percent can be measured in one run.
 
     .venv/bin/python bench/bench_instructions.py [--only STAGE,...] [--against REV]
+                                                 [--function MODULE:NAME,...]
                                                  [SPEC_NAME ...]   (default: r_rtr_rtr)
 
 ``--only analyse`` counts the whole load and analyse alone (about 15 s a spec, where every
@@ -11,7 +12,11 @@ stage takes a few minutes); ``--against REV`` counts the code of git revision RE
 temporary ``git worktree``, imported first), on the same specs of this checkout, and
 prints both columns: a before/after table in one command. The stages other than analyse
 call the package's internals as they are now: against an older revision, ``--only
-analyse``.
+analyse``. ``--function mechreport.forces.contour:_search`` counts what each named function
+(``module:name`` or ``module:Class.method``) costs, callees included, per load and analyse,
+and how often it is called: a call inside another measured one is counted once. It needs
+valgrind's callgrind.h and a C compiler (a client request switches the count, a few thousand
+instructions a call, where ``callgrind_control`` costs half a million).
 
 Needs valgrind (Debian package valgrind); each spec takes a few minutes under it. Each
 stage is counted over 5 runs after 3 warm-up runs in the same process (the structure
@@ -35,11 +40,16 @@ ROOT = Path(__file__).resolve().parents[1]
 STAGES = ("empty", "parse", "kinematics", "context", "equations", "prepare", "newton_euler",
           "dalembert", "dyad", "contour", "power", "checks", "analyse")
 RUNS, WARM = 5, 3
+FUNCTIONS = "functions="           # the child's stage for --function
+SHIM = "#include <valgrind/callgrind.h>\nvoid toggle(void) { CALLGRIND_TOGGLE_COLLECT; }\n"
 
 
 def _child(name: str, stage: str) -> None:
     """Run inside valgrind: count ``stage`` of RUNS analyses of specs/NAME.yaml."""
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    if stage.startswith(FUNCTIONS):
+        _child_functions(name, stage[len(FUNCTIONS):].split(","))
+        return
     from mechreport.analysis import analyse
     from mechreport.spec import Sweep
     from mechreport.spec.loader import parse_spec
@@ -108,6 +118,111 @@ def _child(name: str, stage: str) -> None:
         run(True)
 
 
+def _child_functions(name: str, targets: list[str]) -> None:
+    """Run inside valgrind (collection off at start): switch the count on around each
+    outermost call of the ``targets`` (``module:name``) over RUNS analyses; print the
+    calls."""
+    import ctypes
+    import importlib
+    from mechreport.analysis import analyse
+    from mechreport.spec import Sweep
+    from mechreport.spec.loader import parse_spec
+    toggle = ctypes.CDLL(os.environ["BENCH_SHIM"]).toggle
+    state = {"depth": 0, "measure": False, "calls": 0}
+
+    def counted(fn):
+        def wrapper(*args, **kwargs):
+            outer = state["depth"] == 0 and state["measure"]
+            state["depth"] += 1
+            if outer:
+                state["calls"] += 1
+                toggle()
+            try:
+                return fn(*args, **kwargs)
+            finally:
+                if outer:
+                    toggle()
+                state["depth"] -= 1
+        return wrapper
+
+    for target in targets:
+        if target == "empty":                 # the switching alone
+            continue
+        module, _, qualname = target.partition(":")
+        owner = importlib.import_module(module)
+        *path, attr = qualname.split(".")
+        for part in path:
+            owner = getattr(owner, part)
+        fn = getattr(owner, attr)
+        wrapped = counted(fn)
+        setattr(owner, attr, wrapped)
+        if not path:                          # and where it was imported by name
+            for mod in list(sys.modules.values()):
+                if getattr(mod, "__name__", "").startswith("mechreport") \
+                        and getattr(mod, attr, None) is fn:
+                    setattr(mod, attr, wrapped)
+    text = (ROOT / "specs" / f"{name}.yaml").read_text()
+
+    def run() -> None:
+        spec = parse_spec(text, f"{name}.yaml")
+        analyse(dataclasses.replace(spec, sweep=Sweep(0.0, 360.0, 10.0), at=(30.0,),
+                                    expect=()))
+    for _ in range(WARM):
+        run()
+    state["measure"] = True
+    for _ in range(RUNS):
+        if targets == ["empty"]:
+            state["calls"] += 1
+            toggle()
+            toggle()
+        run()
+    print(f"calls: {state['calls']}", file=sys.stderr)
+
+
+def _shim(tmp: Path) -> Path:
+    """The client-request shim (a shared library), compiled into ``tmp``."""
+    src, lib = tmp / "shim.c", tmp / "shim.so"
+    src.write_text(SHIM)
+    cc = shutil.which("cc") or shutil.which("gcc")
+    made = subprocess.run([cc or "cc", "-O2", "-shared", "-fPIC", "-o", str(lib), str(src)],
+                          capture_output=True, text=True, check=False) if cc else None
+    if made is None or made.returncode != 0:
+        raise SystemExit("--function needs a C compiler and valgrind's callgrind.h "
+                         "(Debian: gcc, valgrind)" + (f":\n{made.stderr}" if made else ""))
+    return lib
+
+
+_SWITCHING: dict = {}      # (spec, code) -> the switching's count and its pairs
+
+
+def function_counts(name: str, targets: list[str], shim: Path,
+                    code: Path | None = None) -> tuple[float, int]:
+    """Million instructions per analysis of the ``targets`` (switching taken off) and
+    their outermost calls per analysis."""
+    def once(which: list[str]) -> tuple[int, int]:
+        env = dict(os.environ, BENCH_SHIM=str(shim))
+        env.setdefault("PYTHONHASHSEED", "0")
+        if code is not None:
+            env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(code),
+                                                              env.get("PYTHONPATH")]))
+        out = subprocess.run(
+            ["valgrind", "--tool=callgrind", "--collect-atstart=no",
+             "--callgrind-out-file=/dev/null", sys.executable, __file__, "--child", name,
+             FUNCTIONS + ",".join(which)],
+            capture_output=True, text=True, check=False, cwd=code or ROOT, env=env)
+        found = re.search(r"Collected\s*:\s*(\d+)", out.stderr)
+        calls = re.search(r"calls: (\d+)", out.stderr)
+        if found is None or calls is None:
+            raise SystemExit(f"valgrind gave no count for {name} {which}:\n"
+                             f"{out.stderr[-2000:]}")
+        return int(found.group(1)), int(calls.group(1))
+    if (name, code) not in _SWITCHING:
+        _SWITCHING[name, code] = once(["empty"])
+    empty, pairs = _SWITCHING[name, code]
+    total, calls = once(targets)
+    return (total - calls * empty / pairs) / RUNS / 1e6, calls // RUNS
+
+
 def instructions(name: str, stage: str, code: Path | None = None) -> int:
     """Instructions counted for ``stage`` over RUNS runs (switching cost included), of the
     package in ``code`` (a checkout imported first) or of this one."""
@@ -138,6 +253,8 @@ def _options(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--only", type=lambda v: v.split(","), default=list(STAGES[1:]),
                         metavar="STAGE,...", help=f"stages: {', '.join(STAGES[1:])}")
     parser.add_argument("--against", metavar="REV", help="count git revision REV too")
+    parser.add_argument("--function", type=lambda v: v.split(","), metavar="MODULE:NAME,...",
+                        help="count these functions (callees included) instead of stages")
     parser.add_argument("names", nargs="*", default=["r_rtr_rtr"], metavar="SPEC_NAME")
     args = parser.parse_args(argv)
     unknown = [stage for stage in args.only if stage not in STAGES[1:]]
@@ -155,6 +272,7 @@ def main() -> None:
     args = _options(sys.argv[1:])
     stages, against, names = args.only, args.against, args.names
     with tempfile.TemporaryDirectory(prefix="bench-before-") as tmp:
+        shim = _shim(Path(tmp)) if args.function else None
         before = None
         if against is not None:
             before = Path(tmp) / "code"
@@ -164,7 +282,10 @@ def main() -> None:
                 raise SystemExit(f"git worktree add {against}: {made.stderr.strip()}")
         try:
             for name in names:
-                _report(name, stages, before, against)
+                if shim is not None:
+                    _report_functions(name, args.function, shim, before, against)
+                else:
+                    _report(name, stages, before, against)
         finally:
             if before is not None:
                 subprocess.run(["git", "worktree", "remove", "--force", str(before)],
@@ -185,6 +306,19 @@ def _report(name: str, stages: list[str], before: Path | None, against: str | No
         print(f"  {'(sum of stages)':<14}"
               + (f"{sum(old[s] for s in parts):8.2f}" if old is not None else "")
               + f"{sum(after[s] for s in parts):8.2f}")
+
+
+def _report_functions(name: str, targets: list[str], shim: Path, before: Path | None,
+                      against: str | None) -> None:
+    print(f"{name}: million instructions per load and analyse (36 angles), callees included")
+    for target in targets:
+        now, calls = function_counts(name, [target], shim)
+        line = f"  {target:<56}{now:8.3f}  ({calls} calls)"
+        if before is not None:
+            old, old_calls = function_counts(name, [target], shim, before)
+            line = (f"  {target:<56}{old:8.3f} ({old_calls} calls, {against[:8]})"
+                    f"{now:8.3f}  ({calls} calls)")
+        print(line)
 
 
 if __name__ == "__main__":
