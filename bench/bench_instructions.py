@@ -48,10 +48,9 @@ def _child(name: str, stage: str) -> None:
     """Run inside valgrind: count ``stage`` of RUNS analyses of specs/NAME.yaml."""
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     if stage.startswith(FUNCTIONS):
-        _child_functions(name, stage[len(FUNCTIONS):].split(","))
+        _child_function(name, stage[len(FUNCTIONS):])
         return
     from mechreport.analysis import analyse
-    from mechreport.spec import Sweep
     from mechreport.spec.loader import parse_spec
     if stage not in ("empty", "analyse"):   # as the code is now (older revisions: --only analyse)
         from mechreport.checks.agreement import agreement
@@ -70,10 +69,6 @@ def _child(name: str, stage: str) -> None:
         subprocess.run(["callgrind_control", "-i", "on" if on else "off", pid],
                        capture_output=True, check=False)
 
-    def short(spec):
-        return dataclasses.replace(spec, sweep=Sweep(0.0, 360.0, 10.0), at=(30.0,),
-                                   expect=())
-
     def run(measure: bool) -> None:
         def at(what: str, on: bool) -> None:
             if measure and stage == what:
@@ -82,14 +77,14 @@ def _child(name: str, stage: str) -> None:
         at("empty", False)
         at("analyse", True)
         if stage == "analyse":
-            analyse(short(parse_spec(text, f"{name}.yaml")))
+            analyse(_short(parse_spec(text, f"{name}.yaml")))
             at("analyse", False)
             return
         at("parse", True)
         spec = parse_spec(text, f"{name}.yaml")
         at("parse", False)
         at("kinematics", True)
-        kin = solve_kinematics(build_mechanism(short(spec)))
+        kin = solve_kinematics(build_mechanism(_short(spec)))
         at("kinematics", False)
         at("context", True)
         ctx = ForceContext(kin)
@@ -118,14 +113,19 @@ def _child(name: str, stage: str) -> None:
         run(True)
 
 
-def _child_functions(name: str, targets: list[str]) -> None:
+def _short(spec):
+    """``spec`` over the fixed cost's 36 angles."""
+    from mechreport.spec import Sweep
+    return dataclasses.replace(spec, sweep=Sweep(0.0, 360.0, 10.0), at=(30.0,), expect=())
+
+
+def _child_function(name: str, target: str) -> None:
     """Run inside valgrind (collection off at start): switch the count on around each
-    outermost call of the ``targets`` (``module:name``) over RUNS analyses; print the
-    calls."""
+    outermost call of ``target`` (``module:name``; ``empty``: a switch on and off per run,
+    nothing between) over RUNS analyses; print the calls."""
     import ctypes
     import importlib
     from mechreport.analysis import analyse
-    from mechreport.spec import Sweep
     from mechreport.spec.loader import parse_spec
     toggle = ctypes.CDLL(os.environ["BENCH_SHIM"]).toggle
     state = {"depth": 0, "measure": False, "calls": 0}
@@ -145,9 +145,7 @@ def _child_functions(name: str, targets: list[str]) -> None:
                 state["depth"] -= 1
         return wrapper
 
-    for target in targets:
-        if target == "empty":                 # the switching alone
-            continue
+    if target != "empty":
         module, _, qualname = target.partition(":")
         owner = importlib.import_module(module)
         *path, attr = qualname.split(".")
@@ -162,20 +160,15 @@ def _child_functions(name: str, targets: list[str]) -> None:
                         and getattr(mod, attr, None) is fn:
                     setattr(mod, attr, wrapped)
     text = (ROOT / "specs" / f"{name}.yaml").read_text()
-
-    def run() -> None:
-        spec = parse_spec(text, f"{name}.yaml")
-        analyse(dataclasses.replace(spec, sweep=Sweep(0.0, 360.0, 10.0), at=(30.0,),
-                                    expect=()))
     for _ in range(WARM):
-        run()
+        analyse(_short(parse_spec(text, f"{name}.yaml")))
     state["measure"] = True
     for _ in range(RUNS):
-        if targets == ["empty"]:
+        if target == "empty":
             state["calls"] += 1
             toggle()
             toggle()
-        run()
+        analyse(_short(parse_spec(text, f"{name}.yaml")))
     print(f"calls: {state['calls']}", file=sys.stderr)
 
 
@@ -195,50 +188,47 @@ def _shim(tmp: Path) -> Path:
 _SWITCHING: dict = {}      # (spec, code) -> the switching's count and its pairs
 
 
-def function_counts(name: str, targets: list[str], shim: Path,
+def function_counts(name: str, target: str, shim: Path,
                     code: Path | None = None) -> tuple[float, int]:
-    """Million instructions per analysis of the ``targets`` (switching taken off) and
-    their outermost calls per analysis."""
-    def once(which: list[str]) -> tuple[int, int]:
-        env = dict(os.environ, BENCH_SHIM=str(shim))
-        env.setdefault("PYTHONHASHSEED", "0")
-        if code is not None:
-            env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(code),
-                                                              env.get("PYTHONPATH")]))
-        out = subprocess.run(
-            ["valgrind", "--tool=callgrind", "--collect-atstart=no",
-             "--callgrind-out-file=/dev/null", sys.executable, __file__, "--child", name,
-             FUNCTIONS + ",".join(which)],
-            capture_output=True, text=True, check=False, cwd=code or ROOT, env=env)
-        found = re.search(r"Collected\s*:\s*(\d+)", out.stderr)
-        calls = re.search(r"calls: (\d+)", out.stderr)
-        if found is None or calls is None:
-            raise SystemExit(f"valgrind gave no count for {name} {which}:\n"
-                             f"{out.stderr[-2000:]}")
-        return int(found.group(1)), int(calls.group(1))
+    """Million instructions per analysis of ``target`` (switching taken off) and its
+    outermost calls per analysis."""
+    def once(which: str) -> tuple[int, int]:
+        count, err = _valgrind(name, FUNCTIONS + which, code, "--collect-atstart=no",
+                               BENCH_SHIM=str(shim))
+        calls = re.search(r"calls: (\d+)", err)
+        if calls is None:
+            raise SystemExit(f"no count of calls for {name} {which}:\n{err[-2000:]}")
+        return count, int(calls.group(1))
     if (name, code) not in _SWITCHING:
-        _SWITCHING[name, code] = once(["empty"])
+        _SWITCHING[name, code] = once("empty")
     empty, pairs = _SWITCHING[name, code]
-    total, calls = once(targets)
+    total, calls = once(target)
     return (total - calls * empty / pairs) / RUNS / 1e6, calls // RUNS
 
 
-def instructions(name: str, stage: str, code: Path | None = None) -> int:
-    """Instructions counted for ``stage`` over RUNS runs (switching cost included), of the
-    package in ``code`` (a checkout imported first) or of this one."""
-    env = dict(os.environ)
+def _valgrind(name: str, stage: str, code: Path | None, start: str,
+              **env_extra: str) -> tuple[int, str]:
+    """Run the child for ``stage`` under callgrind with option ``start`` (how counting
+    starts): the instructions collected and the child's stderr."""
+    env = dict(os.environ, **env_extra)
     env.setdefault("PYTHONHASHSEED", "0")     # string hashes move the count by about 1 %
     if code is not None:
         env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(code),
                                                           env.get("PYTHONPATH")]))
     out = subprocess.run(
-        ["valgrind", "--tool=callgrind", "--instr-atstart=no", "--callgrind-out-file=/dev/null",
+        ["valgrind", "--tool=callgrind", start, "--callgrind-out-file=/dev/null",
          sys.executable, __file__, "--child", name, stage],
         capture_output=True, text=True, check=False, cwd=code or ROOT, env=env)
     found = re.search(r"Collected\s*:\s*(\d+)", out.stderr)
     if found is None:
         raise SystemExit(f"valgrind gave no count for {name} {stage}:\n{out.stderr[-2000:]}")
-    return int(found.group(1))
+    return int(found.group(1)), out.stderr
+
+
+def instructions(name: str, stage: str, code: Path | None = None) -> int:
+    """Instructions counted for ``stage`` over RUNS runs (switching cost included), of the
+    package in ``code`` (a checkout imported first) or of this one."""
+    return _valgrind(name, stage, code, "--instr-atstart=no")[0]
 
 
 def _counts(name: str, stages: list[str], code: Path | None) -> dict[str, float]:
@@ -312,10 +302,10 @@ def _report_functions(name: str, targets: list[str], shim: Path, before: Path | 
                       against: str | None) -> None:
     print(f"{name}: million instructions per load and analyse (36 angles), callees included")
     for target in targets:
-        now, calls = function_counts(name, [target], shim)
+        now, calls = function_counts(name, target, shim)
         line = f"  {target:<56}{now:8.3f}  ({calls} calls)"
         if before is not None:
-            old, old_calls = function_counts(name, [target], shim, before)
+            old, old_calls = function_counts(name, target, shim, before)
             line = (f"  {target:<56}{old:8.3f} ({old_calls} calls, {against[:8]})"
                     f"{now:8.3f}  ({calls} calls)")
         print(line)
