@@ -199,10 +199,10 @@ def function_counts(name: str, target: str, shim: Path,
         if calls is None:
             raise SystemExit(f"no count of calls for {name} {which}:\n{err[-2000:]}")
         return count, int(calls.group(1))
+    total, calls = once(target)               # first: a misspelt target fails at once
     if (name, code) not in _SWITCHING:
         _SWITCHING[name, code] = once("empty")
     empty, pairs = _SWITCHING[name, code]
-    total, calls = once(target)
     return (total - calls * empty / pairs) / RUNS / 1e6, calls // RUNS
 
 
