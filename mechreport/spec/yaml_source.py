@@ -237,6 +237,8 @@ class Source:
 
     # -- errors -----------------------------------------------------------------------------
 
+    _too_deep = f"nested more than {MAX_DEPTH} levels deep; a spec needs only a few levels"
+
     def _fatal(self, event, path: Path | None, message: str) -> SpecError:
         line = event.start_mark.line + 1 if event is not None else None
         return SpecError([Problem(self.filename, line, format_path(path or ()), message)])
@@ -254,6 +256,10 @@ class Source:
             if char is not None:
                 what = what.replace("character", f"character {char!r}", 1)
         context = getattr(exc, "context", None)
+        if what == "exceeded maximum nesting depth":
+            # libyaml (PyYAML >= 6.0.4) caps nesting itself, at 1000 levels: still far past
+            # ours, and it can stop scanning before the event that reaches MAX_DEPTH
+            return SpecError([Problem(self.filename, line, "", self._too_deep)])
         msg = f"malformed YAML: {what}" + (f" ({context})" if context else "")
         return SpecError([Problem(self.filename, line, "", msg)])
 
@@ -293,8 +299,7 @@ class Source:
         if isinstance(event, ScalarEvent):
             return self._scalar(event, path)
         if depth >= MAX_DEPTH:
-            raise self._fatal(event, path, f"nested more than {MAX_DEPTH} levels deep; a spec "
-                                           "needs only a few levels")
+            raise self._fatal(event, path, self._too_deep)
         tag = event.tag
         if isinstance(event, SequenceStartEvent):
             if tag not in (None, "!", SEQ):
