@@ -22,7 +22,7 @@ Needs valgrind (Debian package valgrind); each spec takes a few minutes under it
 stage is counted over 5 runs after 3 warm-up runs in the same process (the structure
 caches warm, as for the second spec of a batch), less the cost of switching the count on
 and off. The force stages follow ``solve_forces``: every method's equations, then their
-blocks prepared together, then each method's solve. Not a test.
+blocks prepared together, then every method's chain solved level by level. Not a test.
 """
 from __future__ import annotations
 
@@ -37,8 +37,8 @@ import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-STAGES = ("empty", "parse", "kinematics", "context", "equations", "prepare", "newton_euler",
-          "dalembert", "dyad", "contour", "power", "checks", "analyse")
+STAGES = ("empty", "parse", "kinematics", "context", "equations", "prepare", "solves",
+          "checks", "analyse")
 RUNS, WARM = 5, 3
 FUNCTIONS = "functions="           # the child's stage for --function
 SHIM = "#include <valgrind/callgrind.h>\nvoid toggle(void) { CALLGRIND_TOGGLE_COLLECT; }\n"
@@ -57,7 +57,7 @@ def _child(name: str, stage: str) -> None:
         from mechreport.checks.residuals import residuals
         from mechreport.forces import METHODS, ForceContext
         from mechreport.forces.equations import prepare_blocks
-        from mechreport.forces.result import chain, method_steps
+        from mechreport.forces.result import chain, method_steps, run_methods
         from mechreport.kinematics import solve_kinematics
         from mechreport.model import build_mechanism
         from mechreport.post.review import design_review
@@ -96,11 +96,11 @@ def _child(name: str, stage: str) -> None:
         at("prepare", True)          # and their blocks, prepared together
         ctx.cache["prepared blocks"] = prepare_blocks(chains, ctx.n)
         at("prepare", False)
-        forces = {}
-        for method, module in METHODS.items():
-            at(method, True)
-            forces[method] = module.solve(ctx)
-            at(method, False)
+        at("solves", True)           # every method's chain, level by level
+        forces = run_methods({method: method_steps(ctx, method, module.build_steps)
+                              for method, module in METHODS.items()},
+                             ctx, ctx.cache["prepared blocks"])
+        at("solves", False)
         at("checks", True)
         residuals(ctx, forces)
         agreement(forces)

@@ -385,26 +385,7 @@ class SmallSystem:
         self.group, self.part = group, part
 
     def solve_cond(self, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        g, part = self.group, self.part
-        rs = g.rs[:, part]
-        cond = g.cond[part].copy()
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            q = b.T / rs                              # (m, n)
-            finite = np.isfinite(q)
-            everywhere = finite.all()                 # (as a rule: nothing to mark)
-            if g.m == 1:                              # a / rs is +-1 (0 where singular)
-                x = q / g.unit[part]
-                if not everywhere:
-                    cond[~finite[0]] = np.nan
-            else:
-                if not everywhere:
-                    overflow = ~finite.all(axis=0)
-                    q[:, overflow] = 0.0
-                    cond[overflow] = np.nan
-                x = _cramer(g.As[:, :, part], g.det[part], q) / g.cs[:, part]
-        regular = cond < SINGULAR_COND
-        if not regular.all():
-            x[:, ~regular] = np.nan
+        x, cond = self.group.solve_at(self.part, b.T)
         return x.T, cond
 
 
@@ -431,6 +412,35 @@ class _SmallGroup:
         self.cond, self.rs, self.cs, self.As = cond, eq.rs, eq.cs, eq.As
         with np.errstate(over="ignore", invalid="ignore"):
             self.det = _determinant(eq.As)
+
+    def solve_at(self, at, bt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """x (m, k) and the condition numbers (k,) of the systems at ``at`` (a slice or an
+        index array of the joined angle axis, k angles) for the right-hand sides bt (m, k),
+        angle-last: a 2x2 by the operations :meth:`Equilibrated.solve_cond` does on it
+        alone, a 1x1 answered directly (its equilibrated matrix is +-1). Every step is per
+        angle, so any of the group's systems can be solved together."""
+        rs = self.rs[:, at]
+        cond = self.cond[at]
+        if isinstance(at, slice):
+            cond = cond.copy()
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            q = bt / rs                               # (m, k)
+            finite = np.isfinite(q)
+            everywhere = finite.all()                 # (as a rule: nothing to mark)
+            if self.m == 1:                           # a / rs is +-1 (0 where singular)
+                x = q / self.unit[at]
+                if not everywhere:
+                    cond[~finite[0]] = np.nan
+            else:
+                if not everywhere:
+                    overflow = ~finite.all(axis=0)
+                    q[:, overflow] = 0.0
+                    cond[overflow] = np.nan
+                x = _cramer(self.As[:, :, at], self.det[at], q) / self.cs[:, at]
+        regular = cond < SINGULAR_COND
+        if not regular.all():
+            x[:, ~regular] = np.nan
+        return x, cond
 
 
 def prepare_small(systems: list[np.ndarray]) -> list[SmallSystem]:

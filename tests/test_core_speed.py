@@ -57,18 +57,20 @@ def test_equation_objects_are_rebuilt_on_demand_and_balance():
 def test_flagged_angles_are_sliced_not_solved_again(monkeypatch):
     """An angle one method flags is cut from every result; what is left equals a fresh solve
     on the kept kinematics."""
-    from mechreport.forces import power
-    real = power.solve
+    real = forces_pkg.run_methods
     calls = []
 
-    def singular_at_90(ctx):
+    def singular_at_90(steps, ctx, prepared=None):
         calls.append(ctx.n)
-        res = real(ctx)
+        out = real(steps, ctx, prepared)
+        res = out["power"]
         bad = ctx.kin.angles == 90.0
-        return dataclasses.replace(res, driver_torque=np.where(bad, np.nan, res.driver_torque),
-                                   singular=res.singular | bad)
+        out["power"] = dataclasses.replace(
+            res, driver_torque=np.where(bad, np.nan, res.driver_torque),
+            singular=res.singular | bad)
+        return out
 
-    monkeypatch.setattr(power, "solve", singular_at_90)
+    monkeypatch.setattr(forces_pkg, "run_methods", singular_at_90)
     a = analyse(ROOT / "specs" / "r_rtr_rtr.yaml")
     assert calls == [a.kinematics.n + 1]          # one solve, not two
     fresh = solve_forces(a.kinematics)
@@ -944,3 +946,78 @@ def test_structure_found_once_per_topology_equals_a_fresh_one(monkeypatch):
         monkeypatch.setattr(model, "_STRUCTURES", {})
         assert _shape(mech) == _shape(build_mechanism(spec))
     assert [g.links for g in kept[0].groups] == [g.links for g in kept[3].groups]
+
+
+def _every_spec():
+    return sorted([*(ROOT / "specs").glob("*.yaml"), *(ROOT / "tests" / "data").glob("*.yaml")])
+
+
+@pytest.mark.parametrize("n", [36, 1])
+@pytest.mark.parametrize("path", _every_spec(), ids=lambda p: p.stem)
+def test_chains_solved_level_by_level_equal_each_chain_in_turn(path, n):
+    """chains.solve_chains (every method's chain at once, the 1x1 and 2x2 blocks of a level
+    solved together, a block as soon as the blocks it needs are) gives each chain's
+    unknowns, condition numbers and singular angles bit for bit as equations.solve_chain
+    solving its blocks in turn, and the product of the condition numbers run_steps formed
+    block by block."""
+    from mechreport.forces.chains import solve_chains
+    from mechreport.forces.equations import prepare_blocks, solve_chain
+    from mechreport.forces.result import chain, method_steps
+    spec = load_spec(path)
+    w = spec.sweep
+    step = (w.stop - w.start) / n if n > 1 else 1.0
+    kin = solve_kinematics(build_mechanism(dataclasses.replace(
+        spec, sweep=dataclasses.replace(w, step=step, stop=w.stop if n > 1 else w.start),
+        at=(w.start,), expect=())))
+    ctx = ForceContext(kin)
+    chains = [chain(ctx, method_steps(ctx, m, module.build_steps))
+              for m, module in METHODS.items()]
+    together = solve_chains(chains, kin.n, prepare_blocks(chains, kin.n))
+    levels = 0
+    for blocks, got in zip(chains, together):
+        values, solutions = solve_chain(blocks, kin.n)
+        assert list(got.values) and got.values.keys() == values.keys()
+        for u in values:
+            assert np.array_equal(got.values[u], values[u], equal_nan=True), (path.stem, u)
+            assert np.array_equal(np.signbit(got.values[u]), np.signbit(values[u]))
+        cond = np.ones(kin.n)
+        singular = np.zeros(kin.n, bool)
+        for sol in solutions:
+            cond = cond * sol.cond
+            singular |= sol.singular
+        assert np.array_equal(got.cond, cond, equal_nan=True), path.stem
+        np.testing.assert_array_equal(got.singular, singular)
+        levels = max(levels, max(_levels_of(blocks), default=0))
+    assert levels < max(map(len, chains))     # some blocks were taken before their turn
+
+
+def _levels_of(blocks):
+    from mechreport.forces.chains import _levels
+    return _levels(blocks)
+
+
+def test_chain_levels_follow_what_each_block_needs():
+    """A block is solved one level after the latest block that found what it needs; a
+    chain that does not say what its blocks need, or needs what no block before found,
+    goes block by block, and then fails as solve_chain does."""
+    from mechreport.forces.chains import solve_chains
+    from mechreport.forces.equations import Action, Equation, Step, Term, solve_chain
+    n = 3
+
+    def block(unknown, uses=(), needs=()):
+        acts = [Action(u, "force", "reaction", "2", unknowns=(u,)) for u in (unknown, *uses)]
+        eq = Equation(f"e {unknown}", "force", ("2",),
+                      [Term(a, np.full((n, 1), 2.0 if a.unknowns[0] == unknown else 1.0),
+                            np.full(n, 3.0)) for a in acts])
+        return Step(unknown, [unknown], [eq], needs=needs)
+
+    blocks = [block("a"), block("b"), block("c", ("a",), ("a",)), block("d", ("c", "b"),
+                                                                          ("c", "b"))]
+    assert _levels_of(blocks) == [0, 0, 1, 2]
+    assert _levels_of([block("a"), block("b", needs=None)]) == [0, 1]
+    assert _levels_of([block("c", ("a",), ("a",)), block("a")]) == [0, 1]
+    values, _ = solve_chain(blocks, n)
+    got = solve_chains([blocks], n)[0].values
+    assert all(np.array_equal(got[u], values[u]) for u in values)
+    with pytest.raises(ValueError, match="needs a, which is neither solved here nor known"):
+        solve_chains([[block("c", ("a",), ("a",)), block("a")]], n)

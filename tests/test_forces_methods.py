@@ -129,15 +129,19 @@ def test_angle_singular_for_one_method_is_flagged_and_left_out(monkeypatch):
     """A method whose system is singular at an angle (kinematics fine there): the angle is
     flagged with the method named, and left out of every result, which stay free of NaN."""
     from mechreport.forces import power
-    real = power.solve
+    from mechreport.forces.equations import Term
+    real = power.build_steps
 
-    def singular_at_60(ctx):
-        res = real(ctx)
-        bad = ctx.kin.angles == 60.0
-        torque = np.where(bad, np.nan, res.driver_torque)
-        return dataclasses.replace(res, driver_torque=torque, singular=res.singular | bad)
+    def singular_at_60(ctx):            # the driver's power is 0 M there: no equation for M
+        (step,) = real(ctx)
+        (eq,) = step.equations
+        driver = eq.terms[0]
+        zero = np.where((ctx.kin.angles == 60.0)[:, None], 0.0, driver.coeffs)
+        terms = [Term(driver.action, zero, driver.const, driver.side, rate=driver.rate,
+                      kind=driver.kind), *eq.terms[1:]]
+        return (dataclasses.replace(step, equations=[dataclasses.replace(eq, terms=terms)]),)
 
-    monkeypatch.setattr(power, "solve", singular_at_60)
+    monkeypatch.setattr(power, "build_steps", singular_at_60)
     a = analyse(ROOT / "specs" / "four_bar.yaml")
     assert [(f.angle, f.reason) for f in a.flags] == [(60.0, "force equations singular "
                                                              "(power)")]

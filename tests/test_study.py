@@ -259,7 +259,7 @@ def test_evaluate_chunk_turns_any_exception_into_a_row(monkeypatch):
     def broken(*a, **k):
         raise ZeroDivisionError("boom")
     base = base_from(study_text(GRID))
-    monkeypatch.setattr(dyad, "solve", broken)
+    monkeypatch.setattr(dyad, "build_steps", broken)
     rows = evaluate_chunk(base, [{"driver.rpm": 300}], "dyad", ["cycle.torque.rms"])
     assert len(rows) == 1 and not rows[0].ok and rows[0].passed is None
     assert "internal error: ZeroDivisionError: boom" in rows[0].reason

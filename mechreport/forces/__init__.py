@@ -1,7 +1,9 @@
 """Stage 4: joint reactions and driver torque by the textbook's four methods plus a power
 balance. Every method module has ``NAME``, ``TITLE``, ``SECTION``,
 ``build_steps(ctx: ForceContext)`` (its labelled systems) and
-``solve(ctx: ForceContext) -> ForceResult``; they are registered here by name."""
+``solve(ctx: ForceContext) -> ForceResult``; they are registered here by name.
+:func:`solve_forces` solves every method's steps together (``result.run_methods``), the
+numbers each method's ``solve`` gives alone."""
 from __future__ import annotations
 
 from types import ModuleType
@@ -10,7 +12,7 @@ from ..kinematics import Kinematics
 from . import contour, dalembert, dyad, newton_euler, power
 from .context import ForceContext
 from .equations import Equation, Step, Term, prepare_blocks
-from .result import ForceResult, JointReaction, chain, method_steps
+from .result import ForceResult, JointReaction, chain, method_steps, run_methods
 
 METHODS: dict[str, ModuleType] = {m.NAME: m for m in (newton_euler, dalembert, dyad, contour,
                                                       power)}
@@ -48,19 +50,13 @@ def solve_forces(kin: Kinematics, methods=None,
 def _solve_all(ctx: ForceContext, names: list[str], source: ForceContext,
                ) -> dict[str, ForceResult]:
     """The named methods over ``ctx``, their results lean with ``source``. Every method's
-    blocks are prepared together first (``equations.prepare_blocks``: the same numbers,
-    one pass of numpy calls for those of one size, a block that several methods share
-    prepared once); a method that cannot build its equations says so when it runs."""
-    try:
-        chains = [chain(ctx, method_steps(ctx, name, METHODS[name].build_steps))
-                  for name in names]
-        ctx.cache["prepared blocks"] = prepare_blocks(chains, ctx.n)
-    except Exception:   # noqa: BLE001 - raised again, in the methods' order, by its run
-        pass
-    try:
-        return {name: METHODS[name].solve(ctx).lean(source) for name in names}
-    finally:
-        ctx.cache.pop("prepared blocks", None)     # their arrays: as large as the sweep
+    blocks are prepared together (``equations.prepare_blocks``: the same numbers, one pass
+    of numpy calls for those of one size, a block that several methods share prepared
+    once), then solved together level by level of their chains (``chains.solve_chains``);
+    a method that cannot build its equations says so, the first in ``names`` order."""
+    steps = {name: method_steps(ctx, name, METHODS[name].build_steps) for name in names}
+    prepared = prepare_blocks([chain(ctx, s) for s in steps.values()], ctx.n)
+    return {name: res.lean(source) for name, res in run_methods(steps, ctx, prepared).items()}
 
 
 __all__ = ["METHODS", "solve_forces", "ForceContext", "ForceResult", "JointReaction",

@@ -166,6 +166,9 @@ class Step:
     unknowns: list[str]
     equations: list[Equation]
     bodies: tuple[str, ...] = ()
+    # the other unknowns its equations name, found before it (set by triangular_blocks;
+    # None: not known, and the step is taken to need every block before it)
+    needs: tuple[str, ...] | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)
@@ -340,9 +343,11 @@ def triangular_blocks(step: Step) -> list[Step]:
     key = (tuple(step.unknowns), tuple(tuple(eq.unknown_names()) for eq in step.equations))
     order = _block_order(*key)
     if len(order) <= 1:
+        step.needs = order[0][2]
         return [step]
     return [Step(step.title, [step.unknowns[c] for c in cols],
-                 [step.equations[r] for r in rows], step.bodies) for rows, cols in order]
+                 [step.equations[r] for r in rows], step.bodies, needs)
+            for rows, cols, needs in order]
 
 
 class Matching:
@@ -379,19 +384,27 @@ class Matching:
 
 @lru_cache(maxsize=4096)
 def _block_order(unknowns: tuple[str, ...], uses: tuple[tuple[str, ...], ...]):
-    """((equation rows), (unknown columns)) per block in solving order, once per structure;
-    one block when the structure has no perfect matching."""
+    """((equation rows), (unknown columns), (the other unknowns the rows name)) per block in
+    solving order, once per structure; one block when the structure has no perfect
+    matching."""
     m = len(unknowns)
     col = {u: j for j, u in enumerate(unknowns)}
     pattern = [sorted({col[u] for u in names if u in col}) for names in uses]
     matching = Matching(m)
     if len(uses) != m or not all(matching.add(p) for p in pattern):
-        return ((tuple(range(len(uses))), tuple(range(m))),)
-    owner = matching.owner
-    matched = {owner[c]: c for c in range(m)}       # row -> its column
-    needs = [[owner[c] for c in pattern[r] if c != matched[r]] for r in range(m)]
-    blocks = _strong_components(needs)              # dependencies first (Tarjan)
-    return tuple((tuple(sorted(b)), tuple(sorted(matched[r] for r in b))) for b in blocks)
+        blocks = [(tuple(range(len(uses))), tuple(range(m)))]
+    else:
+        owner = matching.owner
+        matched = {owner[c]: c for c in range(m)}       # row -> its column
+        needs = [[owner[c] for c in pattern[r] if c != matched[r]] for r in range(m)]
+        blocks = [(tuple(sorted(b)), tuple(sorted(matched[r] for r in b)))
+                  for b in _strong_components(needs)]   # dependencies first (Tarjan)
+    out = []
+    for rows, cols in blocks:
+        own = {unknowns[c] for c in cols}
+        named = dict.fromkeys(u for r in rows for u in uses[r] if u not in own)
+        out.append((rows, cols, tuple(named)))
+    return tuple(out)
 
 
 def _strong_components(edges: list[list[int]]) -> list[list[int]]:

@@ -182,17 +182,20 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
 def run_steps(method: str, ctx, steps) -> ForceResult:
     """Solve ``steps`` in order, each with the values found by those before it, block by
     block (:func:`chain`); the condition number is the product of the blocks'. Blocks
-    prepared with every method's (``ctx.cache["prepared blocks"]``, see
-    :func:`mechreport.forces.solve_forces`) are not prepared again."""
-    from .equations import solve_chain
-    known, solutions = solve_chain(chain(ctx, steps), ctx.n, ctx.cache.get("prepared blocks"))
-    singular = np.zeros(ctx.n, bool)
-    cond = np.ones(ctx.n)
-    with np.errstate(over="ignore", invalid="ignore"):
-        for sol in solutions:
-            singular |= sol.singular
-            cond = cond * sol.cond
-    return make_result(method, ctx, known, steps, singular, cond)
+    prepared with every method's (``ctx.cache["prepared blocks"]``) are not prepared
+    again."""
+    return run_methods({method: steps}, ctx, ctx.cache.get("prepared blocks"))[method]
+
+
+def run_methods(steps: dict[str, tuple], ctx, prepared: dict | None = None,
+                ) -> dict[str, ForceResult]:
+    """Every method's ``steps`` (by method name) solved together, level by level of their
+    chains (:func:`mechreport.forces.chains.solve_chains`: the numbers each gets alone);
+    ``prepared``: their blocks' systems, by ``id`` of the block, if prepared already."""
+    from .chains import solve_chains
+    solved = solve_chains([chain(ctx, s) for s in steps.values()], ctx.n, prepared)
+    return {method: make_result(method, ctx, sol.values, s, sol.singular, sol.cond)
+            for (method, s), sol in zip(steps.items(), solved)}
 
 
 def method_steps(ctx, method: str, build) -> tuple[Step, ...]:
