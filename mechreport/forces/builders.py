@@ -119,18 +119,33 @@ def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
 def _force_terms(ctx: ForceContext, acts: list[Action], d: np.ndarray) -> list[Term]:
     """The force actions' :func:`force_term` on ``d``, each built once per context: an
     action enters the force equations of every free body that holds it (terms are
-    immutable; several equations share one)."""
-    return [ctx.once(("force term", id(a), id(d)), lambda a=a: force_term(a, d), (a, d))
-            for a in acts if a.kind == "force"]
+    immutable; several equations share one). (``ForceContext.once`` inlined: about half
+    the calls are hits, and a closure per action cost more than the lookup.)"""
+    cache = ctx.cache
+    out = []
+    for a in acts:
+        if a.kind == "force":
+            key = ("force term", id(a), id(d))
+            term = cache.get(key)
+            if term is None:
+                term = ctx.keep(key, force_term(a, d), (a, d))
+            out.append(term)
+    return out
 
 
 def _moment_terms(ctx: ForceContext, acts: list[Action], p: np.ndarray,
                   about: str) -> list[Term]:
     """The actions' :func:`moment_term` about point ``p`` named ``about``, each built once
     per context (see :func:`_force_terms`)."""
-    return [ctx.once(("moment term", id(a), id(p), about),
-                     lambda a=a: moment_term(a, p, ctx.n, about_name=about), (a, p))
-            for a in acts]
+    cache = ctx.cache
+    out = []
+    for a in acts:
+        key = ("moment term", id(a), id(p), about)
+        term = cache.get(key)
+        if term is None:
+            term = ctx.keep(key, moment_term(a, p, ctx.n, about_name=about), (a, p))
+        out.append(term)
+    return out
 
 
 def normal_constraint(ctx: ForceContext, joint: Joint) -> Equation:

@@ -124,15 +124,24 @@ class ForceContext:
         answer, so that those ids stay theirs."""
         value = self.cache.get(key, _MISSING)
         if value is _MISSING:
-            value = self.cache[key] = build()
-            if keep is not None:
-                self.cache[("kept", key)] = keep
+            value = self.keep(key, build(), keep)
+        return value
+
+    def keep(self, key: tuple, value, keep=None):
+        """Store ``value`` under ``key`` (see :meth:`once`) and return it."""
+        self.cache[key] = value
+        if keep is not None:
+            self.cache[("kept", key)] = keep
         return value
 
     def reaction(self, joint: Joint, on: str) -> list[Action]:
         """The joint's reaction as it acts on link ``on`` (one of its links)."""
-        return list(self.once(("reaction", joint.name, on),
-                               lambda: tuple(self._reaction(joint, on))))
+        return list(self._reaction_once(joint, on))
+
+    def _reaction_once(self, joint: Joint, on: str) -> tuple[Action, ...]:
+        key = ("reaction", joint.name, on)
+        acts = self.cache.get(key)
+        return acts if acts is not None else self.keep(key, tuple(self._reaction(joint, on)))
 
     def _reaction(self, joint: Joint, on: str) -> list[Action]:
         a, b = joint.links
@@ -213,9 +222,12 @@ class ForceContext:
 
     def actions_on(self, bodies, *, inertia: bool, exclude=()) -> list[Action]:
         """See :meth:`_actions_on`; built once per free body (methods share them)."""
-        return list(self.once(("actions", tuple(bodies), inertia, tuple(exclude)),
-                              lambda: tuple(self._actions_on(bodies, inertia=inertia,
-                                                             exclude=exclude))))
+        key = ("actions", tuple(bodies), inertia, tuple(exclude))
+        acts = self.cache.get(key)
+        if acts is None:
+            acts = self.keep(key, tuple(self._actions_on(bodies, inertia=inertia,
+                                                         exclude=exclude)))
+        return list(acts)
 
     def _actions_on(self, bodies, *, inertia: bool, exclude=()) -> list[Action]:
         """Every external action on the free body made of ``bodies`` (moving links): reactions
@@ -228,7 +240,7 @@ class ForceContext:
         for j in self.spec.joints:
             a, b = j.links
             if (a in body) != (b in body) and j.name not in exclude:
-                acts.extend(self.reaction(j, a if a in body else b))
+                acts.extend(self._reaction_once(j, a if a in body else b))
         inner_driver = set(self.spec.driver.links) <= body   # its two sides cancel
         for link in bodies:
             acts.extend(self._link_actions(link, inertia, inner_driver))
@@ -237,11 +249,13 @@ class ForceContext:
     def _link_actions(self, link: str, inertia: bool, inner_driver: bool) -> tuple:
         """A link's own actions in a free body: inertia (d'Alembert), gravity, loads, and
         the driver's effort unless both its links are in the body."""
-        def build() -> tuple:
+        key = ("own", link, inertia, inner_driver)
+        own = self.cache.get(key)
+        if own is None:
             acts = self.inertia_actions(link) if inertia else []
             acts.append(self.gravity_action(link))
             acts += self.load_actions(link)
             if not inner_driver:
                 acts += self.driver_actions(link)
-            return tuple(acts)
-        return self.once(("own", link, inertia, inner_driver), build)
+            own = self.keep(key, tuple(acts))
+        return own

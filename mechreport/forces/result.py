@@ -148,31 +148,33 @@ def slider_point(ctx, joint, fx: np.ndarray, fy: np.ndarray, m: np.ndarray,
     """Where a T joint's force (fx, fy) and couple m about the slider's point act as one force
     on the sliding line: (px, py) [m], NaN where the force vanishes (below 1e-12 of ``top``,
     the largest force component over the sweep, by default over these angles) and the point
-    is undefined."""
+    is undefined. (n,) each, or (k, n) for k results at once (each its own ``top``)."""
     u = ctx.line_direction(joint)
     s = u[:, 0] * fy - u[:, 1] * fx                 # u x f
     if top is None:                                 # (NaN if any component is NaN)
-        top = np.maximum(np.abs(fx).max(initial=0.0), np.abs(fy).max(initial=0.0))
+        top = np.maximum(np.abs(fx).max(axis=-1, initial=0.0, keepdims=True),
+                         np.abs(fy).max(axis=-1, initial=0.0, keepdims=True))
     scale = np.maximum(top, 1e-300)
     with np.errstate(divide="ignore", invalid="ignore"):
         t = np.where(np.abs(s) > 1e-12 * scale, m / s, np.nan)
-    p = ctx.joint_points[joint.name] + t[:, None] * u
-    return p[:, 0], p[:, 1]
+    p = ctx.joint_points[joint.name] + t[..., None] * u
+    return p[..., 0], p[..., 1]
 
 
 def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular,
-                cond=None) -> ForceResult:
-    """Assemble a ForceResult from solved unknowns (shared by all methods)."""
+                cond=None, points: dict | None = None) -> ForceResult:
+    """Assemble a ForceResult from solved unknowns (shared by all methods); ``points``: the
+    T joints' :func:`slider_point` by joint name, if found already."""
     spec = ctx.spec
     reactions = {}
-    if any(k.startswith("joint.") for k in values):
+    if _has_reactions(values):
         for j in spec.joints:
             fx, fy = values[f"joint.{j.name}.fx"], values[f"joint.{j.name}.fy"]
             if j.type == "R":
                 reactions[j.name] = JointReaction(j.name, "R", fx, fy)
                 continue
             m = values[f"joint.{j.name}.moment"]
-            px, py = slider_point(ctx, j, fx, fy, m)
+            px, py = points[j.name] if points else slider_point(ctx, j, fx, fy, m)
             reactions[j.name] = JointReaction(j.name, "T", fx, fy, m, px, py)
     quantity = ctx.spec.driver.quantity
     return ForceResult(method, ctx.kin.angles, reactions, values[quantity], singular, cond,
@@ -194,8 +196,30 @@ def run_methods(steps: dict[str, tuple], ctx, prepared: dict | None = None,
     ``prepared``: their blocks' systems, by ``id`` of the block, if prepared already."""
     from .chains import solve_chains
     solved = solve_chains([chain(ctx, s) for s in steps.values()], ctx.n, prepared)
-    return {method: make_result(method, ctx, sol.values, s, sol.singular, sol.cond)
-            for (method, s), sol in zip(steps.items(), solved)}
+    points = _slider_points(ctx, [sol.values for sol in solved])
+    return {method: make_result(method, ctx, sol.values, s, sol.singular, sol.cond, pts)
+            for (method, s), sol, pts in zip(steps.items(), solved, points)}
+
+
+def _has_reactions(values: dict) -> bool:
+    return any(k.startswith("joint.") for k in values)
+
+
+def _slider_points(ctx, solved: list[dict[str, np.ndarray]]) -> list[dict]:
+    """Every T joint's :func:`slider_point` for each of the results ``solved`` (unknowns by
+    name) that has reactions, each joint's for all of them at once: by joint name, per
+    result."""
+    out: list[dict] = [{} for _ in solved]
+    which = [k for k, values in enumerate(solved) if _has_reactions(values)]
+    if not which:
+        return out
+    for j in (j for j in ctx.spec.joints if j.type == "T"):
+        fx, fy, m = (np.array([solved[k][f"joint.{j.name}.{c}"] for k in which])
+                     for c in ("fx", "fy", "moment"))
+        px, py = slider_point(ctx, j, fx, fy, m)
+        for row, k in enumerate(which):
+            out[k][j.name] = (px[row], py[row])
+    return out
 
 
 def method_steps(ctx, method: str, build) -> tuple[Step, ...]:
