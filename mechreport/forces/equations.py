@@ -39,7 +39,7 @@ def no_coefficients(n: int) -> np.ndarray:
     return none
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class Action:
     """A force or couple acting on a link.
 
@@ -74,7 +74,7 @@ TERM_KINDS = {
 }
 
 
-@dataclass(frozen=True, init=False)
+@dataclass(slots=True, eq=False)
 class Term:
     """One action's contribution to one equation: ``coeffs @ x[unknowns] + const``.
 
@@ -84,7 +84,12 @@ class Term:
     direction for force equations; ``rate`` what a power term works on; ``factors`` the other
     named factors (``mass``, ``accel`` (n, 2), ``inertia``, ``alpha`` (n,), ``about``), kept as
     references to arrays already computed. :func:`mechreport.forces.builders.read_term` reads
-    them back as the products a worked solution prints."""
+    them back as the products a worked solution prints.
+
+    Never changed once made: equations share terms (one per action and direction or moment
+    centre, per context). Not frozen only for speed: a frozen dataclass sets each field
+    through ``object.__setattr__``, and hundreds of terms are made per analysis and their
+    fields read thousands of times (slots read faster than an instance dict)."""
 
     action: Action
     coeffs: np.ndarray              # (n, len(action.unknowns))
@@ -95,17 +100,6 @@ class Term:
     rate: np.ndarray | None = None   # power terms: the velocity (n, 2) or omega (n,) it works on
     kind: str = ""                   # one of TERM_KINDS ("" only for terms built elsewhere)
     factors: tuple = ()              # ((name, value), ...): the named factors not above
-
-    def __init__(self, action: Action, coeffs: np.ndarray, const: np.ndarray,
-                 side: str = "rhs", lever: np.ndarray | None = None,
-                 direction: np.ndarray | None = None, rate: np.ndarray | None = None,
-                 kind: str = "", factors: tuple = ()):
-        # the generated frozen __init__ sets each field through object.__setattr__, at
-        # twice this cost, for hundreds of terms per analysis: the dict is written directly
-        d = self.__dict__
-        d["action"], d["coeffs"], d["const"], d["side"] = action, coeffs, const, side
-        d["lever"], d["direction"], d["rate"] = lever, direction, rate
-        d["kind"], d["factors"] = kind, factors
 
     def factor(self, name: str, default=None):
         """The named factor ``name`` (see ``factors``), or ``default``."""
