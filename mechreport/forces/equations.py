@@ -234,11 +234,14 @@ def step_rhs(step: Step, known: dict[str, np.ndarray], n: int, columns: int = 1,
     col = set(step.unknowns)
     zero = no_constant(n)           # b - 0 is b: terms without a constant are passed over
     b = np.zeros((len(step.equations), columns, n))
+    flat = column is None and columns == 1      # (n,) values into (n,) rows: no broadcast
+    subtract, add = np.subtract, np.add
     for row, eq in enumerate(step.equations):
         here = b[row]               # (columns, n), and its first column (n,)
         first = here[0]
+        out = first if flat else here
         for t in eq.terms:
-            sub = np.subtract if t.side == "rhs" else np.add
+            sub = subtract if t.side == "rhs" else add
             if t.const is not zero:
                 if column is None:
                     sub(first, t.const, first)
@@ -250,7 +253,7 @@ def step_rhs(step: Step, known: dict[str, np.ndarray], n: int, columns: int = 1,
                 if u not in known:
                     raise ValueError(f"{step.title}: equation '{eq.label}' needs {u}, "
                                      "which is neither solved here nor known")
-                sub(here, t.coeffs[:, k] * known[u], here)
+                sub(out, t.coeffs[:, k] * known[u], out)
     return b
 
 
