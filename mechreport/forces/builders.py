@@ -14,7 +14,11 @@ from .equations import Action, Equation, Term, no_coefficients, no_constant
 
 def body_tag(ctx: ForceContext, bodies) -> str:
     """``(2&3)`` for links 2 and 3."""
-    return "(" + "&".join(str(ctx.num(b)) for b in bodies) + ")"
+    key = ("tag", *bodies)
+    tag = ctx.cache.get(key)
+    if tag is None:
+        tag = ctx.keep(key, "(" + "&".join([str(ctx.num(b)) for b in bodies]) + ")")
+    return tag
 
 
 def force_term(act: Action, d: np.ndarray, side: str = "rhs") -> Term | None:
