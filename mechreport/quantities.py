@@ -21,6 +21,8 @@ JOINT_CYCLE_UNITS = {"f_max": "N", "f_mean": "N", "f_equivalent": "N", "life_h":
 JOINT_UNITS = {"fx": "N", "fy": "N", "f": "N", "moment": "N·m", "px": "m", "py": "m"}
 POINT_UNITS = {"x": "m", "y": "m", "vx": "m/s", "vy": "m/s", "ax": "m/s^2", "ay": "m/s^2"}
 LINK_UNITS = {"angle": "deg", "omega": "rad/s", "alpha": "rad/s^2"}
+_UNITS_BY_KIND = {"joint": {**JOINT_UNITS, **JOINT_CYCLE_UNITS}, "point": POINT_UNITS,
+                  "link": LINK_UNITS}
 
 
 def is_cycle(quantity: str) -> bool:
@@ -42,9 +44,7 @@ def unit_of(quantity: str) -> str | None:
     parts = quantity.split(".")
     if len(parts) != 3:
         return None
-    table = {"joint": {**JOINT_UNITS, **JOINT_CYCLE_UNITS}, "point": POINT_UNITS,
-             "link": LINK_UNITS}.get(parts[0], {})
-    return table.get(parts[2])
+    return _UNITS_BY_KIND.get(parts[0], {}).get(parts[2])
 
 
 def unit_kind(quantity: str) -> str:

@@ -8,6 +8,7 @@ the same kind in the result (forces [N] or moments [N m]).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -131,7 +132,7 @@ def finish(parts: Spreads) -> list[Agreement]:
         if s.n_methods < 2:
             continue
         scale = max(s.top, SCALE_FLOOR * kind_scale[kinds[q]])
-        if not (np.isfinite(s.spread) and np.isfinite(scale)):
+        if not (math.isfinite(s.spread) and math.isfinite(scale)):   # Python floats
             rel = float("inf")
         else:
             rel = float(s.spread / scale) if scale > 0 else 0.0
