@@ -9,7 +9,6 @@ force acts at the pin; a T joint's at the slider's point, its couple about that 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 
@@ -77,6 +76,7 @@ class ForceContext:
         self.spec = self.mech.spec
         self.n = kin.n
         self.memo: dict = {}     # choices made once per analysis (the contour method's plan)
+        self._joint_points: dict[str, np.ndarray] | None = None
         self.cache: dict = {}    # this context's own: actions per free body, coincidences
         self.gravity = np.asarray(self.spec.gravity, float)
         self.loads: list[AppliedLoad] = evaluate_loads(kin)
@@ -91,10 +91,15 @@ class ForceContext:
     def num(self, link: str) -> int:
         return self.spec.number(link)
 
-    @cached_property
+    @property
     def joint_points(self) -> dict[str, np.ndarray]:
         """Where each joint's reaction acts (n, 2): the pin, or the slider's point."""
-        return {j.name: joint_point(self.kin, j) for j in self.spec.joints}
+        points = self._joint_points
+        if points is None:   # (an attribute, not a cached_property: that would materialise
+            # the instance's dict, and every read of the context's attributes would be slower)
+            points = self._joint_points = {j.name: joint_point(self.kin, j)
+                                           for j in self.spec.joints}
+        return points
 
     def axis(self, name: str) -> np.ndarray:
         """The global unit vector ``x`` or ``y`` at every angle (n, 2), read-only."""

@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from functools import cached_property
 
 import numpy as np
 
@@ -124,6 +123,9 @@ class Kinematics:
     motion: Motion | None = None
     error: np.ndarray | None = None   # (n,) estimated relative error of the accelerations
     _memo: dict = field(init=False, default_factory=dict, repr=False, compare=False)
+    # frames, once made (not a cached_property: that would materialise the instance's dict,
+    # and every read of the kinematics' fields would be slower)
+    _frames: list = field(init=False, default_factory=list, repr=False, compare=False)
 
     @property
     def n(self) -> int:
@@ -187,14 +189,16 @@ class Kinematics:
         for i, key in enumerate(todo):
             self._memo[key] = PointState(r[i], v[i], a[i])
 
-    @cached_property
+    @property
     def frames(self) -> LinkFrames:
         """Every link's frame by name (``frames.rotate(link, v)`` turns a vector of the link's
         frame into the global one), each link's cos and sin computed once."""
-        spec = self.mechanism.spec
-        names = [GROUND] + [link.name for link in spec.links]
-        return LinkFrames({l: self.r[:, spec.number(l)] for l in names},
-                          {l: self.theta[:, spec.number(l)] for l in names})
+        if not self._frames:
+            spec = self.mechanism.spec
+            names = [GROUND] + [link.name for link in spec.links]
+            self._frames.append(LinkFrames({l: self.r[:, spec.number(l)] for l in names},
+                                           {l: self.theta[:, spec.number(l)] for l in names}))
+        return self._frames[0]
 
     def carry_points(self, source: "Kinematics", rows: slice) -> None:
         """Take the point states ``source`` has computed, at its ``rows`` (this kinematics'
