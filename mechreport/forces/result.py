@@ -64,6 +64,7 @@ class ForceResult:
     driver_quantity: str = "driver.torque"   # "driver.force" for a T driver
     source: Any = field(default=None, repr=False, compare=False)   # ForceContext
     _steps: list = field(default_factory=list, repr=False, compare=False)
+    _values: list = field(init=False, default_factory=list, repr=False, compare=False)
 
     @property
     def steps(self) -> tuple[Step, ...]:
@@ -133,14 +134,17 @@ class ForceResult:
         return None
 
     def values(self) -> dict[str, np.ndarray]:
-        """Every unknown by name (joint.J.fx/fy/moment, driver.torque)."""
-        out = {self.driver_quantity: self.driver_torque}
-        for r in self.reactions.values():
-            out[f"joint.{r.joint}.fx"] = r.fx
-            out[f"joint.{r.joint}.fy"] = r.fy
-            if r.moment is not None:
-                out[f"joint.{r.joint}.moment"] = r.moment
-        return out
+        """Every unknown by name (joint.J.fx/fy/moment, driver.torque): a new dict each
+        time, of the same arrays (the checks ask for it several times per analysis)."""
+        if not self._values:
+            out = {self.driver_quantity: self.driver_torque}
+            for r in self.reactions.values():
+                out[f"joint.{r.joint}.fx"] = r.fx
+                out[f"joint.{r.joint}.fy"] = r.fy
+                if r.moment is not None:
+                    out[f"joint.{r.joint}.moment"] = r.moment
+            self._values.append(out)
+        return dict(self._values[0])
 
 
 def slider_point(ctx, joint, fx: np.ndarray, fy: np.ndarray, m: np.ndarray,
