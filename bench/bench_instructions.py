@@ -94,12 +94,12 @@ def _child(name: str, stage: str) -> None:
                   for method, module in METHODS.items()]
         at("equations", False)
         at("prepare", True)          # and their blocks, prepared together
-        ctx.cache["prepared blocks"] = prepare_blocks(chains, ctx.n)
+        prepared = prepare_blocks(chains, ctx.n)
         at("prepare", False)
         at("solves", True)           # every method's chain, level by level
         forces = run_methods({method: method_steps(ctx, method, module.build_steps)
                               for method, module in METHODS.items()},
-                             ctx, ctx.cache["prepared blocks"])
+                             ctx, prepared)
         at("solves", False)
         at("checks", True)
         residuals(ctx, forces)

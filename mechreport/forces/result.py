@@ -187,10 +187,8 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
 
 def run_steps(method: str, ctx, steps) -> ForceResult:
     """Solve ``steps`` in order, each with the values found by those before it, block by
-    block (:func:`chain`); the condition number is the product of the blocks'. Blocks
-    prepared with every method's (``ctx.cache["prepared blocks"]``) are not prepared
-    again."""
-    return run_methods({method: steps}, ctx, ctx.cache.get("prepared blocks"))[method]
+    block (:func:`chain`); the condition number is the product of the blocks'."""
+    return run_methods({method: steps}, ctx)[method]
 
 
 def run_methods(steps: dict[str, tuple], ctx, prepared: dict | None = None,
