@@ -88,22 +88,25 @@ def with_moment(ctx: ForceContext, acts: list[Action], p: np.ndarray) -> list[Ac
 def _coincidence_tol(ctx: ForceContext, p: np.ndarray) -> float:
     """How close (m) a force's point must be to ``p`` (n, 2) at every angle to be taken as
     applied there: 1e-12 of (1 m + the largest coordinate of ``p``), once per point."""
-    return ctx.once(("coincidence tol", id(p)),
-                    lambda: 1e-12 * (1.0 + float(np.abs(p).max(initial=0.0))), p)
+    key = ("coincidence tol", id(p))
+    tol = ctx.cache.get(key)
+    if tol is None:
+        tol = ctx.keep(key, 1e-12 * (1.0 + float(np.abs(p).max(initial=0.0))), p)
+    return tol
 
 
 def force_equation(ctx: ForceContext, bodies, acts: list[Action], axis: str,
                    direction: np.ndarray | None = None, kind: str = "force") -> Equation:
     """sum F^(bodies) . axis = 0; ``axis`` x or y, or a named sliding ``direction`` (n, 2)."""
     d = ctx.axis(axis) if direction is None else direction
-
-    def build() -> Equation:
-        terms = _force_terms(ctx, acts, d)
-        label = f"sum F^{body_tag(ctx, bodies)} . {axis}"
-        return Equation(label, kind, tuple(bodies), terms, axis=axis)
     # (the methods write many of the same equations, and share them as they share actions)
-    return ctx.once(("equation", "force", tuple(bodies), axis, kind, id(d), *map(id, acts)),
-                    build, (d, tuple(acts)))
+    key = ("equation", "force", tuple(bodies), axis, kind, id(d), *map(id, acts))
+    eq = ctx.cache.get(key)
+    if eq is None:
+        eq = ctx.keep(key, Equation(f"sum F^{body_tag(ctx, bodies)} . {axis}", kind,
+                                    tuple(bodies), _force_terms(ctx, acts, d), axis=axis),
+                      (d, tuple(acts)))
+    return eq
 
 
 def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
@@ -111,13 +114,13 @@ def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
     """sum M_about^(bodies) = 0 (moments about the named point ``about``)."""
     p = ctx.point_of(about) if at is None else at
     acts = with_moment(ctx, acts, p)     # (the same equation from more actions: shared)
-
-    def build() -> Equation:
-        terms = _moment_terms(ctx, acts, p, about)
-        return Equation(f"sum M_{about}^{body_tag(ctx, bodies)}", "moment", tuple(bodies),
-                        terms, about=about)
-    return ctx.once(("equation", "moment", tuple(bodies), about, id(p), *map(id, acts)),
-                    build, (p, acts))
+    key = ("equation", "moment", tuple(bodies), about, id(p), *map(id, acts))
+    eq = ctx.cache.get(key)
+    if eq is None:
+        eq = ctx.keep(key, Equation(f"sum M_{about}^{body_tag(ctx, bodies)}", "moment",
+                                    tuple(bodies), _moment_terms(ctx, acts, p, about),
+                                    about=about), (p, acts))
+    return eq
 
 
 def _force_terms(ctx: ForceContext, acts: list[Action], d: np.ndarray) -> list[Term]:

@@ -103,7 +103,11 @@ class ForceContext:
 
     def axis(self, name: str) -> np.ndarray:
         """The global unit vector ``x`` or ``y`` at every angle (n, 2), read-only."""
-        return self.once(("axis", name), lambda: np.broadcast_to(AXES[name], (self.n, 2)))
+        key = ("axis", name)
+        axis = self.cache.get(key)
+        if axis is None:
+            axis = self.keep(key, np.broadcast_to(AXES[name], (self.n, 2)))
+        return axis
 
     def line_direction(self, joint: Joint) -> np.ndarray:
         """Unit direction (n, 2) of T joint ``joint``'s line in the global frame, read-only
