@@ -71,15 +71,15 @@ def solve_chains(chains: list[list[Step]], n: int, prepared: dict | None = None,
                 where[c].update(zip(blk.unknowns, xk))
                 conds[c][i] = ck
     out = []
-    for c, found in enumerate(conds):
-        if not found:
-            out.append(ChainSolution({}, np.ones(n), np.zeros(n, bool)))
-            continue
-        each = np.array(found)                  # (blocks, n)
-        with np.errstate(over="ignore", invalid="ignore"):
+    with np.errstate(over="ignore", invalid="ignore"):
+        for c, found in enumerate(conds):
+            if not found:
+                out.append(ChainSolution({}, np.ones(n), np.zeros(n, bool)))
+                continue
+            each = np.array(found)                  # (blocks, n)
             # in chain order from the first (1 c is c): the product run_steps formed
             product = np.multiply.reduce(each, axis=0)
-        out.append(ChainSolution(where[c], product, ~(each < SINGULAR_COND).all(axis=0)))
+            out.append(ChainSolution(where[c], product, ~(each < SINGULAR_COND).all(axis=0)))
     return out
 
 
