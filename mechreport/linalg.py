@@ -26,6 +26,8 @@ from functools import lru_cache
 
 import numpy as np
 
+from .arrays import stack
+
 SINGULAR_COND = 1e10  # equilibrated condition number above which an angle is flagged singular
 CONSTANT_PIVOT_COND = 100.0   # largest condition number of an eliminated constant block
 CONSTANT_GROWTH = 4.0         # largest entry of K_P^-1 and K_P^-1 K_Q of an eliminated block
@@ -319,7 +321,7 @@ def _small_lu(At: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         for j in range(m):
             if j < m - 1:
-                p = np.argmax(np.abs(np.stack([r[j] for r in rows[j:]])), axis=0)
+                p = np.argmax(np.abs(stack([r[j] for r in rows[j:]])), axis=0)
                 if p.any():                 # swap row j with row j + p where p > 0
                     top = rows[j]
                     for i in range(j + 1, m):

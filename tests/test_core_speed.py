@@ -1024,3 +1024,20 @@ def test_chain_levels_follow_what_each_block_needs():
     assert all(np.array_equal(got[u], values[u]) for u in values)
     with pytest.raises(ValueError, match="needs a, which is neither solved here nor known"):
         solve_chains([[block("c", ("a",), ("a",)), block("a")]], n)
+
+
+@pytest.mark.parametrize("shape", [(36,), (36, 2), (3, 4, 5), (0,), (1,)])
+def test_stack_is_numpys(shape):
+    """arrays.stack gives np.stack's array (values, shape, dtype, C layout) along every
+    axis, and refuses what np.stack refuses."""
+    from mechreport.arrays import stack
+    rng = np.random.default_rng(7)
+    arrays = [rng.standard_normal(shape) for _ in range(4)]
+    for axis in range(-len(shape) - 1, len(shape) + 1):
+        got, ref = stack(arrays, axis=axis), np.stack(arrays, axis=axis)
+        assert got.shape == ref.shape and got.dtype == ref.dtype and got.flags.c_contiguous
+        assert np.array_equal(got, ref)
+    assert stack([np.array([True, False])] * 3, axis=1).dtype == bool
+    for bad in ([np.zeros(2), np.zeros(3)], []):
+        with pytest.raises(ValueError):
+            stack(bad)

@@ -26,6 +26,7 @@ from itertools import combinations
 
 import numpy as np
 
+from ..arrays import stack
 from ..errors import UnsupportedMechanism
 from ..model import Loop
 from ..spec import GROUND, Joint
@@ -170,7 +171,7 @@ def _select(unknowns: list[str], chosen: list[Equation], candidates: list, build
     keys = _structural(unknowns, start, candidates, needs)
     if keys is not None and len(start) + len(keys) == len(unknowns):
         picked = list(chosen) + [build(key) for key in keys]
-        rows = np.stack([_rows(e, unknowns, probes) for e in picked], axis=1)
+        rows = stack([_rows(e, unknowns, probes) for e in picked], axis=1)
         if _surely_independent(rows, 2 * RANK_RTOL) \
                 or (_rank(rows, 2 * RANK_RTOL) == len(unknowns)).all():
             return picked
@@ -203,7 +204,7 @@ def _select_numeric(unknowns: list[str], chosen: list[Equation], candidates: lis
     rows = [_rows(e, unknowns, probes) for e in chosen]
     chosen = list(chosen)
     taken: set = set()
-    rank = _rank(np.stack(rows, axis=1)) if rows else np.zeros(len(probes), int)
+    rank = _rank(stack(rows, axis=1)) if rows else np.zeros(len(probes), int)
     for share in (1.0, 0.5):
         for key in candidates:
             if len(chosen) == len(unknowns):
@@ -212,7 +213,7 @@ def _select_numeric(unknowns: list[str], chosen: list[Equation], candidates: lis
                 continue
             eq = build(key)
             row = _rows(eq, unknowns, probes)
-            new = _rank(np.stack(rows + [row], axis=1))
+            new = _rank(stack(rows + [row], axis=1))
             gain = np.count_nonzero(new > rank) / len(probes)   # the share of probes
             if gain >= share and gain > 0:
                 chosen.append(eq)

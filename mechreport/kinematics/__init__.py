@@ -12,6 +12,7 @@ import sys
 
 import numpy as np
 
+from ..arrays import stack
 from ..errors import AssemblyError
 from ..linalg import SINGULAR_COND, Equilibrated
 from ..model import Mechanism
@@ -84,15 +85,15 @@ def finish(mech: Mechanism, phi_deg: np.ndarray, r: dict, th: dict, branches, mo
     keep[list(problems)] = False
     order = [GROUND] + [l.name for l in spec.links]
 
-    def stack(d):
-        out = np.stack([d[k] for k in order], axis=1)
+    def by_link(d):
+        out = stack([d[k] for k in order], axis=1)
         return out if not problems else out[keep]
 
     # many angles share a reason (those beyond one lock): one string for all of them
     flags = tuple(Flag(float(phi_deg[k]), sys.intern(why), kind)
                   for k, (kind, why) in sorted(problems.items()))
-    return Kinematics(mech, phi_deg[keep], stack(r), stack(th), stack(v), stack(w), stack(acc),
-                      stack(al), flags, tuple(branches), motion, error[keep])
+    return Kinematics(mech, phi_deg[keep], by_link(r), by_link(th), by_link(v), by_link(w),
+                      by_link(acc), by_link(al), flags, tuple(branches), motion, error[keep])
 
 
 def kinematic_error(conds: list[np.ndarray], n: int) -> np.ndarray:
@@ -105,7 +106,7 @@ def kinematic_error(conds: list[np.ndarray], n: int) -> np.ndarray:
     err = k eps c^3 with k = 1e-4 and 0.02); well-conditioned dyads of a chain multiply it."""
     if not conds:
         return np.full(n, EPS)
-    c = np.stack(conds)
+    c = stack(conds)
     with np.errstate(over="ignore", invalid="ignore"):
         est = EPS * np.max(c, axis=0) ** 2 * np.prod(c, axis=0)
     return np.where(np.isfinite(est), est, np.inf)
@@ -250,7 +251,7 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
     n = len(value)
     zeros2 = np.zeros((n, 2))
     v, w, acc, al = {GROUND: zeros2}, {GROUND: np.zeros(n)}, {GROUND: zeros2}, {GROUND: np.zeros(n)}
-    finite = np.all(np.isfinite(np.stack([r[k][:, 0] for k in r])), axis=0)
+    finite = np.all(np.isfinite(stack([r[k][:, 0] for k in r])), axis=0)
     if finite.all():
         frames = LinkFrames(r, th)
     else:   # poses not reached: any finite stand-in (their rates are not reported)

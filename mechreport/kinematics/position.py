@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..arrays import stack
 from ..spec import GROUND, Joint, Spec
 from ..model import Dyad
 from .frames import Trig, cross, dot, norm, perp, rotate, rotate_cs
@@ -88,7 +89,7 @@ def _solve2(n1, c1, n2, c2):
     det = np.where(ok, det, np.nan)
     x = (c1 * n2[:, 1] - c2 * n1[:, 1]) / det
     y = (n1[:, 0] * c2 - n2[:, 0] * c1) / det
-    return np.stack([x, y], axis=-1)
+    return stack([x, y], axis=-1)
 
 
 def _angle(v) -> np.ndarray:
@@ -145,7 +146,7 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses, trig: Trig | None = No
         n, c = t_line(spec, oj, j, poses, thj)
         mj = pj[inner.name]
         c_pin = c + dot(n, rotate(mj, thj))          # n . J = c_pin for the interior pin J
-        u = np.stack([n[:, 1], -n[:, 0]], axis=-1)   # the guide direction
+        u = stack([n[:, 1], -n[:, 0]], axis=-1)   # the guide direction
         off = c_pin - dot(n, ki)
         foot = ki + off[:, None] * n
         h2 = li**2 - off**2

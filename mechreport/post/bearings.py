@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..arrays import stack
 from ..forces import ForceResult
 from ..kinematics import Kinematics
 from ..kinematics.frames import rotate
@@ -22,7 +23,7 @@ def bearing_trace(kin: Kinematics, res: ForceResult, joint: Joint) -> np.ndarray
     """Reaction F of ``joint`` (first link on second) in the carrier's frame, (n, 2) [N]:
     the global vector rotated by -theta of the carrier (unchanged for ground)."""
     r = res.reactions[joint.name]
-    f = np.stack([r.fx, r.fy], axis=1)
+    f = stack([r.fx, r.fy], axis=1)
     carrier = bearing_carrier(joint)
     if carrier == GROUND:
         return f

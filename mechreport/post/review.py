@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..arrays import stack
 from .balance import Counterweight, counterweight
 from .bearings import BearingLoad, bearing_load
 from .cycle import Cycle, CycleUndefined, cycle_of
@@ -95,7 +96,7 @@ def traces_of(kin, forces, loads) -> Traces:
     res = forces[method]
     frame = frame_load(kin, res, loads)
     return Traces(method, kin.angles, np.asarray(res.driver_torque, float),
-                  np.stack([frame.fx, frame.fy, frame.m], axis=1), inertia_force(kin),
+                  stack([frame.fx, frame.fy, frame.m], axis=1), inertia_force(kin),
                   transmission_angles(kin),
                   {name: r.f for name, r in res.reactions.items()})
 
