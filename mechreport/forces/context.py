@@ -103,44 +103,37 @@ class ForceContext:
 
     def axis(self, name: str) -> np.ndarray:
         """The global unit vector ``x`` or ``y`` at every angle (n, 2), read-only."""
-        key = ("axis", name)
-        axis = self.cache.get(key)
-        if axis is None:
-            axis = self.keep(key, np.broadcast_to(AXES[name], (self.n, 2)))
-        return axis
+        return self.once(("axis", name), np.broadcast_to, AXES[name], (self.n, 2))
 
     def line_direction(self, joint: Joint) -> np.ndarray:
         """Unit direction (n, 2) of T joint ``joint``'s line in the global frame, read-only
         (every method and the slider's point ask for it)."""
-        def build() -> np.ndarray:
-            u = self.kin.frames.rotate(joint.guide, joint.line.direction)
-            u.setflags(write=False)
-            return u
-        return self.once(("line", joint.name), build)
+        return self.once(("line", joint.name), self._line_direction, joint)
+
+    def _line_direction(self, joint: Joint) -> np.ndarray:
+        u = self.kin.frames.rotate(joint.guide, joint.line.direction)
+        u.setflags(write=False)
+        return u
 
     def point_of(self, name: str) -> np.ndarray:
         """Global position (n, 2) of a joint point or named point."""
         if name in self.joint_points:
             return self.joint_points[name]
         if name in self.spec.ground:     # one array per context (equations keyed by it)
-            return self.once(("ground", name), lambda: np.broadcast_to(
-                np.asarray(self.spec.ground[name]), (self.n, 2)))
+            return self.once(("ground", name), np.broadcast_to,
+                             np.asarray(self.spec.ground[name]), (self.n, 2))
         return self.kin.named_point(name).r
 
-    def once(self, key: tuple, build, keep=None):
-        """``build()``, computed once per context and ``key`` (actions are immutable).
+    def once(self, key: tuple, build, *args, keep=None):
+        """``build(*args)``, computed once per context and ``key`` (actions are immutable).
         ``keep``: the objects whose ids are in ``key`` (arrays, actions), kept as long as the
-        answer, so that those ids stay theirs."""
+        answer, so that those ids stay theirs. (The arguments, rather than a closure made
+        at every call, hit or miss: hundreds of calls per analysis, most of them hits.)"""
         value = self.cache.get(key, _MISSING)
         if value is _MISSING:
-            value = self.keep(key, build(), keep)
-        return value
-
-    def keep(self, key: tuple, value, keep=None):
-        """Store ``value`` under ``key`` (see :meth:`once`) and return it."""
-        self.cache[key] = value
-        if keep is not None:
-            self.cache[("kept", key)] = keep
+            value = self.cache[key] = build(*args)
+            if keep is not None:
+                self.cache[("kept", key)] = keep
         return value
 
     def reaction(self, joint: Joint, on: str) -> list[Action]:
@@ -149,10 +142,10 @@ class ForceContext:
 
     def _reaction_once(self, joint: Joint, on: str) -> tuple[Action, ...]:
         key = ("reaction", joint.name, on)
-        acts = self.cache.get(key)
-        return acts if acts is not None else self.keep(key, tuple(self._reaction(joint, on)))
+        acts = self.cache.get(key)      # (hits read directly: the hottest use of once)
+        return acts if acts is not None else self.once(key, self._reaction, joint, on)
 
-    def _reaction(self, joint: Joint, on: str) -> list[Action]:
+    def _reaction(self, joint: Joint, on: str) -> tuple[Action, ...]:
         a, b = joint.links
         sign = 1.0 if on == b else -1.0
         src, dst = (a, b) if on == b else (b, a)
@@ -162,10 +155,10 @@ class ForceContext:
         if joint.type == "T":
             acts.append(Action(self.spec.symbol(src, dst, "M"), "couple", "reaction", on,
                                unknowns=unknowns[2:], sign=sign))
-        return acts
+        return tuple(acts)
 
     def gravity_action(self, link: str) -> Action:
-        return self.once(("gravity", link), lambda: self._gravity_action(link))
+        return self.once(("gravity", link), self._gravity_action, link)
 
     def _gravity_action(self, link: str) -> Action:
         s = self.links[link]
@@ -177,18 +170,18 @@ class ForceContext:
 
     def inertia_actions(self, link: str) -> list[Action]:
         """d'Alembert inertia force -m a_C at the centre of mass and couple -I alpha."""
-        return list(self.once(("inertia", link), lambda: tuple(self._inertia_actions(link))))
+        return list(self.once(("inertia", link), self._inertia_actions, link))
 
-    def _inertia_actions(self, link: str) -> list[Action]:
+    def _inertia_actions(self, link: str) -> tuple[Action, ...]:
         s = self.links[link]
-        return [Action(f"Fin{s.number}", "force", "inertia", link, s.r, f"C{s.number}",
+        return (Action(f"Fin{s.number}", "force", "inertia", link, s.r, f"C{s.number}",
                        value=-scaled(s.mass, s.a)),
-                Action(f"Min{s.number}", "couple", "inertia", link, value=-s.inertia * s.alpha)]
+                Action(f"Min{s.number}", "couple", "inertia", link, value=-s.inertia * s.alpha))
 
     def load_actions(self, link: str) -> list[Action]:
-        return list(self.once(("loads", link), lambda: tuple(self._load_actions(link))))
+        return list(self.once(("loads", link), self._load_actions, link))
 
-    def _load_actions(self, link: str) -> list[Action]:
+    def _load_actions(self, link: str) -> tuple[Action, ...]:
         acts = []
         for ld in self.loads:
             if ld.link != link:
@@ -199,7 +192,7 @@ class ForceContext:
                                    value=ld.force))
             else:
                 acts.append(Action(ld.symbol, "couple", "load", link, value=ld.moment))
-        return acts
+        return tuple(acts)
 
     @property
     def driver_unknown(self) -> str:
@@ -211,34 +204,33 @@ class ForceContext:
         moving link; for an R driver between moving links, M on the second and -M on the
         first (the motor sits on the first); for a T driver, the push F along the line at the
         slider's point, +F on the second link and -F on the first."""
-        return list(self.once(("driver", link), lambda: tuple(self._driver_actions(link))))
+        return list(self.once(("driver", link), self._driver_actions, link))
 
-    def _driver_actions(self, link: str) -> list[Action]:
+    def _driver_actions(self, link: str) -> tuple[Action, ...]:
         d = self.spec.driver
         if link not in d.links:
-            return []
+            return ()
         unknown = (self.driver_unknown,)
         if d.crank:
-            return [Action("M", "couple", "driver", link, unknowns=unknown)] \
-                if link == d.link else []
+            return (Action("M", "couple", "driver", link, unknowns=unknown),) \
+                if link == d.link else ()
         sign = 1.0 if link == d.links[1] else -1.0
         if d.kind == "R":
-            return [Action("M", "couple", "driver", link, unknowns=unknown, sign=sign)]
+            return (Action("M", "couple", "driver", link, unknowns=unknown, sign=sign),)
         joint = self.spec.joint(d.joint)
         u = self.line_direction(joint)
-        return [Action("Fd", "force", "driver", link, self.joint_points[joint.name],
-                       joint.point, unknowns=unknown, sign=sign, direction=u)]
+        return (Action("Fd", "force", "driver", link, self.joint_points[joint.name],
+                       joint.point, unknowns=unknown, sign=sign, direction=u),)
 
     def actions_on(self, bodies, *, inertia: bool, exclude=()) -> list[Action]:
         """See :meth:`_actions_on`; built once per free body (methods share them)."""
         key = ("actions", tuple(bodies), inertia, tuple(exclude))
         acts = self.cache.get(key)
         if acts is None:
-            acts = self.keep(key, tuple(self._actions_on(bodies, inertia=inertia,
-                                                         exclude=exclude)))
+            acts = self.once(key, self._actions_on, bodies, inertia, exclude)
         return list(acts)
 
-    def _actions_on(self, bodies, *, inertia: bool, exclude=()) -> list[Action]:
+    def _actions_on(self, bodies, inertia: bool, exclude=()) -> tuple[Action, ...]:
         """Every external action on the free body made of ``bodies`` (moving links): reactions
         of joints that cross its boundary, gravity, loads, the driver torque, and (d'Alembert)
         the inertia forces and couples. Joints inside the body cancel and are left out (the
@@ -253,18 +245,20 @@ class ForceContext:
         inner_driver = set(self.spec.driver.links) <= body   # its two sides cancel
         for link in bodies:
             acts.extend(self._link_actions(link, inertia, inner_driver))
-        return acts
+        return tuple(acts)
 
     def _link_actions(self, link: str, inertia: bool, inner_driver: bool) -> tuple:
         """A link's own actions in a free body: inertia (d'Alembert), gravity, loads, and
         the driver's effort unless both its links are in the body."""
         key = ("own", link, inertia, inner_driver)
         own = self.cache.get(key)
-        if own is None:
-            acts = self.inertia_actions(link) if inertia else []
-            acts.append(self.gravity_action(link))
-            acts += self.load_actions(link)
-            if not inner_driver:
-                acts += self.driver_actions(link)
-            own = self.keep(key, tuple(acts))
-        return own
+        return own if own is not None else self.once(key, self._own_actions, link, inertia,
+                                                     inner_driver)
+
+    def _own_actions(self, link: str, inertia: bool, inner_driver: bool) -> tuple:
+        acts = self.inertia_actions(link) if inertia else []
+        acts.append(self.gravity_action(link))
+        acts += self.load_actions(link)
+        if not inner_driver:
+            acts += self.driver_actions(link)
+        return tuple(acts)

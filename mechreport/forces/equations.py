@@ -277,7 +277,8 @@ def solve_chain(blocks: list[Step], n: int, prepared: dict | None = None,
     unknown's values (n,), and each block's Solution. The same numbers as :func:`solve_step`
     block by block. The blocks' matrices do not depend on earlier values: they are prepared
     together first (:func:`prepare_blocks`), unless ``prepared`` has them already (by ``id``
-    of the block)."""
+    of the block). The plain form of one chain: the analysis solves every method's chains
+    together (:func:`mechreport.forces.chains.solve_chains`), and the tests hold it to this."""
     prepared = {} if prepared is None else prepared
     missing = [blk for blk in blocks if blk.unknowns and id(blk) not in prepared]
     if missing:

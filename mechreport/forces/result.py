@@ -165,10 +165,10 @@ def slider_point(ctx, joint, fx: np.ndarray, fy: np.ndarray, m: np.ndarray,
     return p[..., 0], p[..., 1]
 
 
-def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular,
-                cond=None, points: dict | None = None) -> ForceResult:
+def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular, cond,
+                points: dict) -> ForceResult:
     """Assemble a ForceResult from solved unknowns (shared by all methods); ``points``: the
-    T joints' :func:`slider_point` by joint name, if found already."""
+    T joints' :func:`slider_point` by joint name (:func:`_slider_points`)."""
     spec = ctx.spec
     reactions = {}
     if _has_reactions(values):
@@ -178,7 +178,7 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
                 reactions[j.name] = JointReaction(j.name, "R", fx, fy)
                 continue
             m = values[f"joint.{j.name}.moment"]
-            px, py = points[j.name] if points else slider_point(ctx, j, fx, fy, m)
+            px, py = points[j.name]
             reactions[j.name] = JointReaction(j.name, "T", fx, fy, m, px, py)
     quantity = ctx.spec.driver.quantity
     return ForceResult(method, ctx.kin.angles, reactions, values[quantity], singular, cond,
@@ -236,4 +236,4 @@ def chain(ctx, steps) -> list[Step]:
     theirs)."""
     from .equations import triangular_blocks
     return ctx.once(("chain", id(steps)),
-                    lambda: [b for step in steps for b in triangular_blocks(step)], steps)
+                    lambda: [b for step in steps for b in triangular_blocks(step)], keep=steps)
