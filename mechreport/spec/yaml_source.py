@@ -62,10 +62,11 @@ _BREAK = re.compile("\r\n|[\r\n\x85\u2028\u2029]")   # line breaks as YAML count
 _NULLS = {"", "~", "null", "Null", "NULL"}
 _BOOLS = {"true": True, "True": True, "TRUE": True, "false": False, "False": False,
           "FALSE": False}
-_INT10 = re.compile(r"[-+]?[0-9]+\Z")
+# an int (group 1 matched) or a float in decimal notation, in one match
+_NUMBER = re.compile(r"[-+]?(?:([0-9]+)|(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?)\Z")
 _INT8 = re.compile(r"0o[0-7]+\Z")
 _INT16 = re.compile(r"0x[0-9a-fA-F]+\Z")
-_FLOAT = re.compile(r"[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?\Z")
+_NUMERIC_START = frozenset("0123456789+-.")   # how a number (or .inf, .nan) can start
 _INF, _NAN = float("inf"), float("nan")
 _SPECIAL_FLOATS = {**{s + i: (-_INF if s == "-" else _INF) for s in ("", "+", "-")
                       for i in (".inf", ".Inf", ".INF")},
@@ -106,11 +107,10 @@ def resolve_plain(value: str) -> Any:
         return None
     if value in _BOOLS:
         return _BOOLS[value]
-    if value[0] in "0123456789+-.":
-        if _INT10.match(value):
-            return _integer(value, 10)
-        if _FLOAT.match(value):
-            return float(value)
+    if value[0] in _NUMERIC_START:
+        number = _NUMBER.match(value)
+        if number is not None:
+            return _integer(value, 10) if number.lastindex else float(value)
         if value in _SPECIAL_FLOATS:
             return _SPECIAL_FLOATS[value]
         if _INT16.match(value):
@@ -301,32 +301,42 @@ class Source:
         if depth >= MAX_DEPTH:
             raise self._fatal(event, path, self._too_deep)
         tag = event.tag
+        next_event = self._next
         if isinstance(event, SequenceStartEvent):
             if tag not in (None, "!", SEQ):
                 raise self._tag_error(event, path)
             out: list = []
             lines = self.lines
-            item = self._next()
-            while not isinstance(item, SequenceEndEvent):
-                if _is_plain(item):                  # fast path: a plain scalar item
+            item = next_event()
+            while type(item) is not SequenceEndEvent:
+                # fast path (as _is_plain, inline: most items are): a plain scalar
+                if type(item) is ScalarEvent and item.implicit[0] and item.tag is None \
+                        and item.anchor is None:
                     if record:
                         lines[path + (len(out),)] = item.start_mark.line + 1
                     out.append(resolve_plain(item.value))
                 else:
                     out.append(self._node(item, path + (len(out),), depth + 1, record))
-                item = self._next()
+                item = next_event()
             return out
         if not isinstance(event, MappingStartEvent):   # pragma: no cover - parser guarantees
             raise self._fatal(event, path, "malformed YAML: unexpected event")
         if tag not in (None, "!", MAP):
             raise self._tag_error(event, path)
         mapping: dict = {}
-        key_event = self._next()
-        while not isinstance(key_event, MappingEndEvent):
-            key = _plain_name(key_event)          # fast path: a plain name
-            if key is None:
-                key = self._key(key_event, path, depth, record)
-            value_event = self._next()
+        lines = self.lines
+        key_event = next_event()
+        while type(key_event) is not MappingEndEvent:
+            # fast path (as _plain_name, inline): a plain scalar that cannot read as
+            # anything but text (not null, true/false or a number)
+            key = key_event.value if type(key_event) is ScalarEvent else None
+            if key is None or not key_event.implicit[0] or key_event.tag is not None \
+                    or key_event.anchor is not None or key in _NULLS or key in _BOOLS \
+                    or key[0] in _NUMERIC_START:
+                key = _plain_name(key_event)
+                if key is None:
+                    key = self._key(key_event, path, depth, record)
+            value_event = next_event()
             if key is None:                       # refused (reported): skip its value
                 self._node(value_event, path, depth + 1, False)
             elif key in mapping:
@@ -338,12 +348,14 @@ class Source:
             else:
                 child = path + (key,)
                 if record:
-                    self.lines[child] = key_event.start_mark.line + 1
-                if _is_plain(value_event):        # fast path: a plain value (its line: the key's)
+                    lines[child] = key_event.start_mark.line + 1
+                # fast path: a plain value (its line: the key's)
+                if type(value_event) is ScalarEvent and value_event.implicit[0] \
+                        and value_event.tag is None and value_event.anchor is None:
                     mapping[key] = resolve_plain(value_event.value)
                 else:
                     mapping[key] = self._node(value_event, child, depth + 1, record)
-            key_event = self._next()
+            key_event = next_event()
         return mapping
 
     def _key(self, event, path: Path, depth: int, record: bool) -> str | None:
