@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .arrays import fp_ignore, fp_quiet
 from .errors import AnalysisError
 from .checks import (Agreement, ExpectationResult, Residual, agreement, check_expectations,
                      residuals)
@@ -104,12 +105,13 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> 
     in any result is not finite (never reported as a number)."""
     if not isinstance(spec, Spec):
         spec = load_spec(spec)
-    mech = build_mechanism(spec)
-    kin, ctx, forces = solve_trusted(_require_angles(solve_kinematics(mech)), methods)
-    kin = _require_angles(kin)
-    rev, why = design_review(kin, forces, ctx.loads)
-    values = rev.values if rev is not None else None
-    res = residuals(ctx, forces)
+    with fp_quiet():    # what is not finite is flagged or refused below, never a warning
+        mech = build_mechanism(spec)
+        kin, ctx, forces = solve_trusted(_require_angles(solve_kinematics(mech)), methods)
+        kin = _require_angles(kin)
+        rev, why = design_review(kin, forces, ctx.loads)
+        values = rev.values if rev is not None else None
+        res = residuals(ctx, forces)
     ctx.cache.clear()   # the actions and equations the methods shared: rebuilt if asked for
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces), res,
                     check_expectations(kin, forces, kin.flags, values, why), tol, rev, why,
@@ -177,7 +179,7 @@ def trusted(kin: Kinematics, res: ForceResult) -> np.ndarray:
     condition number) added to the kinematics' own error is within ``TRUST_RTOL``."""
     inputs = kin.error if kin.error is not None else np.zeros(kin.n)
     cond = res.cond if res.cond is not None else np.ones(kin.n)
-    with np.errstate(over="ignore", invalid="ignore"):
+    with fp_ignore(over="ignore", invalid="ignore"):
         return ~res.singular & (inputs + EPS * cond <= TRUST_RTOL)
 
 
@@ -208,7 +210,7 @@ def _require_finite_inputs(ctx: ForceContext) -> None:
     """Raise ``AnalysisError`` where an inertia force or couple, a weight or a load overflows
     double precision (the loader bounds each input; products of several can still overflow)."""
     file = ctx.spec.file
-    with np.errstate(over="ignore", invalid="ignore"):
+    with fp_ignore(over="ignore", invalid="ignore"):
         arrays = [(f"{what} of link {name}", value) for name, s in ctx.links.items()
                   for what, value in (("m a_C", scaled(s.mass, s.a)),
                                       ("I_C alpha", s.inertia * s.alpha),

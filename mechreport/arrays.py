@@ -1,6 +1,9 @@
 """Small array helpers for the short sweeps where numpy's per-call cost is most of the time."""
 from __future__ import annotations
 
+from contextlib import contextmanager, nullcontext
+from contextvars import ContextVar
+
 import numpy as np
 
 
@@ -18,3 +21,28 @@ def stack(arrays, axis: int = 0) -> np.ndarray:
     order = list(range(1, out.ndim))
     order.insert(axis, 0)
     return np.ascontiguousarray(out.transpose(order))
+
+
+_QUIET: ContextVar[bool] = ContextVar("mechreport_fp_quiet", default=False)
+_NOTHING = nullcontext()
+
+
+def fp_ignore(**categories):
+    """``np.errstate(**categories)`` (those floating-point errors ignored), or nothing to do
+    inside :func:`fp_quiet`, which already ignores every one: entering an errstate costs
+    about 9 000 instructions, and a short sweep's analysis enters about 80."""
+    return _NOTHING if _QUIET.get() else np.errstate(**categories)
+
+
+@contextmanager
+def fp_quiet():
+    """Every floating-point error ignored for the block, as ``np.errstate(all="ignore")``,
+    and every :func:`fp_ignore` inside it free. For a whole analysis: what is not finite
+    there is found and reported by its own checks (flags, finite checks), never by a
+    warning. Per thread (a context variable, as numpy's own state)."""
+    token = _QUIET.set(True)
+    try:
+        with np.errstate(all="ignore"):
+            yield
+    finally:
+        _QUIET.reset(token)

@@ -26,7 +26,7 @@ from itertools import combinations
 
 import numpy as np
 
-from ..arrays import stack
+from ..arrays import fp_ignore, stack
 from ..errors import UnsupportedMechanism
 from ..model import Loop
 from ..spec import GROUND, Joint
@@ -101,7 +101,7 @@ def _surely_independent(rows: np.ndarray, rtol: float) -> bool:
     k = rows.shape[1]
     if rows.shape[2] != k or not 1 <= k <= 8:
         return False
-    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+    with fp_ignore(over="ignore", under="ignore", invalid="ignore"):
         square = np.einsum("pij,pij->p", rows, rows)          # ||A||_F^2
         if not ((square >= 1e-60) & (square <= 1e60)).all():
             return False

@@ -12,7 +12,7 @@ import sys
 
 import numpy as np
 
-from ..arrays import stack
+from ..arrays import fp_ignore, stack
 from ..errors import AssemblyError
 from ..linalg import SINGULAR_COND, Equilibrated
 from ..model import Mechanism
@@ -107,7 +107,7 @@ def kinematic_error(conds: list[np.ndarray], n: int) -> np.ndarray:
     if not conds:
         return np.full(n, EPS)
     c = stack(conds)
-    with np.errstate(over="ignore", invalid="ignore"):
+    with fp_ignore(over="ignore", invalid="ignore"):
         est = EPS * np.max(c, axis=0) ** 2 * np.prod(c, axis=0)
     return np.where(np.isfinite(est), est, np.inf)
 

@@ -17,6 +17,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..arrays import fp_ignore
 from ..model import Mechanism
 from ..spec import GROUND, Spec
 from ..spec.stack import stack_specs
@@ -119,7 +120,7 @@ def solve_stacked(mech: Mechanism, specs: list[Spec]) -> StackedKinematics | Non
 def _closed(mech: Mechanism, r: dict, th: dict) -> np.ndarray:
     """Rows (n,) where every joint closes (gaps within 1e-9 of the mechanism's extent, angles
     within 1e-9 rad): a check that the stacked poses are each variant's own."""
-    with np.errstate(invalid="ignore"):
+    with fp_ignore(invalid="ignore"):
         scale = 1e-3 + np.max(np.stack([np.abs(x).max(axis=1) for x in r.values()]), axis=0)
         ok = np.ones(len(scale), bool)
         frames = LinkFrames(r, th)
