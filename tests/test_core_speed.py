@@ -735,8 +735,9 @@ def _both_selections(monkeypatch):
     numeric = contour._select_numeric
     compared = []
 
-    def select(unknowns, chosen, candidates, build, probes, needs):
-        by_structure = contour_select(unknowns, chosen, candidates, build, probes, needs)
+    def select(unknowns, chosen, candidates, build, probes, needs, record=None):
+        by_structure = contour_select(unknowns, chosen, candidates, build, probes, needs,
+                                      record)
         by_numbers = numeric(unknowns, chosen, candidates, build, probes)
         compared.append((by_structure is None and by_numbers is None)
                         or (by_structure is not None and by_numbers is not None
@@ -744,6 +745,7 @@ def _both_selections(monkeypatch):
         return by_structure
     contour_select = contour._select
     monkeypatch.setattr(contour, "_select", select)
+    monkeypatch.setattr(contour, "_PLANS", {})      # every spec searched, none replayed
     return compared
 
 
@@ -812,11 +814,13 @@ def test_contour_selection_falls_back_to_the_numbers_where_structure_misleads():
                                              eqs.__getitem__, probes, needs)] == ["e1", "b", "c"]
 
 
-def test_contour_selection_equals_the_numbers_where_structure_falls_short_or_is_near_rank():
-    """Two cases an adversarial review found: too few equations by structure, where the
-    numerical selection's second pass still takes two rows of one unknown that add rank at
-    different angles; and a set whose smallest singular value is within rounding of the
-    rank threshold, where a subset falls below it. Both go to the numerical selection."""
+def test_contour_selection_where_structure_falls_short_or_is_near_rank():
+    """Two cases an adversarial review found. Too few equations by structure: the numerical
+    selection's second pass still takes two rows of one unknown that add rank at different
+    angles, a set singular at every angle (no row names b); the selection refuses it, as
+    it refuses any set the structure cannot make independent. And a set whose smallest
+    singular value is within rounding of the rank threshold, where a subset falls below
+    it: the numerical selection decides, and says so."""
     from mechreport.forces import contour
     from mechreport.forces.equations import Action, Equation, Term
 
@@ -827,8 +831,15 @@ def test_contour_selection_equals_the_numbers_where_structure_falls_short_or_is_
     eqs = {"r1": eq("r1", [[1.0, 0.0], [0.0, 0.0]], ("a", "b")),
            "r2": eq("r2", [[0.0, 0.0], [1.0, 0.0]], ("a", "b"))}
     needs = {"r1": frozenset({"a"}), "r2": frozenset({"a"})}
-    got = contour._select(["a", "b"], [], ["r1", "r2"], eqs.__getitem__, np.arange(2), needs)
-    assert [e.label for e in got] == ["r1", "r2"]
+    by_numbers = contour._select_numeric(["a", "b"], [], ["r1", "r2"], eqs.__getitem__,
+                                         np.arange(2))
+    assert [e.label for e in by_numbers] == ["r1", "r2"]
+    both = np.stack([eqs["r1"].terms[0].coeffs, eqs["r2"].terms[0].coeffs], axis=1)
+    assert (np.linalg.det(both) == 0).all()                # singular at every angle
+    record: list = []
+    assert contour._select(["a", "b"], [], ["r1", "r2"], eqs.__getitem__, np.arange(2),
+                           needs, record) is None
+    assert not record                   # decided by the structure alone
     M = np.array([[2.136261400290193e-10, -9.127772506153829e-10, 3.481401140932097e-10],
                   [-0.8337553361356009, -0.35607590279527473, -0.4219739220780606],
                   [-0.5091325079640706, 0.20011902008450655, 0.8371000341265268]])
@@ -839,7 +850,9 @@ def test_contour_selection_equals_the_numbers_where_structure_falls_short_or_is_
     # the numbers drop k1 (the first two rows are below the threshold): too few, None
     assert contour._select_numeric(list(u), [], list(eqs), eqs.__getitem__, np.arange(1)) \
         is None
-    assert contour._select(list(u), [], list(eqs), eqs.__getitem__, np.arange(1), needs) is None
+    assert contour._select(list(u), [], list(eqs), eqs.__getitem__, np.arange(1), needs,
+                           record) is None
+    assert record == [True]             # not independent enough: the numbers decided
 
 
 def test_terms_shared_between_equations_are_those_built_for_each():
@@ -1041,3 +1054,99 @@ def test_stack_is_numpys(shape):
     for bad in ([np.zeros(2), np.zeros(3)], []):
         with pytest.raises(ValueError):
             stack(bad)
+
+
+def _contour_context(spec, step=None):
+    if step is not None:
+        spec = dataclasses.replace(spec, sweep=dataclasses.replace(spec.sweep, step=step))
+    return ForceContext(solve_kinematics(build_mechanism(spec)))
+
+
+def _steps_as_numbers(steps):
+    """Each step's title, unknowns and equations (labels, and every term's numbers)."""
+    return [(s.title, list(s.unknowns), [(e.label, [(t.action.symbol, t.coeffs.tobytes(),
+                                                      t.const.tobytes()) for t in e.terms])
+                                         for e in s.equations]) for s in steps]
+
+
+def test_contour_plan_replayed_for_a_structure_is_the_search_s_own(monkeypatch):
+    """The contour method's plan is kept per structure and replayed for the next spec of
+    it (issue 14, the fixed cost): for every spec, replayed from a spec of the same topology
+    (itself over another sweep, and the other specs of its topology in the repository), the
+    plan and every equation of its steps are bit for bit those a fresh search gives."""
+    from mechreport.forces import contour
+    from mechreport.model import topology
+    paths = sorted((ROOT / "specs").glob("*.yaml")) + sorted((ROOT / "tests" / "data").rglob("*.yaml"))
+    specs = [load_spec(p) for p in paths]
+    by_topology: dict = {}
+    for spec in specs:
+        by_topology.setdefault(topology(spec), []).append(spec)
+    assert any(len(v) > 1 for v in by_topology.values())   # replays across specs are tried
+    replayed = []
+    real_replay = contour._replay
+
+    def replay(ctx, plans):
+        out = real_replay(ctx, plans)
+        replayed.append(out is not None)
+        return out
+    monkeypatch.setattr(contour, "_replay", replay)
+    for spec in specs:
+        for step in (spec.sweep.step, (spec.sweep.stop - spec.sweep.start) / 30):
+            monkeypatch.setattr(contour, "_PLANS", {})
+            fresh = _contour_context(spec, step)
+            want = contour.plan(fresh), _steps_as_numbers(contour.build_steps(fresh))
+            for source in by_topology[topology(spec)]:
+                monkeypatch.setattr(contour, "_PLANS", {})
+                contour.plan(_contour_context(source, source.sweep.step / 2))   # kept
+                if not contour._PLANS:
+                    continue
+                replayed.clear()
+                ctx = _contour_context(spec, step)
+                got = contour.plan(ctx), _steps_as_numbers(contour.build_steps(ctx))
+                assert got == want, (spec.file, source.file)
+                assert replayed in ([True], [False]), replayed
+                if source is spec:
+                    assert replayed == [True]
+    # a plan that fails its test at the replay falls back to the search
+    spec = load_spec(ROOT / "specs" / "r_rtr_rtr.yaml")
+    monkeypatch.setattr(contour, "_PLANS", {})
+    good = contour.plan(_contour_context(spec))
+    [structure] = contour._PLANS
+    twice = dataclasses.replace(good[0], recipes=(good[0].recipes[0],) * 2)   # dependent
+    contour._PLANS[structure] = (twice,) + good[1:]
+    replayed.clear()
+    assert contour.plan(_contour_context(spec)) == good and replayed == [False]
+    assert contour._PLANS[structure] == good
+
+
+def test_contour_plan_is_kept_only_when_the_structure_decided(monkeypatch):
+    """A search in which the numerical selection decided anything is not kept: its choice
+    hangs on the numbers of its spec. The structure key tells apart two specs of one
+    topology whose reactions act at different pins (which changes what a cut names)."""
+    from mechreport.forces import contour
+    from mechreport.spec.loader import parse_spec
+    text = (ROOT / "specs" / "r_rtr_rtr.yaml").read_text()
+    spec = parse_spec(text, "r_rtr_rtr.yaml")
+    real = contour._verified
+    calls = []
+
+    def once_not(unknowns, equations, probes):
+        calls.append(1)
+        return len(calls) > 1 and real(unknowns, equations, probes)
+    monkeypatch.setattr(contour, "_PLANS", {})
+    monkeypatch.setattr(contour, "_verified", once_not)
+    contour.plan(_contour_context(spec))
+    assert calls and not contour._PLANS
+    monkeypatch.setattr(contour, "_verified", real)
+    contour.plan(_contour_context(spec))
+    assert len(contour._PLANS) == 1
+    # B_T's slider point moved off the pin B: B_T's reaction has a moment about B
+    moved = parse_spec(text.replace("points: {B: [0, 0]}", "points: {B: [0, 0], S: [0.02, 0]}")
+                       .replace("point: B, line", "point: S, line"), "moved.yaml")
+    ctx, ctx_moved = _contour_context(spec), _contour_context(moved)
+    assert contour._structure(ctx)[0] == contour._structure(ctx_moved)[0]
+    assert contour._structure(ctx) != contour._structure(ctx_moved)
+    monkeypatch.setattr(contour, "_PLANS", {})
+    want = _steps_as_numbers(contour.build_steps(_contour_context(moved)))
+    contour.plan(ctx)                                       # r_rtr_rtr's plan kept
+    assert _steps_as_numbers(contour.build_steps(ctx_moved)) == want

@@ -59,30 +59,44 @@ def moment_term(act: Action, about: np.ndarray, n: int, side: str = "rhs",
 
 def with_moment(ctx: ForceContext, acts: list[Action], p: np.ndarray) -> list[Action]:
     """The actions that enter a moment equation about point ``p`` (n, 2): all but the forces
-    applied at ``p`` itself, which have no moment (the text leaves them out). Whether a force
-    is applied at ``p`` at every angle is asked of the same arrays again and again: the
-    answer is kept in ``ctx.cache``."""
+    applied at ``p`` itself (:func:`applied_at`), which have no moment (the text leaves them
+    out)."""
     memo = ctx.once(("at centre",), dict)
     out = []
-    tol = None
     for act in acts:
         at = act.at
         if act.kind != "force":
             out.append(act)
         elif at is not p:
-            key = (id(at), id(p))
-            hit = memo.get(key)
-            if hit is None:     # the arrays are kept with the answer: their ids stay theirs
-                if tol is None:
-                    tol = _coincidence_tol(ctx, p)
-                # apart at the first angle (most pairs) needs no look at the others
-                apart = at.size > 0 and not (abs(at.item(0) - p.item(0)) <= tol
-                                             and abs(at.item(1) - p.item(1)) <= tol)
-                same = not apart and bool((np.abs(at - p) <= tol).all())
-                hit = memo[key] = (same, at, p)
+            hit = memo.get((id(at), id(p)))
+            if hit is None:
+                hit = _coincide(ctx, memo, at, p)
             if not hit[0]:
                 out.append(act)
     return out
+
+
+def applied_at(ctx: ForceContext, at: np.ndarray, p: np.ndarray) -> bool:
+    """Whether a force applied at ``at`` (n, 2) is applied at point ``p`` (n, 2) at every
+    angle, as :func:`with_moment` judges it."""
+    if at is p:
+        return True
+    memo = ctx.once(("at centre",), dict)
+    hit = memo.get((id(at), id(p)))
+    return (hit if hit is not None else _coincide(ctx, memo, at, p))[0]
+
+
+def _coincide(ctx: ForceContext, memo: dict, at: np.ndarray, p: np.ndarray) -> tuple:
+    """(whether ``at`` is ``p`` at every angle, within :func:`_coincidence_tol`; ``at``,
+    ``p``), kept in ``memo``: the same arrays are asked about again and again, and the
+    arrays are kept with the answer, so their ids stay theirs."""
+    tol = _coincidence_tol(ctx, p)
+    # apart at the first angle (most pairs) needs no look at the others
+    apart = at.size > 0 and not (abs(at.item(0) - p.item(0)) <= tol
+                                 and abs(at.item(1) - p.item(1)) <= tol)
+    same = not apart and bool((np.abs(at - p) <= tol).all())
+    hit = memo[(id(at), id(p))] = (same, at, p)
+    return hit
 
 
 def _coincidence_tol(ctx: ForceContext, p: np.ndarray) -> float:

@@ -17,7 +17,9 @@ solved with the driver joint (4.73-4.75), so a body holding the crank is usable 
 Loops are every simple cycle of the joint graph (model.graph), shortest first and those
 without the driver before those with it. Joints are taken by name, last first, each as soon
 as one of its loops gives enough equations usable with the reactions already found (4.7.3:
-E, D_T, D on 0-3-4-5-0; then C, B_T, B, A). Nothing depends on the order of the spec.
+E, D_T, D on 0-3-4-5-0; then C, B_T, B, A). Nothing depends on the order of the spec. A
+search decided by the structure alone is kept for that structure and replayed, its steps
+tested again, for the next spec of it (see :func:`plan`).
 """
 from __future__ import annotations
 
@@ -28,9 +30,10 @@ import numpy as np
 
 from ..arrays import fp_ignore, stack
 from ..errors import UnsupportedMechanism
-from ..model import Loop
+from ..model import Loop, topology
 from ..spec import GROUND, Joint
-from .builders import force_equation, moment_equation, normal_constraint, with_moment
+from .builders import (applied_at, force_equation, moment_equation, normal_constraint,
+                       with_moment)
 from .context import ForceContext, reaction_unknowns
 from .equations import Equation, Matching, Step
 from .result import ForceResult, method_steps, run_steps
@@ -149,7 +152,8 @@ def _built(ctx: ForceContext, key: tuple[str, tuple[str, ...]], cache: dict) -> 
 
 
 def _select(unknowns: list[str], chosen: list[Equation], candidates: list, build,
-            probes: np.ndarray, needs: dict) -> list[Equation] | None:
+            probes: np.ndarray, needs: dict, numeric: list | None = None,
+            ) -> list[Equation] | None:
     """Independent equations for ``unknowns`` from ``candidates`` (keys, built by ``build``
     when taken; ``needs[key]`` the unknowns each names), after ``chosen``: a candidate is
     taken first only where it adds rank at every probe angle, then, for what is still
@@ -157,25 +161,37 @@ def _select(unknowns: list[str], chosen: list[Equation], candidates: list, build
     which the solve then flags). None if there are not enough.
 
     The rank is judged on the structure first (:func:`_structural`), which needs no numbers.
-    If the equations it picks are enough and independent at every probe angle with a margin
-    (singular values above twice ``RANK_RTOL`` of the largest), they are exactly those the
-    numerical selection (:func:`_select_numeric`) takes in its first pass: rows taken from
-    a matrix of full row rank keep full rank (their smallest singular value is no smaller,
-    their largest no larger; the margin covers the SVD's rounding of a small singular value,
-    about eps relative to the largest), and a candidate that adds no structural rank adds
-    none at any angle. That is one rank test instead of one per candidate, most often read
-    from the determinants (:func:`_surely_independent`), else by the SVD. Otherwise (too
-    few by structure, where the second pass may still take equations that add rank at some
-    angles only; or not independent enough) the numerical selection decides."""
+    Too few by structure, there are not enough: any square set of them is singular at every
+    angle (a structurally singular matrix), whatever its numbers. If the equations it picks
+    are enough and independent at every probe angle with a margin (:func:`_verified`), they
+    are exactly those the numerical selection (:func:`_select_numeric`) takes in its first
+    pass: rows taken from a matrix of full row rank keep full rank (their smallest singular
+    value is no smaller, their largest no larger; the margin covers the SVD's rounding of a
+    small singular value, about eps relative to the largest), and a candidate that adds no
+    structural rank adds none at any angle. That is one rank test instead of one per
+    candidate. Otherwise (``chosen`` not independent by structure, or the picked set not
+    independent enough) the numerical selection decides, and ``numeric`` (a list) is told
+    so: the choice then hangs on the numbers, not on the structure alone."""
     start = [frozenset(e.unknown_names()) for e in chosen]
     keys = _structural(unknowns, start, candidates, needs)
-    if keys is not None and len(start) + len(keys) == len(unknowns):
+    if keys is not None:
+        if len(start) + len(keys) < len(unknowns):
+            return None
         picked = list(chosen) + [build(key) for key in keys]
-        rows = stack([_rows(e, unknowns, probes) for e in picked], axis=1)
-        if _surely_independent(rows, 2 * RANK_RTOL) \
-                or (_rank(rows, 2 * RANK_RTOL) == len(unknowns)).all():
+        if _verified(unknowns, picked, probes):
             return picked
+    if numeric is not None:
+        numeric.append(True)
     return _select_numeric(unknowns, chosen, candidates, build, probes)
+
+
+def _verified(unknowns: list[str], equations: list[Equation], probes: np.ndarray) -> bool:
+    """Whether ``equations`` (as many as ``unknowns``) are independent at every probe angle
+    with a margin: singular values above twice ``RANK_RTOL`` of the largest, most often read
+    from the determinants (:func:`_surely_independent`), else by the SVD."""
+    rows = stack([_rows(e, unknowns, probes) for e in equations], axis=1)
+    return _surely_independent(rows, 2 * RANK_RTOL) \
+        or bool((_rank(rows, 2 * RANK_RTOL) == len(unknowns)).all())
 
 
 def _structural(unknowns: list[str], start: list[frozenset], candidates: list,
@@ -237,7 +253,7 @@ def _try_joint(ctx: ForceContext, loop: Loop, joint: Joint, known: set[str],
     start = [_normal(ctx, joint, cache)] if joint.type == "T" else []
     chosen = _select(unknowns, start, _candidates(ctx, loop, joint, unknowns, known, cache),
                      lambda key: _built(ctx, key, cache), probes,
-                     cache.setdefault("needs", {}))
+                     cache.setdefault("needs", {}), cache.setdefault("numeric", []))
     if chosen is None:
         return None
     return Step(f"Joint {joint.name} (loop {loop.label(ctx.spec)})", unknowns, chosen,
@@ -258,7 +274,7 @@ def _try_joints(ctx: ForceContext, joints, loops: list[Loop], known: set[str],
                 if key not in candidates:
                     candidates.append(key)
     chosen = _select(unknowns, start, candidates, lambda key: _built(ctx, key, cache), probes,
-                     cache.setdefault("needs", {}))
+                     cache.setdefault("needs", {}), cache.setdefault("numeric", []))
     if chosen is None:
         return None
     names = ", ".join(j.name for j in joints)
@@ -324,27 +340,87 @@ class StepPlan:
     bodies: tuple[str, ...]
 
 
+# The plans the search made for the last few structures (a topology and which joints'
+# reactions act at which pin, see _structure), as long as each choice it made followed from
+# that structure alone: a batch or a study analyses many specs of one structure.
+_PLANS: dict[tuple, tuple[StepPlan, ...]] = {}
+_PLANS_KEPT = 64
+
+
 def plan(ctx: ForceContext) -> tuple[StepPlan, ...]:
     """The equations the method uses, chosen once per analysis (kept in ``ctx.memo``, which
     the chunks of a long sweep share): the search judges independence at up to ``PROBES``
-    angles, so it runs on a context of those angles alone."""
+    angles, so it runs on a context of those angles alone.
+
+    Where the search's every choice followed from the structure (:func:`_select`: the
+    structural path, never the numerical selection), its plan is kept for that structure,
+    and the next spec of the structure replays it (:func:`_replay`) instead of searching:
+    every step is built again and must pass the same independence test at its own probe
+    angles, which is all the search would ask of it; failing that, the search runs."""
     if "contour" not in ctx.memo:
         probes = _probes(ctx.n)
         # a short sweep is searched in place, and its steps kept: no second context to build
         small = ForceContext(ctx.kin.take(probes, ctx.kin.flags)) \
             if ctx.n > SEARCH_IN_PLACE else ctx
-        steps, recipes = _search(small)
+        structure = _structure(small)
+        plans = _PLANS.get(structure)
+        steps = _replay(small, plans) if plans is not None else None
+        if steps is None:
+            steps, recipes, by_structure = _search(small)
+            plans = tuple(
+                StepPlan(s.title, tuple(s.unknowns),
+                         (recipes[id(s)],) if id(s) in recipes
+                         else tuple(recipes[id(e)] for e in s.equations), tuple(s.bodies))
+                for s in steps)
+            if by_structure:
+                if len(_PLANS) >= _PLANS_KEPT:
+                    _PLANS.clear()
+                _PLANS[structure] = plans
         if small is ctx:
             ctx.cache["contour steps"] = steps
-        ctx.memo["contour"] = tuple(
-            StepPlan(s.title, tuple(s.unknowns),
-                     (recipes[id(s)],) if id(s) in recipes
-                     else tuple(recipes[id(e)] for e in s.equations), tuple(s.bodies))
-            for s in steps)
+        ctx.memo["contour"] = plans
     return ctx.memo["contour"]
 
 
-def _realise(ctx: ForceContext, p: StepPlan, known: set[str]) -> Step:
+def _structure(ctx: ForceContext) -> tuple:
+    """What the search's structural choices depend on: the topology (links, joints, driver:
+    the loops, the free bodies and the unknowns each names) and, for each pin a cut may take
+    moments about, which joints' reactions act at it at every angle (they have no moment
+    there, :func:`~mechreport.forces.builders.with_moment`, and so are not named)."""
+    points = ctx.joint_points
+    joints = ctx.spec.joints
+    return (topology(ctx.spec), tuple(
+        tuple(applied_at(ctx, points[j.name], ctx.point_of(w.point)) for j in joints)
+        for w in joints if w.type == "R"))
+
+
+def _replay(ctx: ForceContext, plans: tuple[StepPlan, ...]) -> tuple[Step, ...] | None:
+    """The steps of ``plans``, a plan the search made from the structure alone for another
+    spec of ``ctx``'s structure, built over ``ctx``'s angles: the search's own result,
+    provided each step is independent at ``ctx``'s probe angles (:func:`_verified`, the
+    test its selection took it by) and each bridge holds; else None (the search decides).
+    Its structural choices (what each cut names, which attempts fall short) are the same
+    for the same structure."""
+    probes = _probes(ctx.n)
+    known: set[str] = set()
+    steps = []
+    for p in plans:
+        step = _realise(ctx, p, known)
+        if step is None:
+            return None
+        if p.recipes[0][0] != "bridge":
+            usable = known.union(p.unknowns)     # (so it is, for the same structure)
+            if not all(usable.issuperset(e.unknown_names()) for e in step.equations) \
+                    or not _verified(step.unknowns, step.equations, probes):
+                return None
+        steps.append(step)
+        known.update(p.unknowns)
+    return tuple(steps)
+
+
+def _realise(ctx: ForceContext, p: StepPlan, known: set[str]) -> Step | None:
+    """The step ``p`` plans, built over ``ctx``'s angles (None: a bridge that does not hold
+    there)."""
     if p.recipes[0][0] == "bridge":
         return _bridge_step(ctx, ctx.spec.joint(p.recipes[0][1]), known)
     eqs = []
@@ -369,12 +445,13 @@ def build_steps(ctx: ForceContext) -> tuple[Step, ...]:
     return tuple(steps)
 
 
-def _search(ctx: ForceContext) -> tuple[tuple[Step, ...], dict[int, tuple]]:
+def _search(ctx: ForceContext) -> tuple[tuple[Step, ...], dict[int, tuple], bool]:
     """Joints in a canonical order (by name, last first: the text's order for 4.6 and 4.7),
     each from the first loop through it, loops without the driver first, that gives enough
     independent equations with the reactions already found. Nothing depends on the order in
-    which links and joints are written. Returns the steps and how each of their equations was
-    built (:func:`_recipes`)."""
+    which links and joints are written. Returns the steps, how each of their equations was
+    built (:func:`_recipes`), and whether every choice followed from the structure alone
+    (the numerical selection never ran)."""
     spec = ctx.spec
     drv = spec.driver.joint
     loops = sorted(ctx.mech.cycles, key=lambda l: (drv in {j.name for j in l.joints},
@@ -418,7 +495,7 @@ def _search(ctx: ForceContext) -> tuple[tuple[Step, ...], dict[int, tuple]]:
         raise UnsupportedMechanism(
             f"{spec.file}: the contour method found no independent equations for joint(s) "
             f"{', '.join(missing)} along the loops {', '.join(l.label(spec) for l in loops)}")
-    return tuple(steps), _recipes(cache)
+    return tuple(steps), _recipes(cache), not cache.get("numeric")
 
 
 def solve(ctx: ForceContext) -> ForceResult:

@@ -54,14 +54,16 @@ _STRUCTURES: dict[tuple, Mechanism] = {}
 _STRUCTURES_KEPT = 64
 
 
-def _topology(spec: Spec) -> tuple:
+def topology(spec: Spec) -> tuple:
+    """What the structure of ``spec``'s mechanism depends on (hashable): the links' order,
+    the joints' names, types and links, and the driver joint."""
     return (tuple(l.name for l in spec.links),
             tuple((j.name, j.type, j.links) for j in spec.joints), spec.driver.joint)
 
 
 def build_mechanism(spec: Spec) -> Mechanism:
     """Raises ``UnsupportedMechanism`` when the links do not form Assur groups."""
-    key = _topology(spec)
+    key = topology(spec)
     known = _STRUCTURES.get(key)
     if known is None:
         known = Mechanism(spec, decompose_groups(spec), cycle_basis(spec), all_loops(spec))
@@ -71,4 +73,4 @@ def build_mechanism(spec: Spec) -> Mechanism:
     return known if known.spec is spec else known.with_spec(spec)
 
 
-__all__ = ["Mechanism", "build_mechanism", "Dyad", "Group", "Loop", "GROUND", "all_loops"]
+__all__ = ["Mechanism", "build_mechanism", "topology", "Dyad", "Group", "Loop", "GROUND", "all_loops"]
