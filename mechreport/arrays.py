@@ -46,3 +46,19 @@ def fp_quiet():
             yield
     finally:
         _QUIET.reset(token)
+
+
+def average(values: np.ndarray) -> float:
+    """``float(np.mean(values))`` of a float array, bit for bit (the same pairwise sum of
+    every element, divided by their count), without np.mean's Python-level dispatch."""
+    return float(np.add.reduce(values, axis=None) / values.size)
+
+
+def largest(values: np.ndarray) -> float:
+    """``float(np.max(values))`` (NaN if any is NaN), without its Python-level dispatch."""
+    return float(np.maximum.reduce(values, axis=None))
+
+
+def smallest(values: np.ndarray) -> float:
+    """``float(np.min(values))`` (NaN if any is NaN), without its Python-level dispatch."""
+    return float(np.minimum.reduce(values, axis=None))

@@ -1056,6 +1056,44 @@ def test_stack_is_numpys(shape):
             stack(bad)
 
 
+@pytest.mark.parametrize("shape", [(36,), (3600,), (36, 2), (1,), (7, 3)])
+def test_average_largest_smallest_are_numpys(shape):
+    """arrays.average, largest and smallest give float(np.mean), float(np.max) and
+    float(np.min) bit for bit, NaN and infinities included."""
+    from mechreport.arrays import average, largest, smallest
+    rng = np.random.default_rng(11)
+    x = rng.standard_normal(shape) * 10.0 ** rng.integers(-5, 5, shape)
+    cases = [x, x * 1e300, -x]
+    for special in (np.nan, np.inf, -np.inf):
+        y = x.copy()
+        y.flat[len(y.flat) // 2] = special
+        cases.append(y)
+    for v in cases:
+        for got, want in ((average(v), np.mean(v)), (largest(v), np.max(v)),
+                          (smallest(v), np.min(v))):
+            assert type(got) is float
+            assert np.array_equal(np.float64(got), np.float64(want), equal_nan=True)
+            assert np.float64(got).tobytes() == np.float64(want).tobytes()
+
+
+def test_fp_ignore_is_numpys_errstate_outside_an_analysis_and_free_inside():
+    """Outside fp_quiet, fp_ignore ignores only the errors named (as np.errstate); inside
+    it, every floating-point error is ignored, and nothing is left changed after it."""
+    from mechreport.arrays import fp_ignore, fp_quiet
+    before = np.geterr()
+    with fp_ignore(divide="ignore"):
+        assert np.geterr()["divide"] == "ignore" and np.geterr()["over"] == before["over"]
+    with fp_quiet():
+        assert set(np.geterr().values()) == {"ignore"}
+        with fp_ignore(divide="ignore"):
+            assert set(np.geterr().values()) == {"ignore"}
+    assert np.geterr() == before
+    with np.errstate(over="raise"):
+        with pytest.raises(FloatingPointError):
+            with fp_ignore(divide="ignore"):
+                np.float64(1e308) * 10
+
+
 def _contour_context(spec, step=None):
     if step is not None:
         spec = dataclasses.replace(spec, sweep=dataclasses.replace(spec.sweep, step=step))

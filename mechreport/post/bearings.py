@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..arrays import stack
+from ..arrays import average, largest, stack
 from ..forces import ForceResult
 from ..kinematics import Kinematics
 from ..kinematics.frames import rotate
@@ -55,6 +55,6 @@ def bearing_load(f_cycle: np.ndarray, rating: float | None = None,
                  rpm: float | None = None) -> BearingLoad:
     """Statistics of |F| sampled over one turn on a uniform grid ``f_cycle`` (N,) [N]."""
     f = np.abs(np.asarray(f_cycle, float))
-    feq = float((f ** 3).mean() ** (1.0 / 3.0))
+    feq = average(f ** 3) ** (1.0 / 3.0)
     life = rating_life_h(rating, feq, rpm) if rating is not None and rpm else None
-    return BearingLoad(float(f.max()), float(f.mean()), feq, life)
+    return BearingLoad(largest(f), average(f), feq, life)

@@ -8,10 +8,12 @@ closing interval included); on a uniform grid the mean is the plain average.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from ..arrays import average
 from ..errors import MechreportError
 from ..spec import Spec
 
@@ -54,10 +56,10 @@ class Cycle:
         return out
 
     def mean(self, values: np.ndarray) -> float:
-        return float(np.mean(values))
+        return average(np.asarray(values, float))
 
     def rms(self, values: np.ndarray) -> float:
-        return float(np.sqrt(np.mean(np.asarray(values) ** 2)))
+        return math.sqrt(average(np.asarray(values, float) ** 2))
 
     def integral(self, values: np.ndarray) -> np.ndarray:
         """Running integral over the crank angle [value x rad] at each grid angle, from 0 at

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..arrays import stack
+from ..arrays import average, largest, smallest, stack
 from .balance import Counterweight, counterweight
 from .bearings import BearingLoad, bearing_load
 from .cycle import Cycle, CycleUndefined, cycle_of
@@ -120,13 +120,13 @@ def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = ""
     omega = spec.driver.omega
     sample = lambda v: cyc.sample(v, tr.angles)   # noqa: E731 - one-line adapter
     torque = sample(tr.torque)
-    mean = float(np.mean(torque))
+    mean = average(torque)
     energy = cyc.integral(torque - mean)
     values = {
-        "cycle.torque.max": float(np.max(torque)), "cycle.torque.min": float(np.min(torque)),
+        "cycle.torque.max": largest(torque), "cycle.torque.min": smallest(torque),
         "cycle.torque.mean": mean, "cycle.torque.rms": cyc.rms(torque),
-        "cycle.power.max": float(np.max(torque * omega)), "cycle.power.mean": mean * omega,
-        "cycle.energy_fluctuation": float(np.max(energy) - np.min(energy)),
+        "cycle.power.max": largest(torque * omega), "cycle.power.mean": mean * omega,
+        "cycle.energy_fluctuation": largest(energy) - smallest(energy),
     }
     if speed_fluctuation:
         values["cycle.flywheel_inertia"] = (values["cycle.energy_fluctuation"]
@@ -134,9 +134,9 @@ def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = ""
     shaking = sample(tr.frame[:, :2])
     f = np.hypot(shaking[:, 0], shaking[:, 1])
     if tr.reactions:     # the shaking force is the ground joints' reactions: none, no value
-        values["cycle.shaking.force_max"] = float(np.max(f))
+        values["cycle.shaking.force_max"] = largest(f)
         values["cycle.shaking.force_rms"] = cyc.rms(f)
-        values["cycle.shaking.moment_max"] = float(np.max(np.abs(sample(tr.frame[:, 2]))))
+        values["cycle.shaking.moment_max"] = largest(np.abs(sample(tr.frame[:, 2])))
     angles = {label: sample(ta) for label, ta in tr.transmission.items()}
     del f                 # a long sweep's review holds as few full-length arrays as it can
     if angles:
