@@ -218,7 +218,7 @@ def _require_finite_inputs(ctx: ForceContext) -> None:
                                        * np.ones((ctx.n, 1))))]
         arrays += [(f"load {ld.symbol}", ld.force if ld.force is not None else ld.moment)
                    for ld in ctx.loads]
-    if _all_finite([v for _, v in arrays]):
+    if _all_finite([np.asarray(v).reshape(-1) for _, v in arrays]):
         return                      # as a rule: nothing to name
     for what, values in arrays:
         ok = np.isfinite(values).reshape(ctx.n, -1).all(axis=1)
@@ -232,11 +232,11 @@ def _require_finite_inputs(ctx: ForceContext) -> None:
 
 
 def _all_finite(arrays: list[np.ndarray]) -> bool:
-    """Whether every value of ``arrays`` is finite: at once for short sweeps (one numpy call
-    instead of one per array), array by array where joining them would take memory."""
-    if sum(np.size(v) for v in arrays) <= 1 << 20:
-        return bool(np.isfinite(np.concatenate([np.asarray(v).reshape(-1) for v in arrays]))
-                    .all())
+    """Whether every value of ``arrays`` (1-D) is finite: at once for short sweeps (one
+    numpy call instead of one per array), array by array where joining them would take
+    memory."""
+    if sum([v.size for v in arrays]) <= 1 << 20:
+        return bool(np.isfinite(np.concatenate(arrays)).all())
     return all(np.isfinite(v).all() for v in arrays)
 
 
@@ -245,8 +245,9 @@ def _require_finite(kin: Kinematics, forces: dict[str, ForceResult]) -> None:
     method, angle): a NaN must never reach a check or a report as a number."""
     spec = kin.mechanism.spec
     results = [(name, res.values()) for name, res in forces.items()]
-    whole = [getattr(kin, what) for what in ("r", "theta", "v", "omega", "a", "alpha")]
-    if _all_finite(whole + [v for _, values in results for v in values.values()]):
+    whole = [kin.r, kin.theta, kin.v, kin.omega, kin.a, kin.alpha]
+    if _all_finite([w.reshape(-1) for w in whole]
+                   + [v for _, values in results for v in values.values()]):
         return                      # as a rule: nothing to name (the ground's zeros included)
     arrays = [(f"kinematics {what} of link {link.name}", getattr(kin, what)[:, link.number])
               for link in spec.links for what in ("r", "theta", "v", "omega", "a", "alpha")]

@@ -1188,3 +1188,73 @@ def test_contour_plan_is_kept_only_when_the_structure_decided(monkeypatch):
     want = _steps_as_numbers(contour.build_steps(_contour_context(moved)))
     contour.plan(ctx)                                       # r_rtr_rtr's plan kept
     assert _steps_as_numbers(contour.build_steps(ctx_moved)) == want
+
+
+@pytest.mark.parametrize("path", sorted((ROOT / "specs").glob("*.yaml"))
+                         + sorted((ROOT / "tests" / "data").rglob("*.yaml")),
+                         ids=lambda p: p.stem)
+def test_residuals_by_matrix_are_the_equations_evaluated(path):
+    """A short sweep's residual check evaluates every link's Newton-Euler equations with
+    every method's values as one matrix product per angle; each equation's largest
+    residual is Equation.evaluate's up to the rounding of a sum taken in another order
+    (below (terms) eps times the sum of the terms' magnitudes), on every spec."""
+    import importlib
+    from mechreport.forces.builders import newton_euler_equations
+    module = importlib.import_module("mechreport.checks.residuals")
+    spec = load_spec(path)
+    spec = dataclasses.replace(spec, sweep=dataclasses.replace(
+        spec.sweep, step=(spec.sweep.stop - spec.sweep.start) / 40))
+    kin = solve_kinematics(build_mechanism(spec))
+    ctx = ForceContext(kin)
+    forces = solve_forces(kin, None, ctx)
+    solved = {name: res.values() for name, res in forces.items() if res.reactions}
+    names = list(solved)
+    unknowns = list(solved[names[0]])
+    values = np.array([[solved[name][u] for name in names] for u in unknowns])
+    equations = [eq for link in spec.links for eq in newton_euler_equations(ctx, link.name)]
+    got = module._largest_by_matrix(equations, unknowns, values)
+    by_name = {u: values[i] for i, u in enumerate(unknowns)}
+    eps = np.finfo(float).eps
+    for e, eq in enumerate(equations):
+        want = np.abs(eq.evaluate(by_name)).max(axis=-1)
+        size = sum(np.abs(t.const) + sum(np.abs(t.coeffs[:, j] * by_name[u])
+                                         for j, u in enumerate(t.action.unknowns))
+                   for t in eq.terms)                                     # (methods, n)
+        bound = 2 * len(eq.terms) * 3 * eps * size.max(axis=-1)
+        assert (np.abs(got[e] - want) <= bound).all(), (eq.label, got[e], want, bound)
+    # the whole check: the same method by method, through either path
+    short = module.residuals(ctx, forces)
+    old = module.DENSE_MAX
+    try:
+        module.DENSE_MAX = 0
+        long = module.residuals(ctx, forces)
+    finally:
+        module.DENSE_MAX = old
+    for a, b in zip(short, long):
+        assert a.method == b.method
+        assert a.force == pytest.approx(b.force, abs=1e-9) and \
+            a.moment == pytest.approx(b.moment, abs=1e-9)
+
+
+def test_residuals_by_matrix_take_an_unknown_named_twice():
+    """An equation that names one unknown in two terms (the matrix has one place for it:
+    the second is added apart) and one with constants only."""
+    import importlib
+    from mechreport.forces.equations import Action, Equation, Term
+    module = importlib.import_module("mechreport.checks.residuals")
+    n = 5
+    rng = np.random.default_rng(3)
+    a1 = Action("F1", "force", "reaction", "link", unknowns=("a", "b"))
+    a2 = Action("F2", "force", "reaction", "link", unknowns=("a",))
+    known = Action("G", "force", "gravity", "link")
+    eqs = [Equation("twice", "force", ("link",),
+                    [Term(a1, rng.standard_normal((n, 2)), rng.standard_normal(n)),
+                     Term(a2, rng.standard_normal((n, 1)), rng.standard_normal(n), "lhs")]),
+           Equation("known", "force", ("link",),
+                    [Term(known, np.zeros((n, 0)), rng.standard_normal(n), "lhs")])]
+    values = rng.standard_normal((2, 3, n))           # a, b for 3 methods
+    got = module._largest_by_matrix(eqs, ["a", "b"], values)
+    for e, eq in enumerate(eqs):
+        want = np.broadcast_to(np.abs(eq.evaluate({"a": values[0], "b": values[1]}))
+                               .max(axis=-1), (3,))
+        np.testing.assert_allclose(got[e], want, rtol=1e-13, atol=1e-14)
