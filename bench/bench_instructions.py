@@ -20,14 +20,17 @@ instructions a call, where ``callgrind_control`` costs half a million).
 
 Needs valgrind (Debian package valgrind); each spec takes a few minutes under it. Each
 stage is counted over 5 runs after 3 warm-up runs in the same process (the structure
-caches warm, as for the second spec of a batch), less the cost of switching the count on
-and off. The force stages follow ``solve_forces``: every method's equations, then their
+caches warm, as for the second spec of a batch), the objects made until then collected
+and frozen (a full collection falls where allocations trigger it, and moved one spec's
+count by a million and a half between revisions), less the cost of switching the count
+on and off. The force stages follow ``solve_forces``: every method's equations, then their
 blocks prepared together, then every method's chain solved level by level. Not a test.
 """
 from __future__ import annotations
 
 import argparse
 import dataclasses
+import gc
 import os
 import re
 import shutil
@@ -109,8 +112,19 @@ def _child(name: str, stage: str) -> None:
 
     for _ in range(WARM):
         run(False)
+    _settle()
     for _ in range(RUNS):
         run(True)
+
+
+def _settle() -> None:
+    """After the warm-up: every object made so far (the imports', the warm-up's) collected
+    or frozen out of the collector's reach, so that a full collection, whose cost is that
+    of every object alive and which falls wherever the allocations happen to trigger it,
+    does not land in some revisions' counted runs and not in others' (it moved the
+    hydraulic boom's count by 1.4 million between two revisions)."""
+    gc.collect()
+    gc.freeze()
 
 
 def _short(spec):
@@ -162,6 +176,7 @@ def _child_function(name: str, target: str) -> None:
     text = (ROOT / "specs" / f"{name}.yaml").read_text()
     for _ in range(WARM):
         analyse(_short(parse_spec(text, f"{name}.yaml")))
+    _settle()
     state["measure"] = True
     for _ in range(RUNS):
         if target == "empty":
