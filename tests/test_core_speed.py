@@ -1258,3 +1258,41 @@ def test_residuals_by_matrix_take_an_unknown_named_twice():
         want = np.broadcast_to(np.abs(eq.evaluate({"a": values[0], "b": values[1]}))
                                .max(axis=-1), (3,))
         np.testing.assert_allclose(got[e], want, rtol=1e-13, atol=1e-14)
+
+
+LONE_CRANK = """
+mechreport: 1
+name: lone crank
+units: {length: m, mass: kg}
+gravity: [0, -9.807]
+ground: {A: [0, 0]}
+links:
+  crank: {points: {A: [0, 0], B: [0.1, 0]}, mass: 1.0, inertia: 0.001, com: [0.05, 0]}
+joints:
+  A: {type: R, links: [ground, crank]}
+driver: {joint: A, rpm: 100}
+sweep: {start: 0, stop: 360, step: 10}
+"""
+
+
+def test_contour_plan_with_a_bridge_is_replayed_as_searched(monkeypatch):
+    """A joint on no loop (a lone crank) is solved as a bridge: the whole part beyond it as
+    one free body. Its plan is kept and replayed like any other, bit for bit the search's."""
+    from mechreport.forces import contour
+    from mechreport.spec.loader import parse_spec
+    spec = parse_spec(LONE_CRANK, "lone_crank.yaml")
+    monkeypatch.setattr(contour, "_PLANS", {})
+    fresh = _contour_context(spec)
+    plans = contour.plan(fresh)
+    assert [p.recipes[0][0] for p in plans] == ["bridge"] and len(contour._PLANS) == 1
+    search = contour._search
+
+    def no_search(ctx):
+        raise AssertionError("searched, not replayed")
+    monkeypatch.setattr(contour, "_search", no_search)
+    got = _steps_as_numbers(contour.build_steps(_contour_context(spec, 5.0)))
+    monkeypatch.setattr(contour, "_search", search)
+    monkeypatch.setattr(contour, "_PLANS", {})
+    assert got == _steps_as_numbers(contour.build_steps(_contour_context(spec, 5.0)))
+    result = analyse(spec)
+    assert result.agreement[0].relative < 1e-12

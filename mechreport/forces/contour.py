@@ -406,7 +406,7 @@ def _replay(ctx: ForceContext, plans: tuple[StepPlan, ...]) -> tuple[Step, ...] 
     steps = []
     for p in plans:
         step = _realise(ctx, p, known)
-        if step is None:
+        if step is None or list(step.unknowns) != list(p.unknowns):
             return None
         if p.recipes[0][0] != "bridge":
             usable = known.union(p.unknowns)     # (so it is, for the same structure)
