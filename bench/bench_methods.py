@@ -71,7 +71,8 @@ def main() -> None:
     b, m = best_of(lambda: ForceContext(dataclasses.replace(kin)))
     print(f"{'force context (loads)':<28}{b / n * 1e6:>15.2f}{m / n * 1e6:>17.2f}")
     for name, module in METHODS.items():
-        # a fresh context each time: nothing cached from the previous run (contour's plan)
+        # a fresh context each time: its own points and actions (the contour plan, kept per
+        # structure, is replayed)
         contexts = [ForceContext(dataclasses.replace(kin)) for _ in range(7)]
         b, m = best_of(lambda: module.solve(contexts.pop()))
         print(f"{name:<28}{b / n * 1e6:>15.2f}{m / n * 1e6:>17.2f}")
