@@ -1296,3 +1296,29 @@ def test_contour_plan_with_a_bridge_is_replayed_as_searched(monkeypatch):
     assert got == _steps_as_numbers(contour.build_steps(_contour_context(spec, 5.0)))
     result = analyse(spec)
     assert result.agreement[0].relative < 1e-12
+
+
+def test_residual_of_a_value_that_is_not_a_number_is_infinitely_bad():
+    """A NaN in a method's values makes its residuals inf, through either path (a NaN
+    residual dropped by a max would read as a perfect 0); the other methods' stay finite."""
+    import importlib
+    module = importlib.import_module("mechreport.checks.residuals")
+    spec = load_spec(ROOT / "specs" / "four_bar.yaml")
+    for step, dense in ((10.0, 256), (10.0, 0), (1.0, 256)):
+        spec_n = dataclasses.replace(spec, sweep=dataclasses.replace(spec.sweep, step=step))
+        kin = solve_kinematics(build_mechanism(spec_n))
+        ctx = ForceContext(kin)
+        forces = solve_forces(kin, None, ctx)
+        torque = forces["newton_euler"].driver_torque.copy()
+        torque[3] = np.nan
+        forces["newton_euler"] = dataclasses.replace(forces["newton_euler"],
+                                                     driver_torque=torque)
+        old = module.DENSE_MAX
+        try:
+            module.DENSE_MAX = dense
+            found = {r.method: r for r in module.residuals(ctx, forces)}
+        finally:
+            module.DENSE_MAX = old
+        assert found["newton_euler"].moment == np.inf, (step, dense)
+        assert all(np.isfinite([r.force, r.moment]).all()
+                   for name, r in found.items() if name != "newton_euler"), (step, dense)

@@ -26,7 +26,8 @@ class Residual:
 
 def residuals(ctx: ForceContext, results: dict[str, ForceResult]) -> list[Residual]:
     """The largest residuals of each method with joint reactions, over every link and angle
-    (long sweeps chunk by chunk: the equations hold coefficients at every angle)."""
+    (long sweeps chunk by chunk: the equations hold coefficients at every angle); inf where
+    a value is not finite (an analysis refuses those before: this is for other callers)."""
     from ..forces import CHUNK
     worst: dict[str, list[float]] = {name: [0.0, 0.0] for name, res in results.items()
                                      if res.reactions}
@@ -49,6 +50,8 @@ def residuals(ctx: ForceContext, results: dict[str, ForceResult]) -> list[Residu
                 largest = np.array([np.broadcast_to(
                     np.abs(eq.evaluate(values)).max(axis=-1, initial=0.0), (len(names),))
                     for eq in equations]).reshape(len(equations), len(names))
+            # a residual that is not a number is the worst there is, never none
+            largest[np.isnan(largest)] = np.inf
             for k, rows in ((0, ~moment), (1, moment)):
                 found = largest[rows].max(axis=0, initial=0.0).tolist()
                 for name, value in zip(names, found):
