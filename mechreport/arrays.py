@@ -29,8 +29,9 @@ _NOTHING = nullcontext()
 
 def fp_ignore(**categories):
     """``np.errstate(**categories)`` (those floating-point errors ignored), or nothing to do
-    inside :func:`fp_quiet`, which already ignores every one: entering an errstate costs
-    about 9 000 instructions, and a short sweep's analysis enters about 80."""
+    inside :func:`fp_quiet`, which already ignores every one: entering and leaving an
+    errstate took 2.4 us here, this null context 0.8, and a short sweep's analysis enters
+    about 80."""
     return _NOTHING if _QUIET.get() else np.errstate(**categories)
 
 
