@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..arrays import average, largest, smallest, stack
+from ..arrays import largest, smallest, stack
 from .balance import Counterweight, counterweight
 from .bearings import BearingLoad, bearing_load
 from .cycle import Cycle, CycleUndefined, cycle_of
@@ -120,7 +120,7 @@ def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = ""
     omega = spec.driver.omega
     sample = lambda v: cyc.sample(v, tr.angles)   # noqa: E731 - one-line adapter
     torque = sample(tr.torque)
-    mean = average(torque)
+    mean = cyc.mean(torque)
     energy = cyc.integral(torque - mean)
     values = {
         "cycle.torque.max": largest(torque), "cycle.torque.min": smallest(torque),
@@ -140,8 +140,8 @@ def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = ""
     angles = {label: sample(ta) for label, ta in tr.transmission.items()}
     del f                 # a long sweep's review holds as few full-length arrays as it can
     if angles:
-        values["cycle.transmission_angle.min"] = min(float(np.min(a)) for a in angles.values())
-        values["cycle.transmission_angle.max"] = max(float(np.max(a)) for a in angles.values())
+        values["cycle.transmission_angle.min"] = min(smallest(a) for a in angles.values())
+        values["cycle.transmission_angle.max"] = max(largest(a) for a in angles.values())
     inertial = sample(tr.inertial)
     crank = np.radians(cyc.angles)    # a crank's x-axis angle is the cycle's crank angle
     cw = counterweight(inertial, crank, omega, spec.driver.alpha)

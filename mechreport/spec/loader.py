@@ -145,10 +145,10 @@ class _Checker:
         # check below (anything else takes the checks, which say what is wrong)
         if type(value) is float or (type(value) is int and -NUMBER_MAX <= value <= NUMBER_MAX):
             number = float(value)
-            if (number == 0 or NUMBER_MIN <= abs(number) <= NUMBER_MAX) \
-                    and not (positive and number <= 0) and not (nonzero and number == 0):
+            if _in_range(number) and not (positive and number <= 0) \
+                    and not (nonzero and number == 0):
                 si = number * scale
-                if si == 0 or NUMBER_MIN <= abs(si) <= NUMBER_MAX:
+                if _in_range(si):
                     return si
         kind = "a positive number" if positive else "a number"
         if (isinstance(value, bool) or not isinstance(value, (int, float, HugeInteger))):
