@@ -53,7 +53,7 @@ def _child(name: str, stage: str) -> None:
     if stage.startswith(FUNCTIONS):
         _child_function(name, stage[len(FUNCTIONS):])
         return
-    from mechreport.analysis import analyse
+    from mechreport.pipeline.analysis import analyse
     from mechreport.spec.loader import parse_spec
     if stage not in ("empty", "analyse"):   # as the code is now (older revisions: --only analyse)
         from mechreport.checks.agreement import agreement
@@ -139,7 +139,7 @@ def _child_function(name: str, target: str) -> None:
     nothing between) over RUNS analyses; print the calls."""
     import ctypes
     import importlib
-    from mechreport.analysis import analyse
+    from mechreport.pipeline.analysis import analyse
     from mechreport.spec.loader import parse_spec
     toggle = ctypes.CDLL(os.environ["BENCH_SHIM"]).toggle
     state = {"depth": 0, "measure": False, "calls": 0}

@@ -19,7 +19,7 @@ import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-from mechreport.analysis import analyse  # noqa: E402
+from mechreport.pipeline.analysis import analyse  # noqa: E402
 from mechreport.forces import METHODS, ForceContext  # noqa: E402
 from mechreport.post import review  # noqa: E402
 from mechreport.kinematics import solve_kinematics  # noqa: E402

@@ -84,7 +84,7 @@ def tree_rss(pid: int) -> int:
 def time_methods() -> None:
     import dataclasses
     import statistics
-    from mechreport.analysis import analyse
+    from mechreport.pipeline.analysis import analyse
     from mechreport.forces import METHODS
     from mechreport.spec import load_spec
     spec = dataclasses.replace(load_spec(SPEC), expect=())

@@ -44,3 +44,25 @@ class UnsupportedMechanism(MechreportError):
 
 class AnalysisError(MechreportError):
     """The analysis cannot give a trustworthy result (no solvable angle, a non-finite value)."""
+
+
+def internal_error(exc: BaseException, attach: str = "the spec file") -> str:
+    """One line for a failure that is a bug in mechreport, not in the spec."""
+    text = " ".join(str(exc).split())
+    return (f"internal error: {type(exc).__name__}{': ' + text if text else ''} — please "
+            f"report this with {attach}")
+
+
+def describe_failure(exc: BaseException) -> str:
+    """The one text users read for a spec that failed with ``exc``: the error's own message
+    for a :class:`MechreportError`, what the system said for a file problem, otherwise an
+    internal error (see :func:`internal_error`)."""
+    if isinstance(exc, MechreportError):
+        return str(exc)
+    if isinstance(exc, UnicodeDecodeError):
+        return (f"cannot read file: not UTF-8 text (byte {exc.start}: {exc.reason}); save it "
+                "as UTF-8")
+    if isinstance(exc, OSError) and exc.strerror:
+        where = f"{exc.filename}: " if exc.filename else ""
+        return f"{where}{exc.strerror}"
+    return internal_error(exc)

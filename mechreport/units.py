@@ -72,6 +72,12 @@ def fmt(x, digits: int = SIG_DIGITS, scale: float | None = None) -> str:
     return "0" if s in ("-0", "0") else s
 
 
+def deg(x: float) -> str:
+    """A crank angle [deg] as printed: ``45``, ``12.5`` (angles are inputs: shown exactly)."""
+    s = f"{float(x):g}"
+    return "0" if s == "-0" else s
+
+
 def clean(x: float, scale: float | None = None) -> float:
     """``x`` with round-off of its quantity (``|x| <= ZERO_RTOL * scale``) and -0 made 0."""
     x = float(x)

@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 from scipy.optimize import fsolve
 
-from mechreport.analysis import analyse
+from mechreport.pipeline.analysis import analyse
 from mechreport.spec import load_spec, parse_spec
 
 ROOT = Path(__file__).resolve().parents[1]

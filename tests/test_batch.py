@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechreport.analysis import analyse
-from mechreport.batch import analyse_variants
+from mechreport.pipeline.analysis import analyse
+from mechreport.pipeline.batch import analyse_variants
 from mechreport.model import build_mechanism
 from mechreport.kinematics.stacked import solve_stacked
 from mechreport.spec import load_spec

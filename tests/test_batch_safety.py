@@ -16,9 +16,9 @@ from pathlib import Path
 
 import pytest
 
-from mechreport import cli
-from mechreport.report import outdir as od
-from mechreport.report.build import build_files
+from mechreport.app import cli
+from mechreport.app import outdir as od
+from mechreport.app.build import build_files
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -40,7 +40,7 @@ def tiny_spec(path: Path, name: str = "tiny", expect_torque: float | None = None
 
 
 def run_cli(*args, cwd=ROOT, env=None):
-    return subprocess.run([sys.executable, "-m", "mechreport.cli", *map(str, args)], cwd=cwd,
+    return subprocess.run([sys.executable, "-m", "mechreport.app.cli", *map(str, args)], cwd=cwd,
                           capture_output=True, text=True, env=env, timeout=300)
 
 
@@ -89,7 +89,7 @@ def test_validate_empty_folder_exits_1(tmp_path):
 @pytest.fixture
 def one_spec_crashes(monkeypatch):
     """Loading or analysing any spec whose file name starts with "crash" raises a bug."""
-    import mechreport.analysis
+    import mechreport.pipeline.analysis
     import mechreport.spec
 
     def boom(loader):
@@ -100,7 +100,7 @@ def one_spec_crashes(monkeypatch):
         return wrapped
 
     monkeypatch.setattr(mechreport.spec, "load_spec", boom(mechreport.spec.load_spec))
-    monkeypatch.setattr(mechreport.analysis, "analyse", boom(mechreport.analysis.analyse))
+    monkeypatch.setattr(mechreport.pipeline.analysis, "analyse", boom(mechreport.pipeline.analysis.analyse))
     monkeypatch.delenv("MECHREPORT_DEBUG", raising=False)
 
 
@@ -351,7 +351,7 @@ def _alive(pid: int) -> bool:
 def _start_build(tmp_path: Path) -> tuple[subprocess.Popen, list[int], Path]:
     specs = [tiny_spec(tmp_path / f"s{i}.yaml", f"s{i}") for i in range(3)]
     out = tmp_path / "out"
-    proc = subprocess.Popen([sys.executable, "-m", "mechreport.cli", "build", *map(str, specs),
+    proc = subprocess.Popen([sys.executable, "-m", "mechreport.app.cli", "build", *map(str, specs),
                              "-o", str(out), "--jobs", "2"], cwd=ROOT,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 60

@@ -49,7 +49,7 @@ def test_a_dyad_that_comes_back_on_its_other_branch_has_no_cycle_quantities():
     so a 360-degree cycle would join two assemblies. The kinematics say so, and the cycle
     quantities are undefined with that reason; a parallelogram, whose change points come in a
     pair, comes back to its start."""
-    from mechreport.analysis import analyse
+    from mechreport.pipeline.analysis import analyse
     edge = Path(__file__).resolve().parent / "data" / "edge"
     a = analyse(edge / "change_point_four_bar.yaml")
     kin = a.kinematics

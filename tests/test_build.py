@@ -6,7 +6,8 @@ import shutil
 
 import pytest
 
-from mechreport.report.build import Progress, build_files
+from mechreport.app.build import build_files
+from mechreport.app.progress import Progress
 
 
 @pytest.fixture(scope="module")

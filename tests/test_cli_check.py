@@ -9,7 +9,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def run(*args, cwd=ROOT):
-    return subprocess.run([sys.executable, "-m", "mechreport.cli", *args], cwd=cwd,
+    return subprocess.run([sys.executable, "-m", "mechreport.app.cli", *args], cwd=cwd,
                           capture_output=True, text=True)
 
 

@@ -12,7 +12,7 @@ import random
 import numpy as np
 import yaml
 
-from mechreport.analysis import analyse
+from mechreport.pipeline.analysis import analyse
 from mechreport.spec import parse_spec
 
 PERMUTATIONS = 3

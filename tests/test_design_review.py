@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechreport.analysis import analyse
+from mechreport.pipeline.analysis import analyse
 from mechreport.errors import SpecError
 from mechreport.post import Verdict, frame_load
 from mechreport.spec import parse_spec

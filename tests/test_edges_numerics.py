@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechreport.analysis import analyse
+from mechreport.pipeline.analysis import analyse
 from mechreport.checks import agreement
 from mechreport.errors import AnalysisError, AssemblyError, MechreportError
 from mechreport.forces import solve_forces
@@ -57,7 +57,7 @@ def test_non_finite_result_or_pose_is_named_by_the_final_check():
     """The last check before any report (analysis._require_finite) looks at every
     kinematic quantity and every result at once, and names the first one that is not
     finite, with its method and angle."""
-    from mechreport.analysis import _require_finite, solve_trusted
+    from mechreport.pipeline.analysis import _require_finite, solve_trusted
     from mechreport.kinematics import solve_kinematics
     from mechreport.model import build_mechanism
     kin, _, forces = solve_trusted(solve_kinematics(build_mechanism(slider_crank())))

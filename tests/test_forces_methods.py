@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechreport.analysis import analyse
+from mechreport.pipeline.analysis import analyse
 from mechreport.forces import METHODS, ForceResult
 from mechreport.linalg import batched_solve
 
@@ -40,7 +40,7 @@ def test_contract_every_method(analysis, method):
     if method != "power":
         assert set(res.reactions) == {j.name for j in analysis.spec.joints}
     scale = max(float(np.max(np.abs(v))) for v in values.values())
-    for step in res.steps:
+    for step in analysis.worked_steps(method):
         assert len(step.equations) == len(step.unknowns), step.title
         for eq in step.equations:  # the labelled equations are what was solved
             assert np.max(np.abs(eq.evaluate(values))) <= 1e-9 * scale, (step.title, eq.label)
@@ -71,16 +71,16 @@ def test_expectations_pass(analysis):
 
 def test_methods_are_different_computations(analysis):
     """Same answers, different systems: step structure and moment centres differ."""
-    f = analysis.forces
+    worked = {name: analysis.worked_steps(name) for name in analysis.forces}
     n_links = len(analysis.spec.links)
-    assert len(f["newton_euler"].steps) == len(f["dalembert"].steps) == 1
+    assert len(worked["newton_euler"]) == len(worked["dalembert"]) == 1
     groups = analysis.mechanism.groups          # dyads: outer and interior steps; others: one
-    assert len(f["dyad"].steps) == sum(2 if g.dyad is not None else 1 for g in groups)
-    solved = [name for s in f["contour"].steps        # each joint once, some several together
+    assert len(worked["dyad"]) == sum(2 if g.dyad is not None else 1 for g in groups)
+    solved = [name for s in worked["contour"]        # each joint once, some several together
               for name in s.title.split(" (")[0].split(" ", 1)[1].split(", ")]
     assert sorted(solved) == sorted(j.name for j in analysis.spec.joints)
-    ne_about = {eq.about for eq in f["newton_euler"].steps[0].equations if eq.kind == "moment"}
-    da_about = {eq.about for eq in f["dalembert"].steps[0].equations if eq.kind == "moment"}
+    ne_about = {eq.about for eq in worked["newton_euler"][0].equations if eq.kind == "moment"}
+    da_about = {eq.about for eq in worked["dalembert"][0].equations if eq.kind == "moment"}
     assert ne_about == {f"C{k}" for k in range(1, n_links + 1)}   # centres of mass
     assert not ne_about & da_about                                 # joints, not centres
 

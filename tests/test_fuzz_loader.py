@@ -252,7 +252,7 @@ def _coarse(spec):
 @settings(max_examples=200, **COMMON)
 @given(st.one_of(tweaked_specs(), mutated_specs()))
 def test_analyse_of_what_loads_is_finite_or_a_project_error(case):
-    from mechreport.analysis import analyse
+    from mechreport.pipeline.analysis import analyse
     name, done, text = case
     spec = _load(text)
     if spec is None:

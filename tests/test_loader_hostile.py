@@ -789,7 +789,7 @@ def test_an_unexpected_exception_becomes_a_spec_error(monkeypatch):
 def test_cli_validate_reports_hostile_files_without_traceback(tmp_path, content):
     bad = tmp_path / "hostile.yaml"
     bad.write_bytes(content)
-    run = subprocess.run([sys.executable, "-m", "mechreport.cli", "validate", str(bad)],
+    run = subprocess.run([sys.executable, "-m", "mechreport.app.cli", "validate", str(bad)],
                          cwd=ROOT, capture_output=True, text=True, timeout=60)
     assert run.returncode == 1
     assert "Traceback" not in run.stderr + run.stdout

@@ -146,7 +146,7 @@ def hostile_spec(folder: Path) -> Path:
 
 @pytest.fixture(scope="module")
 def hostile_build(tmp_path_factory):
-    from mechreport.report.build import build_files
+    from mechreport.app.build import build_files
 
     folder = tmp_path_factory.mktemp("hostile")
     spec = hostile_spec(folder)
@@ -199,7 +199,7 @@ def test_index_md_keeps_hostile_names_and_file_names_inert(hostile_build):
 
 
 def test_index_md_failure_row_escapes_the_file_name(tmp_path):
-    from mechreport.report.build import build_files
+    from mechreport.app.build import build_files
 
     bad = tmp_path / "a|b [x](y).yaml"
     bad.write_text("mechreport: 1\nname: [unclosed\n", encoding="utf-8")

@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechreport.analysis import analyse
-from mechreport.report.build import build_files
+from mechreport.pipeline.analysis import analyse
+from mechreport.app.build import build_files
 from mechreport.report.model import build_model
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")

@@ -18,10 +18,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechreport import __version__, cli
-from mechreport.analysis import analyse
+from mechreport import __version__
+from mechreport.app import cli
+from mechreport.pipeline.analysis import analyse
 from mechreport.errors import SpecError
-from mechreport.report.build import build_files
+from mechreport.app.build import build_files
 from mechreport.report.model import PALETTE, build_model
 from mechreport.spec import parse_spec
 from mechreport.units import Display, fmt

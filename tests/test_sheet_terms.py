@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechreport.analysis import analyse
+from mechreport.pipeline.analysis import analyse
 from mechreport.forces.builders import read_term
 from mechreport.forces.equations import TERM_KINDS
 
@@ -23,8 +23,8 @@ SPECS.append(ROOT / "tests" / "data" / "class_iii_triad.yaml")
 def test_read_term_inverts_every_term(spec):
     a = analyse(spec)
     count = 0
-    for res in a.forces.values():
-        for step in res.steps:
+    for name in a.forces:
+        for step in a.worked_steps(name):
             for eq in step.equations:
                 for t in eq.terms:
                     assert t.kind in TERM_KINDS, (eq.label, t.action.symbol)
@@ -48,7 +48,7 @@ def test_a_wrong_factor_is_caught():
     """The check above can fail: a term whose named lever disagrees with its coefficients."""
     from dataclasses import replace
     a = analyse(SPECS[0])
-    eq = next(e for e in a.forces["dalembert"].steps[0].equations if e.kind == "moment")
+    eq = next(e for e in a.worked_steps("dalembert")[0].equations if e.kind == "moment")
     t = next(t for t in eq.terms if t.kind == "moment" and t.action.unknowns)
     bad = replace(t, lever=t.lever * 2)
     c = sum(p.coeff() for p in read_term(bad) if p.unknown == t.action.unknowns[1])

@@ -829,7 +829,7 @@ def test_reference_angle_that_cannot_close_raises_assembly_error():
 # -- the command line ----------------------------------------------------------------------
 
 def _cli(repo_root, *args):
-    return subprocess.run([sys.executable, "-m", "mechreport.cli", *args], cwd=repo_root,
+    return subprocess.run([sys.executable, "-m", "mechreport.app.cli", *args], cwd=repo_root,
                           capture_output=True, text=True, timeout=60)
 
 

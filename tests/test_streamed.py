@@ -1,4 +1,4 @@
-"""A long sweep checked chunk by chunk (mechreport.streamed) finds what the in-memory analysis
+"""A long sweep checked chunk by chunk (mechreport.pipeline.streamed) finds what the in-memory analysis
 finds: the same kinematics angle by angle (branch labels carried across chunks), flags,
 agreement, residuals, expectations, cycle quantities and notes. Chunks here are tiny, so that
 every spec crosses many chunk boundaries, touch points and locks included."""
@@ -10,15 +10,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechreport.analysis import analyse
-from mechreport.checks import run as check_run
+from mechreport.pipeline.analysis import analyse
+from mechreport.app import check as check_run
+from mechreport.report.check_text import summary_line
 from mechreport.kinematics import solve_kinematics
 from mechreport.kinematics import stream
 from mechreport.kinematics.stream import kinematic_chunks, streamable
 from mechreport.model import build_mechanism
 from mechreport.spec import Sweep, load_spec
 from mechreport.spec.loader import parse_spec
-from mechreport.streamed import SweepCheck, check_sweep
+from mechreport.pipeline.streamed import SweepCheck, check_sweep
 
 ROOT = Path(__file__).resolve().parents[1]
 EDGE = ROOT / "tests" / "data" / "edge"
@@ -110,14 +111,14 @@ def test_streamed_check_equals_the_analysis(name, tiny_chunks):
         for k, v in a.review.values.items():
             assert s.values[k] == pytest.approx(v, rel=1e-10, abs=1e-10), k
     assert [(v.item, v.passed) for v in s.verdicts] == [(v.item, v.passed) for v in a.verdicts]
-    assert check_run.summary_line("x", s) == check_run.summary_line("x", a) \
-        or "worst disagreement" in check_run.summary_line("x", s)
+    assert summary_line("x", s) == summary_line("x", a) \
+        or "worst disagreement" in summary_line("x", s)
 
 
 def test_check_streams_long_sweeps(monkeypatch, capsys):
     """`check` switches to the streamed path above ``STREAM_ANGLES`` analysed angles, with the
     same PASS line as in memory (the worst disagreement aside, which is rounding)."""
-    import mechreport.streamed as streamed
+    import mechreport.pipeline.streamed as streamed
     path = ROOT / "specs" / "slider_crank.yaml"
     assert check_run.check_files([path], 1e-6) == 0
     in_memory = capsys.readouterr().out

@@ -12,12 +12,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechreport.analysis import analyse
+from mechreport.pipeline.analysis import analyse
 from mechreport.errors import SpecError
 from mechreport.spec import parse_spec
 from mechreport.spec.loader import parse_source, spec_from_data
 from mechreport.study import evaluate_chunk, plan_of
-from mechreport.study.execute import run_variants
+from mechreport.app.study_workers import run_variants
 from mechreport.study.variants import base_of, variant_spec
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -128,7 +128,7 @@ def test_study_section_errors_name_line_and_key_path(section, expected):
 
 
 def test_check_and_validate_ignore_the_study_section(tmp_path, capsys):
-    from mechreport.cli import main
+    from mechreport.app.cli import main
     spec = tmp_path / "four_bar.yaml"
     spec.write_text(study_text(GRID), encoding="utf-8")
     assert main(["validate", str(spec)]) == 0
@@ -332,7 +332,7 @@ def test_dask_local_cluster_gives_the_local_pool_table():
 
 def test_unreachable_scheduler_is_a_clear_error():
     pytest.importorskip("distributed")
-    from mechreport.study.execute import SchedulerError, connect
+    from mechreport.app.study_workers import SchedulerError, connect
     with pytest.raises(SchedulerError, match="cannot reach the Dask scheduler at "
                                              "tcp://127.0.0.1:9"):
         connect("tcp://127.0.0.1:9", timeout=1)
@@ -347,7 +347,7 @@ def _write(tmp_path: Path, text: str, name: str = "four_bar.yaml") -> Path:
 
 
 def test_cli_study_writes_table_and_report(tmp_path, capsys):
-    from mechreport.cli import main
+    from mechreport.app.cli import main
     import pyarrow.parquet as pq
     spec = _write(tmp_path, study_text(SMALL))
     out = tmp_path / "out"
@@ -384,7 +384,7 @@ def test_cli_study_writes_table_and_report(tmp_path, capsys):
 
 
 def test_cli_study_exit_codes(tmp_path, capsys):
-    from mechreport.cli import main
+    from mechreport.app.cli import main
     plain = _write(tmp_path, COARSE, "plain.yaml")
     assert main(["study", str(plain), "-o", str(tmp_path / "o")]) == 1
     assert "has no 'study:' section" in capsys.readouterr().err
@@ -398,7 +398,7 @@ def test_cli_study_exit_codes(tmp_path, capsys):
 
 
 def test_interrupted_write_leaves_the_folder_as_it_was(tmp_path, monkeypatch):
-    from mechreport.cli import main
+    from mechreport.app.cli import main
     import mechreport.report.pdf as pdf
     spec = _write(tmp_path, study_text(SMALL))
     out = tmp_path / "out"
@@ -411,7 +411,7 @@ def test_interrupted_write_leaves_the_folder_as_it_was(tmp_path, monkeypatch):
 
 
 def test_study_refuses_a_folder_that_is_not_mechreports(tmp_path, capsys):
-    from mechreport.cli import main
+    from mechreport.app.cli import main
     spec = _write(tmp_path, study_text(SMALL))
     mine = tmp_path / "out" / "four_bar"
     mine.mkdir(parents=True)
@@ -423,8 +423,8 @@ def test_study_refuses_a_folder_that_is_not_mechreports(tmp_path, capsys):
 
 def test_a_report_and_a_study_share_their_folder(tmp_path):
     """A build keeps the study beside its report, and a study keeps the report."""
-    from mechreport.report import outdir as od
-    from mechreport.study.outputs import install
+    from mechreport.app import outdir as od
+    from mechreport.app.study import install
     final = tmp_path / "four_bar"
     final.mkdir()
     (final / "summary.json").write_text("old report")

@@ -27,37 +27,42 @@ def solve_forces(kin: Kinematics, methods=None,
     ``ctx``: the kinematics' ForceContext, if the caller has built it already.
 
     Sweeps longer than ``CHUNK`` angles are solved chunk by chunk. The results keep the
-    numbers, not the equation objects (``ForceResult.steps`` rebuilds them from ``ctx``)."""
+    numbers, not the equation objects (:func:`worked_steps` builds them again)."""
     names = list(METHODS) if methods is None else list(methods)
     unknown = [m for m in names if m not in METHODS]
     if unknown:
         raise ValueError(f"unknown method(s) {', '.join(unknown)}; valid: {', '.join(METHODS)}")
     ctx = ForceContext(kin) if ctx is None else ctx
     if kin.n <= CHUNK:
-        return _solve_all(ctx, names, ctx)
+        return _solve_all(ctx, names)
     if contour.NAME in names:
         contour.plan(ctx)         # chosen once, over the whole sweep's probe angles
     parts: dict[str, list[ForceResult]] = {name: [] for name in names}
     for a in range(0, kin.n, CHUNK):    # one chunk's context at a time: all methods, then gone
         c = ForceContext(kin.take(slice(a, a + CHUNK), kin.flags))
         c.memo = ctx.memo
-        for name, res in _solve_all(c, names, ctx).items():
+        for name, res in _solve_all(c, names).items():
             parts[name].append(res)
         del c
     return {name: ForceResult.join(parts[name], ctx) for name in names}
 
 
-def _solve_all(ctx: ForceContext, names: list[str], source: ForceContext,
-               ) -> dict[str, ForceResult]:
-    """The named methods over ``ctx``, their results lean with ``source``. Every method's
+def _solve_all(ctx: ForceContext, names: list[str]) -> dict[str, ForceResult]:
+    """The named methods over ``ctx``. Every method's
     blocks are prepared together (``equations.prepare_blocks``: the same numbers, one pass
     of numpy calls for those of one size, a block that several methods share prepared
     once), then solved together level by level of their chains (``chains.solve_chains``);
     a method that cannot build its equations says so, the first in ``names`` order."""
     steps = {name: method_steps(ctx, name, METHODS[name].build_steps) for name in names}
     prepared = prepare_blocks([chain(ctx, s) for s in steps.values()], ctx.n)
-    return {name: res.lean(source) for name, res in run_methods(steps, ctx, prepared).items()}
+    return run_methods(steps, ctx, prepared)
 
 
-__all__ = ["METHODS", "solve_forces", "ForceContext", "ForceResult", "JointReaction",
+def worked_steps(ctx: ForceContext, method: str) -> tuple[Step, ...]:
+    """The labelled systems ``method`` solves over ``ctx``, in order: the equation objects
+    the numbers came from (for the solution sheets and the split by source)."""
+    return tuple(METHODS[method].build_steps(ctx))
+
+
+__all__ = ["METHODS", "solve_forces", "worked_steps", "ForceContext", "ForceResult", "JointReaction",
            "Equation", "Step", "Term"]

@@ -1,8 +1,7 @@
 """The common result type of every force method."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
-from typing import Any
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -51,10 +50,9 @@ class ForceResult:
     results as data, so their errors multiply): relative errors of the inputs grow by at most
     about this factor; NaN where a system's coefficients were not finite (overflow).
 
-    ``steps``, the labelled systems the method solved in order (for worked solution sheets
-    and the split by source), are not kept with the numbers: they hold every coefficient at
-    every angle (most of an analysis' memory). They are built again from ``source`` (the
-    method's ForceContext) when first asked for, and then kept."""
+    The labelled systems the method solved are not kept with the numbers (they hold every
+    coefficient at every angle: most of an analysis' memory); an analysis builds them again
+    when asked (:meth:`mechreport.pipeline.Analysis.worked_steps`)."""
 
     method: str
     angles: np.ndarray
@@ -63,31 +61,10 @@ class ForceResult:
     singular: np.ndarray
     cond: np.ndarray | None = None
     driver_quantity: str = "driver.torque"   # "driver.force" for a T driver
-    source: Any = field(default=None, repr=False, compare=False)   # ForceContext
-    _steps: list = field(default_factory=list, repr=False, compare=False)
-    _values: list = field(init=False, default_factory=list, repr=False, compare=False)
-
-    @property
-    def steps(self) -> tuple[Step, ...]:
-        if not self._steps:
-            if self.source is None:
-                return ()
-            from . import METHODS
-            self._steps.append(METHODS[self.method].build_steps(self.source))
-        return self._steps[0]
-
-    def with_steps(self, steps) -> "ForceResult":
-        """The same numbers shown with other equation objects (tests of the sheets)."""
-        return replace(self, _steps=[tuple(steps)])
-
-    def lean(self, source) -> "ForceResult":
-        """The same numbers without the equation objects, rebuilt from ``source`` (a
-        ForceContext over the same angles) when asked for."""
-        return replace(self, source=source, _steps=[])
 
     def take(self, rows: np.ndarray, source) -> "ForceResult":
         """The result at angle indices ``rows`` (index array or bool mask); ``source`` the
-        ForceContext over those angles."""
+        ForceContext over those angles (a T joint's point is found again against them)."""
         def cut(x):
             return None if x is None else x[rows]
         reactions = {}
@@ -99,14 +76,14 @@ class ForceResult:
             reactions[k] = replace(r, fx=fx, fy=fy, moment=m, px=px, py=py)
         return replace(self, angles=self.angles[rows], reactions=reactions,
                        driver_torque=self.driver_torque[rows], singular=self.singular[rows],
-                       cond=cut(self.cond), source=source, _steps=[])
+                       cond=cut(self.cond))
 
     @staticmethod
     def join(parts: list["ForceResult"], source) -> "ForceResult":
         """Results over consecutive chunks of angles, joined into one over all of them."""
         first = parts[0]
         if len(parts) == 1:
-            return first.lean(source)
+            return first
 
         def cat(get):
             vals = [get(p) for p in parts]
@@ -121,8 +98,7 @@ class ForceResult:
             reactions[k] = replace(r, fx=fx, fy=fy, moment=m, px=px, py=py)
         return replace(first, angles=cat(lambda p: p.angles), reactions=reactions,
                        driver_torque=cat(lambda p: p.driver_torque),
-                       singular=cat(lambda p: p.singular), cond=cat(lambda p: p.cond),
-                       source=source, _steps=[])
+                       singular=cat(lambda p: p.singular), cond=cat(lambda p: p.cond))
 
     def quantity(self, name: str) -> np.ndarray | None:
         """A result quantity by its ``expect`` name, e.g. ``joint.B.fx`` or ``driver.torque``
@@ -136,16 +112,14 @@ class ForceResult:
 
     def values(self) -> dict[str, np.ndarray]:
         """Every unknown by name (joint.J.fx/fy/moment, driver.torque): a new dict each
-        time, of the same arrays (the checks ask for it several times per analysis)."""
-        if not self._values:
-            out = {self.driver_quantity: self.driver_torque}
-            for r in self.reactions.values():
-                out[f"joint.{r.joint}.fx"] = r.fx
-                out[f"joint.{r.joint}.fy"] = r.fy
-                if r.moment is not None:
-                    out[f"joint.{r.joint}.moment"] = r.moment
-            self._values.append(out)
-        return dict(self._values[0])
+        time, of the result's own arrays."""
+        out = {self.driver_quantity: self.driver_torque}
+        for r in self.reactions.values():
+            out[f"joint.{r.joint}.fx"] = r.fx
+            out[f"joint.{r.joint}.fy"] = r.fy
+            if r.moment is not None:
+                out[f"joint.{r.joint}.moment"] = r.moment
+        return out
 
 
 def slider_point(ctx, joint, fx: np.ndarray, fy: np.ndarray, m: np.ndarray,
@@ -183,7 +157,7 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
             reactions[j.name] = JointReaction(j.name, "T", fx, fy, m, px, py)
     quantity = ctx.spec.driver.quantity
     return ForceResult(method, ctx.kin.angles, reactions, values[quantity], singular, cond,
-                       quantity, ctx, [tuple(steps)])
+                       quantity)
 
 
 def run_steps(method: str, ctx, steps) -> ForceResult:

@@ -11,7 +11,6 @@ import numpy as np
 from ..linalg import Equilibrated
 from .context import ForceContext
 from .equations import Action, step_system, triangular_blocks
-from .result import ForceResult
 
 INERTIA, GRAVITY = "inertia", "gravity"
 
@@ -32,10 +31,11 @@ def load_names(ctx: ForceContext) -> dict[str, str]:
     return {ld.symbol: ld.name for ld in ctx.loads}
 
 
-def split_by_source(ctx: ForceContext, res: ForceResult) -> dict[str, dict[str, np.ndarray]]:
-    """``{source: {unknown: (n,)}}`` for every unknown ``res`` solved (``driver.torque``,
-    ``joint.J.fx`` ...): inertia first, then gravity, then each load in spec order. The sum
-    over sources equals ``res.values()``."""
+def split_by_source(ctx: ForceContext, steps) -> dict[str, dict[str, np.ndarray]]:
+    """``{source: {unknown: (n,)}}`` for every unknown a method's ``steps`` (its labelled
+    systems over ``ctx``) solve (``driver.torque``, ``joint.J.fx`` ...): inertia first,
+    then gravity, then each load in spec order. The sum over sources equals the method's
+    ``values()``."""
     names = load_names(ctx)
     sources = list(dict.fromkeys([INERTIA, GRAVITY] + [ld.name for ld in ctx.loads]))
     col = {s: k for k, s in enumerate(sources)}
@@ -44,7 +44,7 @@ def split_by_source(ctx: ForceContext, res: ForceResult) -> dict[str, dict[str, 
     def column(t) -> int | None:
         src = source_of(t.action, names)
         return None if src is None else col[src]
-    for step in (b for s in res.steps for b in triangular_blocks(s)):
+    for step in (b for s in steps for b in triangular_blocks(s)):
         A, b = step_system(step, known, ctx.n, len(sources), column)
         X = Equilibrated(A).solve_many(b)                        # (m, S, n)
         for i, u in enumerate(step.unknowns):

@@ -19,12 +19,14 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import __version__
+from ..version import __version__
 from .. import post as q
 from ..forces import METHODS
 from ..quantities import unit_of
 from ..spec import GROUND
-from ..units import DASH, SIG_DIGITS, ZERO_RTOL, Display, clean, fmt, kind_of
+from ..checks.failures import failed_expectations
+from ..units import DASH, SIG_DIGITS, ZERO_RTOL, Display, clean, deg, fmt, kind_of
+from .check_text import failure_rows, summary_line
 from .scene import Scene, build_scene
 from .text import kinematics_rows
 
@@ -40,12 +42,6 @@ NEAR_STEPS = 5
 def num(x, digits: int = SIG_DIGITS) -> str:
     """``x`` (already in the unit it is shown in) by the one formatter; "—" for None/NaN."""
     return fmt(x, digits)
-
-
-def deg(x: float) -> str:
-    """A crank angle [deg] as printed: ``45``, ``12.5`` (angles are inputs: shown exactly)."""
-    s = f"{float(x):g}"
-    return "0" if s == "-0" else s
 
 
 def jnum(x, scale: float | None = None) -> float | None:
@@ -630,73 +626,6 @@ def _power_check(sw: SweepData, d: Display) -> tuple[str, dict | None]:
 
 # ------------------------------------------------------------------- failed expectations
 
-def failures(analysis) -> list[dict]:
-    """Each failing ``expect`` entry once (not once per method): quantity, angle, expected,
-    computed, difference, tolerance [SI], unit, the methods that computed it (or why there is
-    no value)."""
-    groups: dict[tuple, list] = {}
-    for e in analysis.expectations:
-        key = (e.expect.angle, e.expect.quantity, e.expect.value)
-        groups.setdefault(key, []).append(e)
-    out = []
-    for (angle, quantity, value), results in groups.items():
-        bad = [e for e in results if not e.ok]
-        if not bad:
-            continue
-        tol = bad[0].expect.tol
-        got = [e for e in bad if e.got is not None]
-        worst = max(got, key=lambda e: abs(e.got - value), default=None)
-        methods = [e.source for e in bad if e.got is not None]
-        out.append({
-            "quantity": quantity, "angle_deg": angle, "expected": value,
-            "computed": None if worst is None else worst.got,
-            "difference": None if worst is None else worst.got - value,
-            "tolerance": tol, "unit": unit_of(quantity) or "",
-            "methods": methods, "line": bad[0].expect.line,
-            "why": "" if worst is not None else bad[0].message})
-    return out
-
-
-def _digits_for(value: float, diff: float | None) -> int:
-    """Enough significant digits to see ``diff`` in ``value`` (the one formatter's digits at
-    least, at most 12)."""
-    if diff is None or diff == 0 or not value:
-        return SIG_DIGITS
-    return int(min(12, max(SIG_DIGITS, math.ceil(math.log10(abs(value) / abs(diff))) + 2)))
-
-
-def failure_rows(fails: list[dict]) -> list[list[str]]:
-    """Table rows (quantity, angle, expected, computed, difference, tolerance, method), SI as
-    the spec's ``expect`` writes them."""
-    from ..forces import METHODS as _M
-    rows = []
-    for f in fails:
-        unit = f["unit"].replace("^2", "²")
-        u = f" {unit}" if unit else ""
-        angle = DASH if f["angle_deg"] is None else f"{deg(f['angle_deg'])}"
-        if f["computed"] is None:
-            rows.append([f["quantity"], angle, fmt(f["expected"]) + u, DASH, DASH,
-                         fmt(f["tolerance"], 2) + u, f["why"]])
-            continue
-        digits = _digits_for(f["expected"], f["difference"])
-        methods = ", ".join(_M[m].TITLE if m in _M else m for m in f["methods"])
-        rows.append([f["quantity"], angle, fmt(f["expected"], digits) + u,
-                     fmt(f["computed"], digits) + u, f"{fmt(f['difference'], 3)}{u}",
-                     "±" + fmt(f["tolerance"], 2) + u, methods])
-    return rows
-
-
-def failure_line(f: dict) -> str:
-    """One line for the terminal: ``driver.torque at 45 deg: expected 151.5 N·m, computed
-    151.49 N·m, difference -0.0076 N·m, tolerance ±0.0001 N·m (Newton-Euler, ...)``."""
-    row = failure_rows([f])[0]
-    where = f" at {row[1]} deg" if f["angle_deg"] is not None else ""
-    if f["computed"] is None:
-        return f"{f['quantity']}{where}: expected {row[2]}: {f['why']}"
-    return (f"{f['quantity']}{where}: expected {row[2]}, computed {row[3]}, difference "
-            f"{row[4]}, tolerance {row[5]} ({row[6]})")
-
-
 # ---------------------------------------------------------------------------- csv / json
 
 def _csv_columns(analysis) -> tuple[list[str], list[np.ndarray], list[float]]:
@@ -933,7 +862,6 @@ def index_row(model_summary: dict, stem: str) -> dict:
 def build_model(analysis, source: str | Path | None = None, sha256: str | None = None,
                 when: _dt.datetime | None = None) -> ReportModel:
     """The report model of ``analysis``; ``source`` is the spec path shown in the report."""
-    from ..checks.run import summary_line
 
     spec = analysis.spec
     source = str(source if source is not None else spec.file)
@@ -953,7 +881,7 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
     power_text, power_json = _power_check(sw, d)
     header, rows = _csv(analysis)
     design = _design(analysis, d)
-    fails = failures(analysis)
+    fails = failed_expectations(analysis)
     summary = _summary(analysis, sw, ref, status_line, power_json, symbols, meta, fails,
                        d.scales)
     summary["design"] = _design_json(analysis)

@@ -64,8 +64,7 @@ def write_report(model, outdir: Path) -> list[Path]:
 def write_index(rows: list[dict], out: Path, title: str = "mechreport batch") -> list[Path]:
     """OUT/index.md, index.pdf, index.csv and index.json: one row per spec (failed ones carry
     their message); the CSV and JSON are SI with the unit in each field name, for CI."""
-    from .. import __version__
-    from .build import INDEX_FIELDS, index_records
+    from ..version import __version__
     from .model import build_time
 
     out = Path(out)
@@ -90,3 +89,24 @@ def _csv_cell(value) -> str:
     if isinstance(value, float):
         return f"{value:.10g}"
     return str(value)
+
+
+INDEX_FIELDS = ("folder", "name", "spec", "status", "peak_torque_N_m", "peak_torque_angle_deg",
+                "rms_torque_N_m", "peak_driver_force_N", "rms_driver_force_N",
+                "largest_bearing_load_N", "largest_bearing_joint",
+                "mean_power_W", "worst_disagreement", "verdicts_passed", "verdicts_total",
+                "failed_verdicts", "failed_expectations", "spec_sha256", "mechreport_version",
+                "message")
+
+
+def index_records(rows: list[dict]) -> list[dict]:
+    """index.csv / index.json records: one per spec, SI, the unit in each field name."""
+    out = []
+    for r in rows:
+        data = r.get("data") or {}
+        rec = {"folder": r.get("stem") or r.get("folder"), "name": r.get("name"),
+               "spec": r.get("spec"), "status": r.get("status", "FAIL"),
+               **{k: data.get(k) for k in INDEX_FIELDS if k in data},
+               "message": r.get("message") or ""}
+        out.append({k: rec.get(k) for k in INDEX_FIELDS})
+    return out

@@ -6,15 +6,14 @@
 One module per step: :mod:`.plan` (the ``study:`` section -> the variants: grid, random,
 Latin hypercube), :mod:`.variants` (the spec's data tree with the varied leaves replaced,
 validated by the loader), :mod:`.evaluate` (THE SEAM: a chunk of variants -> one row each),
-:mod:`.methods` (which force method), :mod:`.execute` (local process pool or a Dask cluster,
-chunks, order, progress), :mod:`.table` (the rows as columns, ranking, Pareto front),
-:mod:`.outputs` (study.parquet, study.csv; the output folder), :mod:`.report` and
-:mod:`.document` (study.md, study.pdf), :mod:`.cross_check`, :mod:`.run` (the command).
+:mod:`.methods` (which force method), :mod:`.table` (the rows as columns, ranking, Pareto front),
+:mod:`.outputs` (study.parquet, study.csv), :mod:`.report` and
+:mod:`.document` (study.md, study.pdf), :mod:`.cross_check`. The command, its workers and output folder are
+:mod:`mechreport.app.study`'s.
 """
 from .evaluate import Row, evaluate_chunk
 from .plan import Plan, plan_of
-from .run import study_command
 from .variants import BaseSpec, base_of, load_base, variant_spec
 
-__all__ = ["Row", "evaluate_chunk", "Plan", "plan_of", "study_command", "BaseSpec", "base_of",
+__all__ = ["Row", "evaluate_chunk", "Plan", "plan_of", "BaseSpec", "base_of",
            "load_base", "variant_spec"]

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..analysis import DEFAULT_TOL
+from ..pipeline import DEFAULT_TOL
 from ..quantities import unit_of
 from .evaluate import reason_of, row_of
 from .methods import cannot_serve
@@ -82,7 +82,7 @@ def cross_check(base: BaseSpec, table: Table, count: int, seed: int,
 
 
 def check_one(base: BaseSpec, table: Table, i: int, tol: float = DEFAULT_TOL) -> CrossRow:
-    from ..analysis import analyse
+    from ..pipeline import analyse
     from ..post import design_review
     mine = table.row(i)
     try:

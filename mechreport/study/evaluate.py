@@ -50,7 +50,7 @@ def evaluate_chunk(base: BaseSpec, variants: Sequence[Mapping[str, float]], meth
                    keep: Sequence[str]) -> list[Row]:
     """One :class:`Row` per variant of ``variants`` (see the module docstring): the variants
     that build are analysed together by :func:`mechreport.batch.analyse_variants`."""
-    from ..batch import analyse_variants
+    from ..pipeline.batch import analyse_variants
     rows: list[Row | None] = [None] * len(variants)
     specs, where = [], []
     for i, values in enumerate(variants):
@@ -94,7 +94,7 @@ def reason_of(exc: BaseException, file: str) -> str:
     """The user-facing message of a variant's failure on one line, without the spec's file
     name in front (every row is about the same file): ``line 30: links.coupler.mass: must be
     a positive number, got -5``."""
-    from ..cli import describe_failure
+    from ..errors import describe_failure
     lines = []
     for line in describe_failure(exc).splitlines():
         line = line.strip()

@@ -1,21 +1,5 @@
-"""Write a study's files into ``OUT/<spec>/``, safely.
-
-    OUT/<spec>/study.parquet, study.csv      one row per variant (columns: study.table)
-    OUT/<spec>/study.md, study.pdf           the study report (study.report)
-    OUT/<spec>/study-figures/*.svg           its figures
-    OUT/<spec>/study-reports/NN-variant-I/   --reports K: full reports of the K best
-
-``<spec>`` is the spec's file name without .yaml, made safe as ``mechreport build`` does
-(:func:`mechreport.report.outdir.safe_stem`). The study shares ``OUT/.mechreport.lock`` with
-builds (a study and a build into the same OUT take turns while writing; the variants are
-computed before the lock is taken). Everything is written into a private folder
-``OUT/.tmp-<spec>-<pid>`` first; when complete, it is swapped in for ``OUT/<spec>`` with two
-renames, carrying over (as hard links) whatever else that folder held (a report built there
-by ``mechreport build``), and replacing the files of an earlier study. So an interrupted study
-leaves ``OUT/<spec>`` as it was, and the next build or study deletes the leftover private
-folder. Only a folder holding a report (summary.json), a study (study.parquet) or nothing is
-ever replaced.
-"""
+"""A study's table as files: study.parquet and study.csv (one row per variant, columns:
+:mod:`.table`). Where they go, safely, is the command's (:mod:`mechreport.app.study`)."""
 from __future__ import annotations
 
 import csv
@@ -23,11 +7,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..report import outdir as od
 from .table import Table
 
 #: what a study writes in OUT/<spec>/ (replaced by the next study, kept by nothing else)
-STUDY_ENTRIES = od.STUDY_ENTRIES
 
 
 # ----------------------------------------------------------------------------- tables
@@ -87,11 +69,3 @@ def write_csv(table: Table, path: Path) -> Path:
                     row.append(_cell(v))
             w.writerow(row)
     return Path(path)
-
-
-# ----------------------------------------------------------------------------- folder
-
-def install(out: Path, tmp: Path, name: str) -> Path:
-    """Make ``tmp`` (a complete study folder) ``OUT/name``, carrying over the entries of the
-    old folder that are not a study's (its report); two renames, undone if the second fails."""
-    return od.swap_in(out, tmp, name, carry=lambda entry: entry not in STUDY_ENTRIES)

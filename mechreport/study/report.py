@@ -295,7 +295,7 @@ def build_document(run: StudyRun, figures: dict[str, str]) -> Doc:
     ok, passing = t.ok, t.passing
     n_ok, n_pass = int(np.count_nonzero(ok)), int(np.count_nonzero(passing))
     n_failed = int(t.n - n_ok)
-    from .. import __version__
+    from ..version import __version__
     sha = f" (SHA-256 {run.sha256[:16]}...)" if run.sha256 else ""
     doc.p("Spec ", ("code", spec.file), f"{sha}; mechreport {__version__}",
           f"; {run.date}." if run.date else ".")

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from mechreport.analysis import analyse
+from mechreport.pipeline.analysis import analyse
 from mechreport.forces import METHODS
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -127,11 +127,11 @@ def test_4_7_external_moment_opposes_rotation(r_rtr_rtr):
 
 def test_4_7_3_contour_walks_loops_as_the_text(r_rtr_rtr):
     """4.7.3 does loop 0-3-4-5-0 first (E, D_T, D), then 0-1-2-3-0 (C, B_T, B, A)."""
-    titles = [s.title.split()[1] for s in r_rtr_rtr.forces["contour"].steps]
+    titles = [s.title.split()[1] for s in r_rtr_rtr.worked_steps("contour")]
     assert titles == ["E", "D_T", "D", "C", "B_T", "B", "A"]
 
 
 def test_4_7_2_dyad_order_last_group_first(r_rtr_rtr):
-    titles = [s.title for s in r_rtr_rtr.forces["dyad"].steps]
+    titles = [s.title for s in r_rtr_rtr.worked_steps("dyad")]
     assert titles[0].startswith("Dyad D_R D_T E_R") and titles[2].startswith("Dyad B_R B_T C_R")
     assert titles[-1] == "Driver link link1"

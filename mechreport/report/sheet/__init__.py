@@ -17,10 +17,10 @@ Modules, in the order the data flows:
 """
 from __future__ import annotations
 
-from .model import SheetOptions, build_problem, build_sheet, sheet_analysis
+from .model import SheetOptions, build_problem, build_sheet, sheet_analysis, sheet_spec
 from .render import (render_markdown, render_problem_markdown, render_problem_typst,
                      render_typst, write_sheet)
 
-__all__ = ["SheetOptions", "build_sheet", "build_problem", "sheet_analysis", "write_sheet",
+__all__ = ["SheetOptions", "build_sheet", "build_problem", "sheet_analysis", "sheet_spec", "write_sheet",
            "render_markdown",
            "render_typst", "render_problem_markdown", "render_problem_typst"]

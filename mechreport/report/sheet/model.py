@@ -340,15 +340,17 @@ def _step_model(number: int, step: Step, tr: Translator, names: Names, ctx, resu
                      [names[u] for u in step.unknowns], notes, groups, results, points)
 
 
-def _method_model(name: str, result, k: int, names: Names, ctx, counter: list,
+def _method_model(name: str, result, worked: tuple, k: int, names: Names, ctx, counter: list,
                   others: dict) -> MethodModel:
+    """The sheet's part for method ``name``: its ``worked`` steps (the labelled systems its
+    numbers ``result`` came from) at angle index ``k``."""
     mod = METHODS[name]
     values = result.values()
     tr = Translator(ctx, values, k)
     origin: dict[str, int] = {}
     steps = []
     group = name in ("newton_euler", "dalembert")
-    for i, step in enumerate(result.steps, 1):
+    for i, step in enumerate(worked, 1):
         steps.append(_step_model(i, step, tr, names, ctx, result, counter, origin, group))
         for u in step.unknowns:
             origin[u] = i
@@ -490,7 +492,7 @@ def _fbds(analysis, k: int, tag: str, methods) -> tuple[list, list]:
     ref = next((analysis.forces[m] for m in methods if m in analysis.forces
                 and analysis.forces[m].reactions), None)
     if ref is not None:
-        for step in ref.steps:
+        for step in analysis.worked_steps(ref.method):
             zero |= zero_by_constraint(step)
     figs = []
     omitted = []
@@ -540,7 +542,8 @@ def _angle_model(analysis, angle: float, names: Names, exact, methods, display) 
         res = analysis.forces.get(name)
         if res is None:
             continue
-        mm = _method_model(name, res, k, names, ctx, counter, others if name == "power" else {})
+        mm = _method_model(name, res, analysis.worked_steps(name), k, names, ctx, counter,
+                           others if name == "power" else {})
         if name != "power":
             others[name] = float(res.driver_torque[k])
         am.methods.append(mm)
@@ -740,21 +743,26 @@ def _join_and(items: list[str]) -> str:
     return ", ".join(items[:-1]) + " and " + items[-1]
 
 
-def sheet_analysis(analysis, options: SheetOptions):
-    """The analysis a sheet at ``options.angles`` needs: ``analysis`` itself when every
-    angle was analysed (the sweep's or a reference angle), else the spec analysed again with
-    those angles added to its reference angles (the branch is still followed from the first
-    one)."""
+def sheet_spec(spec, options: SheetOptions):
+    """The spec a sheet at ``options.angles`` must be analysed from: ``spec`` itself when
+    every angle is analysed (the sweep's or a reference angle), else ``spec`` with those
+    angles added to its reference angles (the branch is still followed from the first
+    one). Whoever builds the sheet analyses it (the sheet never runs an analysis)."""
     if options.angles is None:
-        return _solvable(analysis, list(analysis.spec.at), "the spec's reference angles")
+        return spec
     from dataclasses import replace
-    from ...analysis import analyse
-    spec = analysis.spec
     have = spec.analysed_angles()
     missing = tuple(float(a) for a in options.angles
                     if not np.any(np.abs(have - float(a)) < 1e-9))
-    if missing:
-        analysis = analyse(replace(spec, at=tuple(spec.at) + missing), tol=analysis.tol)
+    return replace(spec, at=tuple(spec.at) + missing) if missing else spec
+
+
+def sheet_analysis(analysis, options: SheetOptions):
+    """``analysis`` if a sheet at ``options.angles`` (default: the spec's reference angles)
+    can be written from it; else an ``AnalysisError`` naming the angles left out and why
+    (analyse :func:`sheet_spec` for angles the sweep does not have)."""
+    if options.angles is None:
+        return _solvable(analysis, list(analysis.spec.at), "the spec's reference angles")
     return _solvable(analysis, list(options.angles), "--sheet-angles", every=True)
 
 

@@ -20,9 +20,9 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import MechreportError
-from .report.markdown import md_inline
-from .units import fmt
+from ..errors import MechreportError
+from ..report.markdown import md_inline
+from ..units import fmt
 
 EXIT_CHANGED = 1
 EXIT_USAGE = 2

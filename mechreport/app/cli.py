@@ -1,168 +1,52 @@
-"""Command line: a thin layer over the public load -> solve -> render API.
+"""The command line: ``mechreport COMMAND``, one module per command beside this one.
 
 Every command goes through all the specs it is given: a spec that cannot be read or analysed
 is reported (one message naming the file) and the others still run; the exit code is 1 if
-any spec failed. Errors never print a traceback, unless MECHREPORT_DEBUG=1 is set.
+any spec failed. Errors never print a traceback, unless MECHREPORT_DEBUG=1 is set. The
+process is set up (:mod:`.process`) before any command imports numpy.
 """
 from __future__ import annotations
 
 import argparse
 import math
-import os
 import sys
-import traceback
-from pathlib import Path
 
-import numpy as np
-
-from .errors import MechreportError, SpecError
+from ..errors import MechreportError, SpecError, internal_error
+from .console import print_traceback_if_debug
+from .workers import Terminated
 
 EXIT_INTERRUPTED = 130          # 128 + SIGINT, as a shell reports Ctrl-C
 EXIT_TERMINATED = 143           # 128 + SIGTERM
 
 
-def debug() -> bool:
-    """MECHREPORT_DEBUG set (and not 0): print tracebacks of internal errors."""
-    return os.environ.get("MECHREPORT_DEBUG", "") not in ("", "0")
-
-
-def internal_error(exc: BaseException, attach: str = "the spec file") -> str:
-    """One line for a failure that is a bug in mechreport, not in the spec."""
-    text = " ".join(str(exc).split())
-    return (f"internal error: {type(exc).__name__}{': ' + text if text else ''} — please "
-            f"report this with {attach}")
-
-
-def describe_failure(exc: BaseException) -> str:
-    """The message for a spec that failed with ``exc``: the error's own message for a
-    :class:`MechreportError`, what the system said for a file problem, otherwise an internal
-    error (see :func:`internal_error`)."""
-    if isinstance(exc, MechreportError):
-        return str(exc)
-    if isinstance(exc, UnicodeDecodeError):
-        return (f"cannot read file: not UTF-8 text (byte {exc.start}: {exc.reason}); save it "
-                "as UTF-8")
-    if isinstance(exc, OSError) and exc.strerror:
-        where = f"{exc.filename}: " if exc.filename else ""
-        return f"{where}{exc.strerror}"
-    return internal_error(exc)
-
-
-def print_traceback_if_debug() -> None:
-    if debug():
-        traceback.print_exc(file=sys.stderr)
-
-
-def spec_files(args: list[str]) -> list[Path]:
-    """Expand SPEC|DIR arguments into spec files (a directory gives its *.yaml and *.yml,
-    sorted)."""
-    out: list[Path] = []
-    for arg in args:
-        p = Path(arg)
-        if p.is_dir():
-            found = sorted(list(p.glob("*.yaml")) + list(p.glob("*.yml")))
-            if not found:
-                print(f"{p}: no spec files (*.yaml, *.yml) in this folder", file=sys.stderr)
-            out.extend(found)
-        else:
-            out.append(p)
-    return out
-
-
 def _cmd_validate(ns: argparse.Namespace) -> int:
-    from .kinematics import solve_kinematics
-    from .model import build_mechanism
-    from .report.text import branch_lines
-    from .spec import load_spec
-
-    paths = spec_files(ns.specs)
-    if not paths:
-        print("no spec files given", file=sys.stderr)
-        return 1
-    failed = 0
-    for path in paths:
-        try:
-            spec = load_spec(path)
-            kin = solve_kinematics(build_mechanism(spec), np.asarray(spec.at, float))
-        except MechreportError as exc:           # its message names the file
-            failed += 1
-            print(str(exc), file=sys.stderr)
-            continue
-        except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the others
-            failed += 1
-            print(f"{path}: {describe_failure(exc)}", file=sys.stderr)
-            print_traceback_if_debug()
-            continue
-        note = f" ({len(kin.flags)} reference angle(s) left out)" if kin.flags else ""
-        print(f"{path}: OK{note}")
-        for text in branch_lines(kin):
-            print(f"  branch: {text}")
-        for text in kin.notes():
-            print(f"  note: {text}")
-    return 1 if failed else 0
+    from .validate import validate_command
+    return validate_command(ns.specs)
 
 
 def _cmd_kin(ns: argparse.Namespace) -> int:
-    from .kinematics import solve_kinematics
-    from .model import build_mechanism
-    from .report.text import branch_lines, kinematics_table
-    from .spec import load_spec
-
-    try:
-        spec = load_spec(ns.spec)
-        angles = np.asarray(ns.angle if ns.angle else spec.at, float)
-        kin = solve_kinematics(build_mechanism(spec), angles)
-    except MechreportError as exc:               # its message names the file
-        print(str(exc), file=sys.stderr)
-        return 1
-    except Exception as exc:  # noqa: BLE001 - a message, not a traceback
-        print(f"{ns.spec}: {describe_failure(exc)}", file=sys.stderr)
-        print_traceback_if_debug()
-        return 1
-    print(kinematics_table(kin))
-    print()
-    for text in branch_lines(kin):
-        print(f"branch: {text}")
-    for flag in kin.flags:
-        print(f"crank angle {flag.angle:g} deg left out: {flag.reason}")
-    for text in kin.notes():
-        print(f"note: {text}")
-    return 0
+    from .kin import kin_command
+    return kin_command(ns.spec, ns.angle)
 
 
 def _cmd_check(ns: argparse.Namespace) -> int:
-    from .checks.run import check_files
-    return check_files(spec_files(ns.specs), ns.tol, junit=ns.junit)
+    from .check import check_command
+    return check_command(ns.specs, ns.tol, junit=ns.junit)
 
 
 def _cmd_build(ns: argparse.Namespace) -> int:
-    from .report.build import build_files
-    options = None
-    if not ns.sheet:
-        given = [o for o, v in (("--exact", ns.exact), ("--sheet-methods", ns.sheet_methods),
-                                ("--sheet-angles", ns.sheet_angles)) if v]
-        if given:
-            print(f"error: {', '.join(given)} need{'s' if len(given) == 1 else ''} --sheet: "
-                  f"{'it changes' if len(given) == 1 else 'they change'} only the solution "
-                  "sheets, which --sheet writes", file=sys.stderr)
-            return 2
-    else:
-        from .report.sheet import SheetOptions
-        if ns.exact:
-            from .report.sheet.exact import require_sympy
-            require_sympy()                 # a clear message now, not one per spec
-        options = SheetOptions(ns.sheet_methods, ns.sheet_angles, ns.exact)
-    return build_files(spec_files(ns.specs), Path(ns.out), jobs=ns.jobs, sheet=ns.sheet,
-                       exact=ns.exact, wait=ns.wait, force=ns.force, quiet=ns.quiet,
-                       sheet_options=options)
+    from .build import build_command
+    return build_command(ns)
 
 
 def _cmd_diff(ns: argparse.Namespace) -> int:
+    from pathlib import Path
     from .diff import diff_command
     return diff_command(Path(ns.old), Path(ns.new), ns.rtol)
 
 
 def _cmd_study(ns: argparse.Namespace) -> int:
+    from pathlib import Path
     from .study import study_command
     return study_command(Path(ns.spec), Path(ns.out), method=ns.method,
                          scheduler=ns.scheduler, jobs=ns.jobs, reports=ns.reports,
@@ -189,7 +73,7 @@ _int_at_least_1 = _checked(int, lambda v: v >= 1, "a whole number >= 1")
 
 def _sheet_methods(text: str) -> tuple[str, ...]:
     """``--sheet-methods``: comma-separated method names, each known, none twice."""
-    from .forces import METHODS
+    from ..forces import METHODS
     names = [t.strip() for t in text.split(",")]
     bad = [n for n in names if n not in METHODS]
     if not text.strip() or bad or len(set(names)) != len(names):
@@ -245,7 +129,7 @@ Writes OUT/<name>/study.parquet, study.csv (one row per variant), study.md and s
 
 
 def _add_study_parser(sub) -> None:
-    from .forces import METHODS
+    from ..forces import METHODS
     p = sub.add_parser("study", help="run many variants of a spec (its study: section)",
                        description="Run the variants that the spec's study: section describes "
                        "(one force method each), tabulate their cycle quantities and design "
@@ -275,7 +159,9 @@ def _add_study_parser(sub) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from . import __version__
+    from .process import set_up
+    from ..version import __version__
+    set_up()
     parser = argparse.ArgumentParser(
         prog="mechreport",
         description="Dynamic force analysis of planar linkages from YAML specs.")
@@ -362,7 +248,6 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: {exc}", file=sys.stderr)
         return 1
     except KeyboardInterrupt as exc:
-        from .report.build import Terminated
         terminated = isinstance(exc, Terminated)
         if not getattr(exc, "reported", False):
             print("terminated" if terminated else "interrupted", file=sys.stderr)

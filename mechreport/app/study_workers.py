@@ -21,10 +21,10 @@ from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 import numpy as np
 
 from ..errors import MechreportError
-from .evaluate import Row, evaluate_chunk
-from .plan import Plan
-from .table import Table
-from .variants import BaseSpec
+from ..study.evaluate import Row, evaluate_chunk
+from ..study.plan import Plan
+from ..study.table import Table
+from ..study.variants import BaseSpec
 
 #: chunks in flight per worker
 IN_FLIGHT = 3
@@ -65,7 +65,7 @@ _BASE: BaseSpec | None = None
 
 
 def _pool_init(base: BaseSpec, parent: int) -> None:
-    from ..report.build import worker_init
+    from .workers import worker_init
     global _BASE
     worker_init(parent)                 # Ctrl-C is the parent's; exit if the parent dies
     _BASE = base
@@ -77,7 +77,7 @@ def _pool_task(start: int, keys, values: np.ndarray, method: str, keep) -> tuple
 
 def run_pool(base: BaseSpec, plan: Plan, method: str, keep, size: int, jobs: int,
              on_chunk) -> None:
-    from ..report.build import stop_pool
+    from .workers import stop_pool
     # fresh interpreters, as `mechreport build` does: forking a process whose BLAS or Typst
     # threads are running can deadlock the child
     ctx = multiprocessing.get_context("spawn")
@@ -145,7 +145,7 @@ def connect(address: str, timeout: float = 10.0, wait_workers: float = 30.0):
             raise SchedulerError(f"the Dask scheduler at {address} has no workers (waited "
                                  f"{wait_workers:g} s); start some with `dask worker "
                                  f"{address}`") from None
-        from .. import __version__
+        from ..version import __version__
         try:
             versions = client.run(_worker_version)
         except Exception as exc:  # noqa: BLE001 - e.g. mechreport not importable there

@@ -5,6 +5,24 @@ variants are rows with their reason); 1 when it cannot run (the spec or its stud
 invalid, the method cannot give the kept quantities, the scheduler cannot be used, the output
 folder cannot be written) or when ``--cross-check`` finds a disagreement; 130 when interrupted
 (nothing is written then).
+
+The files, written into ``OUT/<spec>/`` safely:
+
+    OUT/<spec>/study.parquet, study.csv      one row per variant (columns: study.table)
+    OUT/<spec>/study.md, study.pdf           the study report (study.report)
+    OUT/<spec>/study-figures/*.svg           its figures
+    OUT/<spec>/study-reports/NN-variant-I/   --reports K: full reports of the K best
+
+``<spec>`` is the spec's file name without .yaml, made safe as ``mechreport build`` does
+(:func:`mechreport.app.outdir.safe_stem`). The study shares ``OUT/.mechreport.lock`` with
+builds (a study and a build into the same OUT take turns while writing; the variants are
+computed before the lock is taken). Everything is written into a private folder
+``OUT/.tmp-<spec>-<pid>`` first; when complete, it is swapped in for ``OUT/<spec>`` with two
+renames, carrying over (as hard links) whatever else that folder held (a report built there
+by ``mechreport build``), and replacing the files of an earlier study. So an interrupted study
+leaves ``OUT/<spec>`` as it was, and the next build or study deletes the leftover private
+folder. Only a folder holding a report (summary.json), a study (study.parquet) or nothing is
+ever replaced.
 """
 from __future__ import annotations
 
@@ -13,12 +31,12 @@ import sys
 import time
 from pathlib import Path
 
-from ..errors import MechreportError
-from ..report import outdir as od
+from ..errors import MechreportError, describe_failure
+from . import outdir as od
 
 
 def _method(base, method: str | None) -> tuple[str, str]:
-    from .methods import cannot_serve, default_method
+    from ..study.methods import cannot_serve, default_method
     study, design = base.spec.study, base.spec.design
     if method is None:
         return (default_method(study.keep, design),
@@ -36,11 +54,11 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     """Run the study of the spec at ``path`` into ``out``; the exit status (see the module
     docstring). Raises ``SpecError``/``MechreportError`` when the study cannot run and
     KeyboardInterrupt when interrupted."""
-    from ..report.build import sigterm_as_interrupt
-    from .execute import auto_chunk, connect, dask_workers, run_variants
-    from .plan import plan_of
+    from ..study.plan import plan_of
+    from ..study.variants import load_base
     from .progress import StudyProgress, duration
-    from .variants import load_base
+    from .study_workers import auto_chunk, connect, dask_workers, run_variants
+    from .workers import sigterm_as_interrupt
 
     err = stream or sys.stderr
     path = Path(path)
@@ -86,12 +104,12 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
               flush=True)
         cc = None
         if cross:
-            from .cross_check import cross_check
+            from ..study.cross_check import cross_check
 
             def tick(i, n):
                 print(f"cross-check [{i}/{n}]", file=err, flush=True)
             cc = cross_check(base, table, cross, study.seed, progress=tick)
-        from .report import StudyRun
+        from ..study.report import StudyRun
         from ..report.model import build_time, spec_sha256
         run = StudyRun(base, table, method, why, seconds, where, size,
                        sha256=spec_sha256(path), cross=cc,
@@ -128,8 +146,8 @@ def write_study(run, out: Path, name: str, reports: int = 0, wait: float = 120.0
     """Write every file of ``run`` into ``OUT/name`` (see :mod:`.outputs`); the folder."""
     from ..report.pdf import compile_typst
     from ..report.files import atomic_write_text
-    from .outputs import install, write_csv, write_parquet
-    from .report import FIGURES, build_document, write_figures
+    from ..study.outputs import write_csv, write_parquet
+    from ..study.report import FIGURES, build_document, write_figures
     err = err or sys.stderr
     with od.OutputLock(out).acquire(wait):
         od.clean_leftovers(out)
@@ -158,7 +176,7 @@ def write_study(run, out: Path, name: str, reports: int = 0, wait: float = 120.0
 
 
 def _version() -> str:
-    from .. import __version__
+    from ..version import __version__
     return __version__
 
 
@@ -166,7 +184,6 @@ def write_best_reports(run, tmp: Path, k: int, err) -> list[tuple]:
     """Full reports (every method, as ``mechreport build`` writes them) of the ``k`` best
     passing variants into ``tmp/study-reports/NN-variant-I/``, each with its variant's spec
     file; (rank, index, folder or None, message) per report."""
-    from ..cli import describe_failure
     t = run.table
     ranked = list(t.ranked()[:k])
     if len(ranked) < k:
@@ -186,14 +203,13 @@ def write_best_reports(run, tmp: Path, k: int, err) -> list[tuple]:
 
 
 def variant_report(run, i: int, rank: int, tmp: Path, folder: str) -> None:
-    from ..analysis import analyse
-    from ..report.drawing import write_drawings
-    from ..report.model import build_model, spec_sha256
-    from ..report.plots import write_plots
-    from ..report.render import write_report
-    from ..spec import load_spec
+    """The full report of variant ``i`` into ``tmp/folder``, with its spec file."""
+    from ..pipeline import analyse
+    from ..report.build import write_report_folder
     from ..report.files import atomic_write_text
-    from .variants import variant_yaml
+    from ..report.model import spec_sha256
+    from ..spec import load_spec
+    from ..study.variants import variant_yaml
     base, plan = run.base, run.plan
     values = plan.variant(i)
     where = od.inside(tmp, tmp / folder)
@@ -211,9 +227,11 @@ def variant_report(run, i: int, rank: int, tmp: Path, folder: str) -> None:
     text = variant_yaml(base, values, header, name=f"{base.spec.name} (study variant {i + 1})",
                         description=description)
     atomic_write_text(spec_file, text)
-    spec = load_spec(spec_file)
-    analysis = analyse(spec)
-    model = build_model(analysis, f"{folder}/{spec_file.name}", sha256=spec_sha256(spec_file))
-    write_plots(model, where / "figures")
-    write_drawings(model, where / "figures")
-    write_report(model, where)
+    analysis = analyse(load_spec(spec_file))
+    write_report_folder(analysis, where, f"{folder}/{spec_file.name}", spec_sha256(spec_file))
+
+
+def install(out: Path, tmp: Path, name: str) -> Path:
+    """Make ``tmp`` (a complete study folder) ``OUT/name``, carrying over the entries of the
+    old folder that are not a study's (its report); two renames, undone if the second fails."""
+    return od.swap_in(out, tmp, name, carry=lambda entry: entry not in od.STUDY_ENTRIES)

@@ -1,4 +1,7 @@
-"""The study's progress on stderr: on a terminal one line redrawn at most ten times a second,
+"""Progress on stderr: a build's specs (:class:`Progress`) and a study's variants
+(:class:`StudyProgress`).
+
+A study's, on a terminal, is one line redrawn at most ten times a second,
 
     [##########..........] 5000/10000 variants 50%  (3 failed)  31 s, ETA 31 s
 
@@ -7,6 +10,7 @@ from __future__ import annotations
 
 import sys
 import time
+from pathlib import Path
 
 
 def duration(seconds: float) -> str:
@@ -71,3 +75,56 @@ class StudyProgress:
             self.stream.write("\n")
             self.stream.flush()
             self._open = False
+
+
+class Progress:
+    """``[n/N]`` progress on stderr: a one-line bar on a terminal, plain lines otherwise.
+    ``quiet``: only failures are printed."""
+
+    def __init__(self, total: int, stream=None, quiet: bool = False):
+        self.total, self.done = total, 0
+        self.stream = stream or sys.stderr
+        self.quiet = quiet
+        self.tty = (not quiet) and hasattr(self.stream, "isatty") and self.stream.isatty()
+
+    def update(self, row: dict) -> None:
+        self.done += 1
+        spec, secs = row["spec"], row.get("seconds", 0.0)
+        n = f"[{self.done}/{self.total}]"
+        if not row["ok"]:
+            self._clear()
+            print(f"{n} FAIL {spec}: {row['message']}", file=self.stream)
+            if row.get("traceback"):
+                print(row["traceback"].rstrip(), file=self.stream)
+        elif row.get("status") == "FAIL":
+            self._clear()
+            what = f"built {spec} ({secs:.1f} s)"
+            if row.get("skipped"):
+                what = f"{spec} unchanged (not rebuilt)"
+            print(f"{n} {what}, but its check FAILED: see "
+                  f"{row.get('folder', '?')}/report.md", file=self.stream)
+        elif self.quiet:
+            pass
+        elif not self.tty:
+            if row.get("skipped"):
+                print(f"{n} unchanged {spec}: not rebuilt (--force rebuilds it)",
+                      file=self.stream)
+            else:
+                print(f"{n} built {spec} ({secs:.1f} s)", file=self.stream)
+        if self.tty:
+            width = 30
+            fill = int(width * self.done / max(self.total, 1))
+            label = Path(spec).name[:40].encode("ascii", "replace").decode()
+            label = "".join(c if c.isprintable() else "?" for c in label)
+            self.stream.write(f"\r[{'#' * fill}{'.' * (width - fill)}] {self.done}/"
+                              f"{self.total} {label:<40}")
+            self.stream.flush()
+
+    def _clear(self) -> None:
+        if self.tty:
+            self.stream.write("\r" + " " * 80 + "\r")
+
+    def close(self) -> None:
+        if self.tty:
+            self.stream.write("\n")
+            self.stream.flush()

@@ -19,11 +19,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .analysis import analyse, trusted
-from .forces import METHODS, ForceContext
-from .kinematics.stacked import solve_stacked, variant_kinematics
-from .model import build_mechanism
-from .post import Review, Verdict, design_review, verdicts
-from .spec import Spec
+from ..forces import METHODS, ForceContext
+from ..kinematics.stacked import solve_stacked, variant_kinematics
+from ..model import build_mechanism
+from ..post import Review, Verdict, design_review, verdicts
+from ..spec import Spec
 
 
 @dataclass(frozen=True)
@@ -44,7 +44,7 @@ class Outcome:
         """The failure's message for users (None when the variant was analysed)."""
         if self.exception is None:
             return None
-        from .cli import describe_failure
+        from ..errors import describe_failure
         return describe_failure(self.exception)
 
 

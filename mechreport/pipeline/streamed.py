@@ -17,23 +17,22 @@ in-memory analysis' (tests/test_streamed.py). Mechanisms with a group that has n
 """
 from __future__ import annotations
 
-import ctypes
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from .analysis import (DEFAULT_TOL, Analysis, Checked, analyse, no_angle_error,
                        solve_trusted)
-from .checks import Agreement, ExpectationResult, Residual, residuals
-from .checks.agreement import finish, merge, spreads
-from .checks.expectations import at_angle, check_cycle, judge, left_out
-from .forces import METHODS, ForceContext, contour
-from .forces.result import slider_point
-from .kinematics import Flag
-from .kinematics.stream import kinematic_chunks, streamable
-from .model import build_mechanism
-from .post import Traces, Verdict, design_review_from, traces_of, verdicts
-from .spec import Spec
+from ..checks import Agreement, ExpectationResult, Residual, residuals
+from ..checks.agreement import finish, merge, spreads
+from ..checks.expectations import at_angle, check_cycle, judge, left_out
+from ..forces import METHODS, ForceContext, contour
+from ..forces.result import slider_point
+from ..kinematics import Flag
+from ..kinematics.stream import kinematic_chunks, streamable
+from ..model import build_mechanism
+from ..post import Traces, Verdict, design_review_from, traces_of, verdicts
+from ..spec import Spec
 
 STREAM_ANGLES = 100_000   # analysed angles beyond which `check` streams the sweep
 CHUNK = 8192              # angles analysed together
@@ -63,15 +62,19 @@ class SweepCheck(Checked):
 
 
 def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
-                chunk: int = CHUNK) -> SweepCheck | Analysis:
+                chunk: int = CHUNK, between_phases=None) -> SweepCheck | Analysis:
     """The check of ``spec``'s sweep, ``chunk`` angles at a time (an in-memory
-    :class:`Analysis` for mechanisms that cannot be streamed)."""
+    :class:`Analysis` for mechanisms that cannot be streamed). ``between_phases()``, if
+    given, is called where one phase's working set has been freed and the next allocates
+    afresh (the command line gives the free heap back to the system there, which bounds the
+    peak memory of a million-angle check)."""
+    between_phases = between_phases or (lambda: None)
     mech = build_mechanism(spec)
     if not streamable(mech):
         return analyse(spec, methods, tol)
     names = list(METHODS) if methods is None else list(methods)
     chunks = kinematic_chunks(mech, chunk)
-    give_back_free_memory()       # pass 1's working set: freed, but kept by the allocator
+    between_phases()              # pass 1's working set: freed, but kept by the allocator
     memo: dict = {}
     if contour.NAME in names:   # the contour method's equations, chosen over the whole sweep
         probe = ForceContext(chunks.probes(contour.PROBES))
@@ -118,7 +121,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     flags = sorted(flags, key=lambda f: f.angle)
     if n == 0:
         raise no_angle_error(spec, flags)
-    give_back_free_memory()       # the last chunks' working set, before the review's own
+    between_phases()              # the last chunks' working set, before the review's own
     rev, why = design_review_from(traces.head(n), spec, chunks.motion.full,
                                   chunks.turn_problem)
     values = rev.values if rev is not None else None
@@ -136,27 +139,6 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     return SweepCheck(spec, n, tuple(flags), finish(parts),
                       [Residual(m, f, mo) for m, (f, mo) in worst.items()], expectations, tol,
                       values, why, tuple(verdicts(spec.design, values, why)), chunks.notes())
-
-
-def give_back_free_memory() -> None:
-    """Return the heap's free pages to the system (glibc's ``malloc_trim``; nothing elsewhere).
-
-    Memory a pass frees stays in the process: the allocator keeps it for reuse, and a heap
-    fragmented by many chunk-sized arrays keeps most of it (measured: 116 of the 128 MB
-    resident after pass 1 of a million-angle sweep was free). The next phase has other
-    shapes and allocates afresh, so the peak would hold both. Called between phases only:
-    pages given back cost a fault each when touched again."""
-    global _TRIM
-    if _TRIM is None:
-        try:
-            _TRIM = ctypes.CDLL(None).malloc_trim
-        except (OSError, AttributeError, TypeError):   # not glibc: nothing to give back
-            _TRIM = False
-    if _TRIM:
-        _TRIM(0)
-
-
-_TRIM = None
 
 
 def _slider_point(e) -> bool:

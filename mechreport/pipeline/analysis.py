@@ -14,17 +14,17 @@ from pathlib import Path
 
 import numpy as np
 
-from .arrays import fp_ignore, fp_quiet
-from .errors import AnalysisError
-from .checks import (Agreement, ExpectationResult, Residual, agreement, check_expectations,
+from ..arrays import fp_ignore, fp_quiet
+from ..errors import AnalysisError
+from ..checks import (Agreement, ExpectationResult, Residual, agreement, check_expectations,
                      residuals)
-from .forces import METHODS, ForceContext, ForceResult, solve_forces
-from .kinematics import EPS, TRUST_RTOL, Flag, Kinematics, solve_kinematics
-from .kinematics.frames import scaled
-from .linalg import SINGULAR_COND
-from .model import Mechanism, build_mechanism
-from .post import Review, Verdict, design_review, verdicts
-from .spec import Spec, load_spec
+from ..forces import METHODS, ForceContext, ForceResult, Step, solve_forces, worked_steps
+from ..kinematics import EPS, TRUST_RTOL, Flag, Kinematics, solve_kinematics
+from ..kinematics.frames import scaled
+from ..linalg import SINGULAR_COND
+from ..model import Mechanism, build_mechanism
+from ..post import Review, Verdict, design_review, verdicts
+from ..spec import Spec, load_spec
 
 DEFAULT_TOL = 1e-6
 
@@ -81,10 +81,16 @@ class Analysis(Checked):
         """Every unknown of ``method`` (default: the reference method) split by source:
         ``{"inertia" | "gravity" | load name: {unknown: (n,)}}``; the parts sum to the
         method's values (one extra solve with one right-hand side per source)."""
-        from .forces.sources import split_by_source
-        from .post import reference_method
-        return split_by_source(self.context, self.forces[method or
-                                                         reference_method(self.forces)])
+        from ..forces.sources import split_by_source
+        from ..post import reference_method
+        return split_by_source(self.context,
+                               self.worked_steps(method or reference_method(self.forces)))
+
+    def worked_steps(self, method: str) -> tuple[Step, ...]:
+        """The labelled systems ``method`` solved, in order, over ``angles``: the equation
+        objects its numbers came from (built again on each call: they hold every
+        coefficient at every angle)."""
+        return worked_steps(self.context, method)
 
     @property
     def n(self) -> int:

@@ -1,0 +1,327 @@
+"""``mechreport build``: one report folder per spec, in parallel, and a batch index.
+
+    OUT/<name>/report.md, report.pdf, results.csv, summary.json, figures/*.svg
+    OUT/index.md, OUT/index.pdf, OUT/index.csv, OUT/index.json
+
+Folder names, the lock on ``OUT`` and the whole-folder swap are described in
+:mod:`mechreport.app.outdir`. One failing spec is reported (stderr, and a FAIL row with its
+message in the index) and does not stop the others. The index lists every report folder in
+``OUT`` (read back from each folder's summary.json), with this run's failures as FAIL rows.
+The exit code is 1 if any spec of this run failed to build or failed its check.
+
+Workers end with the build (:mod:`.workers`).
+"""
+from __future__ import annotations
+
+import multiprocessing
+import os
+import sys
+import time
+import traceback
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from pathlib import Path
+
+from ..errors import MechreportError, describe_failure, internal_error
+from . import outdir as od
+from .console import spec_files
+from .progress import Progress
+from .workers import Terminated, sigterm_as_interrupt, stop_pool, worker_init
+
+DEFAULT_WAIT = 120.0
+
+
+def build_key(path: Path, sheet: bool, exact: bool, sheet_options=None) -> dict:
+    """What decides whether a report is up to date: the spec's bytes (SHA-256), its path, the
+    mechreport version and the options that change the output (``sheet_options``: the
+    sheets' methods and angles, a :class:`~mechreport.report.sheet.SheetOptions`)."""
+    from ..report.model import spec_sha256
+    from ..version import __version__
+    key = {"spec": str(path), "spec_sha256": spec_sha256(path),
+           "mechreport_version": __version__, "sheet": bool(sheet), "exact": bool(exact)}
+    if sheet_options is not None:
+        key.update(sheet_options.key())
+    return key
+
+
+def up_to_date(out: Path, name: str, key: dict) -> dict | None:
+    """The summary of ``out/name`` when it was built from the same ``key`` and its files are
+    all there (then the spec need not be built again); None otherwise."""
+    import json
+    folder = Path(out) / name
+    try:
+        summary = json.loads((folder / "summary.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if not isinstance(summary, dict) or summary.get("build") != key or not key["spec_sha256"]:
+        return None
+    if not all((folder / f).is_file() for f in ("report.md", "report.pdf", "results.csv")):
+        return None
+    return summary
+
+
+def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = False,
+              exact: bool = False, stage=None, sheet_options=None) -> dict:
+    """Analyse ``path`` and write its report into ``folder`` (a private folder inside
+    ``out``, later renamed to ``out/name``); the run's row. ``stage(i, n, what)`` is called
+    before each stage (progress for long single specs).
+
+    Raises whatever the analysis or rendering raises (see :func:`build_safe`)."""
+    from ..pipeline import analyse
+    from ..report.build import write_report_folder
+    from ..spec import load_spec
+
+    stage = stage or (lambda i, n, what: None)
+    path, folder = Path(path), od.inside(out, folder)
+    key = build_key(path, sheet, exact, sheet_options)
+    spec = load_spec(path)
+    do_sheet = sheet or spec.sheet
+    stage(1, 4 if do_sheet else 3, "analysing")
+    analysis = analyse(spec)
+    options = sheet_source = None
+    if do_sheet:
+        from ..report.sheet import SheetOptions, sheet_spec
+        options = SheetOptions(sheet_options.methods if sheet_options else None,
+                               sheet_options.angles if sheet_options else None, exact)
+        wanted = sheet_spec(spec, options)
+        if wanted is not spec:              # the sheet's angles are not all in the sweep
+            sheet_source = analyse(wanted, tol=analysis.tol)
+    row = write_report_folder(analysis, folder, path, key["spec_sha256"], name=name,
+                              build_key=key, sheet=do_sheet, sheet_options=options,
+                              sheet_source=sheet_source, stage=stage)
+    for written in folder.rglob("*"):                   # nothing escaped the folder
+        od.inside(folder, written)
+    return dict(row, folder=name)
+
+
+def _stage_printer(label: str):
+    """Stage lines on stderr for a single spec: ``[1/4] specs/x.yaml: analysing``."""
+    def stage(i: int, n: int, what: str) -> None:
+        print(f"[{i}/{n}] {label}: {what}", file=sys.stderr, flush=True)
+    return stage
+
+
+def build_safe(path: str, out: str, name: str, sheet: bool, exact: bool,
+               owner: int | None = None, stages: bool = False, sheet_options=None) -> dict:
+    """:func:`build_one` into ``OUT/.tmp-<name>-<owner>`` that never raises an Exception: a
+    failure becomes a row with ``ok`` False and the error ``message`` (the private folder is
+    then removed). Adds ``seconds`` and ``tmp``. (Top-level so worker processes can run it.)"""
+
+    start = time.perf_counter()
+    tmp = None
+    try:
+        tmp = od.make_tmp_dir(Path(out), name, owner)
+        row = build_one(Path(path), Path(out), name, tmp, sheet, exact,
+                        _stage_printer(str(path)) if stages else None, sheet_options)
+        row["tmp"] = str(tmp)
+    except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the batch
+        if tmp is not None:
+            od.remove(tmp)
+        row = _failure(path, name, describe_failure(exc))
+        if os.environ.get("MECHREPORT_DEBUG"):
+            row["traceback"] = traceback.format_exc()
+    except BaseException:
+        if tmp is not None:
+            od.remove(tmp)
+        raise
+    row["seconds"] = time.perf_counter() - start
+    row["spec"] = str(path)
+    return row
+
+
+def _failure(path, name: str, message: str) -> dict:
+    return {"ok": False, "spec": str(path), "folder": name, "stem": name, "name": name,
+            "status": "FAIL", "message": message.strip() or "unknown error", "sheets": []}
+
+
+def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, exact: bool,
+         finish, stages: bool = False, sheet_options=None) -> None:
+    """Build each ``(i, path, name)`` of ``todo``; ``finish(i, row)`` is called in this
+    process as each one ends (in completion order). ``stages``: print each stage of a spec
+    (for a build of one spec)."""
+    owner = os.getpid()
+    if jobs <= 1 or len(todo) <= 1:
+        for i, p, name in todo:
+            finish(i, build_safe(str(p), str(out), name, sheet, exact, owner, stages,
+                                 sheet_options))
+        return
+    # fresh interpreters: forking a process whose Typst/BLAS threads are running can
+    # deadlock the child (seen under pytest, after a report was typeset in-process)
+    ctx = multiprocessing.get_context("spawn")
+    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=worker_init,
+                               initargs=(owner,))
+    try:
+        futs = {pool.submit(build_safe, str(p), str(out), name, sheet, exact, owner,
+                            sheet_options=sheet_options): (i, p, name)
+                for i, p, name in todo}
+        for fut in as_completed(futs):
+            i, p, name = futs[fut]
+            try:
+                row = fut.result()
+            except Exception as exc:  # noqa: BLE001 - a worker died
+                row = _failure(p, name, internal_error(exc))
+            finish(i, row)
+    except BaseException:
+        stop_pool(pool)
+        raise
+    pool.shutdown(wait=True)
+
+
+# -------------------------------------------------------------------------------- index
+
+def index_rows(out: Path, failures: dict[str, dict] | None = None) -> list[dict]:
+    """The index of ``out``: one row per report folder on disk (from its summary.json), with
+    ``failures`` (folder name -> this run's FAIL row) in place of, or beside, the folders."""
+    from ..report.model import index_row
+
+    failures = failures or {}
+    disk = od.report_folders(out)
+    rows = []
+    for name in sorted(set(disk) | set(failures), key=lambda n: (n.casefold(), n)):
+        if name in failures:
+            row = dict(failures[name])
+            if name in disk:
+                row["message"] += f" (the report of an earlier build is still in {name}/)"
+            rows.append(row)
+            continue
+        data = disk[name]
+        try:
+            if isinstance(data, str):
+                raise ValueError(data)
+            row = index_row(data, name)
+        except (KeyError, TypeError, ValueError, IndexError) as exc:
+            msg = str(exc) if isinstance(data, str) else \
+                f"{name}/summary.json is not a mechreport summary ({type(exc).__name__}: {exc})"
+            rows.append(_failure(name, name, msg))
+            continue
+        row["sheets"] = [(f"{label} {f.rsplit('.', 1)[-1]}", f"{name}/{f}")
+                         for label, f in (("sheet", "solution.md"), ("sheet", "solution.pdf"),
+                                          ("problem", "problem.md"), ("problem", "problem.pdf"))
+                         if (Path(out) / name / f).is_file()]
+        rows.append(row)
+    return rows
+
+
+def _write_index(out: Path, failures: dict[str, dict]) -> None:
+    from ..report.render import write_index
+    write_index(index_rows(out, failures), out)
+
+
+# -------------------------------------------------------------------------------- batch
+
+def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bool = False,
+                exact: bool = False, wait: float = DEFAULT_WAIT, force: bool = False,
+                quiet: bool = False, sheet_options=None) -> int:
+    """Build every spec in ``paths`` into ``out`` and rewrite the index; exit code 0 if all
+    built and passed their checks, 1 otherwise. ``jobs``: parallel processes (default: the
+    number of cores); ``wait``: seconds to wait for another build writing to ``out``. A spec
+    whose report in ``out`` was built from the same bytes, path, options and mechreport
+    version is not built again unless ``force``. ``quiet``: no progress, only failures.
+    ``sheet_options``: the methods and angles of the solution sheets (a
+    :class:`~mechreport.report.sheet.SheetOptions`; None: all methods, the spec's ``at``).
+
+    Raises :class:`~mechreport.app.outdir.OutputError` if ``out`` cannot be used, and
+    KeyboardInterrupt (or :class:`Terminated`) if interrupted: then the workers are stopped,
+    finished reports are in place, unfinished ones left as they were, and the index rebuilt."""
+    paths = od.unique_specs([Path(p) for p in paths])
+    if not paths:
+        print("no spec files given", file=sys.stderr)
+        return 1
+    out = od.prepare(Path(out))
+    names = od.folder_names(paths)
+    jobs = max(1, min(jobs or os.cpu_count() or 1, len(paths)))
+    start = time.perf_counter()
+    with sigterm_as_interrupt(), od.OutputLock(out).acquire(wait):
+        od.clean_leftovers(out)
+        progress = Progress(len(paths), quiet=quiet)
+        failures: dict[str, dict] = {}
+        rows: list[dict] = [{} for _ in paths]
+
+        def finish(i: int, row: dict) -> None:
+            if row["ok"]:
+                try:
+                    od.swap_in(out, Path(row.pop("tmp")), names[i])
+                except (OSError, MechreportError) as exc:
+                    od.remove(od.tmp_dir(out, names[i]))
+                    row = _failure(paths[i], names[i], "cannot put the report in place: "
+                                   + describe_failure(exc))
+            if not row["ok"]:
+                od.remove(od.tmp_dir(out, names[i]))           # a worker that died
+                failures[names[i]] = row
+            progress.update(row)
+            rows[i] = row
+
+        todo = []
+        for i, (path, name) in enumerate(zip(paths, names)):
+            why = od.occupied(out, name)      # not a report folder: never replaced
+            if why:
+                finish(i, dict(_failure(path, name, why), seconds=0.0))
+                continue
+            same = None if force else up_to_date(out, name, build_key(path, sheet, exact,
+                                                                      sheet_options))
+            if same is not None:
+                from ..report.model import index_row
+                try:
+                    row = dict(index_row(same, name), folder=name, spec=str(path),
+                               skipped=True, seconds=0.0)
+                except (KeyError, TypeError, ValueError, IndexError):
+                    todo.append((i, path, name))
+                    continue
+                progress.update(row)
+                rows[i] = row
+            else:
+                todo.append((i, path, name))
+        try:
+            _run(todo, out, min(jobs, max(len(todo), 1)), sheet, exact, finish,
+                 stages=len(paths) == 1 and not quiet, sheet_options=sheet_options)
+        except KeyboardInterrupt as exc:
+            progress.close()
+            for name in names:
+                od.remove(od.tmp_dir(out, name))
+            try:
+                _write_index(out, failures)
+            except Exception:  # noqa: BLE001 - interrupted anyway; the next build rewrites it
+                pass
+            what = "terminated" if isinstance(exc, Terminated) else "interrupted"
+            print(f"{what} after {progress.done} of {len(paths)} spec(s): finished reports "
+                  f"are in {out}, the others were left as they were", file=sys.stderr)
+            exc.reported = True
+            raise
+        progress.close()
+        failed = [r for r in rows if not r["ok"]]
+        check_failed = [r for r in rows if r["ok"] and r.get("status") != "PASS"]
+        try:
+            _write_index(out, failures)
+        except MechreportError as exc:
+            print(f"error: index: {exc}", file=sys.stderr)
+            return 1
+    skipped = sum(1 for r in rows if r.get("skipped"))
+    built = len(rows) - len(failed) - skipped
+    note = (f"; {len(check_failed)} failed {'its' if len(check_failed) == 1 else 'their'} "
+            "check" if check_failed else "")
+    unchanged = f", {skipped} unchanged (not rebuilt; --force rebuilds)" if skipped else ""
+    if not quiet:
+        print(f"{built} of {len(rows)} report(s) built in {out}{unchanged} "
+              f"({time.perf_counter() - start:.1f} s){note}", file=sys.stderr)
+    return 1 if failed or check_failed else 0
+
+
+def build_command(ns) -> int:
+    """``mechreport build`` from its parsed arguments (see :mod:`.cli`)."""
+    options = None
+    if not ns.sheet:
+        given = [o for o, v in (("--exact", ns.exact), ("--sheet-methods", ns.sheet_methods),
+                                ("--sheet-angles", ns.sheet_angles)) if v]
+        if given:
+            print(f"error: {', '.join(given)} need{'s' if len(given) == 1 else ''} --sheet: "
+                  f"{'it changes' if len(given) == 1 else 'they change'} only the solution "
+                  "sheets, which --sheet writes", file=sys.stderr)
+            return 2
+    else:
+        from ..report.sheet import SheetOptions
+        if ns.exact:
+            from ..report.sheet.exact import require_sympy
+            require_sympy()                 # a clear message now, not one per spec
+        options = SheetOptions(ns.sheet_methods, ns.sheet_angles, ns.exact)
+    return build_files(spec_files(ns.specs), Path(ns.out), jobs=ns.jobs, sheet=ns.sheet,
+                       exact=ns.exact, wait=ns.wait, force=ns.force, quiet=ns.quiet,
+                       sheet_options=options)

@@ -1,0 +1,38 @@
+"""``mechreport kin SPEC [--angle A]...``: positions, velocities and accelerations at the
+spec's reference angles (or the given ones), as a table."""
+from __future__ import annotations
+
+import sys
+
+from ..errors import MechreportError, describe_failure
+from .console import print_traceback_if_debug
+
+
+def kin_command(path: str, angles: list[float] | None = None) -> int:
+    import numpy as np
+
+    from ..kinematics import solve_kinematics
+    from ..model import build_mechanism
+    from ..report.text import branch_lines, kinematics_table
+    from ..spec import load_spec
+
+    try:
+        spec = load_spec(path)
+        at = np.asarray(angles if angles else spec.at, float)
+        kin = solve_kinematics(build_mechanism(spec), at)
+    except MechreportError as exc:               # its message names the file
+        print(str(exc), file=sys.stderr)
+        return 1
+    except Exception as exc:  # noqa: BLE001 - a message, not a traceback
+        print(f"{path}: {describe_failure(exc)}", file=sys.stderr)
+        print_traceback_if_debug()
+        return 1
+    print(kinematics_table(kin))
+    print()
+    for text in branch_lines(kin):
+        print(f"branch: {text}")
+    for flag in kin.flags:
+        print(f"crank angle {flag.angle:g} deg left out: {flag.reason}")
+    for text in kin.notes():
+        print(f"note: {text}")
+    return 0

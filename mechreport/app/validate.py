@@ -1,0 +1,43 @@
+"""``mechreport validate SPEC|DIR...``: load specs and assemble them at their reference
+angles; exit status 1 if any spec fails or none is given."""
+from __future__ import annotations
+
+import sys
+
+from ..errors import MechreportError, describe_failure
+from .console import print_traceback_if_debug, spec_files
+
+
+def validate_command(args: list[str]) -> int:
+    import numpy as np
+
+    from ..kinematics import solve_kinematics
+    from ..model import build_mechanism
+    from ..report.text import branch_lines
+    from ..spec import load_spec
+
+    paths = spec_files(args)
+    if not paths:
+        print("no spec files given", file=sys.stderr)
+        return 1
+    failed = 0
+    for path in paths:
+        try:
+            spec = load_spec(path)
+            kin = solve_kinematics(build_mechanism(spec), np.asarray(spec.at, float))
+        except MechreportError as exc:           # its message names the file
+            failed += 1
+            print(str(exc), file=sys.stderr)
+            continue
+        except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the others
+            failed += 1
+            print(f"{path}: {describe_failure(exc)}", file=sys.stderr)
+            print_traceback_if_debug()
+            continue
+        note = f" ({len(kin.flags)} reference angle(s) left out)" if kin.flags else ""
+        print(f"{path}: OK{note}")
+        for text in branch_lines(kin):
+            print(f"  branch: {text}")
+        for text in kin.notes():
+            print(f"  note: {text}")
+    return 1 if failed else 0
