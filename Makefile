@@ -16,6 +16,7 @@ report: $(STAMP)
 	$(BIN)/mechreport build specs -o out
 
 test: $(STAMP)
+	$(BIN)/lint-imports
 	OPENBLAS_NUM_THREADS=1 $(BIN)/python -m pytest
 	$(BIN)/mechreport check specs
 

@@ -26,7 +26,6 @@ from functools import lru_cache
 
 import numpy as np
 
-from .arrays import fp_ignore, stack
 
 SINGULAR_COND = 1e10  # equilibrated condition number above which an angle is flagged singular
 CONSTANT_PIVOT_COND = 100.0   # largest condition number of an eliminated constant block
@@ -52,7 +51,7 @@ class Equilibrated:
         absA = np.abs(At)
         rs = absA.max(axis=1)                  # (m, n); NaN or inf where a row is not finite
         rs[rs == 0] = 1.0
-        with fp_ignore(invalid="ignore"):    # inf / inf: an overflow angle, replaced below
+        with np.errstate(invalid="ignore"):    # inf / inf: an overflow angle, replaced below
             absA /= rs[:, None, :]
         cs = absA.max(axis=0)                  # (m, n)
         cs[cs == 0] = 1.0
@@ -68,7 +67,7 @@ class Equilibrated:
         self.schur = ConstantRows.of(At, rs, self.overflow) if m >= 3 else None
         self.As = None                         # the scaled matrices, for the solves that use them
         if self.schur is None:
-            with fp_ignore(invalid="ignore"):
+            with np.errstate(invalid="ignore"):
                 As = np.divide(At, rs[:, None, :])
             As /= cs[None, :, :]
             if self.overflow.any():
@@ -96,7 +95,7 @@ class Equilibrated:
         operations over the angle axis (LAPACK's per-matrix cost is most of theirs); larger
         ones by LAPACK."""
         if self.schur is not None:        # rows scaled, columns not: y = cs x
-            with fp_ignore(invalid="ignore", over="ignore"):   # overflow angles: inf
+            with np.errstate(invalid="ignore", over="ignore"):   # overflow angles: inf
                 y = self.schur.solve(rhs) * self.cs[:, None, :]
             self.exact |= self.schur.exact
         elif self.m <= 2:
@@ -123,7 +122,7 @@ class Equilibrated:
         if self.m == 0:
             return np.zeros((self.n, 0))
         y = self._solve((b.T / self.rs)[:, None, :])[:, 0, :]
-        with fp_ignore(over="ignore", invalid="ignore"):
+        with np.errstate(over="ignore", invalid="ignore"):
             x = y / self.cs
         x[:, self.overflow | self.exact | ~np.isfinite(b).all(axis=1)] = np.nan
         return x.T
@@ -141,7 +140,7 @@ class Equilibrated:
         y = self._solve(rhs)
         y[:, :, overflow] = np.inf
         cond = self._probed_cond(y[:, 1:])
-        with fp_ignore(over="ignore", invalid="ignore"):
+        with np.errstate(over="ignore", invalid="ignore"):
             x = y[:, 0, :] / self.cs
         cond[overflow] = np.nan
         x[:, ~(cond < SINGULAR_COND)] = np.nan
@@ -150,7 +149,7 @@ class Equilibrated:
     def _probed_cond(self, y: np.ndarray) -> np.ndarray:
         """The condition number estimate (n,) from the solutions y (m, 2, n) for the probes:
         ||As||_F max_k ||y_k|| / ||z_k||, inf where not finite."""
-        with fp_ignore(over="ignore", invalid="ignore"):
+        with np.errstate(over="ignore", invalid="ignore"):
             probe = np.sqrt(np.einsum("ikn,ikn->kn", y, y)) / PROBE_NORMS[self.m][:, None]
             cond = self.fro * probe.max(axis=0)
         cond[~np.isfinite(cond)] = np.inf
@@ -162,7 +161,7 @@ class Equilibrated:
         Schur complement's solve); inf where not finite or exactly singular."""
         if self.m == 0:
             return np.zeros(B.shape)
-        with fp_ignore(invalid="ignore", over="ignore"):
+        with np.errstate(invalid="ignore", over="ignore"):
             return self._solve(B / self.rs[:, None, :]) / self.cs[:, None, :]
 
 
@@ -318,10 +317,10 @@ def _small_lu(At: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     m = At.shape[0]
     rows = [np.concatenate([At[i], rhs[i]]) for i in range(m)]   # [A_i | b_i], (m + k, n)
     exact = np.zeros(At.shape[2], bool)
-    with fp_ignore(divide="ignore", invalid="ignore", over="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         for j in range(m):
             if j < m - 1:
-                p = np.argmax(np.abs(stack([r[j] for r in rows[j:]])), axis=0)
+                p = np.argmax(np.abs(np.stack([r[j] for r in rows[j:]])), axis=0)
                 if p.any():                 # swap row j with row j + p where p > 0
                     top = rows[j]
                     for i in range(j + 1, m):
@@ -345,7 +344,7 @@ def _small_lu(At: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def _closed_form(At: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Solve 1x1 or 2x2 systems At (m, m, n) for rhs (m, k, n) by Cramer's rule (forward
     stable for 2x2): y (m, k, n), and where they are exactly singular (n,) bool."""
-    with fp_ignore(divide="ignore", invalid="ignore", over="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         if At.shape[0] == 1:
             a = At[0, 0]
             return rhs / a, a == 0
@@ -402,7 +401,7 @@ class _SmallGroup:
             a = At[0, 0]
             rs = np.abs(a)
             rs[rs == 0] = 1.0
-            with fp_ignore(divide="ignore", invalid="ignore", over="ignore"):
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
                 self.unit = a / rs
             self.rs = rs[None, :]
             self.cond = np.where(np.isfinite(rs), np.where(a == 0, np.inf, 1.0), np.nan)
@@ -412,7 +411,7 @@ class _SmallGroup:
                                                           (m, 2, At.shape[2]))))
         cond[eq.overflow] = np.nan
         self.cond, self.rs, self.cs, self.As = cond, eq.rs, eq.cs, eq.As
-        with fp_ignore(over="ignore", invalid="ignore"):
+        with np.errstate(over="ignore", invalid="ignore"):
             self.det = _determinant(eq.As)
 
     def solve_at(self, at, bt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -425,7 +424,7 @@ class _SmallGroup:
         cond = self.cond[at]
         if isinstance(at, slice):
             cond = cond.copy()
-        with fp_ignore(divide="ignore", invalid="ignore", over="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             q = bt / rs                               # (m, k)
             finite = np.isfinite(q)
             everywhere = finite.all()                 # (as a rule: nothing to mark)

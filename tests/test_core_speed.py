@@ -745,8 +745,7 @@ def _both_selections(monkeypatch):
                             and list(map(id, by_structure)) == list(map(id, by_numbers))))
         return by_structure
     contour_select = contour._select
-    monkeypatch.setattr(contour, "_select", select)
-    monkeypatch.setattr(contour, "_PLANS", {})      # every spec searched, none replayed
+    monkeypatch.setattr(contour, "_select", select)     # (no ContourPlans: none replayed)
     return compared
 
 
@@ -1040,65 +1039,12 @@ def test_chain_levels_follow_what_each_block_needs():
         solve_chains([[block("c", ("a",), ("a",)), block("a")]], n)
 
 
-@pytest.mark.parametrize("shape", [(36,), (36, 2), (3, 4, 5), (0,), (1,)])
-def test_stack_is_numpys(shape):
-    """arrays.stack gives np.stack's array (values, shape, dtype, C layout) along every
-    axis, and refuses what np.stack refuses."""
-    from mechreport.arrays import stack
-    rng = np.random.default_rng(7)
-    arrays = [rng.standard_normal(shape) for _ in range(4)]
-    for axis in range(-len(shape) - 1, len(shape) + 1):
-        got, ref = stack(arrays, axis=axis), np.stack(arrays, axis=axis)
-        assert got.shape == ref.shape and got.dtype == ref.dtype and got.flags.c_contiguous
-        assert np.array_equal(got, ref)
-    assert stack([np.array([True, False])] * 3, axis=1).dtype == bool
-    for bad in ([np.zeros(2), np.zeros(3)], []):
-        with pytest.raises(ValueError):
-            stack(bad)
-
-
-@pytest.mark.parametrize("shape", [(36,), (3600,), (36, 2), (1,), (7, 3)])
-def test_average_largest_smallest_are_numpys(shape):
-    """arrays.average, largest and smallest give float(np.mean), float(np.max) and
-    float(np.min) bit for bit, NaN and infinities included."""
-    from mechreport.arrays import average, largest, smallest
-    rng = np.random.default_rng(11)
-    x = rng.standard_normal(shape) * 10.0 ** rng.integers(-5, 5, shape)
-    cases = [x, x * 1e300, -x]
-    for special in (np.nan, np.inf, -np.inf):
-        y = x.copy()
-        y.flat[len(y.flat) // 2] = special
-        cases.append(y)
-    for v in cases:
-        for got, want in ((average(v), np.mean(v)), (largest(v), np.max(v)),
-                          (smallest(v), np.min(v))):
-            assert type(got) is float
-            assert np.array_equal(np.float64(got), np.float64(want), equal_nan=True)
-            assert np.float64(got).tobytes() == np.float64(want).tobytes()
-
-
-def test_fp_ignore_is_numpys_errstate_outside_an_analysis_and_free_inside():
-    """Outside fp_quiet, fp_ignore ignores only the errors named (as np.errstate); inside
-    it, every floating-point error is ignored, and nothing is left changed after it."""
-    from mechreport.arrays import fp_ignore, fp_quiet
-    before = np.geterr()
-    with fp_ignore(divide="ignore"):
-        assert np.geterr()["divide"] == "ignore" and np.geterr()["over"] == before["over"]
-    with fp_quiet():
-        assert set(np.geterr().values()) == {"ignore"}
-        with fp_ignore(divide="ignore"):
-            assert set(np.geterr().values()) == {"ignore"}
-    assert np.geterr() == before
-    with np.errstate(over="raise"):
-        with pytest.raises(FloatingPointError):
-            with fp_ignore(divide="ignore"):
-                np.float64(1e308) * 10
-
-
-def _contour_context(spec, step=None):
+def _contour_context(spec, step=None, plans=None):
     if step is not None:
         spec = dataclasses.replace(spec, sweep=dataclasses.replace(spec.sweep, step=step))
-    return ForceContext(solve_kinematics(build_mechanism(spec)))
+    ctx = ForceContext(solve_kinematics(build_mechanism(spec)))
+    ctx.plans = plans
+    return ctx
 
 
 def _steps_as_numbers(steps):
@@ -1131,16 +1077,15 @@ def test_contour_plan_replayed_for_a_structure_is_the_search_s_own(monkeypatch):
     monkeypatch.setattr(contour, "_replay", replay)
     for spec in specs:
         for step in (spec.sweep.step, (spec.sweep.stop - spec.sweep.start) / 30):
-            monkeypatch.setattr(contour, "_PLANS", {})
             fresh = _contour_context(spec, step)
             want = contour.plan(fresh), _steps_as_numbers(contour.build_steps(fresh))
             for source in by_topology[topology(spec)]:
-                monkeypatch.setattr(contour, "_PLANS", {})
-                contour.plan(_contour_context(source, source.sweep.step / 2))   # kept
-                if not contour._PLANS:
+                book = contour.ContourPlans()
+                contour.plan(_contour_context(source, source.sweep.step / 2, book))   # kept
+                if not len(book):
                     continue
                 replayed.clear()
-                ctx = _contour_context(spec, step)
+                ctx = _contour_context(spec, step, book)
                 got = contour.plan(ctx), _steps_as_numbers(contour.build_steps(ctx))
                 assert got == want, (spec.file, source.file)
                 assert replayed in ([True], [False]), replayed
@@ -1148,14 +1093,14 @@ def test_contour_plan_replayed_for_a_structure_is_the_search_s_own(monkeypatch):
                     assert replayed == [True]
     # a plan that fails its test at the replay falls back to the search
     spec = load_spec(ROOT / "specs" / "r_rtr_rtr.yaml")
-    monkeypatch.setattr(contour, "_PLANS", {})
-    good = contour.plan(_contour_context(spec))
-    [structure] = contour._PLANS
+    book = contour.ContourPlans()
+    good = contour.plan(_contour_context(spec, plans=book))
+    [structure] = book.structures()
     twice = dataclasses.replace(good[0], recipes=(good[0].recipes[0],) * 2)   # dependent
-    contour._PLANS[structure] = (twice,) + good[1:]
+    book.keep(structure, (twice,) + good[1:])
     replayed.clear()
-    assert contour.plan(_contour_context(spec)) == good and replayed == [False]
-    assert contour._PLANS[structure] == good
+    assert contour.plan(_contour_context(spec, plans=book)) == good and replayed == [False]
+    assert book.get(structure) == good
 
 
 def test_contour_plan_is_kept_only_when_the_structure_decided(monkeypatch):
@@ -1172,20 +1117,20 @@ def test_contour_plan_is_kept_only_when_the_structure_decided(monkeypatch):
     def once_not(unknowns, equations, probes):
         calls.append(1)
         return len(calls) > 1 and real(unknowns, equations, probes)
-    monkeypatch.setattr(contour, "_PLANS", {})
+    book = contour.ContourPlans()
     monkeypatch.setattr(contour, "_verified", once_not)
-    contour.plan(_contour_context(spec))
-    assert calls and not contour._PLANS
+    contour.plan(_contour_context(spec, plans=book))
+    assert calls and not len(book)
     monkeypatch.setattr(contour, "_verified", real)
-    contour.plan(_contour_context(spec))
-    assert len(contour._PLANS) == 1
+    contour.plan(_contour_context(spec, plans=book))
+    assert len(book) == 1
     # B_T's slider point moved off the pin B: B_T's reaction has a moment about B
     moved = parse_spec(text.replace("points: {B: [0, 0]}", "points: {B: [0, 0], S: [0.02, 0]}")
                        .replace("point: B, line", "point: S, line"), "moved.yaml")
-    ctx, ctx_moved = _contour_context(spec), _contour_context(moved)
+    book = contour.ContourPlans()
+    ctx, ctx_moved = _contour_context(spec, plans=book), _contour_context(moved, plans=book)
     assert contour._structure(ctx)[0] == contour._structure(ctx_moved)[0]
     assert contour._structure(ctx) != contour._structure(ctx_moved)
-    monkeypatch.setattr(contour, "_PLANS", {})
     want = _steps_as_numbers(contour.build_steps(_contour_context(moved)))
     contour.plan(ctx)                                       # r_rtr_rtr's plan kept
     assert _steps_as_numbers(contour.build_steps(ctx_moved)) == want
@@ -1282,18 +1227,17 @@ def test_contour_plan_with_a_bridge_is_replayed_as_searched(monkeypatch):
     from mechreport.forces import contour
     from mechreport.spec.loader import parse_spec
     spec = parse_spec(LONE_CRANK, "lone_crank.yaml")
-    monkeypatch.setattr(contour, "_PLANS", {})
-    fresh = _contour_context(spec)
+    book = contour.ContourPlans()
+    fresh = _contour_context(spec, plans=book)
     plans = contour.plan(fresh)
-    assert [p.recipes[0][0] for p in plans] == ["bridge"] and len(contour._PLANS) == 1
+    assert [p.recipes[0][0] for p in plans] == ["bridge"] and len(book) == 1
     search = contour._search
 
     def no_search(ctx):
         raise AssertionError("searched, not replayed")
     monkeypatch.setattr(contour, "_search", no_search)
-    got = _steps_as_numbers(contour.build_steps(_contour_context(spec, 5.0)))
+    got = _steps_as_numbers(contour.build_steps(_contour_context(spec, 5.0, book)))
     monkeypatch.setattr(contour, "_search", search)
-    monkeypatch.setattr(contour, "_PLANS", {})
     assert got == _steps_as_numbers(contour.build_steps(_contour_context(spec, 5.0)))
     result = analyse(spec)
     assert result.agreement[0].relative < 1e-12

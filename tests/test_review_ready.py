@@ -196,14 +196,13 @@ def test_near_singular_peaks_are_told_and_kept_off_the_scale(slider_model):
 
 
 def test_plot_scale_ignores_near_singular_values(slider_model):
-    from mechreport.report.plots import pyplot, scale_to_trusted
-    plt = pyplot()
-    fig, ax = plt.subplots()
+    from mechreport.report.plots import figure, scale_to_trusted
+    fig, axes = figure(3.0)
+    ax = axes[0, 0]
     sw = slider_model.sweep
     f = [js.f for js in sw.joints]
     assert scale_to_trusted(ax, sw, f, "N")
     assert ax.get_ylim()[1] < 0.5 * max(float(np.max(x)) for x in f)
-    plt.close(fig)
 
 
 def test_branch_choices_in_report_kin_and_validate(slider_model):
@@ -287,7 +286,6 @@ def ram_spec(tmp_path) -> Path:
 
 def test_guide_walls_follow_the_block_height_and_crank_is_on_top(tmp_path):
     from mechreport.report.drawing import draw_scene
-    from mechreport.report.plots import pyplot
     a = analyse(ram_spec(tmp_path))
     m = build_model(a)
     scene = m.scenes[0]
@@ -301,12 +299,10 @@ def test_guide_walls_follow_the_block_height_and_crank_is_on_top(tmp_path):
     crank_z = 2.2 + 0.6 + 0.01                                          # bar, driver, link 1
     assert max(p.get_zorder() for p in ax.patches if p.get_zorder() < 3) == \
         pytest.approx(crank_z)
-    pyplot().close(fig)
 
 
 def test_drawing_labels_do_not_overlap_and_colours_are_colour_blind_safe(slider_model):
     from mechreport.report.drawing import draw_scene
-    from mechreport.report.plots import pyplot
     from mechreport.report.scene import MOMENT_COLOR
     assert not {c.lower() for c in PALETTE} & TAB10
     assert MOMENT_COLOR not in PALETTE
@@ -322,7 +318,6 @@ def test_drawing_labels_do_not_overlap_and_colours_are_colour_blind_safe(slider_
     for i, a in enumerate(boxes):
         for b in boxes[i + 1:]:
             assert not a.overlaps(b), "two labels overlap"
-    pyplot().close(fig)
 
 
 # -------------------------------------------------------------------------- command line

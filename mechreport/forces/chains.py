@@ -22,7 +22,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..arrays import fp_ignore
 from ..linalg import SINGULAR_COND, SmallSystem, solve_cond
 from .equations import Step, prepare_blocks, step_matrix, step_rhs
 
@@ -71,7 +70,7 @@ def solve_chains(chains: list[list[Step]], n: int, prepared: dict | None = None,
                 where[c].update(zip(blk.unknowns, xk))
                 conds[c][i] = ck
     out = []
-    with fp_ignore(over="ignore", invalid="ignore"):
+    with np.errstate(over="ignore", invalid="ignore"):
         for c, found in enumerate(conds):
             if not found:
                 out.append(ChainSolution({}, np.ones(n), np.zeros(n, bool)))

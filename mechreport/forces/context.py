@@ -76,6 +76,7 @@ class ForceContext:
         self.spec = self.mech.spec
         self.n = kin.n
         self.memo: dict = {}     # choices made once per analysis (the contour method's plan)
+        self.plans = None        # a contour.ContourPlans shared by the specs of a batch
         self._joint_points: dict[str, np.ndarray] | None = None
         self.cache: dict = {}    # this context's own: actions per free body, coincidences
         self.gravity = np.asarray(self.spec.gravity, float)

@@ -28,7 +28,6 @@ from itertools import combinations
 
 import numpy as np
 
-from ..arrays import fp_ignore, stack
 from ..errors import UnsupportedMechanism
 from ..model import Loop, topology
 from ..spec import GROUND, Joint
@@ -104,7 +103,7 @@ def _surely_independent(rows: np.ndarray, rtol: float) -> bool:
     k = rows.shape[1]
     if rows.shape[2] != k or not 1 <= k <= 8:
         return False
-    with fp_ignore(over="ignore", under="ignore", invalid="ignore"):
+    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
         square = np.einsum("pij,pij->p", rows, rows)          # ||A||_F^2
         if not ((square >= 1e-60) & (square <= 1e60)).all():
             return False
@@ -189,7 +188,7 @@ def _verified(unknowns: list[str], equations: list[Equation], probes: np.ndarray
     """Whether ``equations`` (as many as ``unknowns``) are independent at every probe angle
     with a margin: singular values above twice ``RANK_RTOL`` of the largest, most often read
     from the determinants (:func:`_surely_independent`), else by the SVD."""
-    rows = stack([_rows(e, unknowns, probes) for e in equations], axis=1)
+    rows = np.stack([_rows(e, unknowns, probes) for e in equations], axis=1)
     return _surely_independent(rows, 2 * RANK_RTOL) \
         or bool((_rank(rows, 2 * RANK_RTOL) == len(unknowns)).all())
 
@@ -220,7 +219,7 @@ def _select_numeric(unknowns: list[str], chosen: list[Equation], candidates: lis
     rows = [_rows(e, unknowns, probes) for e in chosen]
     chosen = list(chosen)
     taken: set = set()
-    rank = _rank(stack(rows, axis=1)) if rows else np.zeros(len(probes), int)
+    rank = _rank(np.stack(rows, axis=1)) if rows else np.zeros(len(probes), int)
     for share in (1.0, 0.5):
         for key in candidates:
             if len(chosen) == len(unknowns):
@@ -229,7 +228,7 @@ def _select_numeric(unknowns: list[str], chosen: list[Equation], candidates: lis
                 continue
             eq = build(key)
             row = _rows(eq, unknowns, probes)
-            new = _rank(stack(rows + [row], axis=1))
+            new = _rank(np.stack(rows + [row], axis=1))
             gain = np.count_nonzero(new > rank) / len(probes)   # the share of probes
             if gain >= share and gain > 0:
                 chosen.append(eq)
@@ -340,11 +339,32 @@ class StepPlan:
     bodies: tuple[str, ...]
 
 
-# The plans the search made for the last few structures (a topology and which joints'
-# reactions act at which pin, see _structure), as long as each choice it made followed from
-# that structure alone: a batch or a study analyses many specs of one structure.
-_PLANS: dict[tuple, tuple[StepPlan, ...]] = {}
-_PLANS_KEPT = 64
+class ContourPlans:
+    """The plans the search made, kept per structure (a topology and which joints'
+    reactions act at which pin, see :func:`_structure`) as long as each choice it made
+    followed from that structure alone, for whoever analyses many specs of one structure
+    (a batch, a study's variants): pass one to each ForceContext (``ctx.plans``) and the
+    next spec of a structure replays its plan instead of searching. Bit for bit the search's
+    result either way; kept for the last ``KEEP`` structures at most."""
+
+    KEEP = 64
+
+    def __init__(self) -> None:
+        self._by_structure: dict[tuple, tuple[StepPlan, ...]] = {}
+
+    def get(self, structure: tuple) -> tuple[StepPlan, ...] | None:
+        return self._by_structure.get(structure)
+
+    def keep(self, structure: tuple, plans: tuple[StepPlan, ...]) -> None:
+        if structure not in self._by_structure and len(self._by_structure) >= self.KEEP:
+            self._by_structure.clear()
+        self._by_structure[structure] = plans
+
+    def __len__(self) -> int:
+        return len(self._by_structure)
+
+    def structures(self) -> list[tuple]:
+        return list(self._by_structure)
 
 
 def plan(ctx: ForceContext) -> tuple[StepPlan, ...]:
@@ -353,17 +373,19 @@ def plan(ctx: ForceContext) -> tuple[StepPlan, ...]:
     angles, so it runs on a context of those angles alone.
 
     Where the search's every choice followed from the structure (:func:`_select`: the
-    structural path, never the numerical selection), its plan is kept for that structure,
-    and the next spec of the structure replays it (:func:`_replay`) instead of searching:
-    every step is built again and must pass the same independence test at its own probe
-    angles, which is all the search would ask of it; failing that, the search runs."""
+    structural path, never the numerical selection), its plan is kept in ``ctx.plans`` (a
+    :class:`ContourPlans`, if the caller gave one), and the next spec of the structure
+    replays it (:func:`_replay`) instead of searching: every step is built again and must
+    pass the same independence test at its own probe angles, which is all the search would
+    ask of it; failing that, the search runs."""
     if "contour" not in ctx.memo:
         probes = _probes(ctx.n)
         # a short sweep is searched in place, and its steps kept: no second context to build
         small = ForceContext(ctx.kin.take(probes, ctx.kin.flags)) \
             if ctx.n > SEARCH_IN_PLACE else ctx
-        structure = _structure(small)
-        plans = _PLANS.get(structure)
+        book = ctx.plans
+        structure = _structure(small) if book is not None else None
+        plans = book.get(structure) if book is not None else None
         steps = _replay(small, plans) if plans is not None else None
         if steps is None:
             steps, recipes, by_structure = _search(small)
@@ -372,10 +394,8 @@ def plan(ctx: ForceContext) -> tuple[StepPlan, ...]:
                          (recipes[id(s)],) if id(s) in recipes
                          else tuple(recipes[id(e)] for e in s.equations), tuple(s.bodies))
                 for s in steps)
-            if by_structure:
-                if len(_PLANS) >= _PLANS_KEPT:
-                    _PLANS.clear()
-                _PLANS[structure] = plans
+            if by_structure and book is not None:
+                book.keep(structure, plans)
         if small is ctx:
             ctx.cache["contour steps"] = steps
         ctx.memo["contour"] = plans

@@ -5,7 +5,6 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..arrays import fp_ignore
 from .equations import Step
 
 
@@ -134,7 +133,7 @@ def slider_point(ctx, joint, fx: np.ndarray, fy: np.ndarray, m: np.ndarray,
         top = np.maximum(np.abs(fx).max(axis=-1, initial=0.0, keepdims=True),
                          np.abs(fy).max(axis=-1, initial=0.0, keepdims=True))
     scale = np.maximum(top, 1e-300)
-    with fp_ignore(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):
         t = np.where(np.abs(s) > 1e-12 * scale, m / s, np.nan)
     p = ctx.joint_points[joint.name] + t[..., None] * u
     return p[..., 0], p[..., 1]

@@ -12,7 +12,6 @@ import sys
 
 import numpy as np
 
-from ..arrays import fp_ignore, stack
 from ..errors import AssemblyError
 from ..linalg import SINGULAR_COND, Equilibrated
 from ..model import Mechanism
@@ -86,7 +85,7 @@ def finish(mech: Mechanism, phi_deg: np.ndarray, r: dict, th: dict, branches, mo
     order = [GROUND] + [l.name for l in spec.links]
 
     def by_link(d):
-        out = stack([d[k] for k in order], axis=1)
+        out = np.stack([d[k] for k in order], axis=1)
         return out if not problems else out[keep]
 
     # many angles share a reason (those beyond one lock): one string for all of them
@@ -106,8 +105,8 @@ def kinematic_error(conds: list[np.ndarray], n: int) -> np.ndarray:
     err = k eps c^3 with k = 1e-4 and 0.02); well-conditioned dyads of a chain multiply it."""
     if not conds:
         return np.full(n, EPS)
-    c = stack(conds)
-    with fp_ignore(over="ignore", invalid="ignore"):
+    c = np.stack(conds)
+    with np.errstate(over="ignore", invalid="ignore"):
         est = EPS * np.max(c, axis=0) ** 2 * np.prod(c, axis=0)
     return np.where(np.isfinite(est), est, np.inf)
 
@@ -251,7 +250,7 @@ def _rates(mech: Mechanism, value: np.ndarray, r: dict, th: dict,
     n = len(value)
     zeros2 = np.zeros((n, 2))
     v, w, acc, al = {GROUND: zeros2}, {GROUND: np.zeros(n)}, {GROUND: zeros2}, {GROUND: np.zeros(n)}
-    finite = np.all(np.isfinite(stack([r[k][:, 0] for k in r])), axis=0)
+    finite = np.all(np.isfinite(np.stack([r[k][:, 0] for k in r])), axis=0)
     if finite.all():
         frames = LinkFrames(r, th)
     else:   # poses not reached: any finite stand-in (their rates are not reported)

@@ -19,7 +19,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..arrays import stack
 from ..spec import GROUND, Joint, Spec
 from .frames import LinkFrames, dot, perp
 
@@ -116,7 +115,7 @@ def joint_residual(spec: Spec, joint: Joint, frames: LinkFrames,
     if isinstance(geo, RGeometry):
         return (frames.r[geo.a] + geo.sa) - (frames.r[geo.b] + geo.sb)
     gap = wrap_angle(frames.th[geo.slider] - frames.th[geo.guide])
-    return stack([gap, dot(geo.e, geo.n)], axis=-1)
+    return np.stack([gap, dot(geo.e, geo.n)], axis=-1)
 
 
 def wrap_angle(angle: np.ndarray) -> np.ndarray:

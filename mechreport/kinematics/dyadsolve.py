@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..arrays import fp_ignore
 from ..linalg import PROBE_NORMS, PROBES, SINGULAR_COND   # Equilibrated's probes
 
 
@@ -91,7 +90,7 @@ class DyadSystem:
         P, C = D[0], D[1]
         u, v = P[:, 0], P[:, 1]                          # (link, 3, n)
         N = _cross(u, v, np.empty((2, 3, n)))
-        with fp_ignore(divide="ignore", invalid="ignore", over="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             inv = 1.0 / np.einsum("kjn,kjn->kn", N, N)
         pinv = np.empty((2, 3, 2, n))                    # (link, column, row, n)
         _cross(v, N, pinv[:, :, 0])
@@ -153,7 +152,7 @@ class DyadSystem:
         q = y.reshape(2, 3, *Y.shape[1:])                         # (link, 3, k, n)
         b = Y[:4].reshape(2, 2, *Y.shape[1:])                     # (link, row, k, n)
         M, det, N = self.M, self.det, self.N
-        with fp_ignore(divide="ignore", invalid="ignore", over="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             res = Y[4:] - np.einsum("krsn,ksmn->rmn", self.S, b)
             t0 = (M[1, 1] * res[0] - M[0, 1] * res[1]) / det
             t1 = (M[0, 0] * res[1] - M[1, 0] * res[0]) / det
@@ -169,7 +168,7 @@ class DyadSystem:
         For angles already known to be regular (no condition estimate)."""
         rhs = self._scaled_rhs(b, self._scratch[:6 * self.n].reshape(6, self.n))
         y = self._solve(rhs[:, None])[:, 0]
-        with fp_ignore(over="ignore", invalid="ignore"):
+        with np.errstate(over="ignore", invalid="ignore"):
             y /= self.cs
         y[:, self.overflow | self.exact | ~np.isfinite(b).all(axis=1)] = np.nan
         return y.T
@@ -186,13 +185,13 @@ class DyadSystem:
         rhs[:, 0, overflow] = 0.0
         y = self._solve(rhs)
         y[:, :, overflow] = np.inf
-        with fp_ignore(over="ignore", invalid="ignore"):
+        with np.errstate(over="ignore", invalid="ignore"):
             probe = np.sqrt(np.einsum("ikn,ikn->kn", y[:, 1:], y[:, 1:]))
             probe /= PROBE_NORMS[6][:, None]
             cond = self.fro * probe.max(axis=0)
         cond = np.where(np.isfinite(cond), cond, np.inf)
         cond[overflow] = np.nan
-        with fp_ignore(over="ignore", invalid="ignore"):
+        with np.errstate(over="ignore", invalid="ignore"):
             x = y[:, 0] / self.cs      # (not a view: y's probe solutions are let go)
         x[:, ~(cond < SINGULAR_COND)] = np.nan
         return x.T, cond

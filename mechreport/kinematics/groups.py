@@ -19,7 +19,6 @@ from functools import cached_property
 
 import numpy as np
 
-from ..arrays import fp_ignore
 from ..errors import AssemblyError
 from ..linalg import batched_solve_cond
 from ..model import Group
@@ -337,7 +336,7 @@ def _continues(sol: np.ndarray, guess: np.ndarray, q_coarse: np.ndarray, t_coars
         return np.sqrt(np.sum(d ** 2, axis=(1, 2)))
     hi = np.clip(np.searchsorted(t_coarse, t_fine), 1, len(t_coarse) - 1)
     step = size(q_coarse[hi] - q_coarse[hi - 1])
-    with fp_ignore(invalid="ignore"):
+    with np.errstate(invalid="ignore"):
         return size(sol - guess) <= 0.5 * step + 1e-9
 
 

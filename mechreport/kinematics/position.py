@@ -20,7 +20,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..arrays import fp_ignore, stack
 from ..spec import GROUND, Joint, Spec
 from ..model import Dyad
 from .frames import Trig, cross, dot, norm, perp, rotate, rotate_cs
@@ -89,7 +88,7 @@ def _solve2(n1, c1, n2, c2):
     det = np.where(ok, det, np.nan)
     x = (c1 * n2[:, 1] - c2 * n1[:, 1]) / det
     y = (n1[:, 0] * c2 - n2[:, 0] * c1) / det
-    return stack([x, y], axis=-1)
+    return np.stack([x, y], axis=-1)
 
 
 def _angle(v) -> np.ndarray:
@@ -128,7 +127,7 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses, trig: Trig | None = No
         li, lj = norm(mi - ei), norm(mj - ej)
         d = kj - ki
         dist = norm(d)
-        with fp_ignore(invalid="ignore", divide="ignore"):
+        with np.errstate(invalid="ignore", divide="ignore"):
             a = (li**2 - lj**2 + dist**2) / (2 * dist)
             h2 = li**2 - a**2
             h = np.sqrt(np.where(h2 >= -1e-12 * li**2, np.maximum(h2, 0), np.nan))
@@ -146,7 +145,7 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses, trig: Trig | None = No
         n, c = t_line(spec, oj, j, poses, thj)
         mj = pj[inner.name]
         c_pin = c + dot(n, rotate(mj, thj))          # n . J = c_pin for the interior pin J
-        u = stack([n[:, 1], -n[:, 0]], axis=-1)   # the guide direction
+        u = np.stack([n[:, 1], -n[:, 0]], axis=-1)   # the guide direction
         off = c_pin - dot(n, ki)
         foot = ki + off[:, None] * n
         h2 = li**2 - off**2
@@ -168,7 +167,7 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses, trig: Trig | None = No
         c = -dot(a, nl)
         d = ks - kg
         dist = norm(d)
-        with fp_ignore(invalid="ignore", divide="ignore"):
+        with np.errstate(invalid="ignore", divide="ignore"):
             ratio = c / dist
             ok = np.abs(ratio) <= 1 + 1e-12
             half = np.arccos(np.where(ok, np.clip(ratio, -1, 1), np.nan))
@@ -393,7 +392,7 @@ def label_swaps(xp: np.ndarray, xm: np.ndarray, angles: np.ndarray,
     scale = ((t3 - t2) / (t2 - t1))[:, None]
     # Lagrange weights extrapolating (t0, t1, t2) to t3 (from the third angle of the run on)
     third = J >= 1
-    with fp_ignore(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):
         w0 = ((t3 - t1) * (t3 - t2) / ((t0 - t1) * (t0 - t2)))[:, None]
         w1 = ((t3 - t0) * (t3 - t2) / ((t1 - t0) * (t1 - t2)))[:, None]
         w2 = ((t3 - t0) * (t3 - t1) / ((t2 - t0) * (t2 - t1)))[:, None]
@@ -405,7 +404,7 @@ def label_swaps(xp: np.ndarray, xm: np.ndarray, angles: np.ndarray,
                 same, other = X[lab], X[1 - lab]
                 x_k, x_k1 = same[J + 1], X[lab ^ a][J]
                 pred = x_k + (x_k - x_k1) * scale                  # two-point prediction
-                with fp_ignore(invalid="ignore", over="ignore"):
+                with np.errstate(invalid="ignore", over="ignore"):
                     quad = w0 * X[lab ^ a ^ b][back] + w1 * x_k1 + w2 * x_k
                 use = third[:, None] & np.isfinite(quad)
                 pred = np.where(use, quad, pred)

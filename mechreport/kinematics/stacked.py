@@ -17,7 +17,6 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..arrays import fp_ignore
 from ..model import Mechanism
 from ..spec import GROUND, Spec
 from ..spec.stack import stack_specs
@@ -109,18 +108,18 @@ def solve_stacked(mech: Mechanism, specs: list[Spec]) -> StackedKinematics | Non
     clean &= ~bad.reshape(V, per).any(axis=1)
     order = [GROUND] + [l.name for l in first.links]
 
-    def stack(d):
+    def by_link(d):
         return np.stack([d[k] for k in order], axis=1)
 
-    kin = Kinematics(flat, np.tile(phi, V), stack(r), stack(th), stack(v_), stack(w_),
-                     stack(acc), stack(al), (), (), None, error)
+    kin = Kinematics(flat, np.tile(phi, V), by_link(r), by_link(th), by_link(v_), by_link(w_),
+                     by_link(acc), by_link(al), (), (), None, error)
     return StackedKinematics(kin, per, clean, motions)
 
 
 def _closed(mech: Mechanism, r: dict, th: dict) -> np.ndarray:
     """Rows (n,) where every joint closes (gaps within 1e-9 of the mechanism's extent, angles
     within 1e-9 rad): a check that the stacked poses are each variant's own."""
-    with fp_ignore(invalid="ignore"):
+    with np.errstate(invalid="ignore"):
         scale = 1e-3 + np.max(np.stack([np.abs(x).max(axis=1) for x in r.values()]), axis=0)
         ok = np.ones(len(scale), bool)
         frames = LinkFrames(r, th)

@@ -14,7 +14,6 @@ from pathlib import Path
 
 import numpy as np
 
-from ..arrays import fp_ignore, fp_quiet
 from ..errors import AnalysisError
 from ..checks import (Agreement, ExpectationResult, Residual, agreement, check_expectations,
                      residuals)
@@ -103,17 +102,23 @@ class Analysis(Checked):
 
 
 
-def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> Analysis:
-    """Load (if given a path), solve every method and run the checks.
+def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL,
+            plans=None) -> Analysis:
+    """Load (if given a path or YAML text), solve every method and run the checks.
+    ``methods``: the force methods' names (default: all); ``tol``: the largest relative
+    disagreement between methods that passes; ``plans``: a
+    :class:`~mechreport.forces.contour.ContourPlans` shared with other analyses of the same
+    structure (a batch's), whose contour search it may reuse.
 
     Angles where any method's result could not be trusted to ``TRUST_RTOL`` are flagged and
     left out of every result. Raises ``AnalysisError`` when no angle is left, or when a value
     in any result is not finite (never reported as a number)."""
     if not isinstance(spec, Spec):
         spec = load_spec(spec)
-    with fp_quiet():    # what is not finite is flagged or refused below, never a warning
+    with np.errstate(all="ignore"):    # what is not finite is flagged or refused below, never a warning
         mech = build_mechanism(spec)
-        kin, ctx, forces = solve_trusted(_require_angles(solve_kinematics(mech)), methods)
+        kin, ctx, forces = solve_trusted(_require_angles(solve_kinematics(mech)), methods,
+                                         plans=plans)
         kin = _require_angles(kin)
         rev, why = design_review(kin, forces, ctx.loads)
         values = rev.values if rev is not None else None
@@ -124,13 +129,15 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL) -> 
                     tuple(verdicts(spec.design, values, why)))
 
 
-def solve_trusted(kin: Kinematics, methods=None, memo: dict | None = None,
+def solve_trusted(kin: Kinematics, methods=None, memo: dict | None = None, plans=None,
                   ) -> tuple[Kinematics, ForceContext, dict[str, ForceResult]]:
     """Every method's forces over ``kin``, with the angles where a method cannot be trusted
     flagged and left out of the kinematics and of every result (see :func:`_force_flags`).
     Raises ``AnalysisError`` where an input or a result is not a finite number. ``memo``:
-    choices shared with other parts of the same sweep (the contour method's plan)."""
+    choices shared with other parts of the same sweep (the contour method's plan); ``plans``:
+    contour plans shared with other specs (see :func:`analyse`)."""
     ctx = ForceContext(kin)                 # one per kinematics: its loads evaluated once
+    ctx.plans = plans
     if memo is not None:
         ctx.memo = memo
     _require_finite_inputs(ctx)
@@ -140,7 +147,7 @@ def solve_trusted(kin: Kinematics, methods=None, memo: dict | None = None,
         bad = np.isin(np.round(kin.angles, 9), np.round([f.angle for f in extra], 9))
         kin = kin.take(~bad, tuple(sorted(kin.flags + tuple(extra), key=lambda f: f.angle)))
         memo, ctx = ctx.memo, ForceContext(kin)
-        ctx.memo = memo                     # the same equations as the numbers came from
+        ctx.memo, ctx.plans = memo, plans   # the same equations as the numbers came from
         forces = {name: res.take(~bad, ctx) for name, res in forces.items()}
     _require_finite(kin, forces)
     return kin, ctx, forces
@@ -185,7 +192,7 @@ def trusted(kin: Kinematics, res: ForceResult) -> np.ndarray:
     condition number) added to the kinematics' own error is within ``TRUST_RTOL``."""
     inputs = kin.error if kin.error is not None else np.zeros(kin.n)
     cond = res.cond if res.cond is not None else np.ones(kin.n)
-    with fp_ignore(over="ignore", invalid="ignore"):
+    with np.errstate(over="ignore", invalid="ignore"):
         return ~res.singular & (inputs + EPS * cond <= TRUST_RTOL)
 
 
@@ -216,7 +223,7 @@ def _require_finite_inputs(ctx: ForceContext) -> None:
     """Raise ``AnalysisError`` where an inertia force or couple, a weight or a load overflows
     double precision (the loader bounds each input; products of several can still overflow)."""
     file = ctx.spec.file
-    with fp_ignore(over="ignore", invalid="ignore"):
+    with np.errstate(over="ignore", invalid="ignore"):
         arrays = [(f"{what} of link {name}", value) for name, s in ctx.links.items()
                   for what, value in (("m a_C", scaled(s.mass, s.a)),
                                       ("I_C alpha", s.inertia * s.alpha),

@@ -20,6 +20,7 @@ import numpy as np
 
 from .analysis import analyse, trusted
 from ..forces import METHODS, ForceContext
+from ..forces.contour import ContourPlans
 from ..kinematics.stacked import solve_stacked, variant_kinematics
 from ..model import build_mechanism
 from ..post import Review, Verdict, design_review, verdicts
@@ -51,8 +52,11 @@ class Outcome:
 ROWS = 16384    # variants x angles solved together (bounds the working memory)
 
 
-def analyse_variants(specs: list[Spec], method: str) -> list[Outcome]:
-    """The outcome of every variant in ``specs`` (variants of one spec) with ``method``."""
+def analyse_variants(specs: list[Spec], method: str, plans=None) -> list[Outcome]:
+    """The outcome of every variant in ``specs`` (variants of one spec) with ``method``.
+    ``plans``: contour plans to share (default: one for this batch; see
+    :class:`~mechreport.forces.contour.ContourPlans`)."""
+    plans = ContourPlans() if plans is None else plans
     out: list[Outcome | None] = [None] * len(specs)
     groups: dict[tuple, list[int]] = {}      # variants that can stack: same sense, same sweep
     for i, s in enumerate(specs):
@@ -68,19 +72,20 @@ def analyse_variants(specs: list[Spec], method: str) -> list[Outcome]:
                 with np.errstate(all="ignore"):
                     stacked = solve_stacked(mech, part)
                 if stacked is not None:
-                    for i, o in zip(idx, _batched(stacked, mech, part, method)):
+                    for i, o in zip(idx, _batched(stacked, mech, part, method, plans)):
                         out[i] = o
             except Exception:   # noqa: BLE001 - each variant is then analysed alone
                 pass
-    return [o if o is not None else _alone(s, method) for o, s in zip(out, specs)]
+    return [o if o is not None else _alone(s, method, plans) for o, s in zip(out, specs)]
 
 
-def _batched(stacked, mech, specs: list[Spec], method: str) -> list[Outcome | None]:
+def _batched(stacked, mech, specs: list[Spec], method: str, plans) -> list[Outcome | None]:
     """The outcomes of the clean variants of the stacked batch (None for the others)."""
     out: list[Outcome | None] = [None] * len(specs)
     kin = stacked.kin
     with np.errstate(all="ignore"):
         ctx = ForceContext(kin)
+        ctx.plans = plans
         res = METHODS[method].solve(ctx)
         ok = trusted(kin, res)
         for values in res.values().values():
@@ -103,10 +108,10 @@ def _batched(stacked, mech, specs: list[Spec], method: str) -> list[Outcome | No
     return out
 
 
-def _alone(spec: Spec, method: str) -> Outcome:
+def _alone(spec: Spec, method: str, plans) -> Outcome:
     """A variant analysed by itself; a failure is its message, never an exception."""
     try:
-        a = analyse(spec, methods=[method])
+        a = analyse(spec, methods=[method], plans=plans)
     except Exception as exc:     # noqa: BLE001 - a failed variant is a row with its reason
         return Outcome(spec, exception=exc)
     return Outcome(spec, a.review, a.review_problem, a.verdicts)

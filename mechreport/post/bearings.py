@@ -6,7 +6,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..arrays import average, largest, stack
 from ..forces import ForceResult
 from ..kinematics import Kinematics
 from ..kinematics.frames import rotate
@@ -23,7 +22,7 @@ def bearing_trace(kin: Kinematics, res: ForceResult, joint: Joint) -> np.ndarray
     """Reaction F of ``joint`` (first link on second) in the carrier's frame, (n, 2) [N]:
     the global vector rotated by -theta of the carrier (unchanged for ground)."""
     r = res.reactions[joint.name]
-    f = stack([r.fx, r.fy], axis=1)
+    f = np.stack([r.fx, r.fy], axis=1)
     carrier = bearing_carrier(joint)
     if carrier == GROUND:
         return f
@@ -55,6 +54,6 @@ def bearing_load(f_cycle: np.ndarray, rating: float | None = None,
                  rpm: float | None = None) -> BearingLoad:
     """Statistics of |F| sampled over one turn on a uniform grid ``f_cycle`` (N,) [N]."""
     f = np.abs(np.asarray(f_cycle, float))
-    feq = average(f ** 3) ** (1.0 / 3.0)
+    feq = float(np.mean(f ** 3)) ** (1.0 / 3.0)
     life = rating_life_h(rating, feq, rpm) if rating is not None and rpm else None
-    return BearingLoad(largest(f), average(f), feq, life)
+    return BearingLoad(float(np.max(f)), float(np.mean(f)), feq, life)

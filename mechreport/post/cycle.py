@@ -13,7 +13,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..arrays import average
 from ..errors import MechreportError
 from ..spec import Spec
 
@@ -56,10 +55,10 @@ class Cycle:
         return out
 
     def mean(self, values: np.ndarray) -> float:
-        return average(np.asarray(values, float))
+        return float(np.mean(np.asarray(values, float)))
 
     def rms(self, values: np.ndarray) -> float:
-        return math.sqrt(average(np.asarray(values, float) ** 2))
+        return math.sqrt(float(np.mean(np.asarray(values, float) ** 2)))
 
     def integral(self, values: np.ndarray) -> np.ndarray:
         """Running integral over the crank angle [value x rad] at each grid angle, from 0 at

@@ -6,7 +6,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..arrays import stack
 from ..forces import ForceResult
 from ..forces.context import joint_point
 from ..kinematics import Kinematics
@@ -66,7 +65,7 @@ def frame_load(kin: Kinematics, res: ForceResult, loads=()) -> FrameLoad:
             continue
         sign = -1.0 if joint.links[0] == GROUND else 1.0
         r = res.reactions[joint.name]
-        f = sign * stack([r.fx, r.fy], axis=1)
+        f = sign * np.stack([r.fx, r.fy], axis=1)
         fx, fy = fx + f[:, 0], fy + f[:, 1]
         m = m + cross(joint_point(kin, joint) - pivot, f)
         if r.moment is not None:

@@ -11,7 +11,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..arrays import largest, smallest, stack
 from .balance import Counterweight, counterweight
 from .bearings import BearingLoad, bearing_load
 from .cycle import Cycle, CycleUndefined, cycle_of
@@ -96,7 +95,7 @@ def traces_of(kin, forces, loads) -> Traces:
     res = forces[method]
     frame = frame_load(kin, res, loads)
     return Traces(method, kin.angles, np.asarray(res.driver_torque, float),
-                  stack([frame.fx, frame.fy, frame.m], axis=1), inertia_force(kin),
+                  np.stack([frame.fx, frame.fy, frame.m], axis=1), inertia_force(kin),
                   transmission_angles(kin),
                   {name: r.f for name, r in res.reactions.items()})
 
@@ -123,10 +122,10 @@ def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = ""
     mean = cyc.mean(torque)
     energy = cyc.integral(torque - mean)
     values = {
-        "cycle.torque.max": largest(torque), "cycle.torque.min": smallest(torque),
+        "cycle.torque.max": float(np.max(torque)), "cycle.torque.min": float(np.min(torque)),
         "cycle.torque.mean": mean, "cycle.torque.rms": cyc.rms(torque),
-        "cycle.power.max": largest(torque * omega), "cycle.power.mean": mean * omega,
-        "cycle.energy_fluctuation": largest(energy) - smallest(energy),
+        "cycle.power.max": float(np.max(torque * omega)), "cycle.power.mean": mean * omega,
+        "cycle.energy_fluctuation": float(np.max(energy)) - float(np.min(energy)),
     }
     if speed_fluctuation:
         values["cycle.flywheel_inertia"] = (values["cycle.energy_fluctuation"]
@@ -134,14 +133,14 @@ def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = ""
     shaking = sample(tr.frame[:, :2])
     f = np.hypot(shaking[:, 0], shaking[:, 1])
     if tr.reactions:     # the shaking force is the ground joints' reactions: none, no value
-        values["cycle.shaking.force_max"] = largest(f)
+        values["cycle.shaking.force_max"] = float(np.max(f))
         values["cycle.shaking.force_rms"] = cyc.rms(f)
-        values["cycle.shaking.moment_max"] = largest(np.abs(sample(tr.frame[:, 2])))
+        values["cycle.shaking.moment_max"] = float(np.max(np.abs(sample(tr.frame[:, 2]))))
     angles = {label: sample(ta) for label, ta in tr.transmission.items()}
     del f                 # a long sweep's review holds as few full-length arrays as it can
     if angles:
-        values["cycle.transmission_angle.min"] = min(smallest(a) for a in angles.values())
-        values["cycle.transmission_angle.max"] = max(largest(a) for a in angles.values())
+        values["cycle.transmission_angle.min"] = min(float(np.min(a)) for a in angles.values())
+        values["cycle.transmission_angle.max"] = max(float(np.max(a)) for a in angles.values())
     inertial = sample(tr.inertial)
     crank = np.radians(cyc.angles)    # a crank's x-axis angle is the cycle's crank angle
     cw = counterweight(inertial, crank, omega, spec.driver.alpha)

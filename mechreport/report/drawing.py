@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from ..units import fmt
-from .plots import WIDTH, pyplot, save
+from .plots import WIDTH, save, styled
 
 LINK_FILL = ["#dbe6f4", "#f6e3cf", "#dcefdc", "#f3dada", "#e7def0", "#ece3dc", "#f7e1ef"]
 ARROW_LEN = 0.26        # longest arrow as a fraction of the mechanism's extent
@@ -219,12 +219,12 @@ def _bounds(scene, arrows) -> tuple[np.ndarray, np.ndarray]:
     return xy.min(axis=0), xy.max(axis=0)
 
 
+@styled
 def draw_scene(scene, d=None, title: str | None = None):
     """A matplotlib figure of ``scene`` (equal axes, no frame), with a legend of the forces
     and couples (values in display units) on the right."""
     from matplotlib.lines import Line2D
 
-    pyplot()                                   # the report's style
     F = d.unit("force") if d is not None else "N"
     M = d.unit("moment") if d is not None else "N·m"
     fv = (lambda x: d.num(x, "force")) if d is not None else fmt
@@ -323,6 +323,7 @@ def draw_scene(scene, d=None, title: str | None = None):
     return fig
 
 
+@styled
 def write_drawings(model, outdir: Path) -> list[Path]:
     """One drawing per solved reference angle, SVG."""
     out = []

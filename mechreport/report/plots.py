@@ -13,9 +13,12 @@ browser shows it in its sans-serif, and Typst typesets it in DejaVu Sans itself,
 matplotlib's own font files (see :func:`mechreport.report.pdf.compile_typst`); drawing glyphs
 as paths cost a fifth of the plotting time.
 
-matplotlib is imported lazily (Agg backend) so that numeric commands never load it."""
+matplotlib is imported lazily so that numeric commands never load it; figures are matplotlib
+Figures outside pyplot, made and saved in the report's :func:`style` (rc parameters set for
+the block only)."""
 from __future__ import annotations
 
+import functools
 import io
 import math
 from pathlib import Path
@@ -38,46 +41,42 @@ STYLES = ["-", (0, (5, 2)), (0, (1.5, 1.5)), (0, (6, 2, 1.5, 2)), "-", (0, (5, 2
 MARGINS = (0.72, 0.12, 0.46, 0.36)
 
 
-_STYLED = False
-
-
-def pyplot():
-    """matplotlib.pyplot on the Agg backend, with the report's style (set once: validating
-    rcParams on every figure cost a tenth of the plotting time)."""
-    global _STYLED
+def style():
+    """The report's figure style for a block: matplotlib's rc parameters set for it and
+    restored after, so that a caller's own settings (a notebook's) are left alone."""
     import matplotlib
-    if _STYLED:
-        import matplotlib.pyplot as plt
-        return plt
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    _STYLED = True
-    plt.rcParams.update({"font.size": 8.5, "axes.titlesize": 9, "axes.labelsize": 8.5,
-                         "legend.fontsize": 7.5, "xtick.labelsize": 7.5,
-                         "ytick.labelsize": 7.5, "axes.grid": True, "grid.alpha": 0.3,
-                         "svg.fonttype": "none", "svg.hashsalt": "mechreport",
-                         "axes.spines.top": False, "axes.spines.right": False,
-                         "axes.formatter.useoffset": False, "axes.unicode_minus": True,
-                         "axes.prop_cycle": matplotlib.cycler(color=OKABE_ITO),
-                         "hatch.linewidth": 0.5, "hatch.color": "0.6"})
-    return plt
+    return matplotlib.rc_context({
+        "font.size": 8.5, "axes.titlesize": 9, "axes.labelsize": 8.5,
+        "legend.fontsize": 7.5, "xtick.labelsize": 7.5, "ytick.labelsize": 7.5,
+        "axes.grid": True, "grid.alpha": 0.3, "svg.fonttype": "none",
+        "svg.hashsalt": "mechreport", "axes.spines.top": False, "axes.spines.right": False,
+        "axes.formatter.useoffset": False, "axes.unicode_minus": True,
+        "axes.prop_cycle": matplotlib.cycler(color=OKABE_ITO), "hatch.linewidth": 0.5,
+        "hatch.color": "0.6"})
+
+
+def styled(func):
+    """``func`` run in the report's :func:`style` (its figures are made and saved in it)."""
+    @functools.wraps(func)
+    def run(*args, **kwargs):
+        with style():
+            return func(*args, **kwargs)
+    return run
 
 
 def save(fig, outdir: Path, stem: str) -> list[Path]:
     """Write ``fig`` as ``<stem>.svg`` in ``outdir`` atomically (reproducibly: no date, fixed
-    ids) and close it."""
-    plt = pyplot()
+    ids); in the report's :func:`style`."""
     buf = io.BytesIO()
-    fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": "mechreport"})
-    if plt.fignum_exists(getattr(fig, "number", -1)):
-        plt.close(fig)
+    with style():
+        fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": "mechreport"})
     return [atomic_write_bytes(Path(outdir) / f"{stem}.svg", buf.getvalue())]
 
 
 def figure(height: float, rows: int = 1, cols: int = 1, gap: float = 0.55,
            wgap: float = 0.75, margins=MARGINS, width: float = WIDTH, **kw):
-    """A figure of ``rows`` x ``cols`` axes with fixed margins [in]."""
-    pyplot()
+    """A figure of ``rows`` x ``cols`` axes with fixed margins [in] (a matplotlib Figure,
+    outside pyplot: no backend, no global figure list)."""
     from matplotlib.figure import Figure
     left, right, bottom, top = margins
     fig = Figure(figsize=(width, height))          # no pyplot bookkeeping: closed by GC
@@ -433,6 +432,7 @@ def balance_figure(cd, d):
     return fig
 
 
+@styled
 def write_plots(model, outdir: Path) -> list[Path]:
     """Every sweep and cycle figure of ``model`` into ``outdir`` (SVG)."""
     sw, figs, d = model.sweep, model.figures, model.display

@@ -141,15 +141,6 @@ class _Checker:
                nonzero: bool = False, scale: float = 1.0, unit: str = "") -> float | None:
         """A finite number in range, times ``scale`` (to SI; ``unit`` names the written unit);
         None (reported) otherwise."""
-        # fast path, the common case: a float, or an int within range, that passes every
-        # check below (anything else takes the checks, which say what is wrong)
-        if type(value) is float or (type(value) is int and -NUMBER_MAX <= value <= NUMBER_MAX):
-            number = float(value)
-            if _in_range(number) and not (positive and number <= 0) \
-                    and not (nonzero and number == 0):
-                si = number * scale
-                if _in_range(si):
-                    return si
         kind = "a positive number" if positive else "a number"
         if (isinstance(value, bool) or not isinstance(value, (int, float, HugeInteger))):
             if len(self.problems) >= MAX_PROBLEMS:   # not listed: skip the message

@@ -306,17 +306,9 @@ class Source:
             if tag not in (None, "!", SEQ):
                 raise self._tag_error(event, path)
             out: list = []
-            lines = self.lines
             item = next_event()
             while type(item) is not SequenceEndEvent:
-                # fast path (as _is_plain, inline: most items are): a plain scalar
-                if type(item) is ScalarEvent and item.implicit[0] and item.tag is None \
-                        and item.anchor is None:
-                    if record:
-                        lines[path + (len(out),)] = item.start_mark.line + 1
-                    out.append(resolve_plain(item.value))
-                else:
-                    out.append(self._node(item, path + (len(out),), depth + 1, record))
+                out.append(self._node(item, path + (len(out),), depth + 1, record))
                 item = next_event()
             return out
         if not isinstance(event, MappingStartEvent):   # pragma: no cover - parser guarantees
@@ -324,18 +316,11 @@ class Source:
         if tag not in (None, "!", MAP):
             raise self._tag_error(event, path)
         mapping: dict = {}
-        lines = self.lines
         key_event = next_event()
         while type(key_event) is not MappingEndEvent:
-            # fast path (as _plain_name, inline): a plain scalar that cannot read as
-            # anything but text (not null, true/false or a number)
-            key = key_event.value if type(key_event) is ScalarEvent else None
-            if key is None or not key_event.implicit[0] or key_event.tag is not None \
-                    or key_event.anchor is not None or key in _NULLS or key in _BOOLS \
-                    or key[0] in _NUMERIC_START:
-                key = _plain_name(key_event)
-                if key is None:
-                    key = self._key(key_event, path, depth, record)
+            key = _plain_name(key_event)
+            if key is None:                       # quoted, tagged, a number ...: checked
+                key = self._key(key_event, path, depth, record)
             value_event = next_event()
             if key is None:                       # refused (reported): skip its value
                 self._node(value_event, path, depth + 1, False)
@@ -347,14 +332,9 @@ class Source:
                 self._node(value_event, child, depth + 1, False)
             else:
                 child = path + (key,)
-                if record:
-                    lines[child] = key_event.start_mark.line + 1
-                # fast path: a plain value (its line: the key's)
-                if type(value_event) is ScalarEvent and value_event.implicit[0] \
-                        and value_event.tag is None and value_event.anchor is None:
-                    mapping[key] = resolve_plain(value_event.value)
-                else:
-                    mapping[key] = self._node(value_event, child, depth + 1, record)
+                if record:                        # a value's line is its key's
+                    self.lines[child] = key_event.start_mark.line + 1
+                mapping[key] = self._node(value_event, child, depth + 1, record)
             key_event = next_event()
         return mapping
 

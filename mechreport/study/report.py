@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..report.plots import styled
 from ..units import fmt
 from .document import Doc
 from .table import Table, badness, column_name, larger_is_better, quantity_unit, with_unit
@@ -170,6 +171,7 @@ def _scatter(ax, x, y, sel, color, dot, alpha, raster, label, limits):
                        marker=marker, lw=0, alpha=alpha, clip_on=False, rasterized=raster)
 
 
+@styled
 def write_figures(run: StudyRun, folder: Path) -> dict[str, str]:
     """The SVG figures; returns {name: relative path}."""
     from ..report.plots import GREY, INK, OKABE_ITO, figure, legend_top, save

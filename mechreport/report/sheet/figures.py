@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ..drawing import LINK_FILL, Labels, draw_element, draw_ground_symbol, draw_guide
-from ..plots import pyplot, save
+from ..plots import save, styled
 from ..scene import build_scene
 from .symbols import split_symbol
 
@@ -117,7 +117,6 @@ def _frame(extent_xy: tuple[np.ndarray, np.ndarray], width: float, max_h: float,
     """A figure ``width`` inches wide with equal axes showing ``lo..hi``, and ``margin``
     inches around them for labels that stick out."""
     from matplotlib.figure import Figure
-    pyplot()
     lo, hi = extent_xy
     span = np.maximum(hi - lo, 1e-9)
     inner_w = width - 2 * margin
@@ -201,6 +200,7 @@ def _bounds(points) -> tuple[np.ndarray, np.ndarray]:
     return xy.min(axis=0), xy.max(axis=0)
 
 
+@styled
 def mechanism_figure(analysis, k: int, path: Path) -> Path:
     """The mechanism at angle index ``k`` (links numbered, joints lettered, loads and the
     driver's rotation), without any result."""
@@ -268,6 +268,7 @@ def _actions(analysis, link: str):
     return analysis.context.actions_on([link], inertia=True)
 
 
+@styled
 def fbd_figure(analysis, k: int, link: str, path: Path, zero: set) -> tuple[Path, list[str]]:
     """The free-body diagram of ``link`` at angle index ``k``; also the symbols of the
     actions that vanish at that angle (left out of the drawing). ``zero``: reaction unknowns
