@@ -14,6 +14,8 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:  # make `mechreport` importable however pytest is started
     sys.path.insert(0, str(ROOT))
+if str(ROOT / "tests") not in sys.path:  # tests/helpers.py, shared by tests in every folder
+    sys.path.insert(0, str(ROOT / "tests"))
 
 SPEC_DIR = ROOT / "specs"
 SPEC_FILES = sorted(SPEC_DIR.glob("*.yaml"))

@@ -5,6 +5,7 @@ themselves are import-linter's (``lint-imports``, in ``make test``)."""
 from __future__ import annotations
 
 import ast
+import functools
 import os
 import subprocess
 import sys
@@ -19,6 +20,7 @@ def _module_name(path: Path) -> str:
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
+@functools.lru_cache(maxsize=1)
 def import_graph() -> dict[str, set[str]]:
     """Every module of the package -> the package's modules it imports anywhere in its
     body (top level or inside functions)."""

@@ -1,6 +1,6 @@
 """The public pipeline: spec -> model -> kinematics -> forces -> checks, in one call.
 
-    from mechreport.analysis import analyse
+    from mechreport import analyse
     result = analyse("specs/slider_crank.yaml")
     result.forces["dyad"].reactions["B"].fx        # (n,) [N] over result.angles
 
@@ -23,7 +23,8 @@ from ..kinematics.frames import scaled
 from ..linalg import SINGULAR_COND
 from ..model import Mechanism, build_mechanism
 from ..post import Review, Verdict, design_review, verdicts
-from ..spec import Spec, load_spec
+from ..post.columns import Column, result_columns, scales
+from ..spec import Spec, load_spec, parse_spec
 
 DEFAULT_TOL = 1e-6
 
@@ -96,6 +97,41 @@ class Analysis(Checked):
         """Angles analysed (those left out are in ``flags``)."""
         return self.kinematics.n
 
+    def scales(self) -> dict[str, float]:
+        """The largest magnitude [SI] of each kind of quantity (length, force, moment ...):
+        a value below 1e-9 of it is round-off (see :func:`mechreport.post.columns.scales`)."""
+        return scales(self.kinematics, self.forces, self.loads)
+
+    def columns(self) -> list[Column]:
+        """Every result as a named column over ``angles`` (what results.csv holds, see
+        :mod:`mechreport.post.columns`)."""
+        return result_columns(self.kinematics, self.forces, self.scales())
+
+    def to_dataframe(self):
+        """Every result as a pandas DataFrame (``pip install 'mechreport[pandas]'``): one
+        row per angle of the sweep, indexed by the sweep coordinate
+        (``crank_angle [deg]``), a ``flag`` column giving why an angle was left out (its
+        row is NaN then), and one column per quantity named with its SI unit, as in
+        results.csv: ``crank.omega [rad/s]``, ``dyad.joint.B.fx [N]``,
+        ``newton_euler.driver.torque [N m]`` ..."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("to_dataframe needs pandas: pip install "
+                              "'mechreport[pandas]'") from None
+        columns = self.columns()
+        solved = {round(float(a), 9): k for k, a in enumerate(self.angles)}
+        reasons = {round(f.angle, 9): f.reason for f in self.flags}
+        angles = sorted(set(solved) | set(reasons))
+        rows = np.array([solved.get(a, -1) for a in angles], int)
+        data = {"flag": [reasons.get(a, "") for a in angles]}
+        for c in columns:
+            values = np.full(len(angles), np.nan)
+            values[rows >= 0] = c.values[rows[rows >= 0]]
+            data[c.name] = values
+        index = pd.Index(np.array(angles, float), name="crank_angle [deg]")
+        return pd.DataFrame(data, index=index)
+
     def notes(self) -> list[str]:
         """What a reader must know before the numbers (see ``Kinematics.notes``)."""
         return self.kinematics.notes()
@@ -104,7 +140,8 @@ class Analysis(Checked):
 
 def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL,
             plans=None) -> Analysis:
-    """Load (if given a path or YAML text), solve every method and run the checks.
+    """Load ``spec`` (a :class:`Spec`, a file's path, or YAML text: a string of more than one
+    line), solve every method and run the checks.
     ``methods``: the force methods' names (default: all); ``tol``: the largest relative
     disagreement between methods that passes; ``plans``: a
     :class:`~mechreport.forces.contour.ContourPlans` shared with other analyses of the same
@@ -113,7 +150,9 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL,
     Angles where any method's result could not be trusted to ``TRUST_RTOL`` are flagged and
     left out of every result. Raises ``AnalysisError`` when no angle is left, or when a value
     in any result is not finite (never reported as a number)."""
-    if not isinstance(spec, Spec):
+    if isinstance(spec, str) and "\n" in spec:      # the YAML text itself
+        spec = parse_spec(spec, "<text>")
+    elif not isinstance(spec, Spec):
         spec = load_spec(spec)
     with np.errstate(all="ignore"):    # what is not finite is flagged or refused below, never a warning
         mech = build_mechanism(spec)

@@ -275,39 +275,7 @@ def display_of(analysis) -> Display:
     units = dict(analysis.spec.report.units) or {}
     units.setdefault("length", analysis.spec.units.get("length", "m"))
     return Display(units.get("length", "m"), units.get("force", "N"),
-                   units.get("moment", "N*m"), units.get("mass", "kg"), _scales(analysis))
-
-
-def _top(*arrays) -> float:
-    vals = [float(np.max(np.abs(a))) for a in arrays if a is not None and np.size(a)]
-    vals = [v for v in vals if math.isfinite(v)]
-    return max(vals, default=0.0) or 1.0
-
-
-def _scales(analysis) -> dict[str, float]:
-    """Largest magnitude [SI] of each kind of quantity in the analysis: a value below
-    ``ZERO_RTOL`` of it is round-off."""
-    kin, spec = analysis.kinematics, analysis.spec
-    pts = [kin.named_point(p, o) for p, o in spec.named_points()]
-    coms = [kin.com(l.name) for l in spec.links]
-    forces, moments = [], []
-    for res in analysis.forces.values():
-        moments.append(res.driver_torque)
-        for r in res.reactions.values():
-            forces += [r.fx, r.fy]
-            if r.moment is not None:
-                moments.append(r.moment)
-    for ld in analysis.loads:
-        (forces if ld.force is not None else moments).append(
-            ld.force if ld.force is not None else ld.moment)
-    ground = [np.asarray(list(spec.ground.values()), float)] if spec.ground else []
-    return {"length": _top(*[p.r for p in pts], *ground),
-            "velocity": _top(*[p.v for p in pts], *[c.v for c in coms]),
-            "acceleration": _top(*[p.a for p in pts], *[c.a for c in coms]),
-            "force": _top(*forces), "moment": _top(*moments),
-            "omega": _top(kin.omega), "alpha": _top(kin.alpha), "angle": 360.0,
-            "mass": _top(np.array([l.mass for l in spec.links])),
-            "inertia": _top(np.array([l.inertia for l in spec.links]))}
+                   units.get("moment", "N*m"), units.get("mass", "kg"), analysis.scales())
 
 
 # --------------------------------------------------------------------------- spec summary
@@ -628,56 +596,13 @@ def _power_check(sw: SweepData, d: Display) -> tuple[str, dict | None]:
 
 # ---------------------------------------------------------------------------- csv / json
 
-def _csv_columns(analysis) -> tuple[list[str], list[np.ndarray], list[float]]:
-    """Column names, (n,) arrays over the analysed (solved) angles and each column's scale
-    (the largest value of its kind: round-off below ``ZERO_RTOL`` of it is written as 0)."""
-    kin, spec = analysis.kinematics, analysis.spec
-    sc = _scales(analysis)
-    names, cols, scales = [], [], []
-
-    def add(name, arr, kind):
-        names.append(name)
-        cols.append(arr)
-        scales.append(sc.get(kind))
-
-    for ln in spec.links:
-        i = ln.number
-        add(f"{ln.name}.theta [deg]", kin.angle_deg(ln.name), "angle")
-        add(f"{ln.name}.omega [rad/s]", kin.omega[:, i], "omega")
-        add(f"{ln.name}.alpha [rad/s^2]", kin.alpha[:, i], "alpha")
-    for p, owner in spec.named_points():
-        s = kin.named_point(p, owner)
-        for lab, arr, unit, kind in (("x", s.r[:, 0], "m", "length"),
-                                     ("y", s.r[:, 1], "m", "length"),
-                                     ("vx", s.v[:, 0], "m/s", "velocity"),
-                                     ("vy", s.v[:, 1], "m/s", "velocity"),
-                                     ("ax", s.a[:, 0], "m/s^2", "acceleration"),
-                                     ("ay", s.a[:, 1], "m/s^2", "acceleration")):
-            add(f"{p}.{lab} [{unit}]", arr, kind)
-    for m, res in analysis.forces.items():
-        add(f"{m}.driver.torque [N m]", res.driver_torque, "moment")
-        for j in spec.joints:
-            r = res.reactions.get(j.name)
-            if r is None:
-                continue
-            for attr, unit, kind in (("fx", "N", "force"), ("fy", "N", "force"),
-                                     ("moment", "N m", "moment"), ("px", "m", "length"),
-                                     ("py", "m", "length")):
-                v = getattr(r, attr)
-                if v is not None:
-                    add(f"{m}.joint.{j.name}.{attr} [{unit}]", v, kind)
-    return names, cols, scales
-
-
 def _csv(analysis) -> tuple[list[str], list[list[str]]]:
     """One row per analysed crank angle; left-out angles keep their row, with the reason in
     ``flag`` and empty cells; undefined values (NaN) are empty cells; round-off is 0."""
-    names, cols, scales = _csv_columns(analysis)
-    data = np.column_stack(cols) if cols else np.zeros((analysis.kinematics.n, 0))
-    if cols:                                  # round-off of each column's kind -> 0, no -0
-        tol = ZERO_RTOL * np.array([s if s is not None else 0.0 for s in scales])
-        with np.errstate(invalid="ignore"):
-            data = np.where(np.abs(data) <= tol, 0.0, data) + 0.0
+    columns = analysis.columns()
+    names = [c.name for c in columns]
+    data = np.column_stack([c.values for c in columns]) if columns else \
+        np.zeros((analysis.kinematics.n, 0))
     reasons = {round(f.angle, 9): f.reason for f in analysis.flags}
     solved = {round(float(a), 9): k for k, a in enumerate(analysis.angles)}
     angles = sorted(set(solved) | set(reasons))

@@ -21,7 +21,7 @@ from mechreport.spec import Sweep, load_spec
 from mechreport.spec.loader import parse_spec
 from mechreport.pipeline.streamed import SweepCheck, check_sweep
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 EDGE = ROOT / "tests" / "data" / "edge"
 
 

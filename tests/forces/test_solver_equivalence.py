@@ -16,7 +16,7 @@ from mechreport.kinematics import solve_kinematics
 from mechreport.model import build_mechanism
 from mechreport.spec import load_spec
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _same(a, b):

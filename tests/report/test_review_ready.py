@@ -27,9 +27,11 @@ from mechreport.report.model import PALETTE, build_model
 from mechreport.spec import parse_spec
 from mechreport.units import Display, fmt
 
-from test_batch_safety import tiny_spec as tiny  # the 30-degree slider-crank, written once
+from helpers import tiny_spec as tiny  # the 30-degree slider-crank, written once
 
-ROOT = Path(__file__).resolve().parents[1]
+pytestmark = pytest.mark.slow      # builds reports, starts processes or fuzzes: not in the fast tier
+
+ROOT = Path(__file__).resolve().parents[2]
 FOUR_BAR = ROOT / "specs" / "four_bar.yaml"
 SLIDER = ROOT / "specs" / "slider_crank.yaml"
 TAB10 = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",

@@ -21,6 +21,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -29,7 +30,9 @@ from mechreport.errors import MechreportError, SpecError
 from mechreport.spec import Sweep, parse_spec
 from mechreport.spec.yaml_source import Source
 
-ROOT = Path(__file__).resolve().parents[1]
+pytestmark = pytest.mark.slow      # builds reports, starts processes or fuzzes: not in the fast tier
+
+ROOT = Path(__file__).resolve().parents[2]
 SPEC_PATHS = (sorted((ROOT / "specs").glob("*.yaml"))
               + sorted((ROOT / "tests" / "data").glob("*.yaml")))
 FILENAME = "fuzzed/spec.yaml"

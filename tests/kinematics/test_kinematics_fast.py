@@ -21,7 +21,7 @@ from mechreport.linalg import SINGULAR_COND, Equilibrated
 from mechreport.model import build_mechanism
 from mechreport.spec import GROUND, Sweep, load_spec
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SPECS = sorted((ROOT / "specs").glob("*.yaml")) + sorted((ROOT / "tests" / "data").rglob("*.yaml"))
 
 

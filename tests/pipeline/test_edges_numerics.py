@@ -22,7 +22,7 @@ from mechreport.kinematics import solve_kinematics
 from mechreport.model import build_mechanism
 from mechreport.spec import parse_spec
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SLIDER_CRANK = (ROOT / "specs" / "slider_crank.yaml").read_text()
 PARALLELOGRAM = (ROOT / "tests" / "data" / "edge" / "parallelogram_four_bar.yaml").read_text()
 

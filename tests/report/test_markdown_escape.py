@@ -11,7 +11,9 @@ import pytest
 from mechreport.report.markdown import md_inline, md_text, md_url
 from mechreport.report.pdf import typst_escape, typst_string
 
-ROOT = Path(__file__).resolve().parents[1]
+pytestmark = pytest.mark.slow      # builds reports, starts processes or fuzzes: not in the fast tier
+
+ROOT = Path(__file__).resolve().parents[2]
 EVIL = "evil | name\n# <script>alert(1)</script> [x](y) $x$ #set"
 LINK = "r|o*d_[x](y)"          # a link name
 JOINT = "a|b"                  # a joint (and point) name

@@ -9,6 +9,8 @@ import pytest
 from mechreport.app.build import build_files
 from mechreport.app.progress import Progress
 
+pytestmark = pytest.mark.slow      # builds reports, starts processes or fuzzes: not in the fast tier
+
 
 @pytest.fixture(scope="module")
 def batch(tmp_path_factory, textbook_specs):

@@ -23,7 +23,7 @@ from scipy.optimize import fsolve
 from mechreport.pipeline.analysis import analyse
 from mechreport.spec import load_spec, parse_spec
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 TRIAD = ROOT / "tests" / "data" / "class_iii_triad.yaml"
 
 

@@ -20,7 +20,9 @@ from mechreport.study import evaluate_chunk, plan_of
 from mechreport.app.study_workers import run_variants
 from mechreport.study.variants import base_of, variant_spec
 
-ROOT = Path(__file__).resolve().parents[1]
+pytestmark = pytest.mark.slow      # builds reports, starts processes or fuzzes: not in the fast tier
+
+ROOT = Path(__file__).resolve().parents[2]
 FOUR_BAR = (ROOT / "specs" / "four_bar.yaml").read_text(encoding="utf-8")
 COARSE = FOUR_BAR.replace("sweep: {start: 0, stop: 360, step: 1}",
                           "sweep: {start: 0, stop: 360, step: 10}")

@@ -19,7 +19,7 @@ from mechreport.forces.sources import split_by_source
 from mechreport.post import CycleUndefined, counterweight, rating_life_h, review
 from mechreport.spec import parse_spec
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 LONE_CRANK = """
 mechreport: 1

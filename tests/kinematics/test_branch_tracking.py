@@ -12,7 +12,7 @@ from mechreport.kinematics.position import _resolve
 from mechreport.model import build_mechanism
 from mechreport.spec import Sweep, load_spec
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def sequential(decide):
@@ -50,7 +50,7 @@ def test_a_dyad_that_comes_back_on_its_other_branch_has_no_cycle_quantities():
     quantities are undefined with that reason; a parallelogram, whose change points come in a
     pair, comes back to its start."""
     from mechreport.pipeline.analysis import analyse
-    edge = Path(__file__).resolve().parent / "data" / "edge"
+    edge = Path(__file__).resolve().parents[1] / "data" / "edge"
     a = analyse(edge / "change_point_four_bar.yaml")
     kin = a.kinematics
     c = kin.named_point("C", "rocker").r

@@ -19,7 +19,7 @@ from mechreport.pipeline.analysis import analyse
 from mechreport.forces import METHODS, ForceResult
 from mechreport.linalg import batched_solve
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SPECS = sorted((ROOT / "specs").glob("*.yaml")) + sorted((ROOT / "tests" / "data").glob("*.yaml"))
 
 

@@ -15,7 +15,7 @@ from mechreport.kinematics.stacked import solve_stacked
 from mechreport.spec import load_spec
 from mechreport.spec.stack import stack_specs
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _variants(spec, count: int = 4):

@@ -14,7 +14,7 @@ from mechreport.errors import SpecError
 from mechreport.post import Verdict, frame_load
 from mechreport.spec import parse_spec
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SLIDER_CRANK = (ROOT / "specs" / "slider_crank.yaml").read_text().split("expect:")[0]
 FOUR_BAR = ROOT / "specs" / "four_bar.yaml"
 OVER = ROOT / "tests" / "data" / "edge" / "four_bar_over_limits.yaml"

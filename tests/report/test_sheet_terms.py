@@ -13,7 +13,7 @@ from mechreport.pipeline.analysis import analyse
 from mechreport.forces.builders import read_term
 from mechreport.forces.equations import TERM_KINDS
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SPECS = [ROOT / "specs" / f"{s}.yaml" for s in ("slider_crank", "r_rtr_rtr", "hydraulic_boom",
                                                  "spring_loaded_slider_crank")]
 SPECS.append(ROOT / "tests" / "data" / "class_iii_triad.yaml")

@@ -17,7 +17,7 @@ from mechreport.report.sheet import (SheetOptions, build_problem, build_sheet,
                                      sheet_analysis, sheet_spec, write_sheet)
 from mechreport.report.sheet.expr import fmt, math as render
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SPECS = sorted((ROOT / "specs").glob("*.yaml")) + [ROOT / "tests" / "data" /
                                                    "class_iii_triad.yaml"]
 S2 = math.sqrt(2)

@@ -21,7 +21,8 @@ from mechreport.pipeline.analysis import analyse
 from mechreport.app.build import build_files
 from mechreport.report.model import build_model
 
-pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
+pytestmark = [pytest.mark.filterwarnings("ignore::DeprecationWarning"),
+              pytest.mark.slow]      # builds reports: not in the fast tier
 
 STEMS = {"4.6": "slider_crank", "4.7": "r_rtr_rtr"}
 

@@ -1,0 +1,100 @@
+"""Every result of an analysis as named columns over the angles: what results.csv and
+:meth:`mechreport.pipeline.Analysis.to_dataframe` hold, built here once.
+
+A column's name carries its SI unit (``crank.omega [rad/s]``, ``dyad.joint.B.fx [N]``); its
+values are (n,) over the analysed angles, with round-off made 0: a value within
+``ZERO_RTOL`` of the largest magnitude of its kind (its ``scale``) is 0, never -0.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..units import ZERO_RTOL
+
+
+@dataclass(frozen=True)
+class Column:
+    """One result over the analysed angles: ``name`` (with its unit in brackets), ``values``
+    (n,) [SI], round-off made 0, NaN where undefined (a slider's point where its force
+    vanishes)."""
+
+    name: str
+    values: np.ndarray
+
+
+def _top(*arrays) -> float:
+    vals = [float(np.max(np.abs(a))) for a in arrays if a is not None and np.size(a)]
+    vals = [v for v in vals if math.isfinite(v)]
+    return max(vals, default=0.0) or 1.0
+
+
+def scales(kin, forces: dict, loads) -> dict[str, float]:
+    """Largest magnitude [SI] of each kind of quantity of an analysis (kinematics ``kin``,
+    ``forces`` by method, the applied ``loads``): a value below ``ZERO_RTOL`` of it is
+    round-off. Kinds: length, velocity, acceleration, force, moment, omega, alpha, angle,
+    mass, inertia."""
+    spec = kin.mechanism.spec
+    pts = [kin.named_point(p, o) for p, o in spec.named_points()]
+    coms = [kin.com(l.name) for l in spec.links]
+    fs, moments = [], []
+    for res in forces.values():
+        moments.append(res.driver_torque)
+        for r in res.reactions.values():
+            fs += [r.fx, r.fy]
+            if r.moment is not None:
+                moments.append(r.moment)
+    for ld in loads:
+        (fs if ld.force is not None else moments).append(
+            ld.force if ld.force is not None else ld.moment)
+    ground = [np.asarray(list(spec.ground.values()), float)] if spec.ground else []
+    return {"length": _top(*[p.r for p in pts], *ground),
+            "velocity": _top(*[p.v for p in pts], *[c.v for c in coms]),
+            "acceleration": _top(*[p.a for p in pts], *[c.a for c in coms]),
+            "force": _top(*fs), "moment": _top(*moments),
+            "omega": _top(kin.omega), "alpha": _top(kin.alpha), "angle": 360.0,
+            "mass": _top(np.array([l.mass for l in spec.links])),
+            "inertia": _top(np.array([l.inertia for l in spec.links]))}
+
+
+def result_columns(kin, forces: dict, scale: dict[str, float]) -> list[Column]:
+    """Every link's angle, rate and acceleration, every named point's position, velocity
+    and acceleration, and every method's driver effort and joint reactions, in that order,
+    with round-off of each kind (``scale``, see :func:`scales`) made 0."""
+    spec = kin.mechanism.spec
+    out: list[Column] = []
+
+    def add(name: str, values: np.ndarray, kind: str) -> None:
+        tol = ZERO_RTOL * scale.get(kind, 0.0)
+        with np.errstate(invalid="ignore"):
+            out.append(Column(name, np.where(np.abs(values) <= tol, 0.0, values) + 0.0))
+
+    for ln in spec.links:
+        i = ln.number
+        add(f"{ln.name}.theta [deg]", kin.angle_deg(ln.name), "angle")
+        add(f"{ln.name}.omega [rad/s]", kin.omega[:, i], "omega")
+        add(f"{ln.name}.alpha [rad/s^2]", kin.alpha[:, i], "alpha")
+    for p, owner in spec.named_points():
+        s = kin.named_point(p, owner)
+        for lab, arr, unit, kind in (("x", s.r[:, 0], "m", "length"),
+                                     ("y", s.r[:, 1], "m", "length"),
+                                     ("vx", s.v[:, 0], "m/s", "velocity"),
+                                     ("vy", s.v[:, 1], "m/s", "velocity"),
+                                     ("ax", s.a[:, 0], "m/s^2", "acceleration"),
+                                     ("ay", s.a[:, 1], "m/s^2", "acceleration")):
+            add(f"{p}.{lab} [{unit}]", arr, kind)
+    for m, res in forces.items():
+        add(f"{m}.driver.torque [N m]", res.driver_torque, "moment")
+        for j in spec.joints:
+            r = res.reactions.get(j.name)
+            if r is None:
+                continue
+            for attr, unit, kind in (("fx", "N", "force"), ("fy", "N", "force"),
+                                     ("moment", "N m", "moment"), ("px", "m", "length"),
+                                     ("py", "m", "length")):
+                v = getattr(r, attr)
+                if v is not None:
+                    add(f"{m}.joint.{j.name}.{attr} [{unit}]", v, kind)
+    return out
