@@ -31,6 +31,9 @@ LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254}
 FORCE_UNITS = {"N": 1.0, "kN": 1000.0, "lbf": 4.4482216152605}
 MOMENT_UNITS = {"N*m": 1.0, "N*mm": 0.001, "kN*m": 1000.0, "lbf*in": 4.4482216152605 * 0.0254}
 MASS_UNITS = {"kg": 1.0, "g": 0.001, "lb": 0.45359237}
+#: the units a spec's own numbers may be written in (its ``units:``); a report may show any
+#: unit of the tables above (``report.units``)
+SPEC_UNITS = {"length": ("m", "cm", "mm"), "mass": ("kg", "g")}
 UNIT_TABLES = {"length": LENGTH_UNITS, "force": FORCE_UNITS, "moment": MOMENT_UNITS,
                "mass": MASS_UNITS}
 

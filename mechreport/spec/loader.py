@@ -18,14 +18,16 @@ from typing import Any
 
 from ..errors import Problem, SpecError
 from ..quantities import CYCLE_UNITS, JOINT_CYCLE_UNITS, is_cycle
+from ..units import SPEC_UNITS, UNIT_TABLES
 from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Expectation, Joint, Line, Link, Load,
                     Shape, Spec, Study, Sweep, Vary, Vec)
 from .yaml_source import (MAX_DEPTH, MAX_FILE_BYTES, HugeInteger, Source, check_text, decode,
                           format_path, too_big)
 
-LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001}
-MASS_UNITS = {"kg": 1.0, "g": 0.001}
+#: the units a spec's numbers may be written in, to SI (factors from the one unit table)
+LENGTH_UNITS = {u: UNIT_TABLES["length"][u] for u in SPEC_UNITS["length"]}
+MASS_UNITS = {u: UNIT_TABLES["mass"][u] for u in SPEC_UNITS["mass"]}
 DEFAULT_GRAVITY = (0.0, -9.80665)
 
 # Every number in a spec is finite and, unless exactly zero, has a magnitude between

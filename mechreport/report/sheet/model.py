@@ -22,7 +22,7 @@ from ...spec import GROUND
 from .expr import Equation, Expr, Num, Point, Raw, fmt
 from .kinematics import derive, scalar, vec_expr
 from .symbols import (M_, N_, R, Names, alpha, axis_atom, comp_sym, omega, scalar_sym,
-                      unit_of, vec_sym)
+                      unit_atom, vec_sym)
 from .translate import Translator, zero_by_constraint
 
 ALL_METHODS = tuple(METHODS)
@@ -255,7 +255,7 @@ def _results(unknowns, values: dict, k: int, names: Names, result) -> tuple[list
                                    vec_expr((fx, fy), N_)]))
             continue
         done.add(u)
-        lines.append(Equation([Expr().add(1, names[u]), _scalar(values[u][k], unit_of(u))]))
+        lines.append(Equation([Expr().add(1, names[u]), _scalar(values[u][k], unit_atom(u))]))
         if joint is not None and result is not None:
             r = result.reactions.get(joint)
             if r is not None and r.px is not None:
@@ -319,7 +319,7 @@ def _step_model(number: int, step: Step, tr: Translator, names: Names, ctx, resu
         notes.append(("action and reaction:", pairs))
     for s, us in sorted(earlier.items()):
         notes.append((f"found in step {s}:",
-                      [Equation([Expr().add(1, names[u]), _scalar(tr.values[u][k], unit_of(u))])
+                      [Equation([Expr().add(1, names[u]), _scalar(tr.values[u][k], unit_atom(u))])
                        for u in us]))
     deltas = {}
     for eq in step.equations:
@@ -356,7 +356,7 @@ def _method_model(name: str, result, worked: tuple, k: int, names: Names, ctx, c
             origin[u] = i
     effort = result.driver_quantity
     value = float(result.driver_torque[k])
-    eq = Equation([Expr().add(1, names[effort]), _scalar(value, unit_of(effort))])
+    eq = Equation([Expr().add(1, names[effort]), _scalar(value, unit_atom(effort))])
     check = []
     if name == "power":
         for other, v in others.items():
@@ -364,7 +364,7 @@ def _method_model(name: str, result, worked: tuple, k: int, names: Names, ctx, c
             if abs(diff) <= 1e-9 * max(1.0, abs(value)):
                 diff = 0.0
             check.append((METHODS[other].TITLE,
-                          Equation([Expr().add(1, names[effort]), _scalar(v, unit_of(effort))]),
+                          Equation([Expr().add(1, names[effort]), _scalar(v, unit_atom(effort))]),
                           fmt(diff)))
     section = mod.SECTION.strip("()")
     if section[:1].isdigit():

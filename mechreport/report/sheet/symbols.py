@@ -9,6 +9,7 @@ from __future__ import annotations
 import re
 
 from ...forces.context import DRIVER_TORQUE, reaction_unknowns
+from ...quantities import unit_of as quantity_unit
 from .expr import Point, Raw, Sym
 
 # units: a thin space before them (Typst's implicit product has none)
@@ -122,9 +123,10 @@ def inertia_alpha(n: int) -> Raw:
                f"IC{n} alpha{n}", f"IC{n}_alpha{n}")
 
 
-def unit_of(unknown: str):
-    """N for a force component or magnitude, N·m for a couple or torque."""
-    return N_ if unknown.endswith((".fx", ".fy")) or unknown == "driver.force" else NM_
+def unit_atom(unknown: str):
+    """The printed unit of an unknown (its SI unit by :func:`mechreport.quantities.unit_of`):
+    N for a force component, N·m for a couple or torque."""
+    return N_ if quantity_unit(unknown) == "N" else NM_
 
 
 class Names:
