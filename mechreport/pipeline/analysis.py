@@ -24,6 +24,7 @@ from ..linalg import SINGULAR_COND
 from ..model import Mechanism, build_mechanism
 from ..post import Review, Verdict, design_review, verdicts
 from ..post.columns import Column, result_columns, scales
+from ..post.sweep import SweepSummary, sweep_summary
 from ..spec import Spec, load_spec, parse_spec
 
 DEFAULT_TOL = 1e-6
@@ -96,6 +97,12 @@ class Analysis(Checked):
     def n(self) -> int:
         """Angles analysed (those left out are in ``flags``)."""
         return self.kinematics.n
+
+    def sweep_summary(self) -> SweepSummary:
+        """What the sweep's results come to (effort statistics, each joint's peak and RMS
+        load, the frame load, bearing traces, the power balance's agreement): see
+        :mod:`mechreport.post.sweep`."""
+        return sweep_summary(self.kinematics, self.forces, self.loads, self.flags)
 
     def scales(self) -> dict[str, float]:
         """The largest magnitude [SI] of each kind of quantity (length, force, moment ...):

@@ -21,6 +21,8 @@ import numpy as np
 
 from ..version import __version__
 from .. import post as q
+from ..post.bearings import bearing_carrier
+from ..post.sweep import PowerCheck, SweepSummary
 from ..forces import METHODS
 from ..quantities import unit_of
 from ..spec import GROUND
@@ -34,9 +36,6 @@ from .text import kinematics_rows
 #: palette and Tol's (black is kept for loads, wine for the driver torque: scene.MOMENT_COLOR)
 PALETTE = ["#0072B2", "#E69F00", "#009E73", "#CC79A7", "#56B4E9", "#D55E00", "#999933",
            "#44AA99", "#332288", "#117733"]
-#: how far either side of a left-out angle values are treated as near-singular: they are
-#: reported, but do not set a plot's scale (in sweep steps, at least this many degrees)
-NEAR_STEPS = 5
 
 
 def num(x, digits: int = SIG_DIGITS) -> str:
@@ -204,6 +203,23 @@ class Meta:
                        ["Spec SHA-256", self.sha256], ["Units", self.units]]
 
 
+@dataclass(frozen=True)
+class MethodRow:
+    """A force method as the report names it: ``name`` (newton_euler ...), ``title``,
+    ``cite`` where the textbook has it (``§4.1, 4.6.1, 4.7.1``) or what it is."""
+
+    name: str
+    title: str
+    cite: str
+
+
+def method_row(name: str) -> MethodRow:
+    m = METHODS[name]
+    section = m.SECTION
+    cite = section[1:-1] if section.startswith("(") else f"§{section}"
+    return MethodRow(name, m.TITLE, cite)
+
+
 @dataclass
 class ReportModel:
     """One spec's report. See the module docstring."""
@@ -215,7 +231,7 @@ class ReportModel:
     status: str
     status_line: str
     method_title: str
-    methods: list[list[str]]
+    methods: list[MethodRow]
     links: list[list[str]]
     joints: list[list[str]]
     branches: list[list[str]]
@@ -246,6 +262,7 @@ class ReportModel:
     display: Display
     heads: dict[str, str]
     effort: str = "driver torque M"
+    effort_name: str = "driver torque"      # the effort without its symbol
     coord: str = "crank angle"
     coord_unit: str = "°"
 
@@ -460,47 +477,32 @@ def _ref_angles(analysis, ref: str, symbols, colors, d: Display
 
 # ------------------------------------------------------------------------ sweep results
 
-def near_mask(angles: np.ndarray, flagged, step: float) -> tuple[np.ndarray, float]:
-    """Angles within ``NEAR_STEPS`` sweep steps (at least 2 degrees) of a left-out angle, and
-    that width [deg]."""
-    angles = np.asarray(angles, float)
-    width = max(NEAR_STEPS * float(step), 2.0)
-    if not len(flagged) or not len(angles):
-        return np.zeros(len(angles), bool), width
-    f = np.asarray(sorted(flagged), float)
-    d = np.abs(angles[:, None] - f[None, :]) % 360.0
-    d = np.minimum(d, 360.0 - d)                      # circular: 359 is next to 0
-    return (d.min(axis=1) <= width + 1e-9), width
-
-
-def _sweep(analysis, ref: str, symbols, colors) -> SweepData:
-    res = analysis.forces[ref]
-    spec, kin = analysis.spec, analysis.kinematics
+def _sweep(analysis, summary: SweepSummary, symbols, colors) -> SweepData:
+    """The plot data of the sweep: the reference method's arrays and the summary's traces."""
+    res = analysis.forces[summary.method]
+    spec = analysis.spec
     joints = [JointSeries(j.name, symbols[j.name], j.type, colors[j.name], r.fx, r.fy, r.f,
                           r.moment)
               for j in spec.joints if (r := res.reactions.get(j.name)) is not None]
     polar = []
     for j in spec.joints:
-        if j.type == "R" and j.name in res.reactions:
-            try:
-                xy = q.bearing_trace(kin, res, j)
-            except Exception:  # noqa: BLE001 - a joint post cannot trace is not drawn
-                continue
-            eq = None
-            if analysis.review is not None and j.name in analysis.review.bearings:
-                eq = analysis.review.bearings[j.name].f_equivalent
-            polar.append(PolarSeries(j.name, symbols[j.name], colors[j.name],
-                                     q.bearing_carrier(j), xy[:, 0], xy[:, 1], eq))
+        xy = summary.traces.get(j.name)
+        if xy is None:
+            continue
+        eq = None
+        if analysis.review is not None and j.name in analysis.review.bearings:
+            eq = analysis.review.bearings[j.name].f_equivalent
+        polar.append(PolarSeries(j.name, symbols[j.name], colors[j.name],
+                                 bearing_carrier(j), xy[:, 0], xy[:, 1], eq))
     check = analysis.forces.get("power")
     flagged = [f.angle for f in analysis.flags]
-    near, width = near_mask(analysis.angles, flagged, spec.sweep.step)
     kind, label, coord, unit = effort_of(spec)
     whole = spec.sweep.whole_turn and unit == "°"
     return SweepData(analysis.angles, [float(a) for a in spec.at], flagged,
-                     METHODS[ref].TITLE, res.driver_torque,
+                     METHODS[summary.method].TITLE, res.driver_torque,
                      None if check is None or check is res else check.driver_torque,
-                     q.torque_stats(res, np.full(kin.n, spec.driver.omega)), joints,
-                     polar, q.frame_load(kin, res, analysis.loads), near, width, kind, label,
+                     summary.torque, joints, polar, summary.frame, summary.near,
+                     summary.near_deg, kind, label,
                      f"{coord} [{'deg' if unit == '°' else unit.strip()}]",
                      None if whole else (float(spec.sweep.start), float(spec.sweep.stop)))
 
@@ -530,18 +532,11 @@ def _torque_texts(st: q.TorqueStats | None, d: Display, kind: str = "moment",
             "low": at(st.low), "high": at(st.high), "power": d.q(st.power, "power")}
 
 
-def far_peak(sw: SweepData, values: np.ndarray) -> q.Peak | None:
-    """Peak away from left-out angles (None when every angle is near one)."""
-    far = ~sw.near if len(sw.near) == len(values) else np.ones(len(values), bool)
-    if not far.any():
-        return None
-    return q.peak(sw.angles[far], np.asarray(values)[far])
-
-
-def _bearing_rows(sw: SweepData, d: Display) -> list[list[str]]:
+def _bearing_rows(summary: SweepSummary, sw: SweepData, d: Display) -> list[list[str]]:
     rows = []
     for js in sw.joints:
-        pk, fp = q.peak(sw.angles, js.f), far_peak(sw, js.f)
+        jl = summary.joints[js.name]
+        pk, fp = jl.peak, jl.peak_far
         kind = "pin" if js.type == "R" else "slider"
         near = DASH
         if pk is not None and fp is not None and pk.angle != fp.angle:
@@ -549,18 +544,8 @@ def _bearing_rows(sw: SweepData, d: Display) -> list[list[str]]:
         top = fp or pk
         rows.append([js.name, js.symbol, kind, d.num(top.value, "force") if top else DASH,
                      deg(top.angle) if top else DASH,
-                     d.num(float(np.sqrt(np.mean(js.f**2))), "force") if len(js.f) else DASH,
-                     near])
+                     d.num(jl.rms, "force") if jl.rms is not None else DASH, near])
     return rows
-
-
-def _largest_load(sw: SweepData) -> tuple[str, q.Peak] | None:
-    best = None
-    for js in sw.joints:
-        pk = q.peak(sw.angles, js.f)
-        if pk is not None and (best is None or pk.value > best[1].value):
-            best = (js.name, pk)
-    return best
 
 
 def _kind(quantity: str) -> str:
@@ -579,17 +564,15 @@ def _agreement_rows(analysis, d: Display) -> list[list[str]]:
              str(a.n_methods)] for a in analysis.agreement]
 
 
-def _power_check(sw: SweepData, d: Display) -> tuple[str, dict | None]:
-    if sw.torque_check is None or len(sw.torque) == 0:
+def _power_check(pc: PowerCheck | None, method_title: str, d: Display
+                 ) -> tuple[str, dict | None]:
+    if pc is None:
         return "The power balance was not solved.", None
-    diff = np.abs(sw.torque_check - sw.torque)
-    k = int(np.argmax(diff))
-    scale = max(float(np.max(np.abs(sw.torque))), 1e-300)
     text = (f"Power balance (M ω = Σ of the power of every other action) against "
-            f"{sw.method_title}: largest torque difference {_diag(diff[k], 'moment', d)} "
-            f"({fmt(diff[k] / scale, 2)} of the peak torque) at {deg(sw.angles[k])}°.")
-    return text, {"max_abs_N_m": jnum(diff[k]), "relative": jnum(diff[k] / scale),
-                  "angle_deg": float(sw.angles[k])}
+            f"{method_title}: largest torque difference {_diag(pc.max_abs, 'moment', d)} "
+            f"({fmt(pc.relative, 2)} of the peak torque) at {deg(pc.angle)}°.")
+    return text, {"max_abs_N_m": jnum(pc.max_abs), "relative": jnum(pc.relative),
+                  "angle_deg": pc.angle}
 
 
 # ------------------------------------------------------------------- failed expectations
@@ -620,12 +603,13 @@ def _peak_json(p: q.Peak | None, unit: str, scale: float | None = None) -> dict 
                                    "angle_deg": p.angle}
 
 
-def _summary(analysis, sw: SweepData, ref: str, status_line: str, power: dict | None,
-             symbols, meta: Meta, fails: list[dict], sc: dict) -> dict:
-    st = sw.stats
+def _summary(analysis, summary: SweepSummary, sw: SweepData, status_line: str,
+             power: dict | None, symbols, meta: Meta, fails: list[dict], sc: dict) -> dict:
+    st = summary.torque
+    ref = summary.method
     F, M = sc["force"], sc["moment"]
     EU, ES = ("N", F) if sw.effort == "force" else ("N·m", M)   # a T driver pushes
-    largest = _largest_load(sw)
+    largest = summary.largest
     refs = {}
     for angle in analysis.spec.at:
         k = analysis.kinematics.index_of(angle)
@@ -660,18 +644,16 @@ def _summary(analysis, sw: SweepData, ref: str, status_line: str, power: dict | 
         "driver_effort": "force" if EU == "N" else "torque",
         "mean_power": None if st is None else {"value": jnum(st.power), "unit": "W"},
         "reactions": {js.name: {"symbol": js.symbol, "unit": "N",
-                                "peak": _peak_json(q.peak(sw.angles, js.f), "N", F),
-                                "peak_away_from_left_out": _peak_json(far_peak(sw, js.f),
-                                                                      "N", F),
-                                "rms": jnum(float(np.sqrt(np.mean(js.f ** 2))), F)
-                                if len(js.f) else None,
-                                "fx_peak": _peak_json(q.peak(sw.angles, js.fx), "N", F),
-                                "fy_peak": _peak_json(q.peak(sw.angles, js.fy), "N", F)}
-                      for js in sw.joints},
+                                "peak": _peak_json(jl.peak, "N", F),
+                                "peak_away_from_left_out": _peak_json(jl.peak_far, "N", F),
+                                "rms": None if jl.rms is None else jnum(jl.rms, F),
+                                "fx_peak": _peak_json(jl.fx_peak, "N", F),
+                                "fy_peak": _peak_json(jl.fy_peak, "N", F)}
+                      for js in sw.joints if (jl := summary.joints[js.name])},
         "largest_bearing_load": None if largest is None else {
             "joint": largest[0], **_peak_json(largest[1], "N", F)},
-        "shaking": {"force_peak": _peak_json(q.peak(sw.angles, sw.shaking.f), "N", F),
-                    "moment_peak": _peak_json(q.peak(sw.angles, sw.shaking.m), "N·m", M)},
+        "shaking": {"force_peak": _peak_json(summary.shaking_force, "N", F),
+                    "moment_peak": _peak_json(summary.shaking_moment, "N·m", M)},
         "reference_angles": refs,
         "branches": [{"dyad": b.dyad, "type": b.kind, "rule": b.rule}
                      for b in analysis.kinematics.branches],
@@ -691,11 +673,11 @@ def _summary(analysis, sw: SweepData, ref: str, status_line: str, power: dict | 
                   for f in analysis.flags],
         "near_singular_deg": sw.near_deg,
         "notes": analysis.kinematics.notes(),
-        "quantities": _quantities(sw, st, cycle, sc, EU),
+        "quantities": _quantities(summary, cycle, sc, EU),
     }
 
 
-def _quantities(sw: SweepData, st, cycle: dict, sc: dict, effort_unit: str = "N·m") -> dict:
+def _quantities(summary: SweepSummary, cycle: dict, sc: dict, effort_unit: str = "N·m") -> dict:
     """Every key figure by name -> {value [SI], unit}: what ``mechreport diff`` compares and
     the index lists."""
     out: dict[str, dict] = {}
@@ -708,6 +690,7 @@ def _quantities(sw: SweepData, st, cycle: dict, sc: dict, effort_unit: str = "N�
             entry["angle_deg"] = float(angle)
         out[name] = entry
 
+    st = summary.torque
     if st is not None:
         name, kind = (("driver.force", "force") if effort_unit == "N"
                       else ("driver.torque", "moment"))
@@ -715,15 +698,15 @@ def _quantities(sw: SweepData, st, cycle: dict, sc: dict, effort_unit: str = "N�
         put(f"{name}.rms", st.rms, effort_unit, kind)
         put(f"{name}.peak", st.peak.value, effort_unit, kind, st.peak.angle)
         put("driver.power.mean", st.power, "W")
-    for js in sw.joints:
-        pk = q.peak(sw.angles, js.f)
+    for name, jl in summary.joints.items():
+        pk = jl.peak
         if pk is not None:
-            put(f"joint.{js.name}.f.peak", pk.value, "N", "force", pk.angle)
-            put(f"joint.{js.name}.f.rms", float(np.sqrt(np.mean(js.f ** 2))), "N", "force")
-    sh = q.peak(sw.angles, sw.shaking.f)
+            put(f"joint.{name}.f.peak", pk.value, "N", "force", pk.angle)
+            put(f"joint.{name}.f.rms", jl.rms, "N", "force")
+    sh = summary.shaking_force
     if sh is not None:
         put("shaking.force.peak", sh.value, "N", "force", sh.angle)
-    shm = q.peak(sw.angles, sw.shaking.m)
+    shm = summary.shaking_moment
     if shm is not None:
         put("shaking.moment.peak", shm.value, "N·m", "moment", shm.angle)
     for name, value in cycle.items():
@@ -791,7 +774,8 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
     spec = analysis.spec
     source = str(source if source is not None else spec.file)
     stem = Path(source).stem
-    ref = q.reference_method(analysis.forces)
+    summary = analysis.sweep_summary()
+    ref = summary.method
     d = display_of(analysis)
     symbols = _symbols(spec)
     colors = {j.name: PALETTE[i % len(PALETTE)] for i, j in enumerate(spec.joints)}
@@ -802,17 +786,17 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
                 sha256 if sha256 is not None else spec_sha256(source), d.describe())
     status_line = summary_line(source, analysis)
     refs, scenes = _ref_angles(analysis, ref, symbols, colors, d)
-    sw = _sweep(analysis, ref, symbols, colors)
-    power_text, power_json = _power_check(sw, d)
+    sw = _sweep(analysis, summary, symbols, colors)
+    power_text, power_json = _power_check(summary.power_check, sw.method_title, d)
     header, rows = _csv(analysis)
     design = _design(analysis, d)
     fails = failed_expectations(analysis)
-    summary = _summary(analysis, sw, ref, status_line, power_json, symbols, meta, fails,
-                       d.scales)
-    summary["design"] = _design_json(analysis)
+    record = _summary(analysis, summary, sw, status_line, power_json, symbols, meta, fails,
+                      d.scales)
+    record["design"] = _design_json(analysis)
     figures = _figures(sw, refs, ref, d) | _design_figures(design)
-    shaking = {"force": _peak_text(q.peak(sw.angles, sw.shaking.f), "force", d, sw.at_unit),
-               "moment": _peak_text(q.peak(sw.angles, sw.shaking.m), "moment", d, sw.at_unit)}
+    shaking = {"force": _peak_text(summary.shaking_force, "force", d, sw.at_unit),
+               "moment": _peak_text(summary.shaking_moment, "moment", d, sw.at_unit)}
     sweep = spec.sweep
     heads = {k: d.unit(k) for k in ("length", "velocity", "acceleration", "force", "moment",
                                     "mass", "inertia")}
@@ -822,8 +806,7 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
         description=[p.strip() for p in spec.description.strip().split("\n\n") if p.strip()],
         status="PASS" if analysis.passed else "FAIL", status_line=status_line,
         method_title=METHODS[ref].TITLE,
-        methods=[[name, m.TITLE, m.SECTION] for name, m in METHODS.items()
-                 if name in analysis.forces],
+        methods=[method_row(name) for name in METHODS if name in analysis.forces],
         links=_link_rows(spec, d), joints=_joint_rows(spec, symbols, d),
         branches=_branch_rows(analysis.kinematics),
         driver=_driver_text(spec), loads=_load_texts(spec, d),
@@ -833,19 +816,20 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
                     f"{deg(sweep.step)}{effort_of(spec)[3]}: {analysis.kinematics.n} "
                     f"positions solved, {len(analysis.flags)} left out"),
         refs=refs, torque=_torque_texts(sw.stats, d, sw.effort, effort_of(spec)[3]),
-        bearings=_bearing_rows(sw, d), effort=sw.effort_label,
+        bearings=_bearing_rows(summary, sw, d), effort=sw.effort_label,
+        effort_name="driver force" if sw.effort == "force" else "driver torque",
         coord=effort_of(spec)[2], coord_unit=effort_of(spec)[3],
         shaking=shaking, agreement=_agreement_rows(analysis, d), power_check=power_text,
         residuals=[[METHODS[r.method].TITLE, fmt(d.value(r.force, "force"), 2),
                     fmt(d.value(r.moment, "moment"), 2)] for r in analysis.residuals],
-        flags=_flag_rows(analysis), left_out=_left_out_text(analysis, sw, d),
+        flags=_flag_rows(analysis), left_out=_left_out_text(analysis, summary, sw, d),
         notes=analysis.kinematics.notes(), failures=failure_rows(fails), design=design,
         figures=figures, sweep=sw, scenes=scenes, csv_header=header, csv_rows=rows,
-        summary=summary, index_row=index_row(summary, stem), meta=meta, display=d,
+        summary=record, index_row=index_row(record, stem), meta=meta, display=d,
         heads=heads)
 
 
-def _left_out_text(analysis, sw: SweepData, d: Display) -> str:
+def _left_out_text(analysis, summary: SweepSummary, sw: SweepData, d: Display) -> str:
     """One paragraph for the first page: which angles were left out and why, and which
     values lie near them (shown, but not used to scale the plots)."""
     if not analysis.flags:
@@ -857,7 +841,7 @@ def _left_out_text(analysis, sw: SweepData, d: Display) -> str:
             f"quantity (values there cannot be trusted to 1e-6): {shown}{more}.")
     jumps = []
     for js in sw.joints:
-        pk, fp = q.peak(sw.angles, js.f), far_peak(sw, js.f)
+        pk, fp = summary.joints[js.name].peak, summary.joints[js.name].peak_far
         if pk is not None and fp is not None and abs(pk.value) > 1.25 * abs(fp.value):
             jumps.append((abs(pk.value), js.name, pk))
     if jumps:
