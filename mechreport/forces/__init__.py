@@ -58,11 +58,28 @@ def _solve_all(ctx: ForceContext, names: list[str]) -> dict[str, ForceResult]:
     return run_methods(steps, ctx, prepared)
 
 
+#: angles at which a method that chooses its equations once per sweep (the contour method)
+#: judges them: a long sweep's are spread over the whole of it (see :func:`sweep_choices`)
+PROBES = contour.PROBES
+
+
+def sweep_choices(probes: Kinematics, methods) -> dict:
+    """The choices the named ``methods`` make once for a whole sweep (the contour method's
+    equations), made over ``probes``, the kinematics at up to ``PROBES`` angles spread over
+    it: give them to each chunk's solve (:func:`solve_forces` ``memo``) so that every chunk
+    solves the same equations."""
+    if contour.NAME not in methods or not probes.n:
+        return {}
+    probe = ForceContext(probes)
+    contour.plan(probe)
+    return probe.memo
+
+
 def worked_steps(ctx: ForceContext, method: str) -> tuple[Step, ...]:
     """The labelled systems ``method`` solves over ``ctx``, in order: the equation objects
     the numbers came from (for the solution sheets and the split by source)."""
     return tuple(METHODS[method].build_steps(ctx))
 
 
-__all__ = ["METHODS", "solve_forces", "worked_steps", "ForceContext", "ForceResult", "JointReaction",
+__all__ = ["METHODS", "PROBES", "solve_forces", "sweep_choices", "worked_steps", "ForceContext", "ForceResult", "JointReaction",
            "Equation", "Step", "Term"]

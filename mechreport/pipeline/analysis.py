@@ -9,7 +9,7 @@ of every result, so all arrays share one angle axis.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +18,8 @@ from ..errors import AnalysisError
 from ..checks import (Agreement, ExpectationResult, Residual, agreement, check_expectations,
                      residuals)
 from ..forces import METHODS, ForceContext, ForceResult, Step, solve_forces, worked_steps
+from ..forces.context import LinkState
+from ..forces.equations import Action
 from ..kinematics import EPS, TRUST_RTOL, Flag, Kinematics, solve_kinematics
 from ..kinematics.frames import scaled
 from ..linalg import SINGULAR_COND
@@ -52,12 +54,15 @@ class Checked:
 @dataclass(frozen=True)
 class Analysis(Checked):
     """Everything known about one spec. ``forces`` by method name; ``flags`` the angles left
-    out (kinematic or force singularities) with reasons."""
+    out (kinematic or force singularities) with reasons. What the force methods worked with
+    (free bodies, their actions, the equations) is asked of the analysis
+    (:meth:`worked_steps`, :meth:`free_body_actions` ...): the solver's own context stays
+    inside it."""
 
     spec: Spec
     mechanism: Mechanism
     kinematics: Kinematics
-    context: ForceContext
+    _context: ForceContext = field(repr=False, compare=False)
     forces: dict[str, ForceResult]
     flags: tuple[Flag, ...]
     agreement: list[Agreement]
@@ -76,7 +81,31 @@ class Analysis(Checked):
     def loads(self):
         """The applied loads evaluated over ``angles`` (AppliedLoad: force (n, 2) [N] or
         moment (n,) [N m])."""
-        return self.context.loads
+        return self._context.loads
+
+    def joint_points(self) -> dict[str, np.ndarray]:
+        """Where each joint's reaction acts, (n, 2) [m] by joint name: the pin, or the
+        slider's point."""
+        return self._context.joint_points
+
+    def free_body_actions(self, links, inertia: bool = True) -> list[Action]:
+        """Every action on the free body of ``links`` (names) over ``angles``: reactions of
+        the joints cut (their unknowns named), loads, weights and, with ``inertia``, the
+        d'Alembert inertia forces and couples."""
+        return self._context.actions_on(list(links), inertia=inertia)
+
+    def inertia_actions(self, link: str) -> list[Action]:
+        """Link ``link``'s d'Alembert inertia force -m a_C at its centre of mass and couple
+        -I alpha."""
+        return self._context.inertia_actions(link)
+
+    def gravity_action(self, link: str) -> Action:
+        """Link ``link``'s weight m g at its centre of mass."""
+        return self._context.gravity_action(link)
+
+    def link_state(self, link: str) -> LinkState:
+        """Link ``link``'s mass, inertia and its centre of mass's motion over ``angles``."""
+        return self._context.links[link]
 
     def by_source(self, method: str | None = None) -> dict[str, dict[str, np.ndarray]]:
         """Every unknown of ``method`` (default: the reference method) split by source:
@@ -84,14 +113,14 @@ class Analysis(Checked):
         method's values (one extra solve with one right-hand side per source)."""
         from ..forces.sources import split_by_source
         from ..post import reference_method
-        return split_by_source(self.context,
+        return split_by_source(self._context,
                                self.worked_steps(method or reference_method(self.forces)))
 
     def worked_steps(self, method: str) -> tuple[Step, ...]:
         """The labelled systems ``method`` solved, in order, over ``angles``: the equation
         objects its numbers came from (built again on each call: they hold every
         coefficient at every angle)."""
-        return worked_steps(self.context, method)
+        return worked_steps(self._context, method)
 
     @property
     def n(self) -> int:

@@ -26,7 +26,7 @@ from .analysis import (DEFAULT_TOL, Analysis, Checked, analyse, no_angle_error,
 from ..checks import Agreement, ExpectationResult, Residual, residuals
 from ..checks.agreement import finish, merge, spreads
 from ..checks.expectations import at_angle, check_cycle, judge, left_out
-from ..forces import METHODS, ForceContext, contour
+from ..forces import METHODS, PROBES, ForceContext, sweep_choices
 from ..forces.result import slider_point
 from ..kinematics import Flag
 from ..kinematics.stream import kinematic_chunks, streamable
@@ -75,12 +75,8 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     names = list(METHODS) if methods is None else list(methods)
     chunks = kinematic_chunks(mech, chunk)
     between_phases()              # pass 1's working set: freed, but kept by the allocator
-    memo: dict = {}
-    if contour.NAME in names:   # the contour method's equations, chosen over the whole sweep
-        probe = ForceContext(chunks.probes(contour.PROBES))
-        if probe.n:
-            contour.plan(probe)
-            memo = probe.memo
+    # the contour method's equations, chosen once over the whole sweep
+    memo = sweep_choices(chunks.probes(PROBES), names) if "contour" in names else {}
     flags: list[Flag] = []
     parts: dict = {}
     worst: dict[str, list[float]] = {}

@@ -157,7 +157,8 @@ def build_scene(analysis, res: ForceResult, k: int, colors: dict[str, str],
                 symbols: dict[str, str]) -> Scene:
     """The drawing at analysed index ``k``: links, pins, guides, labels, the reactions of
     ``res`` (first link on second, at the joint point) and the applied loads."""
-    kin, ctx, spec = analysis.kinematics, analysis.context, analysis.spec
+    kin, spec = analysis.kinematics, analysis.spec
+    points = analysis.joint_points()
     pts = _point_positions(kin, k)
     extent = _extent(pts)
     sc = Scene(float(kin.angles[k]), extent, _link_shapes(kin, k, extent))
@@ -177,10 +178,10 @@ def build_scene(analysis, res: ForceResult, k: int, colors: dict[str, str],
         r = res.reactions.get(j.name)
         if r is None:
             continue
-        at = tuple(map(float, ctx.joint_points[j.name][k]))
+        at = tuple(map(float, points[j.name][k]))
         sc.arrows.append(Arrow(at, (float(r.fx[k]), float(r.fy[k])), symbols[j.name],
                                "reaction", colors[j.name]))
-    for ld in ctx.loads:
+    for ld in analysis.loads:
         if ld.link == GROUND:            # a spring or damper's frame end: drawn on its link
             continue
         if ld.force is not None:
@@ -190,7 +191,7 @@ def build_scene(analysis, res: ForceResult, k: int, colors: dict[str, str],
         else:
             c = tuple(map(float, kin.com(ld.link).r[k]))
             sc.couples.append(Couple(c, float(ld.moment[k]), ld.symbol, "#000000"))
-    pivot = tuple(map(float, ctx.joint_points[spec.driver.joint][k]))
+    pivot = tuple(map(float, points[spec.driver.joint][k]))
     sc.driver = spec.driver.link
     if spec.driver.kind == "R":
         sc.couples.append(Couple(pivot, float(res.driver_torque[k]), "M", MOMENT_COLOR))

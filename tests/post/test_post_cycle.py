@@ -15,7 +15,6 @@ import numpy as np
 import pytest
 
 from mechreport.pipeline.analysis import analyse
-from mechreport.forces.sources import split_by_source
 from mechreport.post import CycleUndefined, counterweight, rating_life_h, review
 from mechreport.spec import parse_spec
 
@@ -130,7 +129,7 @@ def test_cycle_quantities_undefined_without_a_whole_turn():
 def test_sources_add_up_to_the_total_for_every_method(spec_path):
     a = analyse(spec_path)
     for name, res in a.forces.items():
-        parts = split_by_source(a.context, a.worked_steps(name))
+        parts = a.by_source(name)
         assert list(parts)[:2] == ["inertia", "gravity"]
         for q, total in res.values().items():
             summed = sum(p[q] for p in parts.values())
@@ -143,7 +142,7 @@ def test_4_6_torque_by_source_at_45_deg():
     """M = 6 sin cos + 10 cos + 200 |sin|: inertia 3, gravity 5 sqrt2, load 100 sqrt2 N m."""
     a = analyse(ROOT / "specs" / "slider_crank.yaml")
     k = a.kinematics.at(45)
-    parts = split_by_source(a.context, a.worked_steps("dyad"))
+    parts = a.by_source("dyad")
     assert parts["inertia"]["driver.torque"][k] == pytest.approx(3, abs=1e-12)
     assert parts["gravity"]["driver.torque"][k] == pytest.approx(5 * np.sqrt(2), abs=1e-12)
     assert parts["load 1"]["driver.torque"][k] == pytest.approx(100 * np.sqrt(2), abs=1e-12)

@@ -401,7 +401,7 @@ def _answers(a, k) -> set[str]:
     reactions, their magnitudes, the driver's effort, link rates, point velocities and
     accelerations, inertia forces and couples."""
     out = set()
-    kin, ctx = a.kinematics, a.context
+    kin = a.kinematics
 
     def add(x):
         x = float(x)
@@ -416,7 +416,7 @@ def _answers(a, k) -> set[str]:
         if link.name != a.spec.driver.link:
             add(kin.omega[k, link.number])
             add(kin.alpha[k, link.number])
-        s = ctx.links[link.name]
+        s = a.link_state(link.name)
         for v in (*s.v[k], *s.a[k], *(-s.mass * s.a[k])):
             add(v)
     return out

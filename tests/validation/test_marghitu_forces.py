@@ -121,7 +121,7 @@ def test_4_7_power_balance_torque_at_30deg(r_rtr_rtr):
 def test_4_7_external_moment_opposes_rotation(r_rtr_rtr):
     """M_5ext = -sign(omega5) 100 k: -100 N m at 30 deg, where omega5 = 0.917 rad/s."""
     k = r_rtr_rtr.kinematics.at(30)
-    (load,) = r_rtr_rtr.context.loads
+    (load,) = r_rtr_rtr.loads
     assert load.moment[k] == -100.0
 
 

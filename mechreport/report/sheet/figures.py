@@ -215,7 +215,7 @@ def mechanism_figure(analysis, k: int, path: Path) -> Path:
         if m > 0:
             pts.append(tuple(np.asarray(a.at) + np.asarray(a.f) / m * L))
     if spec.driver.crank:                      # the driver's arc, whole
-        pivot = np.asarray(analysis.context.joint_points[spec.driver.joint][k], float)
+        pivot = np.asarray(analysis.joint_points()[spec.driver.joint][k], float)
         pts += [tuple(pivot - 0.09 * ext), tuple(pivot + 0.09 * ext)]
     lo, hi = _bounds(pts)
     pad = 0.04 * ext
@@ -252,7 +252,7 @@ def mechanism_figure(analysis, k: int, path: Path) -> Path:
             tips.append((tex_symbol(c.label), spot, (1, -1), KNOWN))
     drv = spec.driver
     if drv.crank:
-        pivot = analysis.context.joint_points[drv.joint][k]
+        pivot = analysis.joint_points()[drv.joint][k]
         n = spec.number(drv.link)
         spot = _arc(ax, pivot, 0.09 * ext, drv.omega >= 0, UNKNOWN, labels=labels)
         tips.append((rf"$\omega_{{{n}}}$", spot, (1, -1), UNKNOWN))
@@ -265,7 +265,7 @@ def mechanism_figure(analysis, k: int, path: Path) -> Path:
 
 def _actions(analysis, link: str):
     """The actions on ``link`` as a free body, as the d'Alembert equations have them."""
-    return analysis.context.actions_on([link], inertia=True)
+    return analysis.free_body_actions([link])
 
 
 @styled
@@ -273,7 +273,7 @@ def fbd_figure(analysis, k: int, link: str, path: Path, zero: set) -> tuple[Path
     """The free-body diagram of ``link`` at angle index ``k``; also the symbols of the
     actions that vanish at that angle (left out of the drawing). ``zero``: reaction unknowns
     a slider's normal constraint sets to zero (not drawn)."""
-    spec, kin, ctx = analysis.spec, analysis.kinematics, analysis.context
+    spec, kin, points = analysis.spec, analysis.kinematics, analysis.joint_points()
     sc = _scene(analysis, k)
     shapes = [s for s in sc.shapes if s.link == link]
     lk = spec.link(link)
@@ -294,9 +294,9 @@ def fbd_figure(analysis, k: int, link: str, path: Path, zero: set) -> tuple[Path
             if a.category == "reaction":
                 joint = next(j for j in spec.joints
                              if a.unknowns[0] == f"joint.{j.name}.moment")
-                at = np.asarray(ctx.joint_points[joint.name][k], float)
+                at = np.asarray(points[joint.name][k], float)
             elif a.category == "driver":
-                at = np.asarray(ctx.joint_points[spec.driver.joint][k], float)
+                at = np.asarray(points[spec.driver.joint][k], float)
             if a.unknowns:
                 draws.append(("couple", at, True, tex_symbol(a.symbol), color, dashed))
             else:
@@ -341,7 +341,7 @@ def fbd_figure(analysis, k: int, link: str, path: Path, zero: set) -> tuple[Path
     _block_shapes(labels, shapes, numbers=False)
     for j in spec.joints:
         if link in j.links and j.type == "R":
-            x, y = ctx.joint_points[j.name][k]
+            x, y = points[j.name][k]
             ax.plot([x], [y], "o", ms=4.5, mfc="white", mec="k", mew=1.0, zorder=4)
             labels.block(x, y, 3.5)
     ax.plot([com[0]], [com[1]], marker="o", ms=5, mfc="white", mec="k", mew=0.8, zorder=4.5)

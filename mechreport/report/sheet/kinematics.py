@@ -113,8 +113,8 @@ class State:
     """Positions, velocities and accelerations at angle index ``k``."""
 
     def __init__(self, analysis, k: int):
-        self.kin, self.spec, self.ctx, self.k = (analysis.kinematics, analysis.spec,
-                                                 analysis.context, k)
+        self.kin, self.spec, self.points, self.k = (analysis.kinematics, analysis.spec,
+                                                    analysis.joint_points(), k)
 
     def num(self, link: str) -> int:
         return self.spec.number(link)
@@ -142,7 +142,7 @@ class State:
         return self.kin.point(link, self.spec.link(link).points[name])
 
     def joint_r(self, joint) -> np.ndarray:
-        return np.asarray(self.ctx.joint_points[joint.name][self.k], float)
+        return np.asarray(self.points[joint.name][self.k], float)
 
 
 def rigid_lines(st: State, link: str, p: str, rp, q: str, rq, exact=None) -> list[Equation]:

@@ -226,8 +226,8 @@ def _vec(v) -> str:
     return f"({fmt(v[0])}, {fmt(v[1])})"
 
 
-def _free_body(ctx, bodies) -> str:
-    links = sorted((ctx.spec.link(b) for b in bodies), key=lambda l: l.number)
+def _free_body(spec, bodies) -> str:
+    links = sorted((spec.link(b) for b in bodies), key=lambda l: l.number)
     if len(links) == 1:
         return f"link {links[0].number} ({links[0].name})"
     return "links " + " & ".join(str(l.number) for l in links) + \
@@ -267,7 +267,7 @@ def _results(unknowns, values: dict, k: int, names: Names, result) -> tuple[list
     return lines, points
 
 
-def _step_model(number: int, step: Step, tr: Translator, names: Names, ctx, result,
+def _step_model(number: int, step: Step, tr: Translator, names: Names, spec, result,
                 counter: list, origin: dict, group_by_link: bool) -> StepModel:
     k = tr.k
     unknowns = set(step.unknowns)
@@ -285,7 +285,7 @@ def _step_model(number: int, step: Step, tr: Translator, names: Names, ctx, resu
                 zero_notes.append((u, counter[0]))
         heading = None
         if group_by_link and len(eq.bodies) == 1 and not constraint:
-            link = ctx.spec.link(eq.bodies[0])
+            link = spec.link(eq.bodies[0])
             heading = f"Link {link.number} ({link.name})"
         elif group_by_link and constraint:
             heading = "Sliders"
@@ -336,22 +336,22 @@ def _step_model(number: int, step: Step, tr: Translator, names: Names, ctx, resu
     results, points = _results(step.unknowns, tr.values, k, names, result)
     bodies = list(dict.fromkeys(frozenset(eq.bodies) for eq in step.equations
                                 if eq.kind != "constraint" and eq.bodies)) or [step.bodies]
-    return StepModel(number, step.title, [_free_body(ctx, b) for b in bodies],
+    return StepModel(number, step.title, [_free_body(spec, b) for b in bodies],
                      [names[u] for u in step.unknowns], notes, groups, results, points)
 
 
-def _method_model(name: str, result, worked: tuple, k: int, names: Names, ctx, counter: list,
+def _method_model(name: str, result, worked: tuple, k: int, names: Names, spec, counter: list,
                   others: dict) -> MethodModel:
     """The sheet's part for method ``name``: its ``worked`` steps (the labelled systems its
     numbers ``result`` came from) at angle index ``k``."""
     mod = METHODS[name]
     values = result.values()
-    tr = Translator(ctx, values, k)
+    tr = Translator(spec, values, k)
     origin: dict[str, int] = {}
     steps = []
     group = name in ("newton_euler", "dalembert")
     for i, step in enumerate(worked, 1):
-        steps.append(_step_model(i, step, tr, names, ctx, result, counter, origin, group))
+        steps.append(_step_model(i, step, tr, names, spec, result, counter, origin, group))
         for u in step.unknowns:
             origin[u] = i
     effort = result.driver_quantity
@@ -390,24 +390,24 @@ def _intro(analysis, k: int) -> list:
 
 
 def _inertia_rows(analysis, k: int) -> list:
-    ctx, spec = analysis.context, analysis.spec
+    spec = analysis.spec
     rows = []
     for link in spec.links:
-        s = ctx.links[link.name]
-        fin, mi = ctx.inertia_actions(link.name)
-        g = ctx.gravity_action(link.name)
+        s = analysis.link_state(link.name)
+        fin, mi = analysis.inertia_actions(link.name)
+        g = analysis.gravity_action(link.name)
         rows.append([str(link.number), link.name, fmt(s.mass), fmt(s.inertia),
                      _vec(fin.value[k]), fmt(mi.value[k]), _vec(g.value[k])])
     return rows
 
 
 def _load_rows(analysis, k: int) -> list:
-    kin, ctx, spec = analysis.kinematics, analysis.context, analysis.spec
+    kin, spec = analysis.kinematics, analysis.spec
     elements = {"spring": "spring force k (L − L0) along its line",
                 "damper": "damper force c dL/dt along its line",
                 "torsion_spring": "torsion spring couple k (θ_rel − θ0)"}
     rows = []
-    for ld in ctx.loads:
+    for ld in analysis.loads:
         load = ld.load
         if ld.link == GROUND:            # a spring or damper's frame end acts on the frame
             continue
@@ -475,7 +475,7 @@ def _answers(analysis, k: int, names: Names, exact, methods) -> tuple[list, str]
 
 def _zero_actions(analysis, k: int, link: str) -> list[str]:
     out = []
-    for a in analysis.context.actions_on([link], inertia=True):
+    for a in analysis.free_body_actions([link]):
         if a.unknowns:
             continue
         v = np.asarray(a.value)
@@ -518,7 +518,7 @@ def _fbds(analysis, k: int, tag: str, methods) -> tuple[list, list]:
 
 
 def _angle_model(analysis, angle: float, names: Names, exact, methods, display) -> AngleModel:
-    kin, ctx, spec = analysis.kinematics, analysis.context, analysis.spec
+    kin, spec = analysis.kinematics, analysis.spec
     title, short = coordinate(spec, angle)
     k = kin.index_of(angle)
     if k is None:
@@ -542,7 +542,7 @@ def _angle_model(analysis, angle: float, names: Names, exact, methods, display) 
         res = analysis.forces.get(name)
         if res is None:
             continue
-        mm = _method_model(name, res, analysis.worked_steps(name), k, names, ctx, counter,
+        mm = _method_model(name, res, analysis.worked_steps(name), k, names, spec, counter,
                            others if name == "power" else {})
         if name != "power":
             others[name] = float(res.driver_torque[k])

@@ -103,8 +103,8 @@ class Translator:
     ``values`` every unknown the method solved (n,); ``zero_all`` / ``zero_k`` the unknowns
     a normal constraint sets to zero at every angle / at ``k``."""
 
-    def __init__(self, ctx, values: dict, k: int):
-        self.ctx, self.values, self.k = ctx, values, k
+    def __init__(self, spec, values: dict, k: int):
+        self.spec, self.values, self.k = spec, values, k
         self.cache: dict = {}
 
     def pieces(self, t: Term) -> tuple[Piece, ...]:
@@ -135,7 +135,7 @@ class Translator:
         terms = [t for t in eq.terms if self._term_live(eq, t, allk, zero, scale, cscale)]
         lhs = [t for t in terms if t.side == "lhs"]
         rhs = [t for t in terms if t.side == "rhs"]
-        nums = [self.ctx.num(b) for b in eq.bodies]
+        nums = [self.spec.number(b) for b in eq.bodies]
         if eq.kind == "power":
             e = Expr()
             for t in rhs:
@@ -156,7 +156,7 @@ class Translator:
                     e.add(1, RVec(eq.about, item.action.at_name), Op("times"),
                           vec_sym(item.action.symbol))
             if lhs:
-                return Equation([Expr().add(1, inertia_alpha(self.ctx.num(eq.bodies[0]))), e])
+                return Equation([Expr().add(1, inertia_alpha(self.spec.number(eq.bodies[0]))), e])
             return Equation([Expr().add(1, sum_label("moment", nums, about=eq.about)), e,
                              Expr()])
         axis = axis_of(eq)
@@ -176,7 +176,7 @@ class Translator:
                 return Equation([Expr().add(1, vec_sym(rhs[0].action.symbol), Op("dot"),
                                             axis_atom(eq.axis)), Expr()])
             if lhs:
-                return Equation([Expr().add(1, mass_accel(self.ctx.num(eq.bodies[0]), axis)),
+                return Equation([Expr().add(1, mass_accel(self.spec.number(eq.bodies[0]), axis)),
                                  e])
             label = sum_label("force", nums, axis=axis)
             return Equation([Expr().add(1, label), e, Expr()])
@@ -194,7 +194,7 @@ class Translator:
         return sym
 
     def _power_symbol(self, t: Term) -> list:
-        a, spec = t.action, self.ctx.spec
+        a, spec = t.action, self.spec
         if a.category == "driver":
             d = spec.driver
             if d.kind == "T":
@@ -206,7 +206,7 @@ class Translator:
             return [scalar_sym(a.symbol), rate]
         if a.kind == "force":
             return [vec_sym(a.symbol), Op("dot"), point_vec("v", a.at_name or "")]
-        return [scalar_sym(a.symbol), omega(self.ctx.num(a.link))]
+        return [scalar_sym(a.symbol), omega(self.spec.number(a.link))]
 
     @staticmethod
     def _moment_groups(terms: list[Term]) -> list:
