@@ -297,6 +297,19 @@ def display_of(analysis) -> Display:
 
 # --------------------------------------------------------------------------- spec summary
 
+def _colors(spec) -> dict[str, str]:
+    """One colour per joint, in spec order, across every figure (:data:`PALETTE`)."""
+    return {j.name: PALETTE[i % len(PALETTE)] for i, j in enumerate(spec.joints)}
+
+
+def sweep_data(analysis) -> tuple[SweepData, Display]:
+    """The report's plot data of ``analysis`` and its display units (for the plot
+    functions, :mod:`mechreport.report.plots`)."""
+    spec = analysis.spec
+    return (_sweep(analysis, analysis.sweep_summary(), _symbols(spec), _colors(spec)),
+            display_of(analysis))
+
+
 def _symbols(spec) -> dict[str, str]:
     """Textbook reaction symbol of each joint: F<first><second> by link number."""
     return {j.name: spec.symbol(*j.links) for j in spec.joints}
@@ -778,7 +791,7 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
     ref = summary.method
     d = display_of(analysis)
     symbols = _symbols(spec)
-    colors = {j.name: PALETTE[i % len(PALETTE)] for i, j in enumerate(spec.joints)}
+    colors = _colors(spec)
     when = when or build_time()
     rs = spec.report
     meta = Meta(rs.title, rs.project, rs.author, rs.revision,

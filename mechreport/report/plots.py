@@ -171,7 +171,13 @@ def scale_to_trusted(ax, sw, series: list[np.ndarray], unit: str, pad: float = 0
 
 def torque_figure(sw, d):
     fig, axes = figure(2.9, margins=(0.72, 0.12, 0.46, 0.5))
-    ax = axes[0, 0]
+    draw_torque(axes[0, 0], sw, d)
+    return fig
+
+
+def draw_torque(ax, sw, d) -> None:
+    """The driver's effort over the sweep on ``ax``: the reference method's, the power
+    balance's, the mean and the peak; ``sw`` the report's SweepData, ``d`` its Display."""
     kind = sw.effort
     u = d.unit(kind)
     a, t = with_gaps(sw.angles, d.value(sw.torque, kind))
@@ -196,7 +202,6 @@ def torque_figure(sw, d):
     scale_to_trusted(ax, sw, series, u)
     ax.set_ylabel(f"{'force' if kind == 'force' else 'torque'} [{u}]")
     legend_top(ax, 2)
-    return fig
 
 
 def reactions_figure(sw, d):
@@ -211,18 +216,7 @@ def reactions_figure(sw, d):
     fig, axes = figure(3.0 + 1.5 * (rows - 1), rows, 1, gap=0.85,
                        margins=(0.72, 0.12, 0.46, top),
                        gridspec_kw={"height_ratios": [2, 1]} if rows == 2 else None)
-    ax = axes[0, 0]
-    F = d.unit("force")
-    series = []
-    for i, js in enumerate(sw.joints):
-        f = d.value(js.f, "force")
-        series.append(f)
-        a, ff = with_gaps(sw.angles, f)
-        ax.plot(a, ff, color=js.color, lw=1.4, ls=STYLES[i % 4], label=f"{js.name} ({js.symbol})")
-    crank_axis(ax, sw, label=rows == 1)
-    scale_to_trusted(ax, sw, series, F)
-    ax.set_ylabel(f"|F| [{F}]")
-    legend_top(ax, ncol)
+    draw_reactions(axes[0, 0], sw, d, ncol, label=rows == 1)
     if rows == 2:
         ax2 = axes[1, 0]
         M = d.unit("moment")
@@ -238,6 +232,22 @@ def reactions_figure(sw, d):
         ax2.set_ylabel(f"slider couple [{M}]")
         legend_top(ax2, min(len(couples), 4))
     return fig
+
+
+def draw_reactions(ax, sw, d, ncol: int = 5, label: bool = True) -> None:
+    """Every joint's reaction magnitude |F| over the sweep on ``ax`` (colour and line style
+    per joint, legend in ``ncol`` columns); ``label``: the x axis labelled."""
+    F = d.unit("force")
+    series = []
+    for i, js in enumerate(sw.joints):
+        f = d.value(js.f, "force")
+        series.append(f)
+        a, ff = with_gaps(sw.angles, f)
+        ax.plot(a, ff, color=js.color, lw=1.4, ls=STYLES[i % 4], label=f"{js.name} ({js.symbol})")
+    crank_axis(ax, sw, label=label)
+    scale_to_trusted(ax, sw, series, F)
+    ax.set_ylabel(f"|F| [{F}]")
+    legend_top(ax, min(len(sw.joints), ncol))
 
 
 def polar_figure(sw, d):
@@ -451,3 +461,39 @@ def write_plots(model, outdir: Path) -> list[Path]:
         if key in figs and (key != "reactions" or sw.joints):
             out += save(make(sw, d), outdir, figs[key].stem)
     return out
+
+
+# ------------------------------------------------------------------------ for notebooks
+
+def _axes(ax, height: float):
+    """``ax``, or a new figure's one axes (report width, ``height`` inches)."""
+    if ax is not None:
+        return ax
+    fig, axes = figure(height, margins=(0.72, 0.12, 0.46, 0.5))
+    return axes[0, 0]
+
+
+@styled
+def plot_torque(analysis, ax=None):
+    """The driver's effort over the sweep of ``analysis`` as the report draws it, on ``ax``
+    (a matplotlib Axes; default: a new figure's); returns the Axes.
+
+        fig, ax = plt.subplots()
+        mechreport.report.plots.plot_torque(mechreport.analyse("specs/four_bar.yaml"), ax=ax)
+    """
+    from .model import sweep_data
+    sw, d = sweep_data(analysis)
+    ax = _axes(ax, 2.9)
+    draw_torque(ax, sw, d)
+    return ax
+
+
+@styled
+def plot_reactions(analysis, ax=None):
+    """Every joint's reaction magnitude over the sweep of ``analysis`` as the report draws
+    it, on ``ax`` (default: a new figure's); returns the Axes."""
+    from .model import sweep_data
+    sw, d = sweep_data(analysis)
+    ax = _axes(ax, 3.0)
+    draw_reactions(ax, sw, d)
+    return ax
