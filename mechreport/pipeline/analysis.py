@@ -116,6 +116,16 @@ class Analysis(Checked):
         return split_by_source(self._context,
                                self.worked_steps(method or reference_method(self.forces)))
 
+    def cycle_torque_by_source(self) -> dict[str, np.ndarray]:
+        """The driver torque over the design review's cycle grid (``review.cycle.angles``,
+        left-out angles filled in) split by source (see :meth:`by_source`), (N,) [N m] each;
+        empty without a review."""
+        rev = self.review
+        if rev is None:
+            return {}
+        return {src: rev.cycle.sample(v["driver.torque"], self.angles)
+                for src, v in self.by_source(rev.method).items()}
+
     def worked_steps(self, method: str) -> tuple[Step, ...]:
         """The labelled systems ``method`` solved, in order, over ``angles``: the equation
         objects its numbers came from (built again on each call: they hold every

@@ -904,12 +904,10 @@ def _design(analysis, d: Display) -> DesignSummary:
         interp = ("Left-out angles inside the cycle, interpolated from their neighbours for "
                   "the cycle quantities: " + ", ".join(deg(a) for a in rev.cycle.interpolated)
                   + " deg.")
-    k = analysis.kinematics
-    parts = {src: rev.cycle.sample(v["driver.torque"], k.angles)
-             for src, v in analysis.by_source(rev.method).items()}
-    data = CycleData(rev.cycle.angles, rev.torque, float(np.mean(rev.torque)), rev.energy,
+    data = CycleData(rev.cycle.angles, rev.torque, rev.values["cycle.torque.mean"], rev.energy,
                      spec.design.motor.get("rated_torque"), spec.design.motor.get("peak_torque"),
-                     parts, rev.transmission, spec.design.limits.get("transmission_angle"),
+                     analysis.cycle_torque_by_source(), rev.transmission,
+                     spec.design.limits.get("transmission_angle"),
                      rev.inertial, rev.shaking_balanced,
                      [float(a) for a in rev.cycle.interpolated])
     return DesignSummary(verdict_rows, values, counter, interp, "", passed, data,
