@@ -22,10 +22,12 @@
 """
 from __future__ import annotations
 
+import errno
 import json
 import os
 import re
 import shutil
+import stat
 import sys
 import time
 from pathlib import Path
@@ -139,22 +141,47 @@ class OutputLock:
         self.fd: int | None = None
 
     def holder(self) -> str:
+        """The pid the holder wrote into the lock file ("" if unknown)."""
         try:
-            pid = self.path.read_text(encoding="ascii").strip()
+            fd = os.open(self.path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+        except OSError:
+            return ""
+        try:
+            pid = os.read(fd, 32).decode("ascii").strip()
         except (OSError, ValueError):
             return ""
+        finally:
+            os.close(fd)
         return pid if pid.isdigit() else ""
+
+    def _open(self) -> int:
+        """The lock file, opened for writing without following a symbolic link, and only if
+        it is a regular file with no other name (a hard link to a file elsewhere would be
+        emptied by the lock): nothing outside ``OUT`` is ever written through it."""
+        try:
+            fd = os.open(self.path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW | os.O_NONBLOCK
+                         | getattr(os, "O_CLOEXEC", 0), 0o666)
+        except OSError as exc:
+            if exc.errno == errno.ELOOP:
+                raise OutputError(f"{self.path}: the lock file is a symbolic link; refusing to "
+                                  "follow it (remove it, or use another -o folder)") from None
+            raise OutputError(f"{self.path}: cannot create the lock file: "
+                              f"{exc.strerror or exc}") from None
+        st = os.fstat(fd)
+        if not stat.S_ISREG(st.st_mode) or st.st_nlink != 1:
+            os.close(fd)
+            what = "not a regular file" if not stat.S_ISREG(st.st_mode) else \
+                "a hard link to another file"
+            raise OutputError(f"{self.path}: the lock file is {what}; refusing to write to it "
+                              "(remove it, or use another -o folder)")
+        return fd
 
     def acquire(self, timeout: float = 120.0, poll: float = 0.2) -> "OutputLock":
         try:
             import fcntl
         except ImportError:                                 # pragma: no cover - not POSIX
             return self
-        try:
-            fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o666)
-        except OSError as exc:
-            raise OutputError(f"{self.path}: cannot create the lock file: "
-                              f"{exc.strerror or exc}") from None
+        fd = self._open()
         deadline = time.monotonic() + max(timeout, 0.0)
         told = False
         try:

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kinematics import Kinematics
+from ..kinematics import EPS, TRUST_RTOL, Kinematics
 from ..spec import Load
 
 SPEED_EPS = 1e-9   # [m/s] and [rad/s]
@@ -69,6 +69,30 @@ def evaluate_loads(kin: Kinematics) -> list[AppliedLoad]:
         seen[base] = seen.get(base, 0) + 1
         symbol = base if counts[base] == 1 else f"{base},{seen[base]}"
         out.append(AppliedLoad(load, symbol, link, point, force, moment))
+    return out
+
+
+def undefined_directions(kin: Kinematics) -> list[tuple[Load, np.ndarray]]:
+    """Each spring (with a free length) or damper whose two ends coincide at some analysed
+    angle, with those angles (n,) bool: its force pulls along the line between its ends,
+    which has no direction there. "Coincide" is within what the positions are trustworthy
+    to: the ends' distance L is at most their round-off (the kinematics' relative error
+    bound times their distance from the origin) over ``TRUST_RTOL``, so that a direction
+    taken from them could be wrong by more than that. A spring of free length 0 pulls with
+    k (B - A), defined everywhere."""
+    out = []
+    for load in kin.mechanism.spec.loads:
+        if load.kind not in ("spring", "damper") or (load.kind == "spring"
+                                                     and not load.free_length):
+            continue
+        (la, pa), (lb, pb) = load.between
+        A, B = kin.named_point(pa, la).r, kin.named_point(pb, lb).r
+        length = np.hypot(*(B - A).T)
+        size = np.maximum(np.hypot(*A.T), np.hypot(*B.T))
+        error = kin.error if kin.error is not None else np.zeros(kin.n)
+        bad = length * TRUST_RTOL <= (error + EPS) * size
+        if bad.any():
+            out.append((load, bad))
     return out
 
 

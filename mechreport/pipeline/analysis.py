@@ -20,6 +20,7 @@ from ..checks import (Agreement, ExpectationResult, Residual, agreement, check_e
 from ..forces import METHODS, ForceContext, ForceResult, Step, solve_forces, worked_steps
 from ..forces.context import LinkState
 from ..forces.equations import Action
+from ..forces.loads import undefined_directions
 from ..kinematics import EPS, TRUST_RTOL, Flag, Kinematics, solve_kinematics
 from ..kinematics.frames import scaled
 from ..linalg import SINGULAR_COND
@@ -239,8 +240,10 @@ def solve_trusted(kin: Kinematics, methods=None, memo: dict | None = None, plans
 
 
 def _force_flags(kin: Kinematics, forces: dict[str, ForceResult]) -> list[Flag]:
-    """Angles where a method's equations are singular, or where its rounding error bound
-    (eps x condition number) added to the kinematics' own error exceeds ``TRUST_RTOL``.
+    """Angles where a spring's or damper's ends coincide (its force has no direction:
+    :func:`~mechreport.forces.loads.undefined_directions`), where a method's equations are
+    singular, or where its rounding error bound (eps x condition number) added to the
+    kinematics' own error exceeds ``TRUST_RTOL``.
 
     The kinematic error already covers the physical singularities (Newton-Euler's matrix is
     the transpose of the constraint Jacobian); the force systems add their own rounding."""
@@ -259,7 +262,16 @@ def _force_flags(kin: Kinematics, forces: dict[str, ForceResult]) -> list[Flag]:
         singular |= res.singular
         worst = np.maximum(worst, cond)     # (no NaN: raised above)
     flags = []
+    undefined = undefined_directions(kin)
+    for k in np.flatnonzero(np.any([bad for _, bad in undefined], axis=0)) if undefined else ():
+        names = [ld.label for ld, bad in undefined if bad[k]]
+        what = (f"the two ends of {names[0]} coincide: its force has" if len(names) == 1 else
+                f"the two ends of each of {', '.join(names)} coincide: their forces have")
+        flags.append(Flag(float(kin.angles[k]), f"{what} no direction there", "singular"))
+    taken = {f.angle for f in flags}
     for k in np.flatnonzero(np.any(list(doubtful.values()), axis=0)):
+        if float(kin.angles[k]) in taken:
+            continue
         names = [name for name, bad in doubtful.items() if bad[k]]
         if singular[k] or not worst[k] < SINGULAR_COND:
             flags.append(Flag(float(kin.angles[k]),

@@ -21,6 +21,7 @@ import numpy as np
 from .analysis import analyse, trusted
 from ..forces import METHODS, ForceContext
 from ..forces.contour import ContourPlans
+from ..forces.loads import undefined_directions
 from ..kinematics.stacked import solve_stacked, variant_kinematics
 from ..model import build_mechanism
 from ..post import Review, Verdict, design_review, verdicts
@@ -90,6 +91,8 @@ def _batched(stacked, mech, specs: list[Spec], method: str, plans) -> list[Outco
         ok = trusted(kin, res)
         for values in res.values().values():
             ok &= np.isfinite(values)
+        for _, bad in undefined_directions(kin):    # a spring whose ends meet: alone
+            ok &= ~bad
     clean = stacked.clean & ok.reshape(len(specs), stacked.per).all(axis=1)
     index = {id(ld): k for k, ld in enumerate(ctx.spec.loads)}
     for v in np.flatnonzero(clean):
