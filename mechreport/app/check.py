@@ -18,14 +18,14 @@ def check_files(paths: list[Path], tol: float, junit: str | Path | None = None) 
     cannot be read or analysed is a FAIL line with its message and the others go on. Exit
     code 1 if any spec fails (or none is given). ``junit``: also write JUnit XML there."""
     from ..report.check_text import problems, summary_line
-    from .junit import junit_cases, write_junit
+    from .junit import junit_cases
 
     failed = 0
     cases: list = []
     if not paths:
         print("no spec files given", file=sys.stderr)
         if junit is not None:
-            write_junit(junit, [])
+            _write_junit(junit, [])
         return 1
     for path in paths:
         try:
@@ -49,9 +49,21 @@ def check_files(paths: list[Path], tol: float, junit: str | Path | None = None) 
                 print(f"  {text}")
         if junit is not None:
             cases.append(junit_cases(path, result, tol))
-    if junit is not None:
-        write_junit(junit, cases)
+    if junit is not None and not _write_junit(junit, cases):
+        return 1
     return 1 if failed else 0
+
+
+def _write_junit(file, cases: list) -> bool:
+    """JUnit XML to ``file``; whether it was written (else a message on stderr)."""
+    from .junit import write_junit
+    try:
+        write_junit(file, cases)
+    except OSError as exc:
+        print(f"error: cannot write the JUnit XML to {file}: {describe_failure(exc)}",
+              file=sys.stderr)
+        return False
+    return True
 
 
 def check_one(path, tol: float):

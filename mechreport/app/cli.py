@@ -99,6 +99,7 @@ def _sheet_angles(text: str) -> tuple[float, ...]:
 
 
 _int_at_least_0 = _checked(int, lambda v: v >= 0, "a whole number >= 0")
+_finite_number = _checked(float, math.isfinite, "a finite number")
 _number_above_0 = _checked(float, lambda v: math.isfinite(v) and v > 0, "a finite number > 0")
 _seconds = _checked(float, lambda v: math.isfinite(v) and v >= 0, "a number of seconds >= 0")
 
@@ -176,7 +177,7 @@ def main(argv: list[str] | None = None) -> int:
 
     p = sub.add_parser("kin", help="print positions, velocities, accelerations")
     p.add_argument("spec", metavar="SPEC")
-    p.add_argument("--angle", type=float, action="append",
+    p.add_argument("--angle", type=_finite_number, action="append",
                    help="crank angle in degrees (repeatable; default: the spec's `at`)")
     p.set_defaults(func=_cmd_kin)
 

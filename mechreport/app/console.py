@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import os
+import stat
 import sys
 import traceback
 from pathlib import Path
@@ -17,15 +18,32 @@ def print_traceback_if_debug() -> None:
         traceback.print_exc(file=sys.stderr)
 
 
+def _blocks(path: Path) -> bool:
+    """Whether ``path`` is a pipe, socket or device (not a file or folder)."""
+    try:
+        mode = path.stat().st_mode
+    except OSError:
+        return False                    # a dangling link: the command reports it
+    return not (stat.S_ISREG(mode) or stat.S_ISDIR(mode))
+
+
 def spec_files(args: list[str]) -> list[Path]:
-    """Expand SPEC|DIR arguments into spec files (a directory gives its *.yaml and *.yml,
-    sorted)."""
+    """Expand SPEC|DIR arguments into spec files: a directory gives its *.yaml and *.yml
+    entries, sorted, except pipes, sockets and devices (a read could block forever: they
+    are skipped and named on stderr; anything else that cannot be read is reported by the
+    command, spec by spec); a file named is read whatever it is (``<(generate-spec)`` is a
+    pipe)."""
     out: list[Path] = []
     for arg in args:
         p = Path(arg)
         if p.is_dir():
             found = sorted(list(p.glob("*.yaml")) + list(p.glob("*.yml")))
-            if not found:
+            skipped = [f for f in found if _blocks(f)]
+            if skipped:
+                print(f"{p}: skipped (a pipe, socket or device, not a file): "
+                      + ", ".join(f.name for f in skipped), file=sys.stderr)
+            found = [f for f in found if f not in skipped]
+            if not found and not skipped:
                 print(f"{p}: no spec files (*.yaml, *.yml) in this folder", file=sys.stderr)
             out.extend(found)
         else:
