@@ -18,7 +18,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .analysis import analyse, trusted
+from ..checks.trust import untrusted
+from .analysis import DEFAULT_TOL, analyse, trusted
 from ..forces import METHODS, ForceContext
 from ..forces.contour import ContourPlans
 from ..forces.loads import undefined_directions
@@ -32,7 +33,9 @@ from ..spec import Spec
 class Outcome:
     """One variant's result: ``review`` (cycle quantities, or None and ``review_problem``),
     its design ``verdicts``, and ``exception`` when it could not be analysed at all (what a
-    single analysis raises). ``batched``: solved in the batch (False: analysed alone)."""
+    single analysis raises). ``batched``: solved in the batch (False: analysed alone).
+    ``untrusted``: why its one method's numbers cannot be trusted ("" when they can; see
+    :mod:`mechreport.checks.trust`): there is no second method to disagree with."""
 
     spec: Spec
     review: Review | None = None
@@ -40,6 +43,7 @@ class Outcome:
     verdicts: tuple[Verdict, ...] = ()
     exception: BaseException | None = None
     batched: bool = False
+    untrusted: str = ""
 
     @property
     def error(self) -> str | None:
@@ -107,7 +111,8 @@ def _batched(stacked, mech, specs: list[Spec], method: str, plans) -> list[Outco
         rev, why = design_review(kin_v, forces, loads)
         values = rev.values if rev is not None else None
         out[v] = Outcome(spec, rev, why, tuple(verdicts(spec.design, values, why)),
-                         batched=True)
+                         batched=True, untrusted=untrusted(forces[method], DEFAULT_TOL,
+                                                            spec.axis_unit))
     return out
 
 
@@ -117,7 +122,8 @@ def _alone(spec: Spec, method: str, plans) -> Outcome:
         a = analyse(spec, methods=[method], plans=plans)
     except Exception as exc:     # noqa: BLE001 - a failed variant is a row with its reason
         return Outcome(spec, exception=exc)
-    return Outcome(spec, a.review, a.review_problem, a.verdicts)
+    return Outcome(spec, a.review, a.review_problem, a.verdicts,
+                   untrusted=untrusted(a.forces[method], a.tol, spec.axis_unit))
 
 
 __all__ = ["Outcome", "analyse_variants"]

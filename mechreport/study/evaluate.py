@@ -73,6 +73,8 @@ def row_of(analysis, keep: Sequence[str]) -> Row:
     """The row of a finished analysis: kept values resolved as ``expect:`` resolves cycle
     quantities, and the design verdicts."""
     from ..checks.expectations import cycle_value
+    if getattr(analysis, "untrusted", ""):    # the one method cannot vouch for its numbers
+        return failed_row(len(keep), analysis.untrusted)
     if analysis.review is None:           # one reason, not one per kept quantity
         return failed_row(len(keep), f"no cycle quantities: {analysis.review_problem}")
     cycle = analysis.review.values
