@@ -78,6 +78,28 @@ def _rows(eq: Equation, unknowns: list[str], probes: np.ndarray) -> np.ndarray:
     return row
 
 
+def _matrix(equations: list[Equation], unknowns: list[str], probes: np.ndarray) -> np.ndarray:
+    """The coefficients (P, r, k) of ``equations`` in ``unknowns`` at the probe angles, made
+    dimensionless: a moment equation's coefficients on forces are lever arms (lengths) and a
+    couple's unknown enters with 1, so the moment equations are divided, and the couples'
+    columns multiplied, by the probe's largest lever arm L (rounded to a power of two: only
+    exponents change). A mechanism 1e9 m or 1e-9 m across is then tested as one 1 m across;
+    every moment row (and couple column) shares one factor, so what is round-off next to its
+    neighbours stays so."""
+    rows = np.stack([_rows(e, unknowns, probes) for e in equations], axis=1)
+    moment_rows = np.array([e.kind == "moment" for e in equations])
+    couples = np.array([u.endswith(".moment") or u == "driver.torque" for u in unknowns])
+    if not moment_rows.any() or couples.all():
+        return rows
+    arms = np.abs(rows[:, moment_rows][:, :, ~couples]).max(axis=(1, 2))     # (P,)
+    ok = np.isfinite(arms) & (arms > 0)
+    _, exp = np.frexp(np.where(ok, arms, 1.0))
+    scale = np.ldexp(1.0, exp)[:, None]                                       # (P, 1)
+    rows[:, moment_rows] /= scale[:, :, None]
+    rows[:, :, couples] *= scale[:, None]
+    return rows
+
+
 def _rank(rows: np.ndarray, rtol: float = RANK_RTOL) -> np.ndarray:
     """Numerical rank (P,) of each probe's matrix ``rows`` (P, r, k): its singular values
     above ``rtol`` times the largest."""
@@ -188,7 +210,7 @@ def _verified(unknowns: list[str], equations: list[Equation], probes: np.ndarray
     """Whether ``equations`` (as many as ``unknowns``) are independent at every probe angle
     with a margin: singular values above twice ``RANK_RTOL`` of the largest, most often read
     from the determinants (:func:`_surely_independent`), else by the SVD."""
-    rows = np.stack([_rows(e, unknowns, probes) for e in equations], axis=1)
+    rows = _matrix(equations, unknowns, probes)
     return _surely_independent(rows, 2 * RANK_RTOL) \
         or bool((_rank(rows, 2 * RANK_RTOL) == len(unknowns)).all())
 
@@ -216,10 +238,9 @@ def _structural(unknowns: list[str], start: list[frozenset], candidates: list,
 def _select_numeric(unknowns: list[str], chosen: list[Equation], candidates: list, build,
                     probes: np.ndarray) -> list[Equation] | None:
     """:func:`_select` by the numerical rank at the probe angles, candidate by candidate."""
-    rows = [_rows(e, unknowns, probes) for e in chosen]
     chosen = list(chosen)
     taken: set = set()
-    rank = _rank(np.stack(rows, axis=1)) if rows else np.zeros(len(probes), int)
+    rank = _rank(_matrix(chosen, unknowns, probes)) if chosen else np.zeros(len(probes), int)
     for share in (1.0, 0.5):
         for key in candidates:
             if len(chosen) == len(unknowns):
@@ -227,12 +248,10 @@ def _select_numeric(unknowns: list[str], chosen: list[Equation], candidates: lis
             if key in taken:
                 continue
             eq = build(key)
-            row = _rows(eq, unknowns, probes)
-            new = _rank(np.stack(rows + [row], axis=1))
+            new = _rank(_matrix(chosen + [eq], unknowns, probes))
             gain = np.count_nonzero(new > rank) / len(probes)   # the share of probes
             if gain >= share and gain > 0:
                 chosen.append(eq)
-                rows.append(row)
                 taken.add(key)
                 rank = new
     return chosen if len(chosen) == len(unknowns) else None
