@@ -9,24 +9,51 @@ from __future__ import annotations
 
 import math as _m
 import re
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 
-ZERO = 1e-12          # |x| below this prints as 0 (SI units throughout)
+ZERO = 1e-12          # |x| below this prints as 0 (SI), unless a sheet says otherwise
+#: the sheet being built or rendered: |x| at or below this is round-off, printed as 0 (the
+#: reports' rule: 1e-9 of the analysis' scale, see :func:`round_off`); per context, as
+#: numpy's error state is
+_ZERO: ContextVar[float] = ContextVar("mechreport_sheet_zero", default=ZERO)
 WIDTH = 100           # plain-text characters per displayed line before breaking
 _GLYPHS = re.compile(r"varphi|theta|omega|alpha|Delta|phi|sum|deg")
 
 
-def fmt(x: float, zero: float = ZERO) -> str:
+def fmt(x: float, zero: float | None = None) -> str:
     """The one number formatter (:func:`mechreport.units.fmt`) with the sheets' digits
     (``SHEET_DIGITS``: worked equations must balance to the textbook's rounding): never
-    ``-0``, ``e`` notation for very small/large magnitudes, 0 below ``zero``."""
+    ``-0``, ``e`` notation for very small/large magnitudes, 0 below ``zero`` (default: the
+    round-off of the sheet being built, :func:`round_off`)."""
     from ...units import SHEET_DIGITS, fmt as number
     x = float(x)
     if not _m.isfinite(x):
         return "nan"
-    if abs(x) < zero:
+    if abs(x) < (_ZERO.get() if zero is None else zero):
         return "0"
     return number(x, SHEET_DIGITS)
+
+
+@contextmanager
+def round_off(zero: float):
+    """Numbers of magnitude below ``zero`` print as 0 in the block (a sheet's building,
+    drawing and rendering)."""
+    token = _ZERO.set(zero)
+    try:
+        yield
+    finally:
+        _ZERO.reset(token)
+
+
+def sheet_zero(scales: dict[str, float]) -> float:
+    """A sheet's round-off: 1e-9 (the reports' ``ZERO_RTOL``) of the smallest scale among
+    the kinds it prints (lengths, velocities, accelerations, forces, moments [SI]), so
+    that a value the reports print is never a 0 on the sheet."""
+    from ...units import ZERO_RTOL
+    kinds = ("length", "velocity", "acceleration", "force", "moment")
+    return ZERO_RTOL * min(scales[k] for k in kinds if k in scales)
 
 
 # --------------------------------------------------------------------------- atoms

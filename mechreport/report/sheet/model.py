@@ -19,7 +19,7 @@ from ...forces import METHODS
 from ...forces.equations import Equation as FEquation
 from ...forces.equations import Step
 from ...spec import GROUND
-from .expr import Equation, Expr, Num, Point, Raw, fmt
+from .expr import ZERO, Equation, Expr, Num, Point, Raw, fmt, round_off, sheet_zero
 from .kinematics import derive, scalar, vec_expr
 from .symbols import (M_, N_, R, Names, alpha, axis_atom, comp_sym, omega, scalar_sym,
                       unit_atom, vec_sym)
@@ -180,6 +180,7 @@ class SheetModel:
     method_titles: list
     units: str = ""
     exact_note: str = ""
+    zero: float = ZERO         # round-off [SI]: smaller magnitudes print as 0
 
     def figures(self) -> list[Figure]:
         out = []
@@ -203,6 +204,7 @@ class ProblemModel:
     loads: list
     angles: list              # (title, Figure)
     tasks: list               # rich text items
+    zero: float = ZERO        # round-off [SI]: smaller magnitudes print as 0
 
 
 # ------------------------------------------------------------------------------ helpers
@@ -606,7 +608,16 @@ def choose_methods(analysis, methods) -> list[str]:
 
 
 def build_sheet(analysis, options: SheetOptions | None = None) -> SheetModel:
-    """The answer key of an analysis (figures not drawn yet: see ``SheetModel.figures``)."""
+    """The answer key of an analysis (figures not drawn yet: see ``SheetModel.figures``),
+    its numbers below the analysis' round-off (:func:`~.expr.sheet_zero`) printed as 0."""
+    zero = sheet_zero(analysis.scales())
+    with round_off(zero):
+        model = _build_sheet(analysis, options)
+    model.zero = zero
+    return model
+
+
+def _build_sheet(analysis, options: SheetOptions | None = None) -> SheetModel:
     options = options or SheetOptions()
     spec = analysis.spec
     names = Names(spec)
@@ -685,6 +696,15 @@ def _load_text(spec, load) -> str:
 def build_problem(analysis, options: SheetOptions | None = None,
                   sheet: SheetModel | None = None) -> ProblemModel:
     """The problem version: statement, data, figures, what to find; no result."""
+    zero = sheet_zero(analysis.scales())
+    with round_off(zero):
+        model = _build_problem(analysis, options, sheet)
+    model.zero = zero
+    return model
+
+
+def _build_problem(analysis, options: SheetOptions | None = None,
+                   sheet: SheetModel | None = None) -> ProblemModel:
     options = options or SheetOptions()
     spec = analysis.spec
     names = Names(spec)

@@ -14,7 +14,7 @@ from ..files import atomic_write_text
 from ..markdown import md_inline
 from ..pdf import compile_typst, typst_escape, typst_string
 from ..render import environment
-from .expr import Equation, fmt, math
+from .expr import Equation, fmt, math, round_off
 from .model import SheetOptions, build_problem, build_sheet
 from .symbols import rich_label
 
@@ -72,19 +72,23 @@ def _env():
 
 
 def render_markdown(model) -> str:
-    return _env().get_template("solution.md.j2").render(sheet=model)
+    with round_off(model.zero):
+        return _env().get_template("solution.md.j2").render(sheet=model)
 
 
 def render_typst(model) -> str:
-    return _env().get_template("solution.typ.j2").render(sheet=model)
+    with round_off(model.zero):
+        return _env().get_template("solution.typ.j2").render(sheet=model)
 
 
 def render_problem_markdown(model) -> str:
-    return _env().get_template("problem.md.j2").render(p=model)
+    with round_off(model.zero):
+        return _env().get_template("problem.md.j2").render(p=model)
 
 
 def render_problem_typst(model) -> str:
-    return _env().get_template("problem.typ.j2").render(p=model)
+    with round_off(model.zero):
+        return _env().get_template("problem.typ.j2").render(p=model)
 
 
 def write_sheet(analysis, outdir: Path, options: SheetOptions | None = None) -> list[Path]:
@@ -93,8 +97,9 @@ def write_sheet(analysis, outdir: Path, options: SheetOptions | None = None) -> 
     outdir = Path(outdir)
     sheet = build_sheet(analysis, options)
     (outdir / "figures").mkdir(parents=True, exist_ok=True)
-    for fig in sheet.figures():
-        fig.draw(outdir / fig.path)
+    with round_off(sheet.zero):
+        for fig in sheet.figures():
+            fig.draw(outdir / fig.path)
     problem = build_problem(analysis, options, sheet)
     out = [atomic_write_text(outdir / "solution.md", render_markdown(sheet))]
     out.append(compile_typst(render_typst(sheet), outdir / "solution.pdf", outdir))
