@@ -4,7 +4,9 @@ hatching, point labels, load and reaction arrows, couples. Geometry comes from t
 
 Links are stacked so that the driver (the crank) is drawn on top of every other link, bars
 over blocks over plates. Labels (points, arrows, couples) are placed one by one at the first
-of several candidate spots that overlaps nothing already drawn or labelled."""
+of several candidate spots that overlaps nothing already drawn or labelled. Point names come
+from the spec and are drawn literally (:func:`~mechreport.report.plots.literal`); the arrows'
+and couples' labels are mechreport's symbols (F12, F3ext, M)."""
 from __future__ import annotations
 
 import math
@@ -13,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from ..units import fmt
-from .plots import WIDTH, save, styled
+from .plots import WIDTH, literal, save, styled
 
 LINK_FILL = ["#dbe6f4", "#f6e3cf", "#dcefdc", "#f3dada", "#e7def0", "#ece3dc", "#f7e1ef"]
 ARROW_LEN = 0.26        # longest arrow as a fraction of the mechanism's extent
@@ -95,7 +97,8 @@ class Labels:
     def place(self, text: str, x: float, y: float, color: str = "k", bold: bool = False,
               prefer=None, fontsize: float | None = None) -> None:
         fs = fontsize or self.fs
-        w = (0.62 if bold else 0.58) * fs * len(text) * self.pt + 2 * self.pt
+        glyphs = len(text.replace("\\$", "$"))      # an escaped $ (literal) is one glyph
+        w = (0.62 if bold else 0.58) * fs * glyphs * self.pt + 2 * self.pt
         h = 1.15 * fs * self.pt
         px, py = self.ax.transData.transform((x, y))
         d = 5.0
@@ -119,11 +122,12 @@ class Labels:
 
     def place_points(self, points, extent: float) -> None:
         """Name the points ``points`` [(x, y, name)], one label for names that share a
-        place (A/O); ``extent`` the drawing's size (what "the same place" is relative to)."""
+        place (A/O); ``extent`` the drawing's size (what "the same place" is relative to).
+        The names are the spec's, drawn literally."""
         merged: dict[tuple, list] = {}
         for x, y, text in points:
             key = (round(x / extent, 4), round(y / extent, 4))
-            merged.setdefault(key, [x, y, []])[2].append(text)
+            merged.setdefault(key, [x, y, []])[2].append(literal(text))
         for x, y, names in merged.values():
             self.place("/".join(names), x, y, bold=True, fontsize=8.5, prefer=(-1, 1))
 

@@ -11,7 +11,9 @@ set. Layouts are fixed (no tight bounding boxes: each figure is drawn once, when
 Text stays text in the SVG (``svg.fonttype: none``, DejaVu Sans with sans-serif fallbacks): a
 browser shows it in its sans-serif, and Typst typesets it in DejaVu Sans itself, from
 matplotlib's own font files (see :func:`mechreport.report.pdf.compile_typst`); drawing glyphs
-as paths cost a fifth of the plotting time.
+as paths cost a fifth of the plotting time. Names from the spec (links, joints, points,
+loads, study keys and quantities) are drawn literally: every string that carries one goes
+through :func:`literal`, so that matplotlib never reads it as mathtext.
 
 matplotlib is imported lazily so that numeric commands never load it; figures are matplotlib
 Figures outside pyplot, made and saved in the report's :func:`style` (rc parameters set for
@@ -53,6 +55,21 @@ def style():
         "axes.formatter.useoffset": False, "axes.unicode_minus": True,
         "axes.prop_cycle": matplotlib.cycler(color=OKABE_ITO), "hatch.linewidth": 0.5,
         "hatch.color": "0.6"})
+
+
+def literal(text) -> str:
+    r"""``text`` (user text: a name from the spec, or a label that contains one) escaped so
+    that matplotlib draws it as it is, wherever it goes (a Text, title, axis label,
+    annotation or legend entry): every ``$`` becomes ``\$``.
+
+    matplotlib reads a string with an even, non-zero number of unescaped ``$`` as mathtext:
+    ``$x^2$`` would be drawn as maths, and ``a$b_{$`` raises a ParseSyntaxException when the
+    figure is drawn. A string with no unescaped ``$`` is drawn as written, except that each
+    ``\$`` is drawn as ``$``; so escaping every ``$`` is exact (a name's own ``\$`` becomes
+    ``\\$``, drawn ``\$``), and text without a ``$`` (backslashes, braces, ``_``, ``%``
+    included) is passed unchanged. Not for mechreport's own mathtext (``$F_{21x}$`` on the
+    solution sheets), which has no user text in it."""
+    return str(text).replace("$", "\\$")
 
 
 def styled(func):
@@ -220,17 +237,18 @@ def reactions_figure(sw, d):
     if rows == 2:
         ax2 = axes[1, 0]
         M = d.unit("moment")
-        mseries = []
+        mseries, lines = [], []
         for js in couples:
             m = d.value(js.moment, "moment")
             mseries.append(m)
             a, mm = with_gaps(sw.angles, m)
-            ax2.plot(a, mm, color=js.color, lw=1.2, label=f"{js.name}: couple M{js.symbol[1:]}")
+            lines += ax2.plot(a, mm, color=js.color, lw=1.2,
+                              label=literal(f"{js.name}: couple M{js.symbol[1:]}"))
         ax2.axhline(0, color="0.3", lw=0.5)
         crank_axis(ax2, sw)
         scale_to_trusted(ax2, sw, mseries, M)
         ax2.set_ylabel(f"slider couple [{M}]")
-        legend_top(ax2, min(len(couples), 4))
+        legend_top(ax2, min(len(couples), 4), handles=lines)
     return fig
 
 
@@ -238,16 +256,17 @@ def draw_reactions(ax, sw, d, ncol: int = 5, label: bool = True) -> None:
     """Every joint's reaction magnitude |F| over the sweep on ``ax`` (colour and line style
     per joint, legend in ``ncol`` columns); ``label``: the x axis labelled."""
     F = d.unit("force")
-    series = []
+    series, lines = [], []
     for i, js in enumerate(sw.joints):
         f = d.value(js.f, "force")
         series.append(f)
         a, ff = with_gaps(sw.angles, f)
-        ax.plot(a, ff, color=js.color, lw=1.4, ls=STYLES[i % 4], label=f"{js.name} ({js.symbol})")
+        lines += ax.plot(a, ff, color=js.color, lw=1.4, ls=STYLES[i % 4],
+                         label=literal(f"{js.name} ({js.symbol})"))
     crank_axis(ax, sw, label=label)
     scale_to_trusted(ax, sw, series, F)
     ax.set_ylabel(f"|F| [{F}]")
-    legend_top(ax, min(len(sw.joints), ncol))
+    legend_top(ax, min(len(sw.joints), ncol), handles=lines)
 
 
 def polar_figure(sw, d):
@@ -291,7 +310,7 @@ def polar_figure(sw, d):
         ax.xaxis.set_major_locator(MaxNLocator(4, symmetric=True))
         ax.yaxis.set_major_locator(MaxNLocator(4, symmetric=True))
         frame = "global frame" if ps.carrier == "ground" else f"frame of {ps.carrier}"
-        ax.set_title(f"{ps.name} ({ps.symbol}), {frame}", loc="left", fontsize=7.5)
+        ax.set_title(literal(f"{ps.name} ({ps.symbol}), {frame}"), loc="left", fontsize=7.5)
         if clipped:
             ax.text(0.02, 0.02, f"peak {fmt(r_all)} {F}\noff scale", transform=ax.transAxes,
                     fontsize=6.2, color=INK, va="bottom", ha="left",
@@ -390,17 +409,19 @@ def breakdown_figure(cd, d):
     M = d.unit("moment")
     a = cd.angles
     up, down = np.zeros_like(a), np.zeros_like(a)
+    shown = []                  # the legend's entries, given: a name may start with "_"
     for k, (name, part) in enumerate(cd.sources.items()):
         color = SOURCE_COLORS[k % len(SOURCE_COLORS)]
         part = d.value(part, "moment")
         pos, neg = np.maximum(part, 0), np.minimum(part, 0)
-        ax.fill_between(a, up, up + pos, color=color, alpha=0.6, lw=0, label=name)
+        shown.append(ax.fill_between(a, up, up + pos, color=color, alpha=0.6, lw=0,
+                                     label=literal(name)))
         ax.fill_between(a, down, down + neg, color=color, alpha=0.6, lw=0)
         up, down = up + pos, down + neg
-    ax.plot(a, d.value(cd.torque, "moment"), color=INK, lw=1.3, label="total")
+    shown += ax.plot(a, d.value(cd.torque, "moment"), color=INK, lw=1.3, label="total")
     ax.axhline(0, color="0.3", lw=0.6)
     ax.set_ylabel(f"torque [{M}]")
-    legend_top(ax, ncol)
+    legend_top(ax, ncol, handles=shown)
     _cycle_axis(ax, cd)
     return fig
 
@@ -411,7 +432,7 @@ def transmission_figure(cd, d):
     ax = axes[0, 0]
     for k, (label, ta) in enumerate(cd.transmission.items()):
         ax.plot(cd.angles, ta, color=SOURCE_COLORS[k % len(SOURCE_COLORS)], lw=1.4,
-                ls=STYLES[k % 4], label=f"group {label}")
+                ls=STYLES[k % 4], label=literal(f"group {label}"))
     if cd.transmission_limit is not None:
         ax.axhline(cd.transmission_limit, color="#D55E00", lw=1.0, ls="--",
                    label=f"limit {cd.transmission_limit:g}°")

@@ -3,7 +3,9 @@ the Pareto front of the first two kept quantities, each kept quantity against ea
 key, why variants failed, and the cross-check. Figures are SVG files in ``study-figures/``.
 
 Kept quantities are shown in SI (the units of the table's columns), varied values in the
-spec's own units (as written in ``vary``)."""
+spec's own units (as written in ``vary``). Varied keys and kept quantities are the spec's text
+(they may hold link, point and joint names): the figures draw them literally
+(:func:`mechreport.report.plots.literal`)."""
 from __future__ import annotations
 
 import math
@@ -174,7 +176,7 @@ def _scatter(ax, x, y, sel, color, dot, alpha, raster, label, limits):
 @styled
 def write_figures(run: StudyRun, folder: Path) -> dict[str, str]:
     """The SVG figures; returns {name: relative path}."""
-    from ..report.plots import GREY, INK, OKABE_ITO, figure, legend_top, save
+    from ..report.plots import GREY, INK, OKABE_ITO, figure, legend_top, literal, save
     t, plan = run.table, run.plan
     units = key_units(run.base)
     folder = Path(folder)
@@ -220,9 +222,9 @@ def write_figures(run: StudyRun, folder: Path) -> dict[str, str]:
                         label="failed (no value)")
             if limits is not None:
                 ax.set_ylim(*limits)
-            ax.set_xlabel(with_unit(key, units.get(key, "")), fontsize=7.5)
+            ax.set_xlabel(literal(with_unit(key, units.get(key, ""))), fontsize=7.5)
             if k % PANELS == 0:
-                ax.set_ylabel(column_name(q), fontsize=7.5)
+                ax.set_ylabel(literal(column_name(q)), fontsize=7.5)
         for k in range(d, rows * cols):
             axes[k // PANELS][k % PANELS].set_visible(False)
         handles, labels = axes[0][0].get_legend_handles_labels()
@@ -255,8 +257,8 @@ def write_figures(run: StudyRun, folder: Path) -> dict[str, str]:
             ax.text(0.99, 0.02, f"{outside} variant(s) beyond the scale, not drawn",
                     transform=ax.transAxes, ha="right", va="bottom", fontsize=7, color=INK,
                     bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8})
-        ax.set_xlabel(column_name(t.keep[0]))
-        ax.set_ylabel(column_name(t.keep[1]))
+        ax.set_xlabel(literal(column_name(t.keep[0])))
+        ax.set_ylabel(literal(column_name(t.keep[1])))
         legend_top(ax, 3)
         save(fig, folder, "pareto")
         out["pareto"] = f"{FIGURES}/pareto.svg"

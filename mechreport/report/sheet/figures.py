@@ -10,7 +10,9 @@
   its positive direction, a known force along its value at the angle.
 
 Geometry comes from :func:`mechreport.report.scene.build_scene` and is drawn with the report
-drawings' helpers (:mod:`mechreport.report.drawing`)."""
+drawings' helpers (:mod:`mechreport.report.drawing`). The symbols are mathtext that mechreport
+writes (from link numbers, never from names); the points' names are the spec's, drawn
+literally (:func:`mechreport.report.plots.literal`)."""
 from __future__ import annotations
 
 import math
@@ -19,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from ..drawing import LINK_FILL, Labels, draw_element, draw_ground_symbol, draw_guide
-from ..plots import save, styled
+from ..plots import literal, save, styled
 from ..scene import build_scene
 from .symbols import split_symbol
 
@@ -359,7 +361,8 @@ def fbd_figure(analysis, k: int, link: str, path: Path, zero: set) -> tuple[Path
     named = {}
     for name, local in lk.points.items():
         r = kin.point(link, local).r[k]
-        named.setdefault((round(r[0] / size, 4), round(r[1] / size, 4)), [r, []])[1].append(name)
+        named.setdefault((round(r[0] / size, 4), round(r[1] / size, 4)),
+                         [r, []])[1].append(literal(name))
     for r, names in named.values():
         labels.place("/".join(names), r[0], r[1], bold=True, fontsize=8, prefer=(-1, 1))
     c_name = f"$C_{{{n}}}$"
