@@ -10,22 +10,42 @@ stored as 0), or when the angle of its peak moved. Diagnostics of numerical agre
 (method disagreement, residuals) are not compared: ``status`` carries them. Metadata (date,
 version, spec hash) are not quantities either.
 
-Exit status: 0 nothing changed, 1 something changed, 2 a folder is not a build output.
+A value that is or becomes non-finite (NaN, inf: mechreport never writes one, but a summary
+edited or written by another tool may hold ``NaN``, ``Infinity`` or ``1e400``) has changed unless
+both are NaN or both the same infinity; it is printed as ``NaN``, ``inf`` or ``-inf``.
+
+Every summary.json is checked before anything is compared: it must be a regular file (not a
+symbolic link, a folder or a pipe) of at most ``MAX_SUMMARY_BYTES`` (16 MiB; a real one is tens
+of kB), checked with fstat before reading and never read beyond the cap, UTF-8 JSON holding an
+object with every field diff reads, each of its type: ``status`` (a string), ``failures`` (a
+list), ``quantities`` (an object of objects, each with ``value``: a number or null, ``unit``: a
+string, and optionally ``angle_deg``: a finite number or null) and ``design.verdicts`` (a list
+of objects, each with ``item``: a string, and ``passed``: true or false). Anything else is a
+one-line error naming the file and what is wrong.
+
+Exit status: 0 nothing changed, 1 something changed, 2 a folder is not a build output, or a
+summary.json in it cannot be read (not a regular file, too large, unreadable, not JSON, not a
+mechreport summary).
 """
 from __future__ import annotations
 
+import errno
 import json
 import math
+import os
+import stat
 import sys
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import MechreportError
 from ..report.markdown import md_inline
-from ..units import fmt
+from ..units import SIG_DIGITS, fmt
 
 EXIT_CHANGED = 1
 EXIT_USAGE = 2
+#: the largest summary.json diff reads, in bytes (16 MiB: a real one is 10-30 kB)
+MAX_SUMMARY_BYTES = 16 * 1024 * 1024
 
 
 @dataclass(frozen=True)
@@ -41,33 +61,242 @@ class Change:
 
 
 def read_build(out: Path) -> dict[str, dict]:
-    """Folder name -> summary.json of every report folder in ``out``. Raises
-    ``MechreportError`` when ``out`` is not a folder or holds no report."""
+    """Folder name -> summary.json of every report folder in ``out``, checked (see the module
+    docstring) and reduced to what diff reads, numbers as floats. Raises ``MechreportError``
+    when ``out`` is not a folder, holds no report, or a summary.json in it cannot be read."""
     out = Path(out)
     if not out.is_dir():
         raise MechreportError(f"{out}: not a folder (give two `mechreport build` output "
                               "folders)")
+    try:
+        subs = sorted(p for p in out.iterdir() if p.is_dir() and not p.name.startswith("."))
+    except OSError as exc:
+        raise MechreportError(f"{_shown(out)}: cannot list: {_why(exc)}") from None
     found: dict[str, dict] = {}
-    for sub in sorted(p for p in out.iterdir() if p.is_dir() and not p.name.startswith(".")):
+    for sub in subs:
         f = sub / "summary.json"
-        if not f.is_file():
+        text = _read_summary(f)
+        if text is None:
             continue
         try:
-            data = json.loads(f.read_text(encoding="utf-8"))
-        except (OSError, ValueError) as exc:
-            raise MechreportError(f"{f}: cannot read: {exc}") from None
-        if isinstance(data, dict):
-            found[sub.name] = data
+            data = json.loads(text)
+        except ValueError as exc:
+            raise MechreportError(f"{_shown(f)}: not JSON: {exc}") from None
+        except RecursionError:
+            raise MechreportError(f"{_shown(f)}: not JSON that can be read: nested too "
+                                  "deeply") from None
+        try:
+            found[sub.name] = _checked_summary(data)
+        except _Malformed as exc:
+            raise MechreportError(f"{_shown(f)}: not a mechreport summary: {exc}") from None
     if not found:
         raise MechreportError(f"{out}: no report folder (no */summary.json): is it a "
                               "`mechreport build` output folder?")
     return found
 
 
+# ------------------------------------------------------------------ reading a summary
+
+def _shown(path: Path) -> str:
+    """``path`` for a one-line message: as it is, or escaped if it holds control characters."""
+    text = str(path)
+    return text if text.isprintable() else ascii(text)
+
+
+def _why(exc: OSError) -> str:
+    return exc.strerror or str(exc) or type(exc).__name__
+
+
+def _read_summary(f: Path) -> str | None:
+    """The text of summary.json ``f``; None when there is none (the folder is not a report).
+    Only a regular file is opened (no link, folder, pipe or device), and at most
+    ``MAX_SUMMARY_BYTES`` + 1 bytes of it are read."""
+    cap = MAX_SUMMARY_BYTES
+    where = _shown(f)
+    try:
+        st = os.lstat(f)
+    except FileNotFoundError:
+        return None
+    except OSError as exc:
+        raise MechreportError(f"{where}: cannot read: {_why(exc)}") from None
+    _check_kind(st.st_mode, where)
+    flags = (os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0)
+             | getattr(os, "O_CLOEXEC", 0) | getattr(os, "O_BINARY", 0))
+    try:
+        fd = os.open(f, flags)
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:            # replaced by a link since lstat
+            _check_kind(stat.S_IFLNK, where)
+        raise MechreportError(f"{where}: cannot read: {_why(exc)}") from None
+    try:
+        st = os.fstat(fd)
+        _check_kind(st.st_mode, where)          # replaced since lstat
+        if st.st_size > cap:
+            raise MechreportError(_too_large(where, f"{st.st_size} bytes"))
+        chunks, size = [], 0
+        while size <= cap:
+            chunk = os.read(fd, min(cap + 1 - size, 1 << 20))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+        if size > cap:                          # grew since fstat
+            raise MechreportError(_too_large(where, f"more than {cap} bytes (it grew while "
+                                                 "being read)"))
+    except OSError as exc:
+        raise MechreportError(f"{where}: cannot read: {_why(exc)}") from None
+    finally:
+        os.close(fd)
+    try:
+        return b"".join(chunks).decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise MechreportError(f"{where}: not UTF-8 text: {exc}") from None
+
+
+def _check_kind(mode: int, where: str) -> None:
+    if stat.S_ISREG(mode):
+        return
+    if stat.S_ISLNK(mode):
+        what = "a symbolic link, not a file (a build writes summary.json as a file)"
+    elif stat.S_ISDIR(mode):
+        what = "a folder, not a file"
+    else:
+        what = "not a regular file"
+    raise MechreportError(f"{where}: {what}")
+
+
+def _too_large(where: str, size: str) -> str:
+    cap = MAX_SUMMARY_BYTES
+    shown = f"{cap // 2**20} MiB ({cap} bytes)" if cap % 2**20 == 0 else f"{cap} bytes"
+    return (f"{where}: too large: {size}, and a summary.json may have at most {shown} "
+            "(a real one has tens of kB)")
+
+
+class _Malformed(Exception):
+    """What is wrong in a summary (``text``: 'is a string, not ...' or '"x" is missing') and
+    where (``where``: a key path such as ``quantities["x"].value``, "" for the top level),
+    the path put together on the way out (so that it costs nothing on valid files)."""
+
+    def __init__(self, text: str, where: str = ""):
+        super().__init__(text, where)
+        self.text, self.where = text, where
+
+    def within(self, prefix: str) -> "_Malformed":
+        return _Malformed(self.text, prefix + self.where)
+
+    def __str__(self) -> str:
+        if self.text.startswith("is "):
+            return f"{self.where or 'the top level'} {self.text}"
+        return f"{self.where}: {self.text}" if self.where else self.text
+
+
+def _kind(x) -> str:
+    """The JSON type of ``x``, as a message names it."""
+    if x is None:
+        return "null"
+    if isinstance(x, bool):
+        return "true/false"
+    if isinstance(x, (int, float)):
+        return "a number"
+    if isinstance(x, str):
+        return "a string"
+    if isinstance(x, list):
+        return "a list"
+    return "an object"
+
+
+def _key(name: str) -> str:
+    """A key as a message shows it: quoted, escaped, cut if long."""
+    text = json.dumps(name if len(name) <= 60 else name[:60] + "…", ensure_ascii=False)
+    return text if text.isprintable() else ascii(text)
+
+
+def _field(obj: dict, key: str):
+    if key not in obj:
+        raise _Malformed(f"{_key(key)} is missing")
+    return obj[key]
+
+
+def _typed(x, types: tuple, what: str, where: str = ""):
+    """``x`` if it is one of ``types`` (a bool only if ``bool`` is one)."""
+    if isinstance(x, bool) and bool not in types or not isinstance(x, types):
+        raise _Malformed(f"is {_kind(x)}, not {what}", where)
+    return x
+
+
+def _number(x, where: str) -> float | None:
+    """A number or null -> float or None; an integer too large for a float is +-inf, as
+    json reads 1e400."""
+    if x is None:
+        return None
+    _typed(x, (int, float), "a number or null", where)
+    try:
+        return float(x)
+    except OverflowError:
+        return math.inf if x > 0 else -math.inf
+
+
+def _checked_quantity(q) -> dict:
+    _typed(q, (dict,), "an object")
+    entry = {"value": _number(_field(q, "value"), ".value"),
+             "unit": _typed(_field(q, "unit"), (str,), "a string", ".unit")}
+    if "angle_deg" in q:
+        angle = _number(q["angle_deg"], ".angle_deg")
+        if angle is not None and not math.isfinite(angle):
+            raise _Malformed(f"is {_show(angle)}, not a finite angle", ".angle_deg")
+        entry["angle_deg"] = angle
+    return entry
+
+
+def _checked_verdict(v) -> dict:
+    _typed(v, (dict,), "an object")
+    return {"item": _typed(_field(v, "item"), (str,), "a string", ".item"),
+            "passed": _typed(_field(v, "passed"), (bool,), "true/false", ".passed")}
+
+
+def _checked_summary(data) -> dict:
+    """What diff reads of a summary (status, the number of failures, design.verdicts,
+    quantities), each checked for its type; raises ``_Malformed``. Nothing else of the file is
+    kept."""
+    _typed(data, (dict,), "an object")
+    status = _typed(_field(data, "status"), (str,), "a string", "status")
+    failures = _typed(_field(data, "failures"), (list,), "a list", "failures")
+    design = _typed(_field(data, "design"), (dict,), "an object", "design")
+    try:
+        verdicts = _typed(_field(design, "verdicts"), (list,), "a list", ".verdicts")
+    except _Malformed as exc:
+        raise exc.within("design") from None
+    checked_verdicts = []
+    for i, v in enumerate(verdicts):
+        try:
+            checked_verdicts.append(_checked_verdict(v))
+        except _Malformed as exc:
+            raise exc.within(f"design.verdicts[{i}]") from None
+    quantities = {}
+    for name, q in _typed(_field(data, "quantities"), (dict,), "an object",
+                          "quantities").items():
+        try:
+            quantities[name] = _checked_quantity(q)
+        except _Malformed as exc:
+            raise exc.within(f"quantities[{_key(name)}]") from None
+    return {"status": status, "n_failures": len(failures),
+            "design": {"verdicts": checked_verdicts}, "quantities": quantities}
+
+
+# ------------------------------------------------------------------ comparing
+
+def _show(x: float | None, digits: int = SIG_DIGITS) -> str:
+    """A value as the table prints it: :func:`fmt`, but NaN, inf, -inf as such (not "—",
+    which is a value that is not there)."""
+    if x is not None and not math.isfinite(x):
+        return "NaN" if math.isnan(x) else ("inf" if x > 0 else "-inf")
+    return fmt(x, digits)
+
+
 def _digits(a: float, b: float) -> int:
     diff = abs(a - b)
     top = max(abs(a), abs(b))
-    if diff == 0 or top == 0:
+    if diff == 0 or top == 0 or math.isinf(diff):      # inf: a - b beyond the float range
         return 4
     return int(min(12, max(4, math.ceil(math.log10(top / diff)) + 2)))
 
@@ -80,28 +309,36 @@ def _quantity_changes(spec: str, old: dict, new: dict, rtol: float) -> list[Chan
         unit = ((b or a) or {}).get("unit") or ""
         u = f" {unit}" if unit else ""
         if a is None or b is None:
-            out.append(Change(spec, name, "—" if a is None else fmt(a.get("value")) + u,
-                              "—" if b is None else fmt(b.get("value")) + u,
+            out.append(Change(spec, name, "—" if a is None else _show(a.get("value")) + u,
+                              "—" if b is None else _show(b.get("value")) + u,
                               "added" if a is None else "removed"))
             continue
         va, vb = a.get("value"), b.get("value")
         if va is None or vb is None:
             if va != vb:
-                out.append(Change(spec, name, fmt(va) + u, fmt(vb) + u, "now undefined"
+                out.append(Change(spec, name, _show(va) + u, _show(vb) + u, "now undefined"
                                   if vb is None else "now defined"))
             continue
         moved = (a.get("angle_deg") is not None and b.get("angle_deg") is not None
                  and abs(a["angle_deg"] - b["angle_deg"]) > 1e-9)
-        changed = abs(vb - va) > rtol * max(abs(va), abs(vb))
+        finite = math.isfinite(va) and math.isfinite(vb)
+        if finite:
+            changed = abs(vb - va) > rtol * max(abs(va), abs(vb))
+        else:                       # to or from NaN or inf: changed unless the very same
+            changed = not (va == vb or (math.isnan(va) and math.isnan(vb)))
         if not (changed or moved):
             continue
-        n = _digits(va, vb)
+        n = _digits(va, vb) if finite else SIG_DIGITS
         at_a = f" at {a['angle_deg']:g}°" if moved else ""
         at_b = f" at {b['angle_deg']:g}°" if moved else ""
-        rel = ((vb - va) / abs(va) * 100 if va else math.inf)
-        change = (f"{rel:+.3g} %" if math.isfinite(rel) else "from 0") if changed else \
-            "peak moved"
-        out.append(Change(spec, name, f"{fmt(va, n)}{u}{at_a}", f"{fmt(vb, n)}{u}{at_b}",
+        if not changed:
+            change = "peak moved"
+        elif not finite:
+            change = f"now {_show(vb)}" if not math.isfinite(vb) else "now finite"
+        else:
+            rel = ((vb - va) / abs(va) * 100 if va else math.inf)
+            change = f"{rel:+.3g} %" if math.isfinite(rel) else "from 0"
+        out.append(Change(spec, name, f"{_show(va, n)}{u}{at_a}", f"{_show(vb, n)}{u}{at_b}",
                           change))
     return out
 
@@ -112,7 +349,8 @@ def _verdicts(summary: dict) -> dict[str, bool]:
 
 
 def compare(old: dict[str, dict], new: dict[str, dict], rtol: float) -> list[Change]:
-    """Every change between two builds (folder name -> summary.json)."""
+    """Every change between two builds (folder name -> summary, as :func:`read_build` gives
+    it)."""
     out: list[Change] = []
     for spec in sorted(set(old) | set(new), key=str.casefold):
         a, b = old.get(spec), new.get(spec)
@@ -124,7 +362,7 @@ def compare(old: dict[str, dict], new: dict[str, dict], rtol: float) -> list[Cha
         if a.get("status") != b.get("status"):
             out.append(Change(spec, "check status", str(a.get("status")),
                               str(b.get("status")), "changed"))
-        fa, fb = len(a.get("failures") or []), len(b.get("failures") or [])
+        fa, fb = a["n_failures"], b["n_failures"]
         if fa != fb:
             out.append(Change(spec, "failed expectations", str(fa), str(fb), "changed"))
         va, vb = _verdicts(a), _verdicts(b)
