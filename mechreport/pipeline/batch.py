@@ -19,7 +19,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..checks.trust import untrusted
-from .analysis import DEFAULT_TOL, analyse, trusted
+from .analysis import DEFAULT_TOL, Analysis, analyse, trusted
+from .streamed import STREAM_ANGLES, check_sweep
 from ..forces import METHODS, ForceContext
 from ..forces.contour import ContourPlans
 from ..forces.loads import undefined_directions
@@ -35,7 +36,9 @@ class Outcome:
     its design ``verdicts``, and ``exception`` when it could not be analysed at all (what a
     single analysis raises). ``batched``: solved in the batch (False: analysed alone).
     ``untrusted``: why its one method's numbers cannot be trusted ("" when they can; see
-    :mod:`mechreport.checks.trust`): there is no second method to disagree with."""
+    :mod:`mechreport.checks.trust`): there is no second method to disagree with. A variant
+    whose sweep is longer than ``STREAM_ANGLES`` is checked chunk by chunk in bounded memory
+    (as `check` does): it has no ``review`` object, only its ``streamed`` cycle quantities."""
 
     spec: Spec
     review: Review | None = None
@@ -44,6 +47,12 @@ class Outcome:
     exception: BaseException | None = None
     batched: bool = False
     untrusted: str = ""
+    streamed: dict[str, float] | None = None
+
+    @property
+    def cycle_values(self) -> dict[str, float] | None:
+        """The cycle quantities by name (None when undefined: ``review_problem`` says why)."""
+        return self.review.values if self.review is not None else self.streamed
 
     @property
     def error(self) -> str | None:
@@ -65,6 +74,9 @@ def analyse_variants(specs: list[Spec], method: str, plans=None) -> list[Outcome
     out: list[Outcome | None] = [None] * len(specs)
     groups: dict[tuple, list[int]] = {}      # variants that can stack: same sense, same sweep
     for i, s in enumerate(specs):
+        if len(s.analysed_angles()) > STREAM_ANGLES:     # bounded memory: streamed alone
+            out[i] = _streamed(s, method)
+            continue
         groups.setdefault((np.sign(s.driver.omega), s.sweep, tuple(s.at)), []).append(i)
     for members in groups.values():
         per = len(specs[members[0]].analysed_angles())
@@ -114,6 +126,19 @@ def _batched(stacked, mech, specs: list[Spec], method: str, plans) -> list[Outco
                          batched=True, untrusted=untrusted(forces[method], DEFAULT_TOL,
                                                             spec.axis_unit))
     return out
+
+
+def _streamed(spec: Spec, method: str) -> Outcome:
+    """A variant of a long sweep checked chunk by chunk (:func:`~.streamed.check_sweep`); a
+    failure is its message, never an exception."""
+    try:
+        c = check_sweep(spec, methods=[method])
+    except Exception as exc:     # noqa: BLE001 - a failed variant is a row with its reason
+        return Outcome(spec, exception=exc)
+    if isinstance(c, Analysis):  # not streamable: analysed in memory after all
+        return Outcome(spec, c.review, c.review_problem, c.verdicts,
+                       untrusted=untrusted(c.forces[method], c.tol, spec.axis_unit))
+    return Outcome(spec, None, c.review_problem, c.verdicts, streamed=c.values)
 
 
 def _alone(spec: Spec, method: str, plans) -> Outcome:

@@ -70,14 +70,16 @@ def evaluate_chunk(base: BaseSpec, variants: Sequence[Mapping[str, float]], meth
 
 
 def row_of(analysis, keep: Sequence[str]) -> Row:
-    """The row of a finished analysis: kept values resolved as ``expect:`` resolves cycle
-    quantities, and the design verdicts."""
+    """The row of a finished analysis (an :class:`~mechreport.pipeline.Analysis`, or a
+    batch's :class:`~mechreport.pipeline.batch.Outcome`): kept values resolved as
+    ``expect:`` resolves cycle quantities, and the design verdicts."""
     from ..checks.expectations import cycle_value
     if getattr(analysis, "untrusted", ""):    # the one method cannot vouch for its numbers
         return failed_row(len(keep), analysis.untrusted)
-    if analysis.review is None:           # one reason, not one per kept quantity
+    cycle = (analysis.cycle_values if hasattr(analysis, "cycle_values") else
+             analysis.review.values if analysis.review is not None else None)
+    if cycle is None:                     # one reason, not one per kept quantity
         return failed_row(len(keep), f"no cycle quantities: {analysis.review_problem}")
-    cycle = analysis.review.values
     got, why = [], []
     for q in keep:
         value, undefined = cycle_value(cycle, q, analysis.review_problem)
