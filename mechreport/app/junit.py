@@ -22,9 +22,10 @@ def junit_cases(path, result, tol: float) -> tuple[str, list[tuple[str, str | No
         if key in seen:
             continue
         seen.add(key)
-        where = f" at {e.expect.angle:g} deg" if e.expect.angle is not None else ""
+        unit = result.spec.axis_unit
+        where = f" at {e.expect.angle:g} {unit}" if e.expect.angle is not None else ""
         name = f"expect {e.expect.quantity}{where}"
-        cases.append((name, failure_line(bad[key]) if key in bad else None))
+        cases.append((name, failure_line(bad[key], unit) if key in bad else None))
     for v in result.verdicts:
         cases.append((f"design {v.item}", None if v.passed else verdict_line(v)))
     if result.worst is not None:

@@ -32,7 +32,8 @@ def kin_command(path: str, angles: list[float] | None = None) -> int:
     for text in branch_lines(kin):
         print(f"branch: {text}")
     for flag in kin.flags:
-        print(f"crank angle {flag.angle:g} deg left out: {flag.reason}")
+        print(f"{spec.driver.coordinate} {flag.angle:g} {spec.axis_unit} left out: "
+              f"{flag.reason}")
     for text in kin.notes():
         print(f"note: {text}")
     return 0

@@ -52,13 +52,15 @@ def problems(result, tol: float) -> list[str]:
     expectation once (expected, computed, difference, tolerance, methods), disagreement."""
     out = [f"design verdict missed: {verdict_line(v)}" for v in result.verdicts
            if not v.passed]
-    out += [f"expectation failed: {failure_line(f)}" for f in failed_expectations(result)]
+    out += [f"expectation failed: {failure_line(f, result.spec.axis_unit)}"
+            for f in failed_expectations(result)]
     if result.worst and result.worst.relative > tol:
         w = result.worst
         out.append(f"methods disagree beyond {tol:g} on {w.quantity}: {w.relative:.1e} "
-                   f"({w.methods[0]} vs {w.methods[1]} at {w.angle:g} deg)")
+                   f"({w.methods[0]} vs {w.methods[1]} at {w.angle:g} "
+                   f"{result.spec.axis_unit})")
     if result.n == 0:
-        out.append("no crank angle could be solved")
+        out.append(f"no {result.spec.driver.coordinate} could be solved")
     return out
 
 
@@ -90,11 +92,11 @@ def failure_rows(fails: list[dict]) -> list[list[str]]:
     return rows
 
 
-def failure_line(f: dict) -> str:
+def failure_line(f: dict, axis_unit: str = "deg") -> str:
     """One line for the terminal: ``driver.torque at 45 deg: expected 151.5 N·m, computed
     151.49 N·m, difference -0.0076 N·m, tolerance ±0.0001 N·m (Newton-Euler, ...)``."""
     row = failure_rows([f])[0]
-    where = f" at {row[1]} deg" if f["angle_deg"] is not None else ""
+    where = f" at {row[1]} {axis_unit}" if f["angle_deg"] is not None else ""
     if f["computed"] is None:
         return f"{f['quantity']}{where}: expected {row[2]}: {f['why']}"
     return (f"{f['quantity']}{where}: expected {row[2]}, computed {row[3]}, difference "

@@ -179,6 +179,7 @@ class RefAngle:
     drawing: Figure | None = None
     title: str = ""          # "Crank angle 45°", "Stroke 300 mm"
     anchor: str = ""         # its Markdown heading anchor
+    phrase: str = ""         # the title inside a sentence: "crank angle 45°"
 
 
 @dataclass
@@ -470,7 +471,8 @@ def _ref_angles(analysis, ref: str, symbols, colors, d: Display
         if k is None:
             why = next((f.reason for f in analysis.flags if abs(f.angle - angle) < 1e-9),
                        "not analysed")
-            refs.append(RefAngle(deg(angle), why, title=title, anchor=anchor))
+            refs.append(RefAngle(deg(angle), why, title=title, anchor=anchor,
+                                 phrase=f"{coord} {deg(angle)}{unit}"))
             continue
         pts, links = kinematics_rows(kin, k, d)
         stem = f"drawing_{deg(angle).replace('.', 'p').replace('-', 'm')}"
@@ -483,7 +485,7 @@ def _ref_angles(analysis, ref: str, symbols, colors, d: Display
         refs.append(RefAngle(deg(angle), None, pts, links,
                              _reaction_rows(spec, analysis.forces, symbols, k, d),
                              _vectors(spec, analysis.forces[ref], symbols, k, d), fig,
-                             title, anchor))
+                             title, anchor, f"{coord} {deg(angle)}{unit}"))
         scenes.append(build_scene(analysis, analysis.forces[ref], k, colors, symbols))
     return refs, scenes
 

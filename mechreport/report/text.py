@@ -73,5 +73,6 @@ def kinematics_table(kin: Kinematics) -> str:
                       "ay [m/s^2]"], rows)
         lks = _table(["link", "angle [deg]", "omega [rad/s]", "alpha [rad/s^2]",
                       "aC x [m/s^2]", "aC y [m/s^2]"], lrows)
-        blocks.append(f"{spec.name}: crank angle {angle:g} deg\n\n{pts}\n\n{lks}")
+        blocks.append(f"{spec.name}: {spec.driver.coordinate} {angle:g} {spec.axis_unit}"
+                      f"\n\n{pts}\n\n{lks}")
     return "\n\n".join(blocks) if blocks else f"{spec.name}: no angle could be solved"
