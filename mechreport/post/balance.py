@@ -13,6 +13,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 
+#: the least reduction of the RMS inertial shaking force for which a counterweight is worth
+#: recommending (a relative 1 %); below it the crank is best left as it is
+NOTICEABLE = 0.01
+
+
 @dataclass(frozen=True)
 class Counterweight:
     """``mr`` [kg m] and ``angle`` [deg, in (-180, 180], from the crank's x-axis] of the best
@@ -24,6 +29,16 @@ class Counterweight:
     rms_before: float
     rms_after: float
     balanced: np.ndarray | None = field(default=None, repr=False)   # (N, 2) [N], with it
+
+    @property
+    def reduction(self) -> float:
+        """How much it reduces the RMS inertial shaking force, relative (0 to 1)."""
+        return 1.0 - self.rms_after / self.rms_before if self.rms_before > 0 else 0.0
+
+    @property
+    def worthwhile(self) -> bool:
+        """Whether it reduces the RMS noticeably (by at least ``NOTICEABLE``)."""
+        return self.mr > 0 and self.reduction >= NOTICEABLE
 
 
 def counterweight(inertia_force: np.ndarray, crank_theta: np.ndarray, omega: float,

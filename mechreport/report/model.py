@@ -21,6 +21,7 @@ import numpy as np
 
 from ..version import __version__
 from .. import post as q
+from ..post.balance import NOTICEABLE
 from ..post.bearings import bearing_carrier
 from ..post.sweep import PowerCheck, SweepSummary
 from ..forces import METHODS
@@ -808,7 +809,7 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
     fails = failed_expectations(analysis)
     record = _summary(analysis, summary, sw, status_line, power_json, symbols, meta, fails,
                       d.scales)
-    record["design"] = _design_json(analysis)
+    record["design"] = _design_json(analysis, d.scales)
     figures = _figures(sw, refs, ref, d) | _design_figures(design)
     shaking = {"force": _peak_text(summary.shaking_force, "force", d, sw.at_unit),
                "moment": _peak_text(summary.shaking_moment, "moment", d, sw.at_unit)}
@@ -896,11 +897,20 @@ def _design(analysis, d: Display) -> DesignSummary:
             if attr in attrs:
                 row[1 + attrs.index(attr)] = d.num(value, kind_of(unit_of(name)))
     cw = rev.counterweight
-    counter = (f"A point counterweight of m·r = {d.q(cw.mr, 'mass_length')} at "
-               f"{fmt(cw.angle)}° from the crank's x-axis brings the RMS inertial shaking "
-               f"force from {d.q(cw.rms_before, 'force')} to {d.q(cw.rms_after, 'force')}."
-               if cw.mr > 0 else "The crank needs no counterweight: the inertial shaking "
-                                 "force has no component turning with it.")
+    if cw.worthwhile:
+        counter = (f"A point counterweight of m·r = {d.q(cw.mr, 'mass_length')} at "
+                   f"{d.num(cw.angle, 'angle')}° from the crank's x-axis brings the RMS "
+                   f"inertial shaking force from {d.q(cw.rms_before, 'force')} to "
+                   f"{d.q(cw.rms_after, 'force')} ({fmt(-100 * cw.reduction, 3)} %).")
+    elif cw.mr > 0:
+        counter = (f"No counterweight is recommended: the best point counterweight on the "
+                   f"crank (m·r = {d.q(cw.mr, 'mass_length')} at "
+                   f"{d.num(cw.angle, 'angle')}°) would reduce the RMS inertial shaking "
+                   f"force ({d.q(cw.rms_before, 'force')}) by less than "
+                   f"{fmt(100 * NOTICEABLE)} %.")
+    else:
+        counter = ("The crank needs no counterweight: the inertial shaking force has no "
+                   "component turning with it.")
     interp = ""
     if len(rev.cycle.interpolated):
         interp = ("Left-out angles inside the cycle, interpolated from their neighbours for "
@@ -948,7 +958,9 @@ def _margin(v) -> str:
     return "0.0 %" if text in ("+0.0 %", "-0.0 %") else text
 
 
-def _design_json(analysis) -> dict:
+def _design_json(analysis, sc: dict) -> dict:
+    """summary.json's ``design``: verdicts and cycle quantities, each value as in
+    ``quantities`` (round-off of its kind made 0, :func:`jnum`)."""
     rev = analysis.review
     out: dict = {"verdicts": [{"item": v.item, "quantity": v.quantity, "value": jnum(v.value),
                                "limit": v.limit, "unit": v.unit, "lower_limit": v.at_least,
@@ -957,7 +969,8 @@ def _design_json(analysis) -> dict:
                               for v in analysis.verdicts],
                  "cycle_undefined": analysis.review_problem or None}
     if rev is not None:
-        out["cycle"] = {name: {"value": jnum(value), "unit": unit_of(name)}
+        out["cycle"] = {name: {"value": jnum(value, sc.get(kind_of(unit_of(name) or ""))),
+                               "unit": unit_of(name)}
                         for name, value in rev.values.items()}
         out["method"] = rev.method
         out["interpolated_deg"] = [float(a) for a in rev.cycle.interpolated]
