@@ -9,10 +9,19 @@ spec writes). A value is accepted only if it is a short sum of rationals times s
 of products of those radicands and matches to ``RTOL``; otherwise there is none, and the
 sheet says so.
 
+Reducing a radicand to its square-free part is factoring, so the work is bounded: trial
+division by the primes up to ``TRIAL_LIMIT`` only, of integers of at most
+``MAX_RADICAND_DIGITS`` digits, and a primality test of what is left only below
+``PRIME_TEST_BELOW`` (see ``_square_free``). A radicand whose square-free part that work does not
+establish is left out: values that would need its surd are "none found", and the note says
+that a square root was left out. A radicand is never guessed, so a closed form is never
+wrong for want of work, only missing.
+
 sympy is an optional dependency (``pip install 'mechreport[exact]'``)."""
 from __future__ import annotations
 
 import math
+from functools import lru_cache, reduce
 from itertools import combinations
 
 import numpy as np
@@ -25,6 +34,11 @@ MAX_TERMS = 4         # at most this many terms (a + b sqrt2 + c sqrt3 + d sqrt6
 MAX_DIGITS = 8.0      # digits of all its numerators and denominators together: a double
                       # holds ~16, so a form with more could fit any number by chance
 MAX_RADICANDS = 3     # surds tried at once (nsimplify slows down with many)
+TRIAL_LIMIT = 10_000  # square factors are looked for by trial division by the primes up to
+                      # this (1229 of them): the bound on the work per radicand
+MAX_RADICAND_DIGITS = 100  # integers with more digits are not tried at all
+PRIME_TEST_BELOW = 2 ** 64  # what trial division leaves is tested for primality only below
+                            # this, where sympy's isprime is definitive, not probabilistic
 
 
 class ExactUnavailable(MechreportError):
@@ -40,35 +54,88 @@ def require_sympy():
     return sympy
 
 
-def _square_free(n: int) -> int:
-    """The square-free part of a positive integer (12 -> 3)."""
-    out, p = 1, 2
-    while p * p <= n:
-        while n % (p * p) == 0:
-            n //= p * p
+@lru_cache(maxsize=1)
+def _trial_primes() -> tuple[int, ...]:
+    """The primes up to ``TRIAL_LIMIT`` (sympy's sieve)."""
+    return tuple(int(p) for p in require_sympy().sieve.primerange(2, TRIAL_LIMIT + 1))
+
+
+def _is_square(n: int) -> bool:
+    return math.isqrt(n) ** 2 == n
+
+
+def _square_free(n: int) -> int | None:
+    """The square-free part of a positive integer (12 -> 3), or None where bounded work
+    does not establish it: never a guess.
+
+    A perfect square gives 1 at any size. Otherwise an integer of more than
+    ``MAX_RADICAND_DIGITS`` digits is not tried; a smaller one is trial-divided by the primes
+    up to L = ``TRIAL_LIMIT`` only. What is left, m, has only prime factors > L, so: m = 1 or
+    a perfect square adds nothing; m < (L+1)**3 has at most two prime factors and, not a
+    square, is square-free; a prime m is square-free (sympy's isprime, asked only below
+    ``PRIME_TEST_BELOW``); any other m (p**2 q, say) is undecided, and so is n."""
+    n = int(n)
+    if n < 1:
+        raise ValueError(f"the square-free part of {n} is not defined")
+    if _is_square(n):
+        return 1
+    if n >= 10 ** MAX_RADICAND_DIGITS:
+        return None
+    out = 1
+    for p in _trial_primes():
+        if p * p > n:
+            break
         if n % p == 0:
-            out *= p
-            n //= p
-        p += 1
-    return out * n
+            e = 0
+            while n % p == 0:
+                n //= p
+                e += 1
+            if e % 2:
+                out *= p
+    if n == 1 or _is_square(n):
+        return out
+    if n < (TRIAL_LIMIT + 1) ** 3 or (n < PRIME_TEST_BELOW and require_sympy().isprime(n)):
+        return out * n
+    return None
 
 
-def _rational_radicands(sp, q) -> set[int]:
-    """Radicands of sqrt(q) for a rational q > 0: sqrt(a/b) = sqrt(a b)/b."""
+def _square_free_product(a: int, b: int) -> int:
+    """The square-free part of a b for square-free a and b (sqrt2 sqrt6 = 2 sqrt3): no
+    factoring, the common primes are the gcd's."""
+    g = math.gcd(a, b)
+    return (a // g) * (b // g)
+
+
+def _rational_radicands(sp, q) -> set[int] | None:
+    """Radicands of sqrt(q) for a rational q > 0: sqrt(a/b) = sqrt(a b)/b, and as a and b
+    are coprime the square-free part of a b is theirs multiplied. None: not established."""
     q = sp.Rational(q)
     if q <= 0:
         return set()
-    r = _square_free(int(q.p * q.q))
+    a, b = _square_free(int(q.p)), _square_free(int(q.q))
+    if a is None or b is None:
+        return None
+    r = a * b
     return {r} if r > 1 else set()
 
 
 def spec_radicands(spec, angles) -> list[int]:
     """The square-free radicands of the spec's own surds (see the module docstring), the
     smallest first, at most ``MAX_RADICANDS``."""
+    return spec_surds(spec, angles)[0]
+
+
+def spec_surds(spec, angles) -> tuple[list[int], int]:
+    """``spec_radicands``, and how many of the spec's surds were left out because bounded
+    work did not reduce their radicands (see ``_square_free``)."""
     sp = require_sympy()
     found: dict[int, int] = {}
+    unreduced: set = set()          # the radicands left out, each once
 
-    def note(rs):
+    def note(rs, radicand):
+        if rs is None:
+            unreduced.add(radicand)
+            return
         for r in rs:
             found[r] = found.get(r, 0) + 1
 
@@ -77,8 +144,9 @@ def spec_radicands(spec, angles) -> list[int]:
         for f in (sp.cos, sp.sin):
             e = f(sp.pi * a / 180)
             for p in e.atoms(sp.Pow):
-                if p.exp == sp.Rational(1, 2) and p.base.is_Integer:
-                    note({_square_free(int(p.base))})
+                if p.exp == sp.Rational(1, 2) and p.base.is_Integer and p.base > 0:
+                    r = _square_free(int(p.base))
+                    note(None if r is None else {r} - {1}, p.base)
 
     for a in angles:
         if spec.driver.kind == "R":
@@ -93,8 +161,8 @@ def spec_radicands(spec, angles) -> list[int]:
             d2 = sum((sp.nsimplify(float(a) - float(b), rational=True, tolerance=1e-12)) ** 2
                      for a, b in zip(p, q))
             if d2:
-                note(_rational_radicands(sp, d2))
-    return sorted(found, key=lambda r: (-found[r], r))[:MAX_RADICANDS]
+                note(_rational_radicands(sp, d2), d2)
+    return sorted(found, key=lambda r: (-found[r], r))[:MAX_RADICANDS], len(unreduced)
 
 
 class ExactForms:
@@ -102,21 +170,31 @@ class ExactForms:
 
     def __init__(self, spec, angles):
         self.sp = require_sympy()
-        self.radicands = sorted(spec_radicands(spec, angles))
+        radicands, self.unreduced = spec_surds(spec, angles)
+        self.radicands = sorted(radicands)
         self.surds = [self.sp.sqrt(r) for r in self.radicands]
         # square roots allowed in a form: of every product of the radicands (sqrt2 sqrt3 =
         # sqrt6), square-free
-        self.allowed = {_square_free(math.prod(c)) for n in range(1, len(self.radicands) + 1)
+        self.allowed = {reduce(_square_free_product, c)
+                        for n in range(1, len(self.radicands) + 1)
                         for c in combinations(self.radicands, n)}
         self.cache: dict[float, object] = {}
 
     def describe(self) -> str:
-        """The surds tried, for a note: '√2 and √3', or 'no square roots'."""
+        """The surds tried, for a note: '√2 and √3', or 'no square roots'; and how many
+        were left out as too large to reduce."""
+        left = ""
+        if self.unreduced:
+            k = self.unreduced
+            left = (f" (not of {k} more square root{'s' if k > 1 else ''} the spec gives "
+                    f"rise to, too large to reduce)")
         if not self.radicands:
+            if left:
+                return "rationals" + left
             return "rationals (the spec gives rise to no square roots)"
         names = [f"√{r}" for r in self.radicands]
         return "rational combinations of " + (" and ".join(names) if len(names) < 3 else
-                                              ", ".join(names[:-1]) + " and " + names[-1])
+                                              ", ".join(names[:-1]) + " and " + names[-1]) + left
 
     def __call__(self, x: float):
         """A closed form matching ``x`` to ``RTOL`` (relative), or None; 0 for exact zero."""
