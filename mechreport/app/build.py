@@ -124,12 +124,19 @@ def build_safe(path: str, out: str, name: str, sheet: bool, exact: bool,
             od.remove(tmp)
         raise
     row["seconds"] = time.perf_counter() - start
-    row["spec"] = str(path)
+    row["spec"] = shown_path(path)
     return row
 
 
+def shown_path(path) -> str:
+    """``path`` as the index shows it: relative to where the build runs when it is below
+    it, else as given."""
+    rel = os.path.relpath(os.path.abspath(path))
+    return rel if not rel.startswith(os.pardir) else str(path)
+
+
 def _failure(path, name: str, message: str) -> dict:
-    return {"ok": False, "spec": str(path), "folder": name, "stem": name, "name": name,
+    return {"ok": False, "spec": shown_path(path), "folder": name, "stem": name, "name": name,
             "status": "FAIL", "message": message.strip() or "unknown error", "sheets": []}
 
 
@@ -261,7 +268,7 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
             if same is not None:
                 from ..report.model import index_row
                 try:
-                    row = dict(index_row(same, name), folder=name, spec=str(path),
+                    row = dict(index_row(same, name), folder=name, spec=shown_path(path),
                                skipped=True, seconds=0.0)
                 except (KeyError, TypeError, ValueError, IndexError):
                     todo.append((i, path, name))

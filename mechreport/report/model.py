@@ -731,6 +731,31 @@ def _quantities(summary: SweepSummary, cycle: dict, sc: dict, effort_unit: str =
     return out
 
 
+def check_failure_reason(s: dict) -> str:
+    """Why the check of a summary (summary.json) failed, in one line for the index: the
+    design verdicts missed, the expectations failed, the methods' disagreement."""
+    parts = []
+    verdicts = ((s.get("design") or {}).get("verdicts")) or []
+    missed = [v["item"] for v in verdicts if not v.get("passed")]
+    if missed:
+        parts.append(f"design verdict(s) missed: {', '.join(missed)}")
+    fails = s.get("failures") or []
+    if fails:
+        unit = s.get("axis_unit", "deg")
+        shown = [f["quantity"] + (f" at {deg(f['angle_deg'])} {unit}"
+                                  if f.get("angle_deg") is not None else "")
+                 for f in fails[:3]]
+        more = f" and {len(fails) - 3} more" if len(fails) > 3 else ""
+        parts.append(f"expectation(s) failed: {', '.join(shown)}{more}")
+    if not parts:
+        w = (s.get("agreement") or {}).get("worst")
+        if not s.get("n_angles"):
+            parts.append("no angle could be analysed")
+        elif w:
+            parts.append(f"methods disagree by {fmt(w['relative'], 2)} on {w['quantity']}")
+    return "; ".join(parts) or "its check failed (see its report)"
+
+
 def index_row(model_summary: dict, stem: str) -> dict:
     """One index row (index.md/pdf/csv/json) from a report's summary.json."""
     s = model_summary
@@ -762,7 +787,7 @@ def index_row(model_summary: dict, stem: str) -> dict:
         "failed_verdicts": failed,
         "failures": len(s.get("failures") or []),
         "report_md": f"{stem}/report.md", "report_pdf": f"{stem}/report.pdf",
-        "message": "",
+        "message": "" if s["status"] == "PASS" else check_failure_reason(s),
         "data": {"peak_torque_N_m": peak["value"] if peak and eu != "N" else None,
                  "peak_torque_angle_deg": peak["angle_deg"] if peak and eu != "N" else None,
                  "rms_torque_N_m": t.get("rms") if t and eu != "N" else None,

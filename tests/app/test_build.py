@@ -32,10 +32,11 @@ def test_index_has_a_fail_row_with_the_message(batch):
     _, out, bad = batch
     index = (out / "index.md").read_text(encoding="utf-8")
     row = next(line for line in index.splitlines() if str(bad) in line)
-    assert "| FAIL |" in row
+    assert "| FAIL: could not be built |" in row
     assert "mass" in row.lower()                 # the SpecError's message is carried
-    assert "1 built, 1 failed" in index
+    assert "1 passed their check, 0 failed it, 1 could not be built" in index
     good = next(line for line in index.splitlines() if line.startswith("| R-RRT slider-crank"))
+    assert "crank.yaml)" in good                 # the spec path tells same names apart
     assert "| PASS |" in good and "[pdf](slider_crank/report.pdf)" in good
     assert "200.6 N·m at 85°" in good           # peak driver torque of the slider-crank
     assert (out / "index.pdf").stat().st_size > 0
