@@ -30,7 +30,7 @@ BRANCHES_MEET = 1e-9   # candidates this close (relative to the mechanism's size
 
 DEFAULT_BRANCH_RULES = {
     "RRR": "the interior pin lies to the left of the line from the outer pin of the link "
-           "first by name to the other link's",
+           "first by name to the outer pin of the other link",
     "RRT": "the interior pin lies ahead of the foot of the perpendicular from the other pin, "
            "along the guide direction",
     "RTR": "the guide's line direction points from its pivot toward the slider's side "

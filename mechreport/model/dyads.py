@@ -24,10 +24,9 @@ class Dyad:
 
     @property
     def label(self) -> str:
-        """Textbook-style name from its joints, e.g. ``B_R C_R C_T``."""
-        def tag(j: Joint) -> str:
-            return j.name if j.name.endswith("_" + j.type) else f"{j.name}_{j.type}"
-        return " ".join(tag(j) for j in (self.outer[0], self.inner, self.outer[1]))
+        """Its joints' names as the spec writes them, outer, inner, outer: ``B C C_T`` (the
+        kind, RRT, says which are pins and which sliders)."""
+        return " ".join(j.name for j in (self.outer[0], self.inner, self.outer[1]))
 
     def known_link(self, k: int) -> str:
         """The already-known link that outer joint ``k`` attaches dyad link ``k`` to."""

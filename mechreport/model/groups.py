@@ -32,11 +32,10 @@ class Group:
 
     @property
     def label(self) -> str:
-        """Textbook-style name from its joints, e.g. ``B_R C_R C_T``."""
+        """Its joints' names as the spec writes them, e.g. ``B C C_T``."""
         if self.dyad is not None:
             return self.dyad.label
-        return " ".join(j.name if j.name.endswith("_" + j.type) else f"{j.name}_{j.type}"
-                        for j in self.joints)
+        return " ".join(j.name for j in self.joints)
 
     @property
     def kind(self) -> str:

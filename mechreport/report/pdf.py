@@ -7,6 +7,7 @@ import string
 from pathlib import Path
 
 import typst
+from markdown_it import MarkdownIt
 
 from ..errors import MechreportError
 from .files import atomic_write_bytes
@@ -72,3 +73,101 @@ def typst_escape(text: str) -> str:
     paragraph breaks or line-start constructs can come out of it)."""
     s = _BREAKS.sub(" ", str(text))
     return "".join("\\" + ch if ch in _PUNCT else ch for ch in s)
+
+
+#: CommonMark, raw HTML off: ``<b>`` and ``<!-- -->`` are text, never HTML
+_MARKDOWN = MarkdownIt("commonmark", {"html": False})
+
+
+def typst_markdown(text) -> str:
+    """User Markdown (a spec's ``description``) as Typst markup, from markdown-it-py's token
+    stream; every piece of user text goes through :func:`typst_escape` (markup) or
+    :func:`typst_string` (a string literal), so it never becomes Typst markup or code.
+
+    Interpreted: paragraphs, ``*emphasis*`` (``#emph``), ``**strong**`` (``#strong``),
+    `` `code` `` (``#raw``), links and autolinks (``#link`` to the URL markdown-it validated
+    and normalised), bullet and numbered lists (``#list``, ``#enum`` with the list's start,
+    tight or loose), hard line breaks (``#linebreak()``); also block quotes (``#quote``),
+    code blocks (``#raw(block: true)``) and thematic breaks. Shown as plain text: headings
+    (their text, as a paragraph: a description never adds a section to a report) and images
+    (their alt text: no file is read). Raw HTML is off, so HTML, and tables (not CommonMark),
+    stay literal text."""
+    return _typst_blocks(_MARKDOWN.parse(str(text)))
+
+
+def _closing(tokens, i: int) -> int:
+    """The index of the token closing the block ``tokens[i]`` opens."""
+    depth = 0
+    for j in range(i, len(tokens)):
+        depth += tokens[j].nesting
+        if depth == 0:
+            return j
+    return len(tokens) - 1          # pragma: no cover - markdown-it closes every block
+
+
+def _typst_blocks(tokens) -> str:
+    """Block tokens as Typst markup, blocks separated by a blank line (a paragraph break)."""
+    out, i = [], 0
+    while i < len(tokens):
+        tok = tokens[i]
+        if tok.nesting == 1:
+            end = _closing(tokens, i)
+            out.append(_typst_container(tok, tokens[i + 1:end]))
+            i = end + 1
+            continue
+        if tok.type == "inline":
+            out.append(_typst_inline(tok.children or []))
+        elif tok.type in ("fence", "code_block"):
+            out.append("#raw(block: true, " + typst_string(tok.content.rstrip("\n")) + ")")
+        elif tok.type == "hr":
+            out.append("#line(length: 100%)")
+        elif tok.content:                             # html_block (html is off), anything new
+            out.append(typst_escape(tok.content))
+        i += 1
+    return "\n\n".join(b for b in out if b)
+
+
+def _typst_container(tok, inner) -> str:
+    if tok.type in ("bullet_list_open", "ordered_list_open"):
+        items, i = [], 0
+        while i < len(inner):                         # list_item_open ... list_item_close
+            end = _closing(inner, i)
+            items.append("[" + _typst_blocks(inner[i + 1:end]) + "]")
+            i = end + 1
+        tight = all(t.hidden for t in inner                # the items' own paragraphs
+                    if t.type == "paragraph_open" and t.level == tok.level + 2)
+        args = [f"tight: {'true' if tight else 'false'}"]
+        if tok.type == "ordered_list_open":
+            start = tok.attrGet("start")              # "0." starts at 0
+            args.append(f"start: {1 if start is None else int(start)}")
+            if tok.markup == ")":
+                args.append('numbering: "1)"')
+        return "#" + ("list" if tok.type == "bullet_list_open" else "enum") + "(" + \
+            ", ".join(args + items) + ")"
+    if tok.type == "blockquote_open":
+        return "#quote(block: true)[" + _typst_blocks(inner) + "]"
+    return _typst_blocks(inner)        # paragraph, heading (as plain text), anything new
+
+
+_INLINE_MARKS = {"em_open": "#emph[", "em_close": "]", "strong_open": "#strong[",
+                 "strong_close": "]", "softbreak": " ", "hardbreak": "#linebreak()"}
+
+
+def _typst_inline(children) -> str:
+    out, links = [], []
+    for t in children:
+        if t.type in _INLINE_MARKS:
+            out.append(_INLINE_MARKS[t.type])
+        elif t.type == "code_inline":
+            out.append("#raw(" + typst_string(t.content) + ")")
+        elif t.type == "link_open":                   # [text]() has no URL: its text only
+            href = t.attrGet("href") or ""
+            out.append("#link(" + typst_string(href) + ")[" if href else "")
+            links.append("]" if href else "")
+        elif t.type == "link_close":
+            out.append(links.pop() if links else "")
+        elif t.type == "image":                       # its alt text, plain
+            out.append(typst_escape("".join(c.content for c in t.children or [])))
+        else:                                         # text, html_inline (html is off), ...
+            out.append(typst_escape(t.content))
+    return "".join(out)

@@ -15,7 +15,7 @@ from pathlib import Path
 from .templating import loader
 from .files import atomic_write_text
 from .markdown import md_inline, md_text, md_url
-from .pdf import compile_typst, typst_escape, typst_string
+from .pdf import compile_typst, typst_escape, typst_markdown, typst_string
 
 
 @lru_cache(maxsize=1)
@@ -23,17 +23,26 @@ def environment():
     """The Jinja2 environment of the report and index templates. User text reaches a template
     only through a filter: Markdown ``md`` (inline text: names, paths, messages), ``md_text``
     (a spec's Markdown description: no raw HTML), ``url`` (link targets); Typst ``typ``
-    (markup text) and ``ts`` (a string literal)."""
+    (markup text), ``ts`` (a string literal) and ``md_typ`` (a spec's Markdown description,
+    a string or a list of its paragraphs, as Typst markup: :func:`.pdf.typst_markdown`)."""
     import jinja2
     env = jinja2.Environment(loader=loader(),
                              undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
                              trim_blocks=True, lstrip_blocks=True, autoescape=False)
     env.filters["typ"] = typst_escape
     env.filters["ts"] = typst_string
+    env.filters["md_typ"] = _description_typst
     env.filters["md"] = md_inline
     env.filters["md_text"] = md_text
     env.filters["url"] = md_url
     return env
+
+
+def _description_typst(description) -> str:
+    """A description (its text, or the list of paragraphs a ReportModel holds) as Typst."""
+    if not isinstance(description, str):
+        description = "\n\n".join(description)
+    return typst_markdown(description)
 
 
 def render(template: str, **context) -> str:

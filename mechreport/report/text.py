@@ -57,9 +57,16 @@ def kinematics_rows(kin: Kinematics, k: int, d: Display | None = None
 
 
 def branch_lines(kin: Kinematics) -> list[str]:
-    """``dyad B_R C_R C_T (rod, slider) [RRT]: hint: C`` per dyad: which assembly branch each
-    took and why (docs/spec.md, section 7)."""
-    return [f"dyad {b.dyad} [{b.kind}]: {b.rule}" for b in kin.branches]
+    """``dyad B C C_T (rod, slider) [RRT]: hint: C`` per group: which assembly branch each
+    took and why (docs/spec.md, section 7); a group of more than two links is a group, not
+    a dyad."""
+    return [f"{'dyad' if _is_dyad(b.kind) else 'group'} {b.dyad} [{b.kind}]: {b.rule}"
+            for b in kin.branches]
+
+
+def _is_dyad(kind: str) -> bool:
+    """Whether a group kind names a dyad (RRR, RRT, RTR, TRT ...: three joints, R or T)."""
+    return len(kind) == 3 and set(kind) <= {"R", "T"}
 
 
 def kinematics_table(kin: Kinematics) -> str:

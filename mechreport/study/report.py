@@ -76,21 +76,21 @@ def key_unit(path: tuple, units: dict[str, str], loads: list | None = None) -> s
     if head == "gravity":
         return "m/s^2"
     if head == "design":
-        table = {"rated_torque": "N m", "peak_torque": "N m", "rated_power": "W",
+        table = {"rated_torque": "N·m", "peak_torque": "N·m", "rated_power": "W",
                  "rating": "N", "life_h": "h", "joint_force": "N", "transmission_angle": "deg",
                  "shaking_force": "N"}
         return table.get(last, "")
     if head == "loads" and len(path) >= 3 and loads is not None:
         item = loads[path[1]] if isinstance(path[1], int) and path[1] < len(loads) else {}
         kind = item.get("type") if isinstance(item, dict) else None
-        effort = "N m" if kind == "moment" else "N"
+        effort = "N·m" if kind == "moment" else "N"
         field_ = path[2]
         if field_ == "value":
             return effort
         if field_ == "profile":
             return "deg" if path[-1] == 0 else effort
         if field_ == "stiffness":
-            return "N m/rad" if kind == "torsion_spring" else "N/m"
+            return "N·m/rad" if kind == "torsion_spring" else "N/m"
         if field_ == "free_length":
             return length
         if field_ == "free_angle":
@@ -188,6 +188,10 @@ def write_figures(run: StudyRun, folder: Path) -> dict[str, str]:
     shown_ok[show] = True
     shown_all = shown_ok
     okf, passf = ok & shown_ok & ~passing, passing & shown_ok
+    # a spec without `design:` has no review to pass or fail: its variants are just shown
+    reviewed = not run.base.spec.design.empty
+    fails_label = "fails the design review" if okf.any() else "_nolegend_"
+    passes_label = "passes" if reviewed else "variant"
     n_shown = int(np.count_nonzero(ok & shown_ok))
     raster = n_shown > 400                       # many dots: a bitmap inside the SVG
     dot = 16 if n_shown <= 200 else 7 if n_shown <= 2000 else 3
@@ -204,9 +208,8 @@ def write_figures(run: StudyRun, folder: Path) -> dict[str, str]:
         for k, key in enumerate(plan.keys):
             ax = axes[k // PANELS][k % PANELS]
             x = plan.values[:, k]
-            _scatter(ax, x, y, okf, GREY, dot, alpha, raster, "fails the design review",
-                     limits)
-            _scatter(ax, x, y, passf, OKABE_ITO[0], dot, alpha, raster, "passes", limits)
+            _scatter(ax, x, y, okf, GREY, dot, alpha, raster, fails_label, limits)
+            _scatter(ax, x, y, passf, OKABE_ITO[0], dot, alpha, raster, passes_label, limits)
             bx, by = _best_line(x[passing], y[passing], larger_is_better(q),
                                 1 if plan.sample == "grid" else None)
             if len(bx):
@@ -246,9 +249,9 @@ def write_figures(run: StudyRun, folder: Path) -> dict[str, str]:
             inside &= (b >= lb[0]) & (b <= lb[1])
             ax.set_ylim(*lb)
         ax.scatter(a[okf & inside], b[okf & inside], s=dot, color=GREY, alpha=alpha, lw=0,
-                   rasterized=raster, label="fails the design review")
+                   rasterized=raster, label=fails_label)
         ax.scatter(a[passf & inside], b[passf & inside], s=dot, color=OKABE_ITO[0],
-                   alpha=alpha, lw=0, rasterized=raster, label="passes")
+                   alpha=alpha, lw=0, rasterized=raster, label=passes_label)
         if len(front):
             ax.plot(a[front], b[front], color=OKABE_ITO[5], lw=1.2, marker="o", ms=3.5,
                     label="Pareto front (passing)")

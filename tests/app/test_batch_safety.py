@@ -235,7 +235,7 @@ def test_build_exits_1_when_a_check_fails(batch):
     assert first == 0 and second == 1
     row = next(l for l in batch["index2"].splitlines() if l.startswith("| from b"))
     assert "| FAIL" in row
-    assert "3 spec(s): 3 built, 0 failed." in batch["index2"]
+    assert "3 spec(s): 2 passed their check, 1 failed it, 0 could not be built." in batch["index2"]
 
 
 def test_swap_leaves_only_this_runs_files(batch):
@@ -266,7 +266,7 @@ def test_failed_spec_keeps_its_previous_folder_and_the_index_says_fail(batch):
     assert json.loads((out / "x" / "summary.json").read_text())["name"] == "from a"
     row = next(l for l in index.splitlines() if "x.yaml" in l)
     assert "| FAIL" in row and "earlier build is still in x/" in row
-    assert "3 spec(s): 2 built, 1 failed." in index
+    assert "3 spec(s): 1 passed their check, 1 failed it, 1 could not be built." in index
     assert any(l.startswith("| from b") for l in index.splitlines())
 
 

@@ -48,7 +48,7 @@ def test_check_expectation_at_singular_angle_says_so(tmp_path):
                                              "driver.torque, value: 1}\n"))
     out = run("check", str(spec))
     assert out.returncode == 1
-    assert "crank angle 90 deg is left out: dyad B_R C_R C_T: velocity equations singular" \
+    assert "crank angle 90 deg is left out: dyad B C C_T: velocity equations singular" \
         in out.stdout
 
 

@@ -192,7 +192,7 @@ def test_joint_names_in_transmission_groups_are_drawn_literally(hostile, tmp_pat
     from mechreport.report.plots import transmission_figure
     _, model, _ = hostile
     out = svg(lambda: transmission_figure(model.design.data, model.display), tmp_path, "tr")
-    assert literally(f"group {B}_R {C}_R {SLIDE}_T") in out
+    assert literally(f"group {B} {C} {SLIDE}") in out
     assert maths(out) == []
 
 

@@ -196,7 +196,7 @@ def test_index_md_keeps_hostile_names_and_file_names_inert(hostile_build):
     assert "<script" not in index
     row = next(l for l in index.splitlines() if l.startswith("| evil"))
     c = cells(row)
-    assert len(c) == 9 and c[0] == md_inline(EVIL)
+    assert len(c) == 9 and c[0].startswith(md_inline(EVIL) + " (")   # name (spec path)
     assert c[-1] == "[md](ev_il__x__y_/report.md) · [pdf](ev_il__x__y_/report.pdf)"
 
 
@@ -209,5 +209,6 @@ def test_index_md_failure_row_escapes_the_file_name(tmp_path):
     index = (tmp_path / "out" / "index.md").read_text(encoding="utf-8")
     row = next(l for l in index.splitlines() if "FAIL" in l)
     c = cells(row)
-    assert len(c) == 9 and c[0] == md_inline(str(bad)) and c[1] == "FAIL"
+    assert len(c) == 9 and c[0] == md_inline(str(bad))
+    assert c[1] == "FAIL: could not be built"
     assert "](y)" not in row.replace(r"\](y)", "")

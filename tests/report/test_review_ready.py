@@ -208,12 +208,12 @@ def test_plot_scale_ignores_near_singular_values(slider_model):
 
 
 def test_branch_choices_in_report_kin_and_validate(slider_model):
-    assert slider_model.branches == [["B_R C_R C_T (rod, slider)", "RRT",
+    assert slider_model.branches == [["B C C_T (rod, slider)", "RRT",
                                       "chosen by the assembly hint (C)"]]
     for cmd in ("kin", "validate"):
         out = run(cmd, "specs/four_bar.yaml")
         assert out.returncode == 0
-        assert "branch: dyad B_R C_R D_R (coupler, rocker) [RRR]: hint: C" in out.stdout
+        assert "branch: dyad B C D (coupler, rocker) [RRR]: hint: C" in out.stdout
 
 
 # ------------------------------------------------------------------ failed checks explained

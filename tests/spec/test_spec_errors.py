@@ -814,7 +814,7 @@ def test_reference_angle_that_cannot_close_raises_assembly_error():
     mech = build_mechanism(parse_spec(text, FILE))
     with pytest.raises(AssemblyError) as info:
         solve_kinematics(mech)
-    assert str(info.value) == (f"{FILE}: the dyad B_R C_R C_T (rod, slider) cannot close at the "
+    assert str(info.value) == (f"{FILE}: the dyad B C C_T (rod, slider) cannot close at the "
                                "first reference angle 90 deg; check link lengths and `at`")
     # with a reference angle where it closes (|sin phi| <= 0.5), the other angles are flagged:
     # 30 deg is the lock itself (velocities unbounded), 40 deg lies beyond it
