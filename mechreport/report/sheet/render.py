@@ -12,7 +12,7 @@ from pathlib import Path
 
 from ..files import atomic_write_text
 from ..markdown import md_inline
-from ..pdf import compile_typst, typst_escape, typst_string
+from ..pdf import compile_typst, typst_escape
 from ..render import environment
 from .expr import Equation, fmt, math, round_off
 from .model import SheetOptions, build_problem, build_sheet
@@ -36,25 +36,6 @@ def _rich(segments, how: str) -> str:
     return "".join(out)
 
 
-def _description_typ(text: str) -> str:
-    """A spec's Markdown description as Typst: paragraphs, *emphasis* and `code` kept,
-    everything else escaped (it is user text)."""
-    import re
-    out = []
-    for para in re.split(r"\n\s*\n", text.strip()):
-        pieces, pos = [], 0
-        for m in re.finditer(r"\*([^*\n]+)\*|`([^`\n]+)`", para):
-            pieces.append(typst_escape(para[pos:m.start()]))
-            if m.group(1) is not None:
-                pieces.append("#emph[" + typst_escape(m.group(1)) + "]")
-            else:
-                pieces.append("#raw(" + typst_string(m.group(2)) + ")")
-            pos = m.end()
-        pieces.append(typst_escape(para[pos:]))
-        out.append("".join(pieces))
-    return "\n\n".join(out)
-
-
 def _env():
     env = environment()
     if "mtex" not in env.filters:
@@ -65,7 +46,6 @@ def _env():
         env.filters["num"] = fmt
         env.filters["label_md"] = lambda s: _rich(rich_label(str(s)), "tex")
         env.filters["label_typ"] = lambda s: _rich(rich_label(str(s)), "typ")
-        env.filters["desc_typ"] = _description_typ
         env.tests["equation"] = lambda x: isinstance(x, Equation)
         env.tests["mathlist"] = lambda x: isinstance(x, (list, tuple))
     return env
