@@ -683,14 +683,26 @@ def _load_text(spec, load) -> str:
         if load.value is not None:
             what = f"a force {_vec(load.value)} N"
         else:
-            what = (f"a force along {_vec(load.direction)} whose magnitude follows a profile "
-                    f"over the {spec.driver.coordinate}")
+            what = (f"a force along {_vec(load.direction)} whose magnitude [N] follows "
+                    f"{_profile_text(load.profile, spec)}")
         rule = " opposing the velocity of its point" if load.oppose == "velocity" else ""
         return f"{what} on {where(load.link, load.point)}{rule}"
     what = f"a moment {fmt(load.value)} N·m" if load.value is not None else \
-        "a moment following a profile"
+        f"a moment [N·m] following {_profile_text(load.profile, spec)}"
     rule = " opposing the link's rotation" if load.oppose == "rotation" else ""
     return f"{what} on {where(load.link, None)}{rule}"
+
+
+def _profile_text(profile, spec) -> str:
+    """A load's profile as the problem states it: every point, and how values between them
+    are read (as :func:`mechreport.forces.loads.evaluate_loads` reads them)."""
+    unit = "°" if spec.axis_unit == "deg" else f" {spec.axis_unit}"
+    points = ", ".join(f"{fmt(a)}{unit}: {fmt(v)}" for a, v in profile)
+    if len(profile) == 1:
+        return f"the profile {points} (constant)"
+    turn = ", repeating every turn" if spec.axis_unit == "deg" else ""
+    return (f"the profile {points} over the {spec.driver.coordinate} (linear between these "
+            f"points{turn})")
 
 
 def build_problem(analysis, options: SheetOptions | None = None,
