@@ -381,6 +381,11 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
         _structure(ck, links, joints)
 
     if ck.problems or name is None or driver is None or joints is None:
+        # what the sweep alone says is still said, so that every problem is listed at once
+        if "design" in top and (driver is None or driver.kind == "R"):
+            why = sweep.cycle_problem()
+            if why is not None:
+                ck.error(("design",), f"the design review is undefined: {why}")
         return None
     spec = Spec(file=ck.src.filename, name=name, description=description.strip(),
                 gravity=gravity, ground=ground, links=tuple(links), joints=tuple(joints),
@@ -947,13 +952,17 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
     if body is None or "joint" not in body:
         return None
     jname = ck.name(body["joint"], path + ("joint",))
-    if joints is None or jname is None:
-        return None
-    joint = next((j for j in joints if j.name == jname), None)
+    joint = None if joints is None or jname is None else \
+        next((j for j in joints if j.name == jname), None)
     if joint is None:
-        if jname not in ck.invalid_joints:
+        if joints is not None and jname is not None and jname not in ck.invalid_joints:
             ck.error(path + ("joint",), f"unknown joint '{jname}' (joints: "
                                         f"{', '.join(j.name for j in joints)})")
+        # the joint is unknown or broken: its numbers are still checked, so that every
+        # problem of the file is listed at once
+        for k in ("rpm", "omega", "alpha", "speed", "accel"):
+            if k in body:
+                ck.number(body[k], path + (k,), nonzero=k in ("rpm", "omega", "speed"))
         return None
     a, b = joint.links
     link = (b if a == GROUND else a) if GROUND in joint.links else b

@@ -137,6 +137,18 @@ class Sweep:
         span = self.stop - self.start
         return self.wraps and abs(span - 360.0) < 1e-9
 
+    def cycle_problem(self) -> str | None:
+        """Why this sweep of a crank has no cycle quantities (None when it is one whole turn
+        in steps that divide it evenly)."""
+        if not self.whole_turn:
+            return (f"cycle quantities need a sweep over one whole turn of the crank; this one "
+                    f"runs from {self.start:g} to {self.stop:g} deg")
+        per_turn = 360.0 / self.step
+        if abs(per_turn - round(per_turn)) > 1e-6:
+            return (f"cycle quantities need a sweep step that divides the turn evenly; "
+                    f"{self.step:g} deg gives {per_turn:.4g} steps per turn")
+        return None
+
     def angles(self) -> np.ndarray:
         span = self.stop - self.start
         n = int(math.floor(span / self.step + 1e-9))
@@ -306,14 +318,7 @@ class Spec:
         joint = self.joint(self.driver.joint)
         if joint.type != "R" or GROUND not in joint.links:
             return "cycle quantities need an R driver with ground (a crank)"
-        if not self.sweep.whole_turn:
-            return (f"cycle quantities need a sweep over one whole turn of the crank; this one "
-                    f"runs from {self.sweep.start:g} to {self.sweep.stop:g} deg")
-        per_turn = 360.0 / self.sweep.step
-        if abs(per_turn - round(per_turn)) > 1e-6:
-            return (f"cycle quantities need a sweep step that divides the turn evenly; "
-                    f"{self.sweep.step:g} deg gives {per_turn:.4g} steps per turn")
-        return None
+        return self.sweep.cycle_problem()
 
     def link(self, name: str) -> Link:
         for link in self.links:
