@@ -1,4 +1,4 @@
-"""Load and validate a spec file (format version 1, ../shared/spec-format.md; docs/spec.md).
+"""Load and validate a spec file (format version 1, documented in docs/spec.md).
 
 Every problem of a file is collected and raised together as one ``SpecError``; each names the
 file, line, key path and what was expected. Whatever the input, loading ends in a ``Spec`` or a

@@ -1,4 +1,4 @@
-"""Textbook validation: Marghitu, *Dynamic Force Analysis* (../shared/seed), sections 4.6 and
+"""Textbook validation: Marghitu, *Dynamic Force Analysis*, sections 4.6 and
 4.7, joint reactions and driver torque, checked for EVERY method (the text works each example
 by some of them; all four must give its final results).
 

@@ -1,7 +1,7 @@
 """Kinematics pinned to the textbook (Marghitu, Dynamic Force Analysis, sections 4.6 and 4.7)
 and to closed forms derived independently here.
 
-Where the text is wrong (see ../shared/seed/ERRATA.md) the comment says so and the test uses the
+Where the text is wrong (a known erratum of the chapter) the comment says so and the test uses the
 correct value.
 """
 from __future__ import annotations
