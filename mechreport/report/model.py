@@ -549,19 +549,27 @@ def _torque_texts(st: q.TorqueStats | None, d: Display, kind: str = "moment",
 
 
 def _bearing_rows(summary: SweepSummary, sw: SweepData, d: Display) -> list[list[str]]:
+    """Per joint: the peak over the analysed angles and its angle (the value every output
+    gives as the joint's peak), the RMS, and the peak away from left-out angles where that
+    is another (the peak lies within ``near_deg`` of one)."""
     rows = []
     for js in sw.joints:
         jl = summary.joints[js.name]
         pk, fp = jl.peak, jl.peak_far
         kind = "pin" if js.type == "R" else "slider"
-        near = DASH
-        if pk is not None and fp is not None and pk.angle != fp.angle:
-            near = f"{d.num(pk.value, 'force')} at {deg(pk.angle)}{sw.at_unit}"
-        top = fp or pk
-        rows.append([js.name, js.symbol, kind, d.num(top.value, "force") if top else DASH,
-                     deg(top.angle) if top else DASH,
-                     d.num(jl.rms, "force") if jl.rms is not None else DASH, near])
+        rows.append([js.name, js.symbol, kind, d.num(pk.value, "force") if pk else DASH,
+                     deg(pk.angle) if pk else DASH,
+                     d.num(jl.rms, "force") if jl.rms is not None else DASH,
+                     far_text(pk, fp, d, sw.at_unit)])
     return rows
+
+
+def far_text(pk, fp, d: Display, unit: str) -> str:
+    """The peak away from left-out angles, ``973.6 at 84°``, where it is not the peak
+    itself; "—" otherwise."""
+    if pk is None or fp is None or pk.angle == fp.angle:
+        return DASH
+    return f"{d.num(fp.value, 'force')} at {deg(fp.angle)}{unit}"
 
 
 def _kind(quantity: str) -> str:
@@ -667,7 +675,8 @@ def _summary(analysis, summary: SweepSummary, sw: SweepData, status_line: str,
                                 "fy_peak": _peak_json(jl.fy_peak, "N", F)}
                       for js in sw.joints if (jl := summary.joints[js.name])},
         "largest_bearing_load": None if largest is None else {
-            "joint": largest[0], **_peak_json(largest[1], "N", F)},
+            "joint": largest[0], **_peak_json(largest[1], "N", F),
+            "away_from_left_out": _peak_json(summary.joints[largest[0]].peak_far, "N", F)},
         "shaking": {"force_peak": _peak_json(summary.shaking_force, "N", F),
                     "moment_peak": _peak_json(summary.shaking_moment, "N·m", M)},
         "reference_angles": refs,
@@ -731,6 +740,23 @@ def _quantities(summary: SweepSummary, cycle: dict, sc: dict, effort_unit: str =
     return out
 
 
+def _away_value(big: dict | None) -> float | None:
+    """The largest bearing load's peak away from left-out angles, where it is another."""
+    far = (big or {}).get("away_from_left_out")
+    if not far or far.get("angle_deg") == big.get("angle_deg"):
+        return None
+    return far.get("value")
+
+
+def _away(big: dict, at: str) -> str:
+    """``; 973.6 N at 84° away from left-out angles`` where that is another value."""
+    value = _away_value(big)
+    if value is None:
+        return ""
+    return f"; {fmt(value)} N at {deg(big['away_from_left_out']['angle_deg'])}{at} away " \
+           "from left-out angles"
+
+
 def check_failure_reason(s: dict) -> str:
     """Why the check of a summary (summary.json) failed, in one line for the index: the
     design verdicts missed, the expectations failed, the methods' disagreement."""
@@ -779,7 +805,7 @@ def index_row(model_summary: dict, stem: str) -> dict:
         "peak": (f"{si(peak['value'], eu)} at {deg(peak['angle_deg'])}{at}" if peak else DASH),
         "rms": si(t.get("rms"), eu) if t else DASH,
         "bearing": (f"{si(big['value'], 'N')} ({big['joint']}, {deg(big['angle_deg'])}{at})"
-                    if big else DASH),
+                    + _away(big, at) if big else DASH),
         "power": si(power_value, "W") if power_value is not None else DASH,
         "worst": f"{fmt(w['relative'], 2)} ({w['quantity']})" if w else DASH,
         "verdicts": (f"{len(verdicts) - len(failed)}/{len(verdicts)} passed"
@@ -794,6 +820,7 @@ def index_row(model_summary: dict, stem: str) -> dict:
                  "peak_driver_force_N": peak["value"] if peak and eu == "N" else None,
                  "rms_driver_force_N": t.get("rms") if t and eu == "N" else None,
                  "largest_bearing_load_N": big["value"] if big else None,
+                 "largest_bearing_load_away_N": _away_value(big),
                  "largest_bearing_joint": big["joint"] if big else None,
                  "mean_power_W": power_value,
                  "worst_disagreement": w["relative"] if w else None,

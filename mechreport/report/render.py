@@ -103,6 +103,7 @@ def _csv_cell(value) -> str:
 INDEX_FIELDS = ("folder", "name", "spec", "status", "peak_torque_N_m", "peak_torque_angle_deg",
                 "rms_torque_N_m", "peak_driver_force_N", "rms_driver_force_N",
                 "largest_bearing_load_N", "largest_bearing_joint",
+                "largest_bearing_load_away_N",
                 "mean_power_W", "worst_disagreement", "verdicts_passed", "verdicts_total",
                 "failed_verdicts", "failed_expectations", "spec_sha256", "mechreport_version",
                 "message")

@@ -34,3 +34,27 @@ def test_a_counterweight_that_helps_is_recommended_with_its_gain():
     m = build_model(mechreport.analyse(ROOT / "specs" / "slider_crank.yaml"))
     assert m.design.counterweight.startswith("A point counterweight")
     assert "(-48.6 %)" in m.design.counterweight
+
+
+@pytest.mark.parametrize("path", SPECS, ids=lambda p: p.stem)
+def test_a_joint_peak_is_one_value_in_every_output(path):
+    """The report's bearing table, its design summary, summary.json and the index give one
+    peak per joint; the peak away from left-out angles is a second, labelled value."""
+    from mechreport.report.model import index_row
+    m = build_model(mechreport.analyse(path))
+    s = m.summary
+    for row in m.bearings:
+        joint, peak = row[0], s["reactions"][row[0]]["peak"]
+        assert float(row[3]) == pytest.approx(peak["value"], rel=5e-4), joint
+        assert s["quantities"][f"joint.{joint}.f.peak"]["value"] == peak["value"]
+        cycle = (s["design"].get("cycle") or {}).get(f"joint.{joint}.f_max")
+        if cycle is not None:
+            assert cycle["value"] == pytest.approx(abs(peak["value"]), rel=1e-12), joint
+    big = s["largest_bearing_load"]
+    if big is not None:
+        data = index_row(s, "x")["data"]
+        assert data["largest_bearing_load_N"] == big["value"]
+        far = big["away_from_left_out"]
+        if far and far["angle_deg"] != big["angle_deg"]:
+            assert data["largest_bearing_load_away_N"] == far["value"]
+            assert "away from left-out angles" in index_row(s, "x")["bearing"]
