@@ -704,8 +704,12 @@ def _summary(analysis, summary: SweepSummary, sw: SweepData, status_line: str,
 
 def _quantities(summary: SweepSummary, cycle: dict, sc: dict, effort_unit: str = "N·m") -> dict:
     """Every key figure by name -> {value [SI], unit}: what ``mechreport diff`` compares and
-    the index lists."""
+    the index lists, each once: where the cycle quantities are defined, a sweep peak that
+    one of them states (a joint's peak load is ``joint.J.f_max``, the shaking force's and
+    moment's ``cycle.shaking.*_max``) is not listed again under another name. The driver's
+    signed peak and its angle stay: no cycle quantity says where it is."""
     out: dict[str, dict] = {}
+    cyclic = bool(cycle)
 
     def put(name, value, unit, kind=None, angle=None):
         if value is None:
@@ -721,18 +725,19 @@ def _quantities(summary: SweepSummary, cycle: dict, sc: dict, effort_unit: str =
                       else ("driver.torque", "moment"))
         put(f"{name}.mean", st.mean, effort_unit, kind)
         put(f"{name}.rms", st.rms, effort_unit, kind)
-        put(f"{name}.peak", st.peak.value, effort_unit, kind, st.peak.angle)
+        put(f"{name}.peak", st.peak.value, effort_unit, kind, st.peak.angle)   # signed, where
         put("driver.power.mean", st.power, "W")
     for name, jl in summary.joints.items():
         pk = jl.peak
         if pk is not None:
-            put(f"joint.{name}.f.peak", pk.value, "N", "force", pk.angle)
+            if not cyclic or f"joint.{name}.f_max" not in cycle:
+                put(f"joint.{name}.f.peak", pk.value, "N", "force", pk.angle)
             put(f"joint.{name}.f.rms", jl.rms, "N", "force")
     sh = summary.shaking_force
-    if sh is not None:
+    if sh is not None and "cycle.shaking.force_max" not in cycle:
         put("shaking.force.peak", sh.value, "N", "force", sh.angle)
     shm = summary.shaking_moment
-    if shm is not None:
+    if shm is not None and "cycle.shaking.moment_max" not in cycle:
         put("shaking.moment.peak", shm.value, "N·m", "moment", shm.angle)
     for name, value in cycle.items():
         unit = unit_of(name) or ""
