@@ -119,10 +119,16 @@ into the same OUT take turns (OUT/.mechreport.lock)."""
 
 STUDY_EPILOG = """\
 exit status: 0 when the study ran and its files were written (variants that cannot be
-analysed are rows with their reason); 1 when it cannot run (a spec problem, no study: section,
-a --method that cannot give the kept quantities, an unusable scheduler or output folder) or
-when --cross-check finds a disagreement; 2 on a usage error; 130 if interrupted (nothing is
-written then).
+analysed are rows with their reason); 1 when it cannot run (a spec problem, no study:
+section, a --method that cannot give the kept quantities, a malformed or unreachable
+--scheduler, an unusable output folder), when --cross-check finds a disagreement, when a
+--reports report could not be written, or when variants could not be computed because a
+worker process, a Dask task or the Dask scheduler was lost (a lost chunk is tried up to 3
+times; the study is still written with those variants as failed rows saying why, and stderr
+says how many); 2 on a usage error; 130 if interrupted (nothing is written then).
+
+--jobs is at most the usable cores and the number of chunks (stderr says when it is
+lowered). --scheduler takes tcp://HOST:PORT or HOST:PORT and gives up after 10 s.
 
 Writes OUT/<name>/study.parquet, study.csv (one row per variant), study.md and study.pdf,
 <name> being the spec's file name without .yaml, as for build; a report built there by
@@ -142,8 +148,9 @@ def _add_study_parser(sub) -> None:
                    help="the force method for every variant (default: the fastest that gives "
                    "every kept quantity and design verdict)")
     p.add_argument("--scheduler", metavar="ADDRESS", default=None,
-                   help="run on an existing Dask cluster, e.g. tcp://host:8786 (needs "
-                   "mechreport[dask]); default: a local process pool")
+                   help="run on an existing Dask cluster at tcp://HOST:PORT or HOST:PORT, e.g. "
+                   "tcp://127.0.0.1:8786 (needs mechreport[dask]); default: a local process "
+                   "pool")
     p.add_argument("--jobs", type=_int_at_least_1, default=None,
                    help="local processes, >= 1 (default: cores; ignored with --scheduler)")
     p.add_argument("--chunk", type=_int_at_least_1, default=None, metavar="N",

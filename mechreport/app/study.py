@@ -2,9 +2,18 @@
 
 Exit status: 0 when the study ran and was written (whatever its variants' outcomes: failed
 variants are rows with their reason); 1 when it cannot run (the spec or its study section is
-invalid, the method cannot give the kept quantities, the scheduler cannot be used, the output
-folder cannot be written) or when ``--cross-check`` finds a disagreement; 130 when interrupted
-(nothing is written then).
+invalid, the method cannot give the kept quantities, the scheduler address is malformed or
+the scheduler cannot be reached or used, the output folder cannot be written), when
+``--cross-check`` finds a disagreement, when a report asked for with ``--reports`` could not
+be written ("error: no report for rank ..."), or when variants could not be computed because
+a worker process, a Dask task or the Dask scheduler was lost (see :mod:`.study_workers`: a
+lost chunk is computed again, up to three tries in all). In those last cases the study is
+still written, with the variants not computed as failed rows saying why, and one line on
+stderr says how many ("error: N of M variant(s) could not be computed ..."). 130 when
+interrupted (nothing is written then).
+
+Local processes: ``--jobs`` is lowered to the usable cores and to the number of chunks,
+with one line on stderr saying so ("--jobs 1000: using 2 process(es), because ...").
 
 The files, written into ``OUT/<spec>/`` safely:
 
@@ -26,7 +35,6 @@ ever replaced.
 """
 from __future__ import annotations
 
-import os
 import sys
 import time
 from pathlib import Path
@@ -57,7 +65,8 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     from ..study.plan import plan_of
     from ..study.variants import load_base
     from .progress import StudyProgress, duration
-    from .study_workers import auto_chunk, connect, dask_workers, run_variants
+    from .study_workers import (auto_chunk, close_client, connect, dask_workers, local_jobs,
+                                run_variants)
     from .workers import sigterm_as_interrupt
 
     err = stream or sys.stderr
@@ -68,25 +77,34 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     plan = plan_of(study)
     out = od.prepare(Path(out))            # fail early on an unusable -o
     name = od.safe_stem(path)
+    lost: list = []
     with sigterm_as_interrupt():
-        client = connect(scheduler) if scheduler else None
+        client = connect(scheduler) if scheduler is not None else None
         try:
             if client is not None:
                 workers = dask_workers(client)
+                size = chunk or auto_chunk(plan.n, workers)
                 where = f"the Dask cluster at {scheduler} ({workers} worker thread(s))"
             else:
-                workers = max(1, jobs or os.cpu_count() or 1)
+                workers, size, lowered = local_jobs(plan.n, jobs, chunk)
+                if lowered:
+                    print(f"--jobs {jobs}: using {workers} process(es), because {lowered}",
+                          file=err, flush=True)
                 where = ("this process" if workers == 1 else f"{workers} local processes")
-            size = chunk or auto_chunk(plan.n, workers)
             note = (" (study.count is for random and lhs sampling: not used by grid)"
                     if study.sample == "grid" and study.count else "")
             print(f"study {path}: {plan.n} variant(s), {study.sample} sampling{note}; method "
                   f"{method} ({why}); on {where}, chunks of {size}", file=err, flush=True)
             progress = StudyProgress(plan.n, err)
+
+            def notify(line: str) -> None:
+                progress.close()           # a bar being drawn on a terminal ends its line
+                print(line, file=err, flush=True)
             start = time.perf_counter()
             try:
                 table = run_variants(base, plan, method, study.keep, jobs=workers,
-                                     chunk=size, client=client, progress=progress)
+                                     chunk=size, client=client, progress=progress,
+                                     lost=lost, notify=notify)
             except KeyboardInterrupt as exc:
                 progress.close()
                 print(f"interrupted after {progress.done} of {plan.n} variant(s); nothing "
@@ -94,8 +112,9 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
                 exc.reported = True
                 raise
         finally:
-            if client is not None:
-                client.close()
+            trouble = close_client(client)
+            if trouble:
+                print(f"warning: {trouble}", file=err, flush=True)
         seconds = time.perf_counter() - start
         n_ok = int(table.ok.sum())
         n_pass = int(table.passing.sum())
@@ -130,8 +149,21 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
             if not r.ok:
                 print(f"  variant {r.index + 1} DISAGREES: {r.where}")
     for rank, i, _folder, message in failed_reports:
-        print(f"  no report for rank {rank} (variant {i + 1}): {message}", file=err)
-    return 1 if (cc is not None and not cc.ok) else 0
+        print(f"error: no report for rank {rank} (variant {i + 1}): {message}", file=err)
+    if lost:
+        print(f"error: {lost_line(lost, plan.n)}", file=err)
+    return 1 if (cc is not None and not cc.ok) or failed_reports or lost else 0
+
+
+def lost_line(lost, n: int) -> str:
+    """One line about the chunks that could not be computed (``Lost`` entries)."""
+    count = sum(x.count for x in lost)
+    reasons: dict[str, int] = {}
+    for x in lost:
+        reasons[x.reason] = reasons.get(x.reason, 0) + x.count
+    said = "; ".join(f"{k} variant(s): {r}" for r, k in reasons.items())
+    return (f"{count} of {n} variant(s) could not be computed ({said}); the study was "
+            "written with them as failed rows")
 
 
 def spec_line(run) -> str:

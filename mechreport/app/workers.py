@@ -51,6 +51,27 @@ def stop_pool(pool) -> None:
             p.join(1.0)
 
 
+def exit_codes(pool) -> str:
+    """How the worker processes of ``pool`` (a broken ProcessPoolExecutor) ended, for a
+    message: "killed by signal 9", "exit status 1"; "" when not known."""
+    said = []
+    for p in list((getattr(pool, "_processes", None) or {}).values()):
+        code = getattr(p, "exitcode", None)
+        if code is None or code == 0:
+            continue
+        if code < 0:
+            try:
+                name = signal.Signals(-code).name
+            except ValueError:
+                name = f"signal {-code}"
+            text = f"killed by {name}"
+        else:
+            text = f"exit status {code}"
+        if text not in said:
+            said.append(text)
+    return ", ".join(said)
+
+
 @contextmanager
 def sigterm_as_interrupt():
     """SIGTERM raises :class:`Terminated` (a KeyboardInterrupt) in the main thread."""

@@ -104,25 +104,76 @@ def variant_yaml(base: BaseSpec, values: Mapping[str, float], header: str = "",
                  name: str | None = None, description: str | None = None) -> str:
     """A variant as spec text (for the full reports of the best variants): ``header`` lines
     as comments, then the data tree as YAML (with ``name`` and ``description`` in place of
-    the spec's, when given)."""
-    import yaml
-
-    class Dumper(yaml.SafeDumper):
-        pass
-
-    def text_block(dumper, value: str):
-        style = "|" if "\n" in value else None       # multi-line text as a literal block
-        return dumper.represent_scalar("tag:yaml.org,2002:str", value, style=style)
-    Dumper.add_representer(str, text_block)
+    the spec's, when given). The text reads back, with the spec loader's YAML 1.2 core
+    schema, as exactly that data tree (see :func:`dump_yaml`)."""
     data = variant_data(base, values)
     if name is not None:
         data = dict(data, name=name)
     if description is not None:
         data = dict(data, description=description)
-    text = yaml.dump(data, Dumper=Dumper, sort_keys=False, allow_unicode=True,
-                     default_flow_style=None, width=100)
     lines = "".join(f"# {line}\n" if line else "#\n" for line in header.splitlines())
-    return lines + text
+    return lines + dump_yaml(data)
+
+
+def dump_yaml(data: Any) -> str:
+    """``data`` (mappings, lists, text, numbers, true/false, null) as YAML text that the
+    spec loader reads back as the same tree, value for value and type for type.
+
+    PyYAML writes by YAML 1.1 rules, and the loader reads plain scalars by YAML 1.2 core
+    rules (:func:`~mechreport.spec.yaml_source.resolve_plain`): a text that 1.2 would read as
+    something else (``1e5``, ``0o17``, ``.5``, ``true``, ``null`` ...) is single-quoted.
+    Floats are written by ``repr`` (PyYAML's own way: the shortest text that reads back as
+    the same float, ``1.0e+20`` for ``1e+20``). The text is parsed back to check it: anything
+    but the same tree raises ValueError (a bug, never a silently different spec)."""
+    import yaml
+
+    from ..spec.yaml_source import resolve_plain
+
+    class Dumper(yaml.SafeDumper):
+        pass
+
+    def text(dumper, value: str):
+        if "\n" in value:
+            style = "|"                                # multi-line text as a literal block
+        elif not value or not _reads_as(resolve_plain(value), value):
+            style = "'"                                # 1.2 would not read it as this text
+        else:
+            style = None
+        return dumper.represent_scalar("tag:yaml.org,2002:str", value, style=style)
+
+    Dumper.add_representer(str, text)
+    out = yaml.dump(data, Dumper=Dumper, sort_keys=False, allow_unicode=True,
+                    default_flow_style=None, width=100)
+    _check_round_trip(data, out)
+    return out
+
+
+def _reads_as(value: Any, text: str) -> bool:
+    return isinstance(value, str) and value == text
+
+
+def _check_round_trip(data: Any, text: str) -> None:
+    from ..spec.loader import parse_source
+    back = parse_source(text, "<variant>")
+    if back.problems or not _same_tree(data, back.data):
+        raise ValueError("the variant's YAML text does not read back as its data"
+                         + (f": {back.problems[0].message}" if back.problems else ""))
+
+
+def _same_tree(a: Any, b: Any) -> bool:
+    """``a`` and ``b`` equal, with the same types (True is not 1, 1 is not 1.0; NaN equals
+    NaN)."""
+    if isinstance(a, (dict, list, tuple)):
+        if isinstance(a, dict):
+            return (isinstance(b, dict) and list(a) == list(b)
+                    and all(_same_tree(a[k], b[k]) for k in a))
+        return (isinstance(b, list) and len(a) == len(b)
+                and all(_same_tree(x, y) for x, y in zip(a, b)))
+    if type(a) is not type(b):
+        return False
+    if isinstance(a, float) and a != a:
+        return b != b
+    return a == b
 
 
 def _plain(value: float) -> float | int:
