@@ -1082,11 +1082,16 @@ def _figures(sw: SweepData, refs: list[RefAngle], ref: str, d: Display) -> dict[
             "used for the scale, values beyond it are marked at the edge)."
             if sw.flagged else "")
     effort = "Driver torque" if sw.effort == "moment" else "Driver force"
+    unit = sw.at_unit
+    at = ", ".join(f"{deg(a)}{unit}" for a in sw.ref_angles)
+    refs_text = (f", dotted lines at the reference {'angles' if unit == '°' else 'positions'} "
+                 f"({at})" if sw.ref_angles else "")
+    gaps = ", the curves broken at the left-out angles" if sw.flagged else ""
     figs |= {"torque": Figure("torque", f"{effort} over the sweep ({title}); mean and "
-                              f"peak marked, left-out angles in grey.{near}", "torque"),
+                              f"peak marked{refs_text}{gaps}.{near}", "torque"),
              "reactions": Figure("reactions", f"Magnitude of each joint's reaction over the "
-                                 f"sweep ({title}; components are in results.csv), left-out "
-                                 f"angles in grey.{near}", "reactions"),
+                                 f"sweep ({title}; components are in results.csv){gaps}."
+                                 f"{near}", "reactions"),
              "shaking": Figure("shaking", "Shaking force (resultant of the reactions on the "
                                "frame) and shaking moment about the driver pivot, including "
                                f"the driver's reaction torque.{near}", "shaking")}

@@ -5,8 +5,10 @@ balancing. Each figure is one SVG file, shown by both the PDF and the Markdown r
 Values are plotted in the report's display units (``model.display``) and labelled by the one
 number formatter. Near-singular stretches (within ``sweep.near_deg`` of a left-out angle) are
 hatched and do not set a plot's scale: a curve that runs off the scale there is clipped and
-its extreme is marked at the edge with its value. Colours are Okabe & Ito's colour-blind-safe
-set. Layouts are fixed (no tight bounding boxes: each figure is drawn once, when saved).
+its extreme is marked at the edge with its value (one label for marks at the same angle).
+Colours are Okabe & Ito's colour-blind-safe set. Layouts are fixed (no tight bounding boxes:
+each figure is drawn once, when saved); text that could run into other text, a curve or an
+edge is measured first and placed where it is free (see "measuring and placing" below).
 
 Text stays text in the SVG (``svg.fonttype: none``, DejaVu Sans with sans-serif fallbacks): a
 browser shows it in its sans-serif, and Typst typesets it in DejaVu Sans itself, from
@@ -95,14 +97,170 @@ def figure(height: float, rows: int = 1, cols: int = 1, gap: float = 0.55,
     """A figure of ``rows`` x ``cols`` axes with fixed margins [in] (a matplotlib Figure,
     outside pyplot: no backend, no global figure list)."""
     from matplotlib.figure import Figure
-    left, right, bottom, top = margins
     fig = Figure(figsize=(width, height))          # no pyplot bookkeeping: closed by GC
     axes = fig.subplots(rows, cols, squeeze=False, **kw)
+    _layout(fig, rows, cols, gap, wgap, margins)
+    return fig, axes
+
+
+def _layout(fig, rows: int, cols: int, gap: float, wgap: float, margins) -> None:
+    """Place the axes grid of ``fig``: ``margins`` (left, right, bottom, top) and the gaps
+    between rows (``gap``) and columns (``wgap``) [in]."""
+    width, height = fig.get_size_inches()
+    left, right, bottom, top = margins
     fig.subplots_adjust(left=left / width, right=1 - right / width, bottom=bottom / height,
                         top=1 - top / height, hspace=gap / max((height - bottom - top) / rows
                                                                - gap, 0.3),
                         wspace=wgap / max((width - left - right) / cols - wgap, 0.3))
-    return fig, axes
+
+
+# ------------------------------------------------------------------ measuring and placing
+#
+# Layouts are fixed, and a figure is drawn once, when it is saved. Where text could run into
+# other text, a curve or the figure's edge (off-scale values, the ΔE label, limits off the
+# scale, reference angles, tick labels of large numbers), it is measured before that with
+# Agg's text metrics (text layout only, nothing is drawn) and placed at the first of a few
+# candidate spots that is free; a figure where the first spot is free is drawn as before.
+
+#: room kept between placed text and other text, and between placed text and a curve (half
+#: its line width, and some air) [pt]
+CLEAR = 1.5
+LINE_CLEAR = 3.0
+
+
+def _renderer(fig):
+    """A renderer to measure the text of ``fig`` with before it is drawn."""
+    from matplotlib.backends.backend_agg import RendererAgg
+    w, h = fig.bbox.size
+    return RendererAgg(max(int(w), 1), max(int(h), 1), fig.dpi)
+
+
+def _px(fig, pt: float) -> float:
+    """``pt`` points in display units of ``fig``."""
+    return pt * fig.dpi / 72.0
+
+
+def _text_size(renderer, text: str, size: float) -> tuple[float, float, float]:
+    """(width, height, descent) of ``text`` at ``size`` points, in display units."""
+    from matplotlib.font_manager import FontProperties
+    return renderer.get_text_width_height_descent(text, FontProperties(size=size), ismath=False)
+
+
+def _grow(box, by: float):
+    return (box[0] - by, box[1] - by, box[2] + by, box[3] + by)
+
+
+def _overlaps(a, b) -> bool:
+    """Boxes (x0, y0, x1, y1) overlap (touching is not overlapping)."""
+    return min(a[2], b[2]) > max(a[0], b[0]) and min(a[3], b[3]) > max(a[1], b[1])
+
+
+def _inside(box, outer, slack: float = 1.0) -> bool:
+    return (box[0] >= outer[0] - slack and box[1] >= outer[1] - slack
+            and box[2] <= outer[2] + slack and box[3] <= outer[3] + slack)
+
+
+def _crossings(box, lines) -> int:
+    """How many of the polylines ``lines`` (display coordinates, (n, 2) arrays; NaN rows are
+    gaps) pass through ``box`` (x0, y0, x1, y1). Exact for straight segments."""
+    x0, y0, x1, y1 = box
+    count = 0
+    for p in lines:
+        p = np.asarray(p, float).reshape(-1, 2)
+        if len(p) == 1:                                   # a marker: one point
+            count += bool(x0 <= p[0, 0] <= x1 and y0 <= p[0, 1] <= y1)
+            continue
+        a, b = p[:-1], p[1:]
+        ok = np.isfinite(a).all(axis=1) & np.isfinite(b).all(axis=1)
+        a, b = a[ok], b[ok]
+        lo = np.maximum(np.minimum(a[:, 0], b[:, 0]), x0)
+        hi = np.minimum(np.maximum(a[:, 0], b[:, 0]), x1)
+        sel = lo <= hi
+        a, b, lo, hi = a[sel], b[sel], lo[sel], hi[sel]
+        if not len(a):
+            continue
+        dx = b[:, 0] - a[:, 0]
+        flat = np.abs(dx) < 1e-12
+        safe = np.where(flat, 1.0, dx)
+        t0 = np.where(flat, 0.0, (lo - a[:, 0]) / safe)
+        t1 = np.where(flat, 1.0, (hi - a[:, 0]) / safe)
+        ya = a[:, 1] + t0 * (b[:, 1] - a[:, 1])
+        yb = a[:, 1] + t1 * (b[:, 1] - a[:, 1])
+        count += bool(np.any((np.minimum(ya, yb) <= y1) & (np.maximum(ya, yb) >= y0)))
+    return count
+
+
+def _data_lines(ax, *xy) -> list[np.ndarray]:
+    """Polylines (x, y) in data coordinates as display coordinates."""
+    return [ax.transData.transform(np.column_stack([np.asarray(x, float),
+                                                    np.asarray(y, float)])) for x, y in xy]
+
+
+def _hline(ax, y: float) -> np.ndarray:
+    """A horizontal line across ``ax`` at data ``y``, in display coordinates."""
+    lo, hi = ax.get_xlim()
+    return _data_lines(ax, ([lo, hi], [y, y]))[0]
+
+
+def _place(ax, text, candidates, lines=(), boxes=(), renderer=None):
+    """Put the Annotation ``text`` at the first of ``candidates`` — (xy, offset [pt], ha,
+    va) — where it stays inside the axes, LINE_CLEAR from the polylines ``lines`` and CLEAR
+    from the ``boxes`` (display coordinates); else where it is least in the way. Returns the
+    box it takes (display coordinates)."""
+    r = renderer or _renderer(ax.figure)
+    outer = tuple(ax.bbox.extents)
+    clear, line_clear = _px(ax.figure, CLEAR), _px(ax.figure, LINE_CLEAR)
+    best, best_score = None, math.inf
+    for xy, offset, ha, va in candidates:
+        text.xy, text.xyann = xy, offset
+        text.set_ha(ha)
+        text.set_va(va)
+        box = tuple(text.get_window_extent(r).extents)
+        score = (0 if _inside(box, outer) else 100) + _crossings(_grow(box, line_clear), lines) \
+            + sum(_overlaps(_grow(box, clear), b) for b in boxes)
+        if score < best_score:
+            best, best_score = (xy, offset, ha, va, box), score
+        if score == 0:
+            break
+    xy, offset, ha, va, box = best
+    text.xy, text.xyann = xy, offset
+    text.set_ha(ha)
+    text.set_va(va)
+    return box
+
+
+def _fit_y_labels(fig, axes, relayout, left: float, wgap: float) -> None:
+    """Widen the left margin (``left`` [in]) or the gap between columns (``wgap`` [in]) of
+    ``fig`` until the y tick labels and label of every visible axes in ``axes`` (2-D, rows x
+    columns) fit between the figure's edge or the axes to their left; ``relayout(left,
+    wgap)`` places the grid again. Nothing changes where they fit (large numbers in N, or
+    small ones in kN, are what need the room)."""
+    r = _renderer(fig)
+    pad = _px(fig, 2.0)
+    for _ in range(3):
+        need_left = need_gap = 0.0
+        for row in axes:
+            prev = None
+            for ax in row:
+                if not ax.get_visible():
+                    continue
+                ax.apply_aspect()
+                box = ax.yaxis.get_tightbbox(r)
+                if box is None:                 # nothing drawn left of this axes
+                    continue
+                x0 = box.x0
+                room = x0 - (prev.get_position().x1 * fig.bbox.width if prev is not None
+                             else 0.0)
+                short = max(pad - room, 0.0) / fig.dpi
+                if prev is None:
+                    need_left = max(need_left, short)
+                else:
+                    need_gap = max(need_gap, short)
+                prev = ax
+        if need_left <= 0 and need_gap <= 0:
+            return
+        left, wgap = left + need_left, wgap + need_gap
+        relayout(left, wgap)
 
 
 def legend_top(ax, ncol: int, **kw) -> None:
@@ -146,10 +304,10 @@ def crank_axis(ax, sw, label: bool = True) -> None:
 
 
 def scale_to_trusted(ax, sw, series: list[np.ndarray], unit: str, pad: float = 0.08,
-                     include_zero: bool = True) -> bool:
+                     include_zero: bool = True, names: list[str] | None = None) -> bool:
     """Set the y-limits from the values away from left-out angles; where a curve runs beyond
-    them near a left-out angle, clip it and mark its extreme at the edge with its value.
-    True if anything was clipped."""
+    them near a left-out angle, clip it and mark its extreme at the edge with its value
+    (``names``: each series' name, given in the labels). True if anything was clipped."""
     near = sw.near if len(sw.near) == len(sw.angles) else np.zeros(len(sw.angles), bool)
     allv = np.concatenate([np.asarray(s, float) for s in series]) if series else np.zeros(0)
     if not allv.size:
@@ -169,7 +327,8 @@ def scale_to_trusted(ax, sw, series: list[np.ndarray], unit: str, pad: float = 0
     ylo, yhi = lo - pad * span, hi + pad * span
     ax.set_ylim(ylo, yhi)
     if clipped:
-        for s in series:
+        marks = []
+        for i, s in enumerate(series):
             s = np.asarray(s, float)
             for side, k in (("hi", int(np.nanargmax(s))), ("lo", int(np.nanargmin(s)))):
                 v = s[k]
@@ -177,13 +336,70 @@ def scale_to_trusted(ax, sw, series: list[np.ndarray], unit: str, pad: float = 0
                     y = yhi if side == "hi" else ylo
                     ax.plot([sw.angles[k]], [y], marker="^" if side == "hi" else "v",
                             color=INK, ms=5, clip_on=False, zorder=6)
-                    where = f"{sw.angles[k]:g}" + ("°" if sw.xrange is None else "")
-                    ax.annotate(f"{fmt(v)} {unit} at {where}", (sw.angles[k], y),
-                                xytext=(5, -9 if side == "hi" else 3),
-                                textcoords="offset points", fontsize=6.5, color=INK,
-                                ha="left" if k < 0.8 * len(sw.angles) else "right",
-                                annotation_clip=False)
+                    name = names[i] if names is not None and len(series) > 1 else None
+                    marks.append((side, float(sw.angles[k]), float(v), name))
+        off_scale_labels(ax, sw, marks, unit)
     return clipped
+
+
+OFF_SCALE_SIZE = 6.5     # [pt], the labels of values off the scale
+
+
+def _off_scale_text(group, unit: str, deg: str) -> str:
+    """One label for off-scale values ``group`` [(side, angle, value, name)]: the largest
+    two with their names, the angle once when they share it, then how many more."""
+    group = sorted(group, key=lambda m: -abs(m[2]))
+    same = len({m[1] for m in group}) == 1
+    parts = []
+    for _, angle, v, name in group[:2]:
+        part = f"{fmt(v)} {unit}" + (f" ({literal(name)})" if name is not None else "")
+        parts.append(part if same else f"{part} at {angle:g}{deg}")
+    text = ", ".join(parts)
+    if len(group) > 2:
+        text += f" and {len(group) - 2} more"
+    return text + (f" at {group[0][1]:g}{deg}" if same else "")
+
+
+def off_scale_labels(ax, sw, marks, unit: str) -> None:
+    """Label the off-scale marks ``marks`` [(side "hi"/"lo", angle, value, name)] at the top
+    and bottom edges of ``ax`` so that no two labels overlap: marks at (nearly) the same
+    angle share one label (the values with the series' names, the angle once), and a label
+    that would run into another, or past the axes' edge, goes on the other side of its mark
+    or one line further in."""
+    fig = ax.figure
+    r = _renderer(fig)
+    deg = "°" if sw.xrange is None else ""
+    pt = _px(fig, 1.0)
+    x0, x1 = ax.bbox.x0, ax.bbox.x1
+    for side in ("hi", "lo"):
+        clusters: list[list] = []
+        for m in sorted((m for m in marks if m[0] == side), key=lambda m: m[1]):
+            x = ax.transData.transform((m[1], 0.0))[0]
+            if clusters and x - clusters[-1][-1][0] < 6 * pt:      # the marks touch
+                clusters[-1].append((x, m))
+            else:
+                clusters.append([(x, m)])
+        taken = []
+        for cluster in clusters:
+            group = [m for _, m in cluster]
+            text = _off_scale_text(group, unit, deg)
+            anchor = max(group, key=lambda m: abs(m[2]))[1]
+            x = ax.transData.transform((anchor, 0.0))[0]
+            w = _text_size(r, text, OFF_SCALE_SIZE)[0]
+            spots = [(row, ha) for row in range(4) for ha in ("left", "right")]
+            for row, ha in spots:
+                a = x + 5 * pt if ha == "left" else x - 5 * pt - w
+                span = (a, row, a + w)
+                if a >= x0 - pt and a + w <= x1 + pt and not any(
+                        t[1] == row and t[0] < span[2] + 3 * pt and span[0] < t[2] + 3 * pt
+                        for t in taken):
+                    break
+            taken.append(span)
+            y = ax.get_ylim()[1] if side == "hi" else ax.get_ylim()[0]
+            dy = -9 - 9 * row if side == "hi" else 3 + 9 * row
+            ax.annotate(text, (anchor, y), xytext=(5 if ha == "left" else -5, dy),
+                        textcoords="offset points", fontsize=OFF_SCALE_SIZE, color=INK, ha=ha,
+                        annotation_clip=False)
 
 
 def torque_figure(sw, d):
@@ -200,9 +416,12 @@ def draw_torque(ax, sw, d) -> None:
     a, t = with_gaps(sw.angles, d.value(sw.torque, kind))
     ax.plot(a, t, color=INK, lw=1.6, label=f"{sw.effort_label} ({sw.method_title})")
     series = [d.value(sw.torque, kind)]
+    curves = [(a, t)]
     if sw.torque_check is not None:
         _, tc = with_gaps(sw.angles, d.value(sw.torque_check, kind))
         ax.plot(a, tc, color="#E69F00", lw=1.0, ls=(0, (4, 3)), label="power balance (check)")
+        curves.append((a, tc))
+    levels = [0.0]
     st = sw.stats
     if st is not None:
         mean, rms = d.value(st.mean, kind), d.value(st.rms, kind)
@@ -212,13 +431,48 @@ def draw_torque(ax, sw, d) -> None:
         at = f"{st.peak.angle:g}°" if sw.xrange is None else f"{st.peak.angle:g}"
         ax.plot([st.peak.angle], [pk], "o", color="#D55E00", ms=5,
                 label=f"peak {fmt(pk)} {u} at {at}")
+        levels.append(mean)
+        curves.append(([st.peak.angle], [pk]))
     for r in sw.ref_angles:
         ax.axvline(r, color="0.4", lw=0.7, ls=":")
     ax.axhline(0, color="0.3", lw=0.6)
     crank_axis(ax, sw)
     scale_to_trusted(ax, sw, series, u)
+    label_reference_lines(ax, sw, curves, levels)
     ax.set_ylabel(f"{'force' if kind == 'force' else 'torque'} [{u}]")
     legend_top(ax, 2)
+
+
+REF_SIZE = 6.5           # [pt], the names of the reference angles' lines
+
+
+def label_reference_lines(ax, sw, curves, levels) -> None:
+    """Name the dotted lines at the reference angles of ``sw`` (``φ = 30°``, or the sweep's
+    quantity and value) at the top or bottom of ``ax``, beside the line, where the text
+    crosses none of ``curves`` [(x, y) in data coordinates], the horizontal lines at
+    ``levels``, the text already there or another reference line's name."""
+    if not len(sw.ref_angles):
+        return
+    fig = ax.figure
+    r = _renderer(fig)
+    lines = _data_lines(ax, *curves) + [_hline(ax, y) for y in levels]
+    boxes = [tuple(t.get_window_extent(r).extents) for t in ax.texts if t.get_text()]
+    for ln in ax.get_lines():                       # off-scale marks at the edges
+        if not ln.get_clip_on() and len(ln.get_xdata()) == 1:
+            lines += _data_lines(ax, (ln.get_xdata(), ln.get_ydata()))
+    lo, hi = ax.get_ylim()
+    if sw.xrange is None:
+        name = "φ = {:g}°"
+    else:
+        quantity, unit = sw.xlabel.rsplit(" [", 1)
+        name = f"{quantity} {{:g}} {unit.rstrip(']')}"
+    for ref in sw.ref_angles:
+        text = ax.annotate(name.format(ref), (ref, hi), textcoords="offset points",
+                           xytext=(2, -2), fontsize=REF_SIZE, color="0.35", ha="left",
+                           va="top", annotation_clip=False)
+        cands = [((ref, hi), (2, -2), "left", "top"), ((ref, hi), (-2, -2), "right", "top"),
+                 ((ref, lo), (2, 2), "left", "bottom"), ((ref, lo), (-2, 2), "right", "bottom")]
+        boxes.append(_place(ax, text, cands, lines, boxes, r))
 
 
 def reactions_figure(sw, d):
@@ -246,7 +500,7 @@ def reactions_figure(sw, d):
                               label=literal(f"{js.name}: couple M{js.symbol[1:]}"))
         ax2.axhline(0, color="0.3", lw=0.5)
         crank_axis(ax2, sw)
-        scale_to_trusted(ax2, sw, mseries, M)
+        scale_to_trusted(ax2, sw, mseries, M, names=[js.name for js in couples])
         ax2.set_ylabel(f"slider couple [{M}]")
         legend_top(ax2, min(len(couples), 4), handles=lines)
     return fig
@@ -264,7 +518,7 @@ def draw_reactions(ax, sw, d, ncol: int = 5, label: bool = True) -> None:
         lines += ax.plot(a, ff, color=js.color, lw=1.4, ls=STYLES[i % 4],
                          label=literal(f"{js.name} ({js.symbol})"))
     crank_axis(ax, sw, label=label)
-    scale_to_trusted(ax, sw, series, F)
+    scale_to_trusted(ax, sw, series, F, names=[js.name for js in sw.joints])
     ax.set_ylabel(f"|F| [{F}]")
     legend_top(ax, min(len(sw.joints), ncol), handles=lines)
 
@@ -275,8 +529,9 @@ def polar_figure(sw, d):
     rows = math.ceil(n / cols)
     cell = WIDTH / cols
     F = d.unit("force")
-    fig, axes = figure(cell * rows, rows, cols, gap=0.6, wgap=0.6,
-                       margins=(0.55, 0.1, 0.42, 0.3))
+    margins = (0.55, 0.1, 0.42, 0.3)
+    fig, axes = figure(cell * rows, rows, cols, gap=0.6, wgap=0.6, margins=margins)
+    rend = _renderer(fig)
     ref_idx = [int(np.argmin(np.abs(sw.angles - r))) for r in sw.ref_angles
                if len(sw.angles) and np.min(np.abs(sw.angles - r)) < 1e-9]
     near = sw.near if len(sw.near) == len(sw.angles) else np.zeros(len(sw.angles), bool)
@@ -307,6 +562,8 @@ def polar_figure(sw, d):
         ax.set_xlim(-lim, lim)
         ax.set_ylim(-lim, lim)
         ax.set_aspect("equal", adjustable="box")
+        ax.apply_aspect()
+        _keep_inside(ax, rend)
         ax.xaxis.set_major_locator(MaxNLocator(4, symmetric=True))
         ax.yaxis.set_major_locator(MaxNLocator(4, symmetric=True))
         frame = "global frame" if ps.carrier == "ground" else f"frame of {ps.carrier}"
@@ -322,7 +579,31 @@ def polar_figure(sw, d):
         ax.axvline(0, color="0.6", lw=0.5)
     for ax in axes.flat[n:]:
         ax.set_visible(False)
+
+    def relayout(left, wgap):
+        _layout(fig, rows, cols, 0.6, wgap, (left, *margins[1:]))
+        for ax in axes.flat[:n]:
+            ax.apply_aspect()
+            _keep_inside(ax, rend)
+    _fit_y_labels(fig, axes, relayout, margins[0], 0.6)
     return fig
+
+
+def _keep_inside(ax, renderer) -> None:
+    """Turn each reference angle's label on a polar diagram (away from the origin, on the
+    side of its point) to another corner of its point where it would be cut by the axes'
+    edge, or run into the label before it."""
+    from matplotlib.text import Annotation
+    boxes = []
+    for text in ax.texts:
+        if not isinstance(text, Annotation) or not text.get_clip_on():
+            continue
+        dx, dy = text.xyann
+        sx, sy = (1 if dx >= 0 else -1), (1 if dy >= 0 else -1)
+        cands = [(text.xy, (4 * a, 4 * b), "left" if a > 0 else "right",
+                  "bottom" if b > 0 else "top")
+                 for a, b in ((sx, sy), (-sx, sy), (sx, -sy), (-sx, -sy))]
+        boxes.append(_place(ax, text, cands, (), boxes, renderer))
 
 
 def shaking_figure(sw, d):
@@ -340,7 +621,7 @@ def shaking_figure(sw, d):
     ax1.set_ylabel(f"force on frame [{F}]")
     legend_top(ax1, 3)
     crank_axis(ax1, sw, label=False)
-    scale_to_trusted(ax1, sw, [fx, fy, f], F)
+    scale_to_trusted(ax1, sw, [fx, fy, f], F, names=["x", "y", "|F|"])
     ax2.plot(a, gm, color="#CC79A7", lw=1.4, label="shaking moment about the driver pivot")
     ax2.axhline(0, color="0.3", lw=0.5)
     ax2.set_ylabel(f"moment on frame [{M}]")
@@ -360,9 +641,16 @@ def _cycle_axis(ax, cd, label: bool = True) -> None:
         ax.axvspan(a - 0.5, a + 0.5, color="0.45", alpha=0.35, lw=0)
 
 
+#: a motor limit further than this share of the torque's range beyond it is off the scale
+LIMIT_REACH = 0.5
+LIMIT_COLOR = "#CC79A7"
+
+
 def flywheel_figure(cd, d):
     """The classic flywheel diagram: torque against its mean, the energy areas shaded and the
-    largest fluctuation marked; motor rated (RMS) and peak torque when given."""
+    largest fluctuation marked; motor rated (RMS) and peak torque when given. The torque
+    panel is scaled to the torque: a motor line further than LIMIT_REACH of its range beyond
+    it is not drawn but marked at the panel's edge, an arrow with its value."""
     fig, axes = figure(3.6, 2, 1, gap=0.4, margins=(0.72, 0.12, 0.42, 0.5),
                        gridspec_kw={"height_ratios": [3, 2]}, sharex=True)
     ax, ax2 = axes[0, 0], axes[1, 0]
@@ -374,30 +662,93 @@ def flywheel_figure(cd, d):
                     lw=0, label="above the mean (energy in)")
     ax.fill_between(a, t, mean, where=t < mean, interpolate=True, color="#56B4E9", alpha=0.35,
                     lw=0, label="below the mean (energy out)")
+    lo, hi = min(float(np.min(t)), mean), max(float(np.max(t)), mean)
+    reach = LIMIT_REACH * ((hi - lo) or max(abs(hi), 1.0))
+    drawn, off = [mean], {"hi": [], "lo": []}
     for value, name, style in ((cd.rated_torque, "motor rated (RMS)", "-."),
                                (cd.peak_torque, "motor peak", ":")):
         if value:
             v = d.value(value, "moment")
-            ax.axhline(v, color="#CC79A7", lw=1.0, ls=style, label=f"{name} {fmt(v)} {M}")
-            if name == "motor peak" and np.min(t) < 0:
-                ax.axhline(-v, color="#CC79A7", lw=1.0, ls=style)
+            levels = [v] + ([-v] if name == "motor peak" and np.min(t) < 0 else [])
+            labelled = False
+            for level in levels:
+                if lo - reach <= level <= hi + reach:
+                    ax.axhline(level, color=LIMIT_COLOR, lw=1.0, ls=style,
+                               label=None if labelled else f"{name} {fmt(level)} {M}")
+                    labelled = True
+                    drawn.append(level)
+                elif level == v:                  # -peak far off the scale means nothing
+                    off["hi" if v > hi else "lo"].append(f"{name} {fmt(v)} {M}")
     ax.set_ylabel(f"torque [{M}]")
     legend_top(ax, 3)
     _cycle_axis(ax, cd, label=False)
     e = cd.energy
-    hi, lo = int(np.argmax(e)), int(np.argmin(e))
+    i_hi, i_lo = int(np.argmax(e)), int(np.argmin(e))
     ax2.plot(a, e, color="#009E73", lw=1.4)
-    ax2.plot([a[hi], a[lo]], [e[hi], e[lo]], "o", color="#D55E00", ms=4)
-    ax2.annotate("", xy=(a[lo], e[lo]), xytext=(a[lo], e[hi]),
+    ax2.plot([a[i_hi], a[i_lo]], [e[i_hi], e[i_lo]], "o", color="#D55E00", ms=4)
+    ax2.annotate("", xy=(a[i_lo], e[i_lo]), xytext=(a[i_lo], e[i_hi]),
                  arrowprops={"arrowstyle": "<->", "color": "#D55E00", "lw": 1.0})
-    right = a[lo] > 250
-    ax2.annotate(f"ΔE = {fmt(e[hi] - e[lo])} J", (a[lo], (e[hi] + e[lo]) / 2), fontsize=7.5,
-                 xytext=(-6 if right else 6, 0), textcoords="offset points", color="#D55E00",
-                 va="center", ha="right" if right else "left")
+    right = a[i_lo] > 250
+    delta = ax2.annotate(f"ΔE = {fmt(e[i_hi] - e[i_lo])} J", (a[i_lo], (e[i_hi] + e[i_lo]) / 2),
+                         fontsize=7.5, xytext=(-6 if right else 6, 0),
+                         textcoords="offset points", color="#D55E00", va="center",
+                         ha="right" if right else "left")
     ax2.axhline(0, color="0.3", lw=0.5)
     ax2.set_ylabel("∫(M − mean) dφ [J]")
     _cycle_axis(ax2, cd)
+    r = _renderer(fig)
+    _place_delta_e(ax2, delta, a, e, i_hi, i_lo, right, r)
+    for side, names in off.items():
+        if names:
+            _limit_arrow(ax, side, "\n".join(names), [(a, t)], drawn, r)
     return fig
+
+
+def _place_delta_e(ax, text, a, e, i_hi, i_lo, right: bool, renderer) -> None:
+    """Put the ΔE label beside its arrow where the energy curve does not cross it: halfway
+    up the arrow on the side with more room first, then higher and lower, then the other
+    side."""
+    x, top, bottom = a[i_lo], e[i_hi], e[i_lo]
+    sides = [(-6, "right"), (6, "left")] if right else [(6, "left"), (-6, "right")]
+    cands = [((x, bottom + f * (top - bottom)), (dx, 0), ha, "center")
+             for dx, ha in sides for f in (0.5, 0.3, 0.7, 0.15, 0.85)]
+    dots = _data_lines(ax, ([a[i_hi]], [e[i_hi]]), ([a[i_lo]], [e[i_lo]]))
+    _place(ax, text, cands, _data_lines(ax, (a, e)) + dots, (), renderer)
+
+
+def _limit_arrow(ax, side: str, label: str, curves, levels, renderer) -> None:
+    """Mark a limit off the scale of ``ax`` (above it: ``side`` "hi", below: "lo") with an
+    arrow at that edge and ``label`` beside it, where neither crosses ``curves`` [(x, y)] or
+    the horizontal lines at ``levels``."""
+    fig = ax.figure
+    curve_px = _data_lines(ax, *curves)
+    lines = curve_px + [_hline(ax, y) for y in levels]
+    up = side == "hi"
+    edge = 1.0 if up else 0.0
+    trans = ax.get_xaxis_transform()                   # x in data, y in axes fraction
+    text = ax.annotate(label, (0.0, edge), xycoords=trans, xytext=(4, 0),
+                       textcoords="offset points", fontsize=7, color=LIMIT_COLOR,
+                       annotation_clip=False, linespacing=1.1)
+    w = max(_text_size(renderer, part, 7)[0] for part in label.split("\n"))
+    spots = []
+    for x in np.linspace(*ax.get_xlim(), 17)[1:-1]:
+        x0, y0 = ax.transData.transform((x, ax.get_ylim()[1 if up else 0]))
+        near = np.concatenate([c[:, 1][np.abs(c[:, 0] - x0) <= w] for c in curve_px])
+        near = near[np.isfinite(near)]
+        room = (y0 - np.max(near) if up else np.min(near) - y0) if near.size else np.inf
+        for length in (16.0, 12.0, 9.0):               # the arrow [pt]
+            tail = y0 - _px(fig, length) if up else y0 + _px(fig, length)
+            shaft = _grow((x0, min(y0, tail), x0, max(y0, tail)), _px(fig, LINE_CLEAR))
+            spots.append((_crossings(shaft, lines), -room, -length, x))
+    spots.sort()                                    # a clear shaft, the most room, longest
+    cands = [((x, edge), (dx, length / 2 if up else -length / 2), ha, "center")
+             for _, _, length, x in spots for dx, ha in ((4, "left"), (-4, "right"))]
+    _place(ax, text, cands, lines, (), renderer)
+    x, length = text.xy[0], 2 * abs(text.xyann[1])
+    ax.annotate("", xy=(x, edge), xycoords=trans, xytext=(0, -length if up else length),
+                textcoords="offset points", annotation_clip=False,
+                arrowprops={"arrowstyle": "-|>", "color": LIMIT_COLOR, "lw": 1.2,
+                            "mutation_scale": 9, "shrinkA": 0, "shrinkB": 0})
 
 
 def breakdown_figure(cd, d):
@@ -447,7 +798,8 @@ def transmission_figure(cd, d):
 def balance_figure(cd, d):
     """Polar trace of the inertial shaking force without and with the counterweight."""
     w = WIDTH * 0.55
-    fig, axes = figure(w, margins=(0.62, 0.12, 0.42, 0.45), width=w)
+    margins = (0.62, 0.12, 0.42, 0.45)
+    fig, axes = figure(w, margins=margins, width=w)
     ax = axes[0, 0]
     F = d.unit("force")
     for xy, name, color, style in ((cd.inertial, "without counterweight", "#0072B2", "-"),
@@ -460,6 +812,8 @@ def balance_figure(cd, d):
     ax.set_xlabel(f"x [{F}]")
     ax.set_ylabel(f"y [{F}]")
     legend_top(ax, 1)
+    _fit_y_labels(fig, axes, lambda left, _: _layout(fig, 1, 1, 0.55, 0.75,
+                                                     (left, *margins[1:])), margins[0], 0.75)
     return fig
 
 

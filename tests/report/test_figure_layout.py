@@ -1,0 +1,335 @@
+"""Figures a reviewer can read: no text on top of other text, none cut off by the figure's or
+its axes' edge, labels that curves do not cross, scales set by the data.
+
+The general check draws every report figure of every spec in specs/ (the sweep and cycle
+plots of plots.py, as write_plots makes them, and the drawings) with matplotlib's Agg canvas
+and compares the window extents of every visible, non-empty Text: texts placed on the axes
+(off-scale values, ΔE, limits, reference angles), titles, axis labels, the tick labels
+matplotlib draws (those inside the view; tick labels among themselves included), legend
+texts. Two texts may touch (within OVERLAP_PX); none may overlap, and none may run past the
+figure's edge or its clip box (the axes, for text drawn clipped)."""
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mechreport
+from mechreport.report import plots
+from mechreport.report.model import build_model
+
+ROOT = Path(__file__).resolve().parents[2]
+SPECS = sorted((ROOT / "specs").glob("*.yaml"))
+SLIDER = ROOT / "specs" / "slider_crank.yaml"
+FOUR_BAR = ROOT / "specs" / "four_bar.yaml"
+OVERLAP_PX = 1.5            # texts may touch by this much [px at 100 dpi] (antialiasing)
+
+CYCLE = {"flywheel": plots.flywheel_figure, "breakdown": plots.breakdown_figure,
+         "transmission": plots.transmission_figure, "balance": plots.balance_figure}
+SWEEP = {"torque": plots.torque_figure, "reactions": plots.reactions_figure,
+         "polar": plots.polar_figure, "shaking": plots.shaking_figure}
+
+
+# ----------------------------------------------------------------------------- helpers
+
+_models: dict = {}
+
+
+def model_of(path: Path):
+    """The report model of a spec file, built once per session."""
+    key = str(path)
+    if key not in _models:
+        _models[key] = build_model(mechreport.analyse(path))
+    return _models[key]
+
+
+def drawings(model) -> dict:
+    """The drawings write_drawings makes for ``model``: stem -> (scene, title)."""
+    refs = [r for r in model.refs if r.drawing is not None]
+    return {r.drawing.stem: (scene, f"φ = {r.angle}°" if model.coord_unit == "°" else r.title)
+            for r, scene in zip(refs, model.scenes)}
+
+
+def make(model, key: str):
+    """The figure ``key`` of ``model`` as write_plots or write_drawings makes it (call in the
+    report's style)."""
+    if key in CYCLE:
+        return CYCLE[key](model.design.data, model.display)
+    if key in SWEEP:
+        return SWEEP[key](model.sweep, model.display)
+    from mechreport.report.drawing import draw_scene
+    scene, title = drawings(model)[key]
+    return draw_scene(scene, model.display, title)
+
+
+def figure_keys(model) -> list[str]:
+    """The figures write_plots and write_drawings make for ``model``."""
+    figs, sw = model.figures, model.sweep
+    keys = [k for k in CYCLE if model.design.data is not None and k in figs]
+    if len(sw.angles):
+        keys += [k for k in SWEEP if k in figs and (k != "reactions" or sw.joints)]
+    return keys + list(drawings(model))
+
+
+def drawn_tick_labels(axis):
+    """The tick labels matplotlib draws on ``axis``: one per current tick location inside
+    the view (``get_ticklabels`` also returns ticks kept from earlier draws and ticks out of
+    view, which are not drawn)."""
+    locs = axis.get_majorticklocs()
+    lo, hi = sorted(axis.get_view_interval())
+    eps = 1e-9 * (hi - lo)
+    return [t.label1 for t, loc in zip(axis.get_major_ticks(len(locs)), locs)
+            if lo - eps <= loc <= hi + eps and t.label1.get_visible()]
+
+
+def drawn_texts(fig) -> list:
+    """Every visible, non-empty Text of ``fig`` that is drawn."""
+    texts = list(fig.texts)
+    for leg in fig.legends:
+        texts += leg.get_texts()
+    for ax in fig.axes:
+        if not ax.get_visible():
+            continue
+        texts += list(ax.texts) + [ax.title, ax._left_title, ax._right_title]
+        if ax.axison:
+            for axis in (ax.xaxis, ax.yaxis):
+                if axis.get_visible():
+                    texts += [axis.label] + drawn_tick_labels(axis)
+        if ax.get_legend() is not None:
+            texts += ax.get_legend().get_texts()
+    return [t for t in texts if t.get_visible() and t.get_text().strip()]
+
+
+def draw(fig):
+    """Draw ``fig`` with Agg (in the report's style); its renderer."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    canvas = FigureCanvasAgg(fig)
+    with plots.style():
+        canvas.draw()
+    return canvas.get_renderer()
+
+
+def layout_problems(fig) -> list[str]:
+    """Pairs of drawn texts that overlap, and texts cut by the figure's edge or their clip
+    box, as messages (none: the figure's text is readable)."""
+    r = draw(fig)
+    W, H = fig.bbox.width, fig.bbox.height
+    boxes = [(t, t.get_window_extent(r)) for t in drawn_texts(fig)]
+    out = []
+    for t, b in boxes:
+        if b.x0 < -1 or b.y0 < -1 or b.x1 > W + 1 or b.y1 > H + 1:
+            out.append(f"{t.get_text()!r} runs past the figure's edge")
+        clip = t.get_clip_box() if t.get_clip_on() else None
+        if clip is not None and (b.x0 < clip.x0 - 1 or b.x1 > clip.x1 + 1
+                                 or b.y0 < clip.y0 - 1 or b.y1 > clip.y1 + 1):
+            out.append(f"{t.get_text()!r} is cut by its axes")
+    for i, (t, a) in enumerate(boxes):
+        for u, b in boxes[i + 1:]:
+            dx = min(a.x1, b.x1) - max(a.x0, b.x0)
+            dy = min(a.y1, b.y1) - max(a.y0, b.y0)
+            if dx > OVERLAP_PX and dy > OVERLAP_PX:
+                out.append(f"{t.get_text()!r} overlaps {u.get_text()!r}")
+    return out
+
+
+def curve_crosses(ax, x, y, box) -> bool:
+    """The curve y(x) (data coordinates, x increasing, drawn as straight segments) passes
+    through ``box`` (a Bbox in display coordinates)."""
+    (x0, _), (x1, _) = ax.transData.inverted().transform([(box.x0, 0.0), (box.x1, 0.0)])
+    xs = np.linspace(x0, x1, 400)
+    pts = ax.transData.transform(np.column_stack([xs, np.interp(xs, x, y)]))
+    return bool(np.any((pts[:, 1] >= box.y0) & (pts[:, 1] <= box.y1)))
+
+
+def with_text(path: Path, extra: str, tmp_path: Path, name: str) -> Path:
+    p = tmp_path / name
+    p.write_text(path.read_text() + extra)
+    return p
+
+
+def texts_of(fig) -> list[str]:
+    return [t.get_text() for ax in fig.axes for t in ax.texts]
+
+
+# ------------------------------------------------------------------- the general check
+
+@pytest.mark.slow
+@pytest.mark.parametrize("spec", SPECS, ids=[p.stem for p in SPECS])
+def test_no_text_overlaps_or_is_cut_off_in_any_figure_of_any_spec(spec):
+    m = model_of(spec)
+    keys = figure_keys(m)
+    assert keys
+    problems = []
+    with plots.style():
+        for key in keys:
+            problems += [f"{spec.stem}/{key}: {p}" for p in layout_problems(make(m, key))]
+    assert not problems, "\n".join(problems)
+
+
+def test_the_layout_check_finds_overlapping_and_cut_text():
+    """The check itself: two labels on top of each other, one past the edge."""
+    with plots.style():
+        fig, axes = plots.figure(2.5)
+        ax = axes[0, 0]
+        ax.text(0.5, 0.5, "5747 N at 89°", transform=ax.transAxes)
+        ax.text(0.5, 0.5, "5737 N at 89°", transform=ax.transAxes)
+        ax.text(1.2, 0.5, "far right", transform=ax.transAxes)
+        problems = layout_problems(fig)
+    assert any("overlaps" in p for p in problems)
+    assert any("far right" in p and "edge" in p for p in problems)
+
+
+# ---------------------------------------------------------- off-scale values, one label
+
+def test_off_scale_values_at_the_same_angle_share_one_label():
+    """slider_crank: A and B run off the scale at 89°, C and C_T at 269°: one label each,
+    with both values and names, none overlapping ('5747 N at 89°' and '5737 N at 89°' were
+    printed on top of each other)."""
+    m = model_of(SLIDER)
+    with plots.style():
+        fig = plots.reactions_figure(m.sweep, m.display)
+    labels = [t for t in texts_of(fig) if " N" in t and " at " in t]
+    at89 = [t for t in labels if "89°" in t]
+    at269 = [t for t in labels if "269°" in t]
+    assert at89 == ["5747 N (A), 5737 N (B) at 89°"]
+    assert at269 == ["5747 N (C_T), 5738 N (C) at 269°"]
+    assert layout_problems(fig) == []
+
+
+def test_off_scale_labels_never_overlap_when_many_marks_crowd_the_edge():
+    """Marks that touch share a label (the largest two, then 'and N more'); labels of marks
+    at neighbouring angles go to the other side of their mark or one line further in."""
+    sw = model_of(SLIDER).sweep
+    with plots.style():
+        fig, axes = plots.figure(3.0)
+        ax = axes[0, 0]
+        plots.crank_axis(ax, sw)
+        ax.set_ylim(0, 1000)
+        marks = [("hi", a, 5000.0 + a, f"J{i}")
+                 for i, a in enumerate([10.0, 10.5, 11.0, 11.5, 60.0, 80.0, 100.0, 340.0])]
+        marks += [("lo", 89.0, -5000.0, "J9"), ("lo", 91.0, -4000.0, "J10")]
+        plots.off_scale_labels(ax, sw, marks, "N")
+        texts = texts_of(fig)
+        problems = layout_problems(fig)
+    assert "5012 N (J3) at 11.5°, 5011 N (J2) at 11° and 2 more" in texts
+    assert "-5000 N (J9) at 89°, -4000 N (J10) at 91°" in texts
+    for a in (60, 80, 100, 340):
+        assert sum(f"at {a}°" in t for t in texts) == 1
+    assert len(texts) == 6 and problems == []
+
+
+# -------------------------------------------------------------- flywheel: motor limits
+
+MOTOR = "\ndesign:\n  motor: {rated_torque: 150, peak_torque: 600}\n"
+
+
+def test_flywheel_torque_panel_is_scaled_to_the_torque_with_a_far_limit_as_an_edge_arrow(
+        tmp_path):
+    """slider_crank (torque -10 to 201 N·m) with a 600 N·m motor peak: the panel is scaled
+    to the torque, no ±600 line; the peak is an arrow at the top edge with its value, clear
+    of the curve; the rated 150 N·m, within the torque's range, stays a line."""
+    m = build_model(mechreport.analyse(with_text(SLIDER, MOTOR, tmp_path, "motor.yaml")))
+    cd = m.design.data
+    with plots.style():
+        fig = plots.flywheel_figure(cd, m.display)
+        ax = fig.axes[0]
+        r = draw(fig)
+    lo, hi = ax.get_ylim()
+    assert hi < 1.2 * float(np.max(cd.torque)) and lo > -0.2 * float(np.max(cd.torque))
+    levels = {round(float(y), 6) for ln in ax.get_lines()
+              for y in [ln.get_ydata()[0]] if len(set(np.ravel(ln.get_ydata()))) == 1}
+    assert 150.0 in levels and 600.0 not in levels and -600.0 not in levels
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "motor rated (RMS) 150 N·m" in legend and not any("peak" in t for t in legend)
+    (label,) = [t for t in ax.texts if t.get_text() == "motor peak 600 N·m"]
+    (arrow,) = [t for t in ax.texts if t.get_text() == "" and t.arrow_patch is not None]
+    assert arrow.xy[1] == 1.0 and arrow.xy[0] == label.xy[0]       # at the top edge
+    assert not curve_crosses(ax, cd.angles, cd.torque, label.get_window_extent(r))
+    assert layout_problems(fig) == []
+
+
+def test_flywheel_motor_limit_near_the_torque_stays_a_line():
+    """four_bar: a 6 N·m peak beside torque from -3.2 to 3.8 N·m is drawn as ±6 lines, as
+    before (the figure is unchanged)."""
+    m = model_of(FOUR_BAR)
+    with plots.style():
+        fig = plots.flywheel_figure(m.design.data, m.display)
+    ax = fig.axes[0]
+    flat = [ln.get_ydata()[0] for ln in ax.get_lines() if len(set(ln.get_ydata())) == 1]
+    assert 6.0 in flat and -6.0 in flat and 3.0 in flat
+    assert not [t for t in ax.texts if "motor" in t.get_text()]
+
+
+@pytest.mark.parametrize("spec", ["r_rtr_rtr", "scotch_yoke", "slider_crank"])
+def test_delta_e_label_is_not_crossed_by_the_energy_curve(spec):
+    """The ΔE label sits beside its arrow where the energy curve does not run through it
+    (r_rtr_rtr's crossed it halfway up the arrow)."""
+    m = model_of(ROOT / "specs" / f"{spec}.yaml")
+    cd = m.design.data
+    with plots.style():
+        fig = plots.flywheel_figure(cd, m.display)
+        ax2 = fig.axes[1]
+        r = draw(fig)
+    (label,) = [t for t in ax2.texts if t.get_text().startswith("ΔE = ")]
+    assert not curve_crosses(ax2, cd.angles, cd.energy, label.get_window_extent(r))
+    assert layout_problems(fig) == []
+
+
+# ------------------------------------------------------------------ labels that fit
+
+def units_kn(path: Path, tmp_path: Path) -> Path:
+    """``path`` with its report showing forces in kN."""
+    text = re.sub(r"(?m)^report:.*\n(?:  .*\n)*", "", path.read_text())
+    p = tmp_path / f"{path.stem}_kn.yaml"
+    p.write_text(text + "\nreport: {units: {force: kN}}\n")
+    return p
+
+
+@pytest.mark.parametrize("spec", ["four_bar", "r_rtr_rtr", "slider_crank"])
+def test_shaking_force_polar_in_kn_keeps_its_axis_labels_in_the_figure(spec, tmp_path):
+    """The balance polar in kN (tick labels like −0.0010) had its 'y [kN]' cut off at the
+    left edge: the margin widens until the label fits."""
+    m = build_model(mechreport.analyse(units_kn(ROOT / "specs" / f"{spec}.yaml", tmp_path)))
+    with plots.style():
+        fig = plots.balance_figure(m.design.data, m.display)
+    problems = layout_problems(fig)
+    ax = fig.axes[0]
+    assert ax.get_ylabel() == "y [kN]"
+    assert ax.yaxis.label.get_window_extent(draw(fig)).x0 >= 0
+    assert problems == []
+
+
+def test_pin_polar_labels_fit_the_figure_and_their_axes():
+    """hydraulic_boom's pin polars in N: 'y [N]' beside −15000 was cut at the left edge and
+    the '300°' label by its axes; offset_slider_crank's '60°' too."""
+    for name in ("hydraulic_boom", "offset_slider_crank"):
+        m = model_of(ROOT / "specs" / f"{name}.yaml")
+        with plots.style():
+            fig = plots.polar_figure(m.sweep, m.display)
+        assert layout_problems(fig) == [], name
+
+
+def test_reference_angle_lines_of_the_torque_plot_are_labelled():
+    """four_bar: the dotted lines at 30° and 210° say what they are, beside the line."""
+    m = model_of(FOUR_BAR)
+    with plots.style():
+        fig = plots.torque_figure(m.sweep, m.display)
+        r = draw(fig)
+    ax = fig.axes[0]
+    names = {t.get_text(): t for t in ax.texts}
+    assert {"φ = 30°", "φ = 210°"} <= set(names)
+    for ref in (30.0, 210.0):
+        box = names[f"φ = {ref:g}°"].get_window_extent(r)
+        x = ax.transData.transform((ref, 0.0))[0]
+        assert min(abs(box.x0 - x), abs(box.x1 - x)) < 6           # beside its line
+        assert not curve_crosses(ax, m.sweep.angles, m.sweep.torque, box)
+    assert layout_problems(fig) == []
+
+
+def test_reference_lines_of_a_stroke_sweep_name_the_stroke():
+    m = model_of(ROOT / "specs" / "hydraulic_boom.yaml")
+    with plots.style():
+        fig = plots.torque_figure(m.sweep, m.display)
+    assert "stroke 300 mm" in texts_of(fig)
