@@ -15,8 +15,9 @@ def _table(header: list[str], rows: list[list[str]]) -> str:
 
 
 def kin_display(kin: Kinematics) -> Display:
-    """SI units (what ``expect`` entries are written in), with this sweep's scales so that
-    round-off prints as 0."""
+    """The spec's display units (``report.units``; lengths by default in the spec's own
+    length unit), as the reports show them, with this sweep's scales so that round-off
+    prints as 0."""
     import numpy as np
 
     spec = kin.mechanism.spec
@@ -26,7 +27,10 @@ def kin_display(kin: Kinematics) -> Display:
         vals = [float(np.max(np.abs(a))) for a in arrs if np.size(a)]
         return max(vals, default=0.0) or 1.0
 
-    return Display(scales={"length": top([p.r for p in pts]), "velocity": top([p.v for p in pts]),
+    units = dict(spec.report.units)
+    return Display(units.get("length", spec.units.get("length", "m")), units.get("force", "N"),
+                   units.get("moment", "N*m"), units.get("mass", "kg"),
+                   scales={"length": top([p.r for p in pts]), "velocity": top([p.v for p in pts]),
                            "acceleration": top([p.a for p in pts] + [kin.com(l.name).a
                                                                      for l in spec.links]),
                            "omega": top([kin.omega]), "alpha": top([kin.alpha]),
@@ -76,10 +80,11 @@ def kinematics_table(kin: Kinematics) -> str:
     blocks = []
     for k, angle in enumerate(kin.angles):
         rows, lrows = kinematics_rows(kin, k, d)
-        pts = _table(["point", "x [m]", "y [m]", "vx [m/s]", "vy [m/s]", "ax [m/s^2]",
-                      "ay [m/s^2]"], rows)
-        lks = _table(["link", "angle [deg]", "omega [rad/s]", "alpha [rad/s^2]",
-                      "aC x [m/s^2]", "aC y [m/s^2]"], lrows)
+        pts = _table(["point", d.head("x", "length"), d.head("y", "length"),
+                      d.head("vx", "velocity"), d.head("vy", "velocity"),
+                      d.head("ax", "acceleration"), d.head("ay", "acceleration")], rows)
+        lks = _table(["link", "angle [deg]", "omega [rad/s]", "alpha [rad/s²]",
+                      d.head("aC x", "acceleration"), d.head("aC y", "acceleration")], lrows)
         blocks.append(f"{spec.name}: {spec.driver.coordinate} {angle:g} {spec.axis_unit}"
                       f"\n\n{pts}\n\n{lks}")
     return "\n\n".join(blocks) if blocks else f"{spec.name}: no angle could be solved"
