@@ -127,7 +127,8 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
 
             def tick(i, n):
                 print(f"cross-check [{i}/{n}]", file=err, flush=True)
-            cc = cross_check(base, table, cross, study.seed, progress=tick)
+            never = [i for x in lost for i in range(x.start, x.stop)]
+            cc = cross_check(base, table, cross, study.seed, progress=tick, skip=never)
         from ..study.report import StudyRun
         from ..report.model import build_time, spec_sha256
         run = StudyRun(base, table, method, why, seconds, where, size,
