@@ -18,11 +18,25 @@ CYCLE_UNITS = {
     "balance.inertia_shaking.force_rms": "N",
 }
 JOINT_CYCLE_UNITS = {"f_max": "N", "f_mean": "N", "f_equivalent": "N", "life_h": "h"}
-JOINT_UNITS = {"fx": "N", "fy": "N", "f": "N", "moment": "N·m", "px": "m", "py": "m"}
-POINT_UNITS = {"x": "m", "y": "m", "vx": "m/s", "vy": "m/s", "ax": "m/s^2", "ay": "m/s^2"}
+JOINT_UNITS = {"fx": "N", "fy": "N", "f": "N", "moment": "N·m", "px": "m", "py": "m",
+               "angle": "deg"}      # angle: an R joint's relative angle (kinematics)
+POINT_UNITS = {"x": "m", "y": "m", "vx": "m/s", "vy": "m/s", "ax": "m/s^2", "ay": "m/s^2",
+               "v": "m/s", "a": "m/s^2"}           # v, a: magnitudes
+#: instantaneous quantities of the whole mechanism, at an angle
+MECHANISM_UNITS = {"transmission_angle": "deg"}
+#: the instantaneous quantities the kinematics alone gives (not the force methods)
+KINEMATIC_KINDS = ("point", "link")
 LINK_UNITS = {"angle": "deg", "omega": "rad/s", "alpha": "rad/s^2"}
 _UNITS_BY_KIND = {"joint": {**JOINT_UNITS, **JOINT_CYCLE_UNITS}, "point": POINT_UNITS,
                   "link": LINK_UNITS}
+
+
+def is_kinematic(quantity: str) -> bool:
+    """True for a quantity the kinematics gives (points, links, a joint's relative angle,
+    the transmission angle): checked once, not per force method."""
+    parts = quantity.split(".")
+    return (quantity in MECHANISM_UNITS or parts[0] in KINEMATIC_KINDS
+            or (len(parts) == 3 and parts[0] == "joint" and parts[2] == "angle"))
 
 
 def is_cycle(quantity: str) -> bool:
@@ -37,6 +51,8 @@ def unit_of(quantity: str) -> str | None:
     """The SI unit of any quantity name; None if the name has no known shape."""
     if quantity in CYCLE_UNITS:
         return CYCLE_UNITS[quantity]
+    if quantity in MECHANISM_UNITS:
+        return MECHANISM_UNITS[quantity]
     if quantity == "driver.torque":
         return "N·m"
     if quantity == "driver.force":

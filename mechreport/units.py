@@ -31,6 +31,18 @@ LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254}
 FORCE_UNITS = {"N": 1.0, "kN": 1000.0, "lbf": 4.4482216152605}
 MOMENT_UNITS = {"N*m": 1.0, "N*mm": 0.001, "kN*m": 1000.0, "lbf*in": 4.4482216152605 * 0.0254}
 MASS_UNITS = {"kg": 1.0, "g": 0.001, "lb": 0.45359237}
+#: units an ``expect`` entry may be written in, by the SI unit of its quantity (those of
+#: ``report.units`` for its kind, and the SI unit itself): name -> size in SI
+EXPECT_UNITS = {
+    "m": LENGTH_UNITS,
+    "N": FORCE_UNITS,
+    "N·m": {**MOMENT_UNITS, "N·m": 1.0},
+    "m/s": {"m/s": 1.0, "mm/s": 0.001},
+    "m/s^2": {"m/s^2": 1.0},
+    "deg": {"deg": 1.0, "rad": 57.29577951308232},
+    "rad/s": {"rad/s": 1.0, "rpm": 0.10471975511965977},
+}
+
 #: the units a spec's own numbers may be written in (its ``units:``); a report may show any
 #: unit of the tables above (``report.units``)
 SPEC_UNITS = {"length": ("m", "cm", "mm"), "mass": ("kg", "g")}

@@ -7,6 +7,7 @@ import numpy as np
 
 from ..forces import ForceResult
 from ..kinematics import Kinematics
+from ..quantities import MECHANISM_UNITS, is_kinematic
 from ..spec import Expectation
 
 
@@ -22,12 +23,27 @@ class ExpectationResult:
     message: str = ""
 
 
-def kinematic_value(kin: Kinematics, quantity: str, k: int) -> float:
+def kinematic_value(kin: Kinematics, quantity: str, k: int,
+                    instant: dict[str, np.ndarray] | None = None) -> float:
+    """A quantity the kinematics gives (``is_kinematic``) at row ``k``; ``instant``: the
+    mechanism's own quantities over the rows (``transmission_angle``, computed by the
+    caller from the design review's definition), NaN where undefined."""
+    if quantity in MECHANISM_UNITS:
+        values = (instant or {}).get(quantity)
+        return float("nan") if values is None else float(values[k])
     kind, name, attr = quantity.split(".")
     if kind == "point":
         s = kin.named_point(name)
+        if attr in ("v", "a"):
+            vec = s.v if attr == "v" else s.a
+            return float(np.hypot(vec[k, 0], vec[k, 1]))
         vec = {"x": s.r, "y": s.r, "vx": s.v, "vy": s.v, "ax": s.a, "ay": s.a}[attr]
         return float(vec[k, 0 if attr.endswith("x") else 1])
+    if kind == "joint":             # an R joint's relative angle, in (-180, 180]
+        a, b = kin.mechanism.spec.joint(name).links
+        rel = kin.theta[k, kin.index(b)] - kin.theta[k, kin.index(a)]
+        deg = float(np.degrees(rel)) % 360.0
+        return deg - 360.0 if deg > 180.0 else deg
     if attr == "angle":
         return float(kin.angle_deg(name)[k])
     i = kin.index(name)
@@ -36,7 +52,9 @@ def kinematic_value(kin: Kinematics, quantity: str, k: int) -> float:
 
 def check_expectations(kin: Kinematics, results: dict[str, ForceResult], flags,
                        cycle: dict[str, float] | None = None,
-                       cycle_why: str = "") -> list[ExpectationResult]:
+                       cycle_why: str = "",
+                       instant: dict[str, np.ndarray] | None = None
+                       ) -> list[ExpectationResult]:
     """Every ``expect`` entry: instantaneous quantities against the kinematics or every force
     method at their angle; cycle quantities (no angle) against ``cycle`` (the review's values,
     from the reference method; None when undefined, because ``cycle_why``)."""
@@ -47,7 +65,8 @@ def check_expectations(kin: Kinematics, results: dict[str, ForceResult], flags,
             out.append(check_cycle(e, cycle, cycle_why))
             continue
         k = kin.index_of(e.angle)
-        out += left_out(e, spec, flags) if k is None else at_angle(e, kin, results, k)
+        out += left_out(e, spec, flags) if k is None else at_angle(e, kin, results, k,
+                                                                   instant)
     return out
 
 
@@ -60,11 +79,11 @@ def left_out(e: Expectation, spec, flags) -> list[ExpectationResult]:
 
 
 def at_angle(e: Expectation, kin: Kinematics, results: dict[str, ForceResult],
-             k: int) -> list[ExpectationResult]:
+             k: int, instant: dict[str, np.ndarray] | None = None) -> list[ExpectationResult]:
     """An instantaneous expectation checked at row ``k`` of ``kin``: against the kinematics,
     or against every force method that computes its quantity."""
-    if e.quantity.startswith(("point.", "link.")):
-        sources = {"kinematics": kinematic_value(kin, e.quantity, k)}
+    if is_kinematic(e.quantity):
+        sources = {"kinematics": kinematic_value(kin, e.quantity, k, instant)}
     else:
         sources = {}
         for name, res in results.items():
@@ -84,10 +103,19 @@ def judge(e: Expectation, sources: dict[str, float], spec) -> list[ExpectationRe
                                          f"{spec.axis_unit}"))
             continue
         ok = abs(got - e.value) <= e.tol
-        msg = "" if ok else (f"{e.quantity} at {e.angle:g} {spec.axis_unit}: expected "
-                             f"{e.value:.10g} ± {e.tol:.2g}, got {got:.10g} ({source})")
+        msg = "" if ok else (f"{e.quantity} at {e.angle:g} {spec.axis_unit}: "
+                             f"{_expected_got(e, got)} ({source})")
         out.append(ExpectationResult(e, source, got, ok, msg))
     return out
+
+
+def _expected_got(e: Expectation, got: float) -> str:
+    """``expected 232.4 ± 0.02 mm, got 232.5 mm``: in the unit the spec wrote (SI without
+    one)."""
+    unit = f" {e.unit}" if e.unit else ""
+    s = e.scale
+    return (f"expected {e.value / s:.10g} ± {e.tol / s:.2g}{unit}, got "
+            f"{got / s:.10g}{unit}")
 
 
 def cycle_value(cycle: dict[str, float] | None, quantity: str,
@@ -106,6 +134,5 @@ def check_cycle(e: Expectation, cycle: dict[str, float] | None, why: str) -> Exp
     if got is None:
         return ExpectationResult(e, "cycle", None, False, undefined)
     ok = abs(got - e.value) <= e.tol
-    msg = "" if ok else (f"{e.quantity}: expected {e.value:.10g} ± {e.tol:.2g}, got {got:.10g} "
-                         "(over the cycle)")
+    msg = "" if ok else f"{e.quantity}: {_expected_got(e, got)} (over the cycle)"
     return ExpectationResult(e, "cycle", got, ok, msg)

@@ -22,11 +22,15 @@ def failed_expectations(analysis) -> list[dict]:
         got = [e for e in bad if e.got is not None]
         worst = max(got, key=lambda e: abs(e.got - value), default=None)
         methods = [e.source for e in bad if e.got is not None]
+        written = bad[0].expect
         out.append({
             "quantity": quantity, "angle_deg": angle, "expected": value,
             "computed": None if worst is None else worst.got,
             "difference": None if worst is None else worst.got - value,
             "tolerance": tol, "unit": unit_of(quantity) or "",
-            "methods": methods, "line": bad[0].expect.line,
-            "why": "" if worst is not None else bad[0].message})
+            "methods": methods, "line": written.line,
+            "why": "" if worst is not None else bad[0].message,
+            # as the spec wrote it: shown in this unit (``shown_scale`` its size in SI)
+            "shown_unit": written.unit or unit_of(quantity) or "",
+            "shown_scale": written.scale})
     return out

@@ -27,6 +27,7 @@ from ..linalg import SINGULAR_COND
 from ..model import Mechanism, build_mechanism
 from ..post import Review, Verdict, design_review, verdicts
 from ..post.columns import Column, result_columns, scales
+from ..post.transmission import instant_quantities
 from ..post.sweep import SweepSummary, sweep_summary
 from ..spec import Spec, load_spec, parse_spec
 
@@ -211,7 +212,8 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL,
         res = residuals(ctx, forces)
     ctx.cache.clear()   # the actions and equations the methods shared: rebuilt if asked for
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces), res,
-                    check_expectations(kin, forces, kin.flags, values, why), tol, rev, why,
+                    check_expectations(kin, forces, kin.flags, values, why,
+                                       instant_quantities(kin)), tol, rev, why,
                     tuple(verdicts(spec.design, values, why)))
 
 

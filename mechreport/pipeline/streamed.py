@@ -32,6 +32,7 @@ from ..kinematics import Flag
 from ..kinematics.stream import kinematic_chunks, streamable
 from ..model import build_mechanism
 from ..post import Traces, Verdict, design_review_from, traces_of, verdicts
+from ..post.transmission import instant_quantities
 from ..spec import Spec
 
 STREAM_ANGLES = 100_000   # analysed angles beyond which `check` streams the sweep
@@ -108,7 +109,8 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
             if _slider_point(e):
                 found[i] = _slider_inputs(e, ctx, forces, k)
             else:
-                found[i] = at_angle(e, kin, forces, k)
+                found[i] = at_angle(e, kin, forces, k, instant_quantities(kin)
+                                    if e.quantity == "transmission_angle" else None)
         part = traces_of(kin, forces, ctx.loads)
         if traces is None:
             traces = part.allocate(len(chunks.angles))

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..units import ZERO_RTOL
+from .transmission import smallest_transmission_angle
 
 
 @dataclass(frozen=True)
@@ -83,8 +84,20 @@ def result_columns(kin, forces: dict, scale: dict[str, float]) -> list[Column]:
                                      ("vx", s.v[:, 0], "m/s", "velocity"),
                                      ("vy", s.v[:, 1], "m/s", "velocity"),
                                      ("ax", s.a[:, 0], "m/s^2", "acceleration"),
-                                     ("ay", s.a[:, 1], "m/s^2", "acceleration")):
+                                     ("ay", s.a[:, 1], "m/s^2", "acceleration"),
+                                     ("v", np.hypot(s.v[:, 0], s.v[:, 1]), "m/s", "velocity"),
+                                     ("a", np.hypot(s.a[:, 0], s.a[:, 1]), "m/s^2",
+                                      "acceleration")):
             add(f"{p}.{lab} [{unit}]", arr, kind)
+    for j in spec.joints:                       # an R joint's relative angle, (-180, 180]
+        if j.type == "R":
+            a, b = j.links
+            rel = np.degrees(kin.theta[:, kin.index(b)] - kin.theta[:, kin.index(a)]) % 360.0
+            add(f"joint.{j.name}.angle [deg]", np.where(rel > 180.0, rel - 360.0, rel),
+                "angle")
+    transmission = smallest_transmission_angle(kin)
+    if np.isfinite(transmission).any():
+        add("transmission_angle [deg]", transmission, "angle")
     for m, res in forces.items():
         add(f"{m}.driver.torque [N m]", res.driver_torque, "moment")
         for j in spec.joints:

@@ -44,3 +44,17 @@ def transmission_angles(kin: Kinematics) -> dict[str, np.ndarray]:
             u = kin.frames.rotate(guide_joint.guide, guide_joint.line.direction)
             out[dyad.label] = _fold(_line_angle(a, perp(u)))
     return out
+
+
+def smallest_transmission_angle(kin: Kinematics) -> np.ndarray:
+    """The smallest transmission angle over the groups that have one (n,) [deg], as
+    ``cycle.transmission_angle.min`` takes it over the cycle; NaN where none has one."""
+    angles = list(transmission_angles(kin).values())
+    if not angles:
+        return np.full(kin.n, np.nan)
+    return np.min(np.stack(angles), axis=0)
+
+
+def instant_quantities(kin: Kinematics) -> dict[str, np.ndarray]:
+    """The mechanism's own quantities at each angle (``quantities.MECHANISM_UNITS``)."""
+    return {"transmission_angle": smallest_transmission_angle(kin)}

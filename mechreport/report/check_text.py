@@ -73,11 +73,15 @@ def _digits_for(value: float, diff: float | None) -> int:
 
 
 def failure_rows(fails: list[dict]) -> list[list[str]]:
-    """Table rows (quantity, angle, expected, computed, difference, tolerance, method), SI as
-    the spec's ``expect`` writes them."""
+    """Table rows (quantity, angle, expected, computed, difference, tolerance, method), in
+    the unit the spec's ``expect`` entry is written in (SI without one)."""
     rows = []
     for f in fails:
-        unit = f["unit"].replace("^2", "²")
+        s = f.get("shown_scale", 1.0)
+        if s != 1.0:                  # every value as the spec wrote its expectation
+            f = dict(f, **{k: None if f[k] is None else f[k] / s
+                           for k in ("expected", "computed", "difference", "tolerance")})
+        unit = f.get("shown_unit", f["unit"]).replace("^2", "²")
         u = f" {unit}" if unit else ""
         angle = DASH if f["angle_deg"] is None else f"{deg(f['angle_deg'])}"
         if f["computed"] is None:

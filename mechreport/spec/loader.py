@@ -17,8 +17,8 @@ from pathlib import Path as FsPath
 from typing import Any
 
 from ..errors import Problem, SpecError
-from ..quantities import CYCLE_UNITS, JOINT_CYCLE_UNITS, is_cycle
-from ..units import SPEC_UNITS, UNIT_TABLES
+from ..quantities import CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, is_cycle, unit_of
+from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES
 from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Expectation, Joint, Line, Link, Load,
                     Shape, Spec, Study, Sweep, Vary, Vec)
@@ -52,9 +52,9 @@ MOTOR_KEYS = ("rated_torque", "peak_torque", "rated_power")
 LIMIT_KEYS = ("joint_force", "transmission_angle", "shaking_force")
 LINK_KEYS = ("points", "mass", "density", "com", "inertia", "shape")
 JOINT_KEYS = {"R": ("type", "links"), "T": ("type", "links", "point", "line")}
-POINT_QUANTITIES = ("x", "y", "vx", "vy", "ax", "ay")
+POINT_QUANTITIES = ("x", "y", "vx", "vy", "ax", "ay", "v", "a")
 LINK_QUANTITIES = ("angle", "omega", "alpha")
-R_QUANTITIES = ("fx", "fy", "f")
+R_QUANTITIES = ("fx", "fy", "f", "angle")
 T_QUANTITIES = ("fx", "fy", "f", "moment", "px", "py")
 
 _YAML11_BOOLS = {"yes", "no", "on", "off", "y", "n"}
@@ -1270,7 +1270,7 @@ def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | N
     joint_types = {j.name: j.type for j in (joints or [])}
     for i, item in enumerate(value):
         path = ("expect", i)
-        body = ck.mapping(item, path, ("angle", "quantity", "value", "tol"),
+        body = ck.mapping(item, path, ("angle", "quantity", "value", "tol", "unit"),
                           required=("quantity", "value"))
         if body is None or any(k not in body for k in ("quantity", "value")):
             continue
@@ -1289,27 +1289,53 @@ def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | N
             ck.error(path, "missing required key 'angle' (only cycle quantities such as "
                            "cycle.torque.rms have none)")
             continue
+        unit, scale = (_expect_unit(body["unit"], quantity, path + ("unit",), ck)
+                       if "unit" in body else (None, 1.0))
+        if scale is None:                 # still checked, so every problem is listed at once
+            for key in ("angle", "value", "tol"):
+                if key in body and not (key == "angle" and cycle):
+                    ck.number(body[key], path + (key,), positive=key == "tol")
+            continue
         angle = ck.number(body["angle"], path + ("angle",)) if not cycle else None
-        target = ck.number(body["value"], path + ("value",))
-        tol = ck.number(body["tol"], path + ("tol",), positive=True) if "tol" in body else None
+        target = ck.number(body["value"], path + ("value",), scale=scale, unit=unit or "")
+        tol = (ck.number(body["tol"], path + ("tol",), positive=True, scale=scale,
+                         unit=unit or "") if "tol" in body else None)
         if (angle is None and not cycle) or target is None or ("tol" in body and tol is None):
             continue
-        if tol is None:
-            tol = 1e-4 * max(1.0, abs(target))
-        out.append(Expectation(angle, quantity, target, tol, src_lines.line(path)))
+        if tol is None:       # 1e-4 of the value as written (at least 1e-4 in its unit)
+            tol = 1e-4 * max(1.0, abs(target / scale)) * scale
+        out.append(Expectation(angle, quantity, target, tol, src_lines.line(path), unit,
+                               scale))
     return out
+
+
+def _expect_unit(value: Any, quantity: str, path: tuple, ck: _Checker
+                 ) -> tuple[str | None, float | None]:
+    """The unit an ``expect`` entry is written in and its size in SI; (None, None) reported
+    when it is not a unit of the quantity's kind."""
+    si = unit_of(quantity)
+    table = EXPECT_UNITS.get(si or "", {si: 1.0} if si else {})
+    if not isinstance(value, str) or value not in table:
+        shown = ", ".join(table) if table else "none"
+        ck.error(path, f"must be a unit of {quantity} ({si or 'no unit'}): {shown}; got "
+                       f"{_show(value)}")
+        return None, None
+    return value, float(table[value])
 
 
 def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
                       joints_known: bool, ck: _Checker,
                       driver: Driver | None = None) -> str | None:
     """None if ``q`` names something, else a message saying what it should look like."""
-    usage = ("expected driver.torque, joint.J.fx|fy|f|moment|px|py|f_max|f_mean|f_equivalent|"
-             "life_h, point.P.x|y|vx|vy|ax|ay, link.L.angle|omega|alpha, or a cycle quantity "
-             "(cycle.torque.rms, balance.counterweight.mr, ...; see docs/spec.md)")
+    usage = ("expected driver.torque, joint.J.fx|fy|f|angle|moment|px|py|f_max|f_mean|"
+             "f_equivalent|life_h, point.P.x|y|vx|vy|ax|ay|v|a, link.L.angle|omega|alpha, "
+             "transmission_angle, or a cycle quantity (cycle.torque.rms, "
+             "balance.counterweight.mr, ...; see docs/spec.md)")
     if not isinstance(q, str):
         return f"must be a quantity name ({usage}), got {_show(q)}"
     parts = q.split(".")
+    if q in MECHANISM_UNITS:
+        return None
     if q in ("driver.torque", "driver.force") or q in CYCLE_UNITS:
         if driver is not None and q.startswith("driver.") and q != driver.quantity:
             article = "an" if driver.kind == "R" else "a"

@@ -196,14 +196,18 @@ class Load:
 
 @dataclass(frozen=True)
 class Expectation:
-    """``quantity`` at crank ``angle`` [deg] must equal ``value`` within ``tol`` (absolute);
-    ``angle`` is None for a cycle quantity (one value per turn)."""
+    """``quantity`` at crank ``angle`` [deg] must equal ``value`` within ``tol`` (absolute,
+    both SI); ``angle`` is None for a cycle quantity (one value per turn). ``unit``: the unit
+    the spec wrote them in (None: SI), ``scale`` its size in SI (value written x scale =
+    ``value``), for messages that print them as written."""
 
     angle: float | None
     quantity: str
     value: float
     tol: float
     line: int | None = None
+    unit: str | None = None
+    scale: float = 1.0
 
 
 @dataclass(frozen=True)
