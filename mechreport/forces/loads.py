@@ -82,15 +82,20 @@ def undefined_directions(kin: Kinematics) -> list[tuple[Load, np.ndarray]]:
     k (B - A), defined everywhere."""
     out = []
     for load in kin.mechanism.spec.loads:
-        if load.kind not in ("spring", "damper") or (load.kind == "spring"
-                                                     and not load.free_length):
+        if load.kind not in ("spring", "damper"):
+            continue
+        # a stacked batch's free length is an array over its rows (each variant's own)
+        length0 = 0.0 if load.free_length is None else load.free_length
+        free = np.broadcast_to(np.asarray(length0, float), (kin.n,)) \
+            if load.kind == "spring" else np.ones(kin.n)
+        if not free.any():
             continue
         (la, pa), (lb, pb) = load.between
         A, B = kin.named_point(pa, la).r, kin.named_point(pb, lb).r
         length = np.hypot(*(B - A).T)
         size = np.maximum(np.hypot(*A.T), np.hypot(*B.T))
         error = kin.error if kin.error is not None else np.zeros(kin.n)
-        bad = length * TRUST_RTOL <= (error + EPS) * size
+        bad = (length * TRUST_RTOL <= (error + EPS) * size) & (free != 0)
         if bad.any():
             out.append((load, bad))
     return out

@@ -50,3 +50,15 @@ def test_a_study_variant_whose_spring_ends_meet_is_analysed_alone_and_flagged():
     out = analyse_variants(specs, "dyad")
     assert out[0].batched and not out[1].batched    # the clean one stays in the batch
     assert out[1].exception is None
+
+
+def test_a_study_varying_a_springs_free_length_stays_batched():
+    """The stacked batch's free length is an array over its rows: the check of coinciding
+    ends reads it per row (it raised, and every variant fell back to being analysed
+    alone)."""
+    specs = [dataclasses.replace(parse_spec(TEXT.replace("free_length: 200",
+                                                         f"free_length: {f}"), "v.yaml"),
+                                 expect=()) for f in (150, 200, 250)]
+    assert "free_length: 200" in TEXT
+    out = analyse_variants(specs, "dyad")
+    assert all(o.batched for o in out)
