@@ -337,7 +337,8 @@ def _quantity_changes(spec: str, old: dict, new: dict, rtol: float) -> list[Chan
             change = f"now {_show(vb)}" if not math.isfinite(vb) else "now finite"
         else:
             rel = ((vb - va) / abs(va) * 100 if va else math.inf)
-            change = f"{rel:+.3g} %" if math.isfinite(rel) else "from 0"
+            change = (f"{rel:+.3g} %" if math.isfinite(rel) else
+                      "from 0" if va == 0 else "sign and size changed")
         out.append(Change(spec, name, f"{_show(va, n)}{u}{at_a}", f"{_show(vb, n)}{u}{at_b}",
                           change))
     return out

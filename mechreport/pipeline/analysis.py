@@ -20,6 +20,7 @@ from ..checks import (Agreement, ExpectationResult, Residual, agreement, check_e
 from ..forces import METHODS, ForceContext, ForceResult, Step, solve_forces, worked_steps
 from ..forces.context import LinkState
 from ..forces.equations import Action
+from ..checks.trust import Inputs, inputs_of
 from ..forces.loads import undefined_directions
 from ..kinematics import EPS, TRUST_RTOL, Flag, Kinematics, solve_kinematics
 from ..kinematics.frames import scaled
@@ -104,6 +105,11 @@ class Analysis(Checked):
     def gravity_action(self, link: str) -> Action:
         """Link ``link``'s weight m g at its centre of mass."""
         return self._context.gravity_action(link)
+
+    def trust_inputs(self) -> Inputs:
+        """The largest input of each kind at each angle (loads, m a_C, m g, I alpha) and the
+        mechanism's span: what bounds one method's rounding (:mod:`mechreport.checks.trust`)."""
+        return inputs_of(self._context)
 
     def link_state(self, link: str) -> LinkState:
         """Link ``link``'s mass, inertia and its centre of mass's motion over ``angles``."""
@@ -258,7 +264,8 @@ def _force_flags(kin: Kinematics, forces: dict[str, ForceResult]) -> list[Flag]:
             k = int(np.flatnonzero(np.isnan(cond))[0])
             raise AnalysisError(
                 f"{kin.mechanism.spec.file}: the {name} equations are not finite numbers at "
-                f"{kin.angles[k]:g} deg: the inputs are beyond what double precision can "
+                f"{kin.angles[k]:g} {kin.mechanism.spec.axis_unit}: the inputs are beyond what "
+                "double precision can "
                 "represent (check masses, lengths, speeds, gravity and loads)")
         doubtful[name] = ~trusted(kin, res)
         singular |= res.singular

@@ -18,7 +18,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..checks.trust import untrusted
+from ..checks.trust import inputs_of, untrusted
 from .analysis import DEFAULT_TOL, Analysis, analyse, trusted
 from .streamed import STREAM_ANGLES, check_sweep
 from ..forces import METHODS, ForceContext
@@ -111,6 +111,7 @@ def _batched(stacked, mech, specs: list[Spec], method: str, plans) -> list[Outco
             ok &= ~bad
     clean = stacked.clean & ok.reshape(len(specs), stacked.per).all(axis=1)
     index = {id(ld): k for k, ld in enumerate(ctx.spec.loads)}
+    inputs = inputs_of(ctx)
     for v in np.flatnonzero(clean):
         spec = specs[v]
         rows = stacked.rows(v)
@@ -124,7 +125,7 @@ def _batched(stacked, mech, specs: list[Spec], method: str, plans) -> list[Outco
         values = rev.values if rev is not None else None
         out[v] = Outcome(spec, rev, why, tuple(verdicts(spec.design, values, why)),
                          batched=True, untrusted=untrusted(forces[method], DEFAULT_TOL,
-                                                            spec.axis_unit))
+                                                            spec.axis_unit, inputs.take(rows)))
     return out
 
 
@@ -137,8 +138,10 @@ def _streamed(spec: Spec, method: str) -> Outcome:
         return Outcome(spec, exception=exc)
     if isinstance(c, Analysis):  # not streamable: analysed in memory after all
         return Outcome(spec, c.review, c.review_problem, c.verdicts,
-                       untrusted=untrusted(c.forces[method], c.tol, spec.axis_unit))
-    return Outcome(spec, None, c.review_problem, c.verdicts, streamed=c.values)
+                       untrusted=untrusted(c.forces[method], c.tol, spec.axis_unit,
+                                           c.trust_inputs()))
+    return Outcome(spec, None, c.review_problem, c.verdicts, streamed=c.values,
+                   untrusted=c.untrusted.get(method, ""))
 
 
 def _alone(spec: Spec, method: str, plans) -> Outcome:
@@ -148,7 +151,8 @@ def _alone(spec: Spec, method: str, plans) -> Outcome:
     except Exception as exc:     # noqa: BLE001 - a failed variant is a row with its reason
         return Outcome(spec, exception=exc)
     return Outcome(spec, a.review, a.review_problem, a.verdicts,
-                   untrusted=untrusted(a.forces[method], a.tol, spec.axis_unit))
+                   untrusted=untrusted(a.forces[method], a.tol, spec.axis_unit,
+                                       a.trust_inputs()))
 
 
 __all__ = ["Outcome", "analyse_variants"]

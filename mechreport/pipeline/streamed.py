@@ -25,6 +25,7 @@ from .analysis import (DEFAULT_TOL, Analysis, Checked, analyse, no_angle_error,
                        solve_trusted)
 from ..checks import Agreement, ExpectationResult, Residual, residuals
 from ..checks.agreement import finish, merge, spreads
+from ..checks.trust import bounds, inputs_of, judged
 from ..checks.expectations import at_angle, check_cycle, judge, left_out
 from ..forces import METHODS, PROBES, ForceContext, sweep_choices
 from ..forces.result import slider_point
@@ -57,6 +58,7 @@ class SweepCheck(Checked):
     review_problem: str
     verdicts: tuple[Verdict, ...]
     kinematic_notes: list[str] = field(default_factory=list)
+    untrusted: dict[str, str] = field(default_factory=dict)   # by method: see checks.trust
 
     def notes(self) -> list[str]:
         return list(self.kinematic_notes)
@@ -84,6 +86,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     found: dict[int, list] = {}       # expect index -> its results (or a slider's inputs)
     top: dict[tuple[str, str], float] = {}   # (method, T joint) -> largest force component
     traces: Traces | None = None          # every chunk's, one after the other
+    trust: dict = {}                      # (method, kind) -> checks.trust.Bound
     n = 0
     timed = [(i, e) for i, e in enumerate(spec.expect) if e.angle is not None]
     for kin in chunks:
@@ -97,6 +100,10 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
         for r in residuals(ctx, forces):
             w = worst.setdefault(r.method, [0.0, 0.0])
             w[0], w[1] = max(w[0], r.force), max(w[1], r.moment)
+        inputs = inputs_of(ctx)
+        for name, res in forces.items():     # each method's rounding, for one-method checks
+            for kind, b in bounds(res, inputs).items():
+                trust[name, kind] = b.merged(trust[name, kind]) if (name, kind) in trust else b
         for name, res in forces.items():     # slider points are judged against these
             for j, r in res.reactions.items():
                 if r.moment is not None:
@@ -134,9 +141,14 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
             expectations += _judge_slider(e, spec, found[i], top)
         else:
             expectations += found[i]
+    found: dict[str, dict] = {}
+    for (name, kind), b in trust.items():
+        found.setdefault(name, {})[kind] = b
+    untrusted = {name: judged(b, tol, name, spec.axis_unit) for name, b in found.items()}
     return SweepCheck(spec, n, tuple(flags), finish(parts),
                       [Residual(m, f, mo) for m, (f, mo) in worst.items()], expectations, tol,
-                      values, why, tuple(verdicts(spec.design, values, why)), chunks.notes())
+                      values, why, tuple(verdicts(spec.design, values, why)), chunks.notes(),
+                      untrusted)
 
 
 def _slider_point(e) -> bool:

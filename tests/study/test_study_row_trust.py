@@ -52,7 +52,36 @@ def test_the_failed_variant_indeed_fails_check_and_the_others_pass():
 
 
 def test_every_shipped_spec_is_trusted_by_every_method():
-    for path in sorted((ROOT / "specs").glob("*.yaml")):
+    paths = sorted((ROOT / "specs").glob("*.yaml")) + sorted((ROOT / "tests" / "data")
+                                                             .glob("*.yaml"))
+    for path in paths:
         a = mechreport.analyse(path)
         for name, res in a.forces.items():
-            assert untrusted(res, a.tol, a.spec.axis_unit) == "", (path.stem, name)
+            assert untrusted(res, a.tol, a.spec.axis_unit, a.trust_inputs()) == "", \
+                (path.stem, name)
+
+
+def _cancelling_loads() -> str:
+    """The four-bar with two 1e16 N loads at E that cancel: nothing changes physically, but
+    every method's torque is the small difference of 1e16 N terms."""
+    text = (ROOT / "specs" / "four_bar.yaml").read_text(encoding="utf-8")
+    return text.replace("loads:\n", "loads:\n"
+                        "  - {type: force, link: coupler, point: E, value: [0, -1e16]}\n"
+                        "  - {type: force, link: coupler, point: E, value: [0, 1e16]}\n", 1)
+
+
+def test_loads_that_cancel_are_not_trusted_by_one_method_and_fail_check():
+    a = mechreport.analyse(_cancelling_loads())
+    assert not a.passed                                      # the methods disagree
+    for name, res in a.forces.items():
+        assert untrusted(res, a.tol, "deg", a.trust_inputs()), name
+
+
+def test_a_long_sweep_variant_is_trust_checked_when_streamed(monkeypatch):
+    from mechreport.pipeline import batch
+    monkeypatch.setattr(batch, "STREAM_ANGLES", 100)         # 360 angles is "long" now
+    base = _base()
+    variants = [{"gravity.1": -1e-20, "links.crank.mass": m} for m in (600, 1e20)]
+    rows = evaluate_chunk(base, variants, "newton_euler", base.spec.study.keep)
+    assert rows[0].ok and not rows[1].ok
+    assert "cannot be trusted" in rows[1].reason
