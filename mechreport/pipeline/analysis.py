@@ -14,13 +14,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import AnalysisError
 from ..checks import (Agreement, ExpectationResult, Residual, agreement, check_expectations,
                      residuals)
+from ..checks.trust import Inputs, inputs_of
+from ..errors import AnalysisError
 from ..forces import METHODS, ForceContext, ForceResult, Step, solve_forces, worked_steps
 from ..forces.context import LinkState
 from ..forces.equations import Action
-from ..checks.trust import Inputs, inputs_of
 from ..forces.loads import undefined_directions
 from ..kinematics import EPS, TRUST_RTOL, Flag, Kinematics, solve_kinematics
 from ..kinematics.frames import scaled
