@@ -182,6 +182,31 @@ class _Checker:
         y = self.number(value[1], path + (1,), scale=scale, unit=unit)
         return None if x is None or y is None else (x, y)
 
+    def point(self, value: Any, path: tuple, what: str = "[x, y]", *, scale: float = 1.0,
+              unit: str = "") -> Vec | None:
+        """A point written ``[x, y]`` or, in polar form, ``{r: R, angle: A}`` (R in the
+        length unit, A in degrees from the frame's x-axis, CCW), to SI. At a multiple of 90
+        degrees the zero coordinate is exactly 0 (cos 90 deg is 6e-17 in floating point)."""
+        if not isinstance(value, dict) or not ({"r", "angle"} & set(value)):
+            return self.vec2(value, path, f"{what} or {{r: R, angle: A}}", scale=scale,
+                             unit=unit)
+        body = self.mapping(value, path, ("r", "angle"), required=("r", "angle"))
+        if body is None or "r" not in body or "angle" not in body:
+            return None
+        r = self.number(body["r"], path + ("r",), scale=scale, unit=unit)
+        if r is not None and r < 0:
+            self.error(path + ("r",), f"must be a distance (not negative), got {_show(body['r'])}")
+            r = None
+        angle = self.number(body["angle"], path + ("angle",))
+        if r is None or angle is None:
+            return None
+        quarter = angle / 90.0
+        if quarter == round(quarter):        # exact on the axes
+            c, s = ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[int(round(quarter)) % 4]
+        else:
+            c, s = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+        return (r * c + 0.0, r * s + 0.0)
+
     def name(self, value: Any, path: tuple) -> str | None:
         if not isinstance(value, str) or not value:
             hint = (" (quote a name that looks like a number, true/false or null)"
@@ -720,7 +745,7 @@ def _ground(value: Any, ck: _Checker, s: float, unit: str) -> dict[str, Vec]:
         return {}
     out = {}
     for pname, pvalue in value.items():
-        v = ck.vec2(pvalue, ("ground", pname), scale=s, unit=unit)
+        v = ck.point(pvalue, ("ground", pname), scale=s, unit=unit)
         if v is not None:
             out[pname] = v
         else:
@@ -767,7 +792,7 @@ def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
             points_ok = False
         else:
             for pname, pv in raw_points.items():
-                v = ck.vec2(pv, path + ("points", pname), scale=ls, unit=lu)
+                v = ck.point(pv, path + ("points", pname), scale=ls, unit=lu)
                 if v is not None:
                     points[pname] = v
                 else:
@@ -777,7 +802,7 @@ def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
             if "mass" in body else None)
     density = (ck.number(body["density"], path + ("density",), positive=True)
                if "density" in body else None)
-    com = ck.vec2(body["com"], path + ("com",), scale=ls, unit=lu) if "com" in body else None
+    com = ck.point(body["com"], path + ("com",), scale=ls, unit=lu) if "com" in body else None
     inertia = (ck.number(body["inertia"], path + ("inertia",), positive=True)
                if "inertia" in body else None)
     bad = any(k in body and v is None for k, v in
@@ -924,8 +949,8 @@ def _t_joint(jname: str, body: dict, pair: list, path: tuple, ck: _Checker,
         else:
             through, through_name = pts[through_raw], through_raw
     else:
-        through = ck.vec2(through_raw, path + ("line", "through"), "[x, y] or a point name",
-                          scale=ls, unit=unit)
+        through = ck.point(through_raw, path + ("line", "through"), "[x, y], a point name",
+                           scale=ls, unit=unit)
     direction_raw = line["direction"]
     if isinstance(direction_raw, list):
         d = ck.vec2(direction_raw, path + ("line", "direction"), "[dx, dy] or an angle in degrees")
@@ -1051,7 +1076,7 @@ def _assembly(value: Any, ck: _Checker, links: list[Link], ls: float,
         return {}
     out = {}
     for pname, pv in value.items():
-        v = ck.vec2(pv, ("assembly", pname), scale=ls, unit=unit)
+        v = ck.point(pv, ("assembly", pname), scale=ls, unit=unit)
         if not any(pname in l.points for l in links):
             if pname not in ck.invalid_points:
                 ck.error(("assembly", pname), f"'{pname}' is not a point of any moving link")

@@ -596,7 +596,7 @@ def test_second_document_is_refused():
     ("links: [crank, rod]", "links: [crank, 5]", "joints.B.links", "quote a name"),
     ("B: {type: R,", "B: {type: {R: 1},", "joints.B.type", "must be one of R, T"),
     ("point: C, line:", "point: [C], line:", "joints.C_T.point", "must be a name"),
-    ("through: O,", "through: {O: 1},", "joints.C_T.line.through", "[x, y] or a point name"),
+    ("through: O,", "through: {O: 1},", "joints.C_T.line.through", "[x, y], a point name or {r: R, angle: A}"),
     ("direction: 0}", "direction: {x: 1}}", "joints.C_T.line.direction", "must be a number"),
     ("line: {through: O, direction: 0}", "line: [O, 0]", "joints.C_T.line", "must be a mapping"),
     ("line: {through: O, direction: 0}", "line: ~", "joints.C_T.line", "got null"),

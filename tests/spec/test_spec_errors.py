@@ -222,7 +222,7 @@ def test_mass_not_a_number():
 
 @pytest.mark.parametrize("old, new, needle, path, expected", [
     ("points: {A: [0, 0], B: [1, 0]}", "points: {A: [0, 0], B: [1, 0, 0]}", "[1, 0, 0]",
-     "links.crank.points.B", "must be a pair [x, y], got [1, 0, 0]"),
+     "links.crank.points.B", "must be a pair [x, y] or {r: R, angle: A}, got [1, 0, 0]"),
     ("points: {A: [0, 0], B: [1, 0]}", "points: {A: [0, 0], B: [one, 0]}", "[one, 0]",
      "links.crank.points.B[0]", "must be a number, got 'one'"),
     ("gravity: [0, -10]", "gravity: down", "gravity:", "gravity",
