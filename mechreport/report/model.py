@@ -327,10 +327,12 @@ def _link_rows(spec, d: Display) -> list[list[str]]:
     for ln in spec.links:
         s = ln.shape
         shape = (f"{s.kind} {d.num(s.length, 'length')} × {d.num(s.height, 'length')} × "
-                 f"{d.num(s.depth, 'length')}" if s else "no shape")
+                 f"{d.num(s.depth, 'length')}" if s else
+                 "massless" if ln.mass == 0 else "no shape")
         pts = ", ".join(f"{n} {_xy(d, p)}" for n, p in ln.points.items())
         rows.append([str(ln.number), ln.name, d.num(ln.mass, "mass"),
-                     d.num(ln.inertia, "inertia"), _xy(d, ln.com), f"{shape}; points {pts}"])
+                     d.num(ln.inertia, "inertia"), DASH if ln.mass == 0 else _xy(d, ln.com),
+                     f"{shape}; points {pts}"])
     return rows
 
 

@@ -798,17 +798,31 @@ def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
                 else:
                     points_ok = False
     shape = _shape(body.get("shape"), path + ("shape",), ck, ls, lu) if "shape" in body else None
+    massless = "mass" in body and type(body["mass"]) in (int, float) and body["mass"] == 0
     mass = (ck.number(body["mass"], path + ("mass",), positive=True, scale=ms, unit=mu)
-            if "mass" in body else None)
+            if "mass" in body and not massless else 0.0 if massless else None)
     density = (ck.number(body["density"], path + ("density",), positive=True)
                if "density" in body else None)
     com = ck.point(body["com"], path + ("com",), scale=ls, unit=lu) if "com" in body else None
-    inertia = (ck.number(body["inertia"], path + ("inertia",), positive=True)
+    point_mass = ("inertia" in body and type(body["inertia"]) in (int, float)
+                  and body["inertia"] == 0)
+    inertia = (0.0 if point_mass else
+               ck.number(body["inertia"], path + ("inertia",), positive=True)
                if "inertia" in body else None)
     bad = any(k in body and v is None for k, v in
               (("shape", shape), ("mass", mass), ("density", density), ("com", com),
                ("inertia", inertia))) or not points_ok
     if bad:
+        return None
+    if massless:            # a massless link (a two-force member when it carries no load)
+        extra = [k for k in ("density", "shape", "com", "inertia") if k in body]
+        if extra:
+            ck.error(path + ("mass",), f"0 makes link '{lname}' massless: it has no "
+                                       f"{', '.join(extra)} (leave {'it' if len(extra) == 1 else 'them'} out)")
+            return None
+        return Link(lname, number, points, 0.0, (0.0, 0.0), 0.0, None)
+    if point_mass and mass is None:
+        ck.error(path + ("inertia",), f"0 (a point mass) needs the link's 'mass'")
         return None
     if mass is None:
         if density is None or shape is None:

@@ -266,10 +266,9 @@ def test_sheet_must_be_boolean():
 
 
 @pytest.mark.parametrize("old, new, needle, path, shown", [
-    ("    mass: 2\n", "    mass: 0\n", "mass: 0", "links.rod.mass", "0"),
     ("    mass: 2\n", "    mass: -2\n", "mass: -2", "links.rod.mass", "-2"),
     ("    mass: 2\n", "    density: -7850\n", "density:", "links.rod.density", "-7850"),
-    ("    mass: 2\n", "    mass: 2\n    inertia: 0\n", "inertia:", "links.rod.inertia", "0"),
+    ("    mass: 2\n", "    mass: 2\n    inertia: -1\n", "inertia:", "links.rod.inertia", "-1"),
     ("{bar: {length: 1, height: 0.01, depth: 0.001}}\n  rod:",
      "{bar: {length: 0, height: 0.01, depth: 0.001}}\n  rod:", "length: 0",
      "links.crank.shape.bar.length", "0"),
