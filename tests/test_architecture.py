@@ -48,38 +48,13 @@ def import_graph() -> dict[str, set[str]]:
 
 
 def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
-    """The strongly connected components of more than one module (Tarjan)."""
-    index: dict[str, int] = {}
-    low: dict[str, int] = {}
-    stack: list[str] = []
-    on_stack: set[str] = set()
-    found: list[list[str]] = []
-
-    def visit(v: str) -> None:
-        index[v] = low[v] = len(index)
-        stack.append(v)
-        on_stack.add(v)
-        for w in graph[v]:
-            if w not in index:
-                visit(w)
-                low[v] = min(low[v], low[w])
-            elif w in on_stack:
-                low[v] = min(low[v], index[w])
-        if low[v] == index[v]:
-            part = []
-            while True:
-                w = stack.pop()
-                on_stack.discard(w)
-                part.append(w)
-                if w == v:
-                    break
-            if len(part) > 1:
-                found.append(sorted(part))
-
-    for v in sorted(graph):
-        if v not in index:
-            visit(v)
-    return found
+    """The strongly connected components of more than one module (the block solver's own
+    Tarjan, :func:`mechreport.forces.equations._strong_components`)."""
+    from mechreport.forces.equations import _strong_components
+    names = sorted(graph)
+    at = {name: k for k, name in enumerate(names)}
+    parts = _strong_components([sorted(at[d] for d in graph[name]) for name in names])
+    return sorted(sorted(names[k] for k in part) for part in parts if len(part) > 1)
 
 
 def test_no_import_cycle_in_the_package():

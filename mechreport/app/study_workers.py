@@ -196,8 +196,7 @@ def _span(chunk: tuple[int, int]) -> str:
 
 # ------------------------------------------------------------------------- in process
 
-def run_serial(base: BaseSpec, plan: Plan, method: str, keep, size: int, table: Table,
-               on_chunk) -> None:
+def run_serial(base: BaseSpec, plan: Plan, method: str, keep, size: int, on_chunk) -> None:
     for a, b in chunks(plan.n, size):
         on_chunk(a, _rows_of(base, plan.keys, plan.values[a:b], method, tuple(keep)))
 
@@ -215,7 +214,7 @@ def _pool_init(base: BaseSpec, parent: int) -> None:
 
 
 def _pool_task(start: int, keys, values: np.ndarray, method: str, keep) -> tuple[int, list]:
-    return start, _rows_of(_BASE, keys, values, method, keep)
+    return _dask_task(_BASE, start, keys, values, method, keep)
 
 
 def run_pool(base: BaseSpec, plan: Plan, method: str, keep, size: int, jobs: int,
@@ -300,6 +299,7 @@ def _lost_raises(start: int, stop: int, reason: str) -> None:
 
 def _dask_task(base: BaseSpec, start: int, keys, values: np.ndarray, method: str,
                keep) -> tuple[int, list]:
+    """One chunk's rows, with where they start (a Dask task; the pool's, with its base)."""
     return start, _rows_of(base, keys, values, method, keep)
 
 
@@ -660,11 +660,10 @@ def run_variants(base: BaseSpec, plan: Plan, method: str, keep, *, jobs: int | N
         if progress is not None:
             progress.update(count["done"], count["failed"])
 
-    on_lost = None
-    if lost is not None:
-        def on_lost(start: int, stop: int, reason: str) -> None:
-            lost.append(Lost(start, stop, reason))
-            on_chunk(start, [failed_row(len(keep), reason)] * (stop - start))
+    def record_lost(start: int, stop: int, reason: str) -> None:
+        lost.append(Lost(start, stop, reason))
+        on_chunk(start, [failed_row(len(keep), reason)] * (stop - start))
+    on_lost = record_lost if lost is not None else None
 
     own = None
     if scheduler is not None and client is None:
@@ -676,7 +675,7 @@ def run_variants(base: BaseSpec, plan: Plan, method: str, keep, *, jobs: int | N
         else:
             jobs, size, _why = local_jobs(plan.n, jobs, chunk)
             if jobs == 1:
-                run_serial(base, plan, method, keep, size, table, on_chunk)
+                run_serial(base, plan, method, keep, size, on_chunk)
             else:
                 run_pool(base, plan, method, keep, size, jobs, on_chunk, on_lost, notify)
     finally:

@@ -40,10 +40,7 @@ def kinematic_value(kin: Kinematics, quantity: str, k: int,
         vec = {"x": s.r, "y": s.r, "vx": s.v, "vy": s.v, "ax": s.a, "ay": s.a}[attr]
         return float(vec[k, 0 if attr.endswith("x") else 1])
     if kind == "joint":             # an R joint's relative angle, in (-180, 180]
-        a, b = kin.mechanism.spec.joint(name).links
-        rel = kin.theta[k, kin.index(b)] - kin.theta[k, kin.index(a)]
-        deg = float(np.degrees(rel)) % 360.0
-        return deg - 360.0 if deg > 180.0 else deg
+        return float(kin.relative_angle_deg(*kin.mechanism.spec.joint(name).links)[k])
     if attr == "angle":
         return float(kin.angle_deg(name)[k])
     i = kin.index(name)

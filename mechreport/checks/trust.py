@@ -92,6 +92,7 @@ def bounds(res: ForceResult, inputs: Inputs | None = None) -> dict[str, Bound]:
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         terms = {"force": np.maximum.reduce([xf, fin, (xm + min_) / length]),
                  "moment": np.maximum.reduce([xm, min_, length * np.maximum(xf, fin)])}
+        largest_of = {"force": xf, "moment": xm}
         out = {}
         for kind, names in kinds.items():
             if not names:
@@ -99,7 +100,7 @@ def bounds(res: ForceResult, inputs: Inputs | None = None) -> dict[str, Bound]:
             bound = EPS * cond * terms[kind]
             k = int(np.argmax(np.where(np.isnan(bound), np.inf, bound)))
             out[kind] = Bound(float(bound[k]), float(res.angles[k]),
-                              float(np.max(np.abs(np.array([values[q] for q in names])))))
+                              float(np.max(largest_of[kind])))
     return out
 
 

@@ -234,6 +234,13 @@ class Kinematics:
         deg = (np.degrees(self.theta[:, self.index(link)]) + 180.0) % 360.0 - 180.0
         return np.where(deg == -180.0, 180.0, deg)
 
+    def relative_angle_deg(self, first: str, second: str) -> np.ndarray:
+        """``second``'s x-axis from ``first``'s [deg] in (-180, 180], (n,): an R joint's
+        relative angle (``joint.J.angle``)."""
+        rel = np.degrees(self.theta[:, self.index(second)]
+                         - self.theta[:, self.index(first)]) % 360.0
+        return np.where(rel > 180.0, rel - 360.0, rel)
+
     def notes(self) -> list[str]:
         """What a user must know before reading numbers: a driver that cannot make a full
         turn, and branches no hint could choose (one sentence each)."""

@@ -27,8 +27,9 @@ from ..kinematics.frames import scaled
 from ..linalg import SINGULAR_COND
 from ..model import Mechanism, build_mechanism
 from ..post import Review, Verdict, design_review, verdicts
-from ..post.columns import Column, result_columns, scales
+from ..post.columns import Column, result_columns, scales, sweep_rows
 from ..post.transmission import instant_quantities
+from ..quantities import MECHANISM_UNITS
 from ..post.sweep import SweepSummary, sweep_summary
 from ..spec import Spec, load_spec, parse_spec
 
@@ -174,11 +175,9 @@ class Analysis(Checked):
             raise ImportError("to_dataframe needs pandas: pip install "
                               "'mechreport[pandas]'") from None
         columns = self.columns()
-        solved = {round(float(a), 9): k for k, a in enumerate(self.angles)}
-        reasons = {round(f.angle, 9): f.reason for f in self.flags}
-        angles = sorted(set(solved) | set(reasons))
-        rows = np.array([solved.get(a, -1) for a in angles], int)
-        data = {"flag": [reasons.get(a, "") for a in angles]}
+        angles, index, reasons = sweep_rows(self.angles, self.flags)
+        rows = np.array([-1 if k is None else k for k in index], int)
+        data = {"flag": reasons}
         for c in columns:
             values = np.full(len(angles), np.nan)
             values[rows >= 0] = c.values[rows[rows >= 0]]
@@ -219,8 +218,15 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL,
     ctx.cache.clear()   # the actions and equations the methods shared: rebuilt if asked for
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces), res,
                     check_expectations(kin, forces, kin.flags, values, why,
-                                       instant_quantities(kin)), tol, rev, why,
+                                       _instant(spec, kin)), tol, rev, why,
                     tuple(verdicts(spec.design, values, why)))
+
+
+def _instant(spec: Spec, kin: Kinematics) -> dict[str, np.ndarray] | None:
+    """The mechanism's own quantities at each angle, where an expectation asks for one."""
+    if any(e.quantity in MECHANISM_UNITS for e in spec.expect):
+        return instant_quantities(kin)
+    return None
 
 
 def solve_trusted(kin: Kinematics, methods=None, memo: dict | None = None, plans=None,

@@ -26,6 +26,16 @@ class Column:
     values: np.ndarray
 
 
+def sweep_rows(angles: np.ndarray, flags) -> tuple[list[float], list[int | None], list[str]]:
+    """The rows of results.csv and of ``to_dataframe()``: every angle of the sweep, analysed
+    (``angles``) or left out (``flags``), in order; for each, its index among the analysed
+    angles (None where left out) and why it was left out ("")."""
+    reasons = {round(f.angle, 9): f.reason for f in flags}
+    solved = {round(float(a), 9): k for k, a in enumerate(angles)}
+    every = sorted(set(solved) | set(reasons))
+    return every, [solved.get(a) for a in every], [reasons.get(a, "") for a in every]
+
+
 def _top(*arrays) -> float:
     vals = [float(np.max(np.abs(a))) for a in arrays if a is not None and np.size(a)]
     vals = [v for v in vals if math.isfinite(v)]
@@ -91,10 +101,7 @@ def result_columns(kin, forces: dict, scale: dict[str, float]) -> list[Column]:
             add(f"{p}.{lab} [{unit}]", arr, kind)
     for j in spec.joints:                       # an R joint's relative angle, (-180, 180]
         if j.type == "R":
-            a, b = j.links
-            rel = np.degrees(kin.theta[:, kin.index(b)] - kin.theta[:, kin.index(a)]) % 360.0
-            add(f"joint.{j.name}.angle [deg]", np.where(rel > 180.0, rel - 360.0, rel),
-                "angle")
+            add(f"joint.{j.name}.angle [deg]", kin.relative_angle_deg(*j.links), "angle")
     transmission = smallest_transmission_angle(kin)
     if np.isfinite(transmission).any():
         add("transmission_angle [deg]", transmission, "angle")

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .bearings import bearing_carrier, bearing_trace
+from .bearings import bearing_trace
 from .frame import FrameLoad, frame_load, reference_method
 from .torque import Peak, TorqueStats, peak, torque_stats
 
@@ -141,5 +141,5 @@ def sweep_summary(kin, forces: dict, loads, flags) -> SweepSummary:
                                                                check.driver_torque, angles))
 
 
-__all__ = ["NEAR_STEPS", "JointLoad", "PowerCheck", "SweepSummary", "bearing_carrier",
+__all__ = ["NEAR_STEPS", "JointLoad", "PowerCheck", "SweepSummary",
            "far_peak", "near_mask", "sweep_summary"]

@@ -23,12 +23,13 @@ from ..version import __version__
 from .. import post as q
 from ..post.balance import NOTICEABLE
 from ..post.bearings import bearing_carrier
+from ..post.columns import sweep_rows
 from ..post.sweep import PowerCheck, SweepSummary
 from ..forces import METHODS
 from ..quantities import unit_of
 from ..spec import GROUND
 from ..checks.failures import failed_expectations
-from ..units import DASH, SIG_DIGITS, ZERO_RTOL, Display, clean, deg, fmt, kind_of
+from ..units import DASH, SIG_DIGITS, Display, clean, deg, fmt, kind_of
 from .check_text import failure_rows, summary_line
 from .scene import Scene, build_scene
 from .text import kinematics_rows
@@ -612,15 +613,11 @@ def _csv(analysis) -> tuple[list[str], list[list[str]]]:
     names = [c.name for c in columns]
     data = np.column_stack([c.values for c in columns]) if columns else \
         np.zeros((analysis.kinematics.n, 0))
-    reasons = {round(f.angle, 9): f.reason for f in analysis.flags}
-    solved = {round(float(a), 9): k for k, a in enumerate(analysis.angles)}
-    angles = sorted(set(solved) | set(reasons))
     rows = []
-    for a in angles:
-        k = solved.get(a)
+    for a, k, why in zip(*sweep_rows(analysis.angles, analysis.flags)):
         cells = ([""] * len(names) if k is None else
                  [f"{v:.10g}" if math.isfinite(v) else "" for v in data[k].tolist()])
-        rows.append([deg(a), reasons.get(a, ""), *cells])
+        rows.append([deg(a), why, *cells])
     return ["crank_angle [deg]", "flag", *names], rows
 
 

@@ -817,12 +817,13 @@ def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
     if massless:            # a massless link (a two-force member when it carries no load)
         extra = [k for k in ("density", "shape", "com", "inertia") if k in body]
         if extra:
+            them = "it" if len(extra) == 1 else "them"
             ck.error(path + ("mass",), f"0 makes link '{lname}' massless: it has no "
-                                       f"{', '.join(extra)} (leave {'it' if len(extra) == 1 else 'them'} out)")
+                                       f"{', '.join(extra)} (leave {them} out)")
             return None
         return Link(lname, number, points, 0.0, (0.0, 0.0), 0.0, None)
-    if point_mass and mass is None:
-        ck.error(path + ("inertia",), f"0 (a point mass) needs the link's 'mass'")
+    if point_mass and mass is None and density is None:   # (density x shape gives one)
+        ck.error(path + ("inertia",), "0 (a point mass) needs the link's 'mass'")
         return None
     if mass is None:
         if density is None or shape is None:
