@@ -31,20 +31,29 @@ _UNITS_BY_KIND = {"joint": {**JOINT_UNITS, **JOINT_CYCLE_UNITS}, "point": POINT_
                   "link": LINK_UNITS}
 
 
+def split(quantity: str) -> tuple[str, str, str] | None:
+    """``kind.name.attr`` as (kind, name, attr), the name being everything between the first
+    dot and the last (``joint.E.on.crank.fx``: the force pin E exerts on the crank); None
+    for a name of another shape (``driver.torque``, ``cycle.torque.rms`` split too)."""
+    kind, _, rest = quantity.partition(".")
+    name, _, attr = rest.rpartition(".")
+    return (kind, name, attr) if kind and name and attr else None
+
+
 def is_kinematic(quantity: str) -> bool:
     """True for a quantity the kinematics gives (points, links, a joint's relative angle,
     the transmission angle): checked once, not per force method."""
-    parts = quantity.split(".")
-    return (quantity in MECHANISM_UNITS or parts[0] in KINEMATIC_KINDS
-            or (len(parts) == 3 and parts[0] == "joint" and parts[2] == "angle"))
+    parts = split(quantity)
+    return (quantity in MECHANISM_UNITS or (parts is not None and parts[0] in KINEMATIC_KINDS)
+            or (parts is not None and parts[0] == "joint" and parts[2] == "angle"))
 
 
 def is_cycle(quantity: str) -> bool:
     """True for a cycle quantity name (``cycle.*``, ``balance.*``, ``joint.J.f_max`` ...)."""
     if quantity in CYCLE_UNITS:
         return True
-    parts = quantity.split(".")
-    return len(parts) == 3 and parts[0] == "joint" and parts[2] in JOINT_CYCLE_UNITS
+    parts = split(quantity)
+    return parts is not None and parts[0] == "joint" and parts[2] in JOINT_CYCLE_UNITS
 
 
 def unit_of(quantity: str) -> str | None:
@@ -57,8 +66,8 @@ def unit_of(quantity: str) -> str | None:
         return "N·m"
     if quantity == "driver.force":
         return "N"
-    parts = quantity.split(".")
-    if len(parts) != 3:
+    parts = split(quantity)
+    if parts is None:
         return None
     return _UNITS_BY_KIND.get(parts[0], {}).get(parts[2])
 

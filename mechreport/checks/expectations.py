@@ -8,6 +8,7 @@ import numpy as np
 from ..forces import ForceResult
 from ..kinematics import Kinematics
 from ..quantities import MECHANISM_UNITS, is_kinematic
+from ..quantities import split as split_quantity
 from ..spec import Expectation
 
 
@@ -31,7 +32,7 @@ def kinematic_value(kin: Kinematics, quantity: str, k: int,
     if quantity in MECHANISM_UNITS:
         values = (instant or {}).get(quantity)
         return float("nan") if values is None else float(values[k])
-    kind, name, attr = quantity.split(".")
+    kind, name, attr = split_quantity(quantity)
     if kind == "point":
         s = kin.named_point(name)
         if attr in ("v", "a"):
@@ -84,7 +85,7 @@ def at_angle(e: Expectation, kin: Kinematics, results: dict[str, ForceResult],
     else:
         sources = {}
         for name, res in results.items():
-            values = res.quantity(e.quantity)
+            values = res.quantity(e.quantity, kin.mechanism.spec)
             if values is not None:
                 sources[name] = float(values[k])
     return judge(e, sources, kin.mechanism.spec)

@@ -3,13 +3,16 @@
 Ideal joints do no work, so with d'Alembert's inertia loads the total power vanishes:
 M omega_1 + sum_links (Fin . v_C + Min omega + G . v_C) + sum_loads (F . v_P or M omega) = 0,
 i.e. M omega_1 = sum(m a_C . v_C + I alpha omega) - sum(load power) - power of gravity.
-Not in the textbook: an independent check of the other methods' driver torque. Undefined
-(flagged singular) where the crank is at rest (omega_1 = 0).
+Not in the textbook: an independent check of the other methods' driver torque. At zero
+speed (a static analysis, or the instant of starting from rest) it is the virtual-work
+balance: every velocity replaced by its velocity coefficient, the velocity at unit rate of the
+driven coordinate (valid at any speed; at speed it is the power balance divided by it).
 """
 from __future__ import annotations
 
 import numpy as np
 
+from ..kinematics import at_unit_rate
 from ..kinematics.frames import project
 from .context import ForceContext
 from .equations import Action, Equation, Step, Term, no_coefficients, no_constant
@@ -21,11 +24,16 @@ SECTION = "(independent check)"
 
 
 def power_equation(ctx: ForceContext) -> Equation:
+    """The power balance, or at zero speed (a static analysis, the instant of starting from
+    rest) the virtual-work balance: the same sum with each velocity replaced by its velocity
+    coefficient (the velocity at unit rate of the driven coordinate)."""
     n = ctx.n
     terms = []
+    at_rest = ctx.spec.driver.at_rest
+    rates = ctx.once(("unit rate",), at_unit_rate, ctx.kin) if at_rest else ctx.kin
     # the driver's power: its effort times the driven coordinate's rate (constant: rad/s for
-    # an R driver, relative to its first link; m/s for a T driver)
-    rate = np.full(n, ctx.spec.driver.omega)
+    # an R driver, relative to its first link; m/s for a T driver; 1 for virtual work)
+    rate = np.full(n, 1.0 if at_rest else ctx.spec.driver.omega)
     driver = next(a for link in ctx.spec.driver.links for a in ctx.driver_actions(link))
     driver = Action(driver.symbol, driver.kind, "driver", ctx.spec.driver.link,
                     unknowns=driver.unknowns)
@@ -35,15 +43,17 @@ def power_equation(ctx: ForceContext) -> Equation:
         for act in ctx.inertia_actions(link.name) + [ctx.gravity_action(link.name)] + \
                 ctx.load_actions(link.name):
             if act.kind == "force":  # inertia and weight act at the centre of mass
-                v = s.v if act.category != "load" else \
-                    ctx.kin.named_point(act.at_name, link.name).v   # loads: their own point
+                v = rates.com(link.name).v if act.category != "load" else \
+                    rates.named_point(act.at_name, link.name).v   # loads: their own point
                 terms.append(Term(act, no_coefficients(n), project(act.value, v),
                                   rate=v, kind="power"))
             else:
-                terms.append(Term(act, no_coefficients(n), act.value * s.omega, rate=s.omega,
+                omega = rates.omega[:, s.number]
+                terms.append(Term(act, no_coefficients(n), act.value * omega, rate=omega,
                                   kind="power"))
-    return Equation("sum P = M omega1 + sum F . v + sum M omega = 0", "power",
-                    tuple(l.name for l in ctx.spec.links), terms)
+    label = ("sum dW = M + sum F . dr/dq + sum M dtheta/dq = 0 (virtual work)" if at_rest
+             else "sum P = M omega1 + sum F . v + sum M omega = 0")
+    return Equation(label, "power", tuple(l.name for l in ctx.spec.links), terms)
 
 
 def build_steps(ctx: ForceContext) -> tuple[Step, ...]:

@@ -5,6 +5,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..quantities import split as split_quantity
 from .equations import Step
 
 
@@ -99,15 +100,24 @@ class ForceResult:
                        driver_torque=cat(lambda p: p.driver_torque),
                        singular=cat(lambda p: p.singular), cond=cat(lambda p: p.cond))
 
-    def quantity(self, name: str) -> np.ndarray | None:
+    def quantity(self, name: str, spec=None) -> np.ndarray | None:
         """A result quantity by its ``expect`` name, e.g. ``joint.B.fx`` or ``driver.torque``
-        (``driver.force`` for a T driver)."""
+        (``driver.force`` for a T driver); with the ``spec``, also what a two-link joint
+        exerts on either link (``joint.B.on.crank.fx``)."""
         if name == self.driver_quantity:
             return self.driver_torque
-        parts = name.split(".")
-        if len(parts) == 3 and parts[0] == "joint" and parts[1] in self.reactions:
-            return self.reactions[parts[1]].component(parts[2])
-        return None
+        parts = split_quantity(name)
+        if parts is None or parts[0] != "joint":
+            return None
+        _, joint, attr = parts
+        if joint in self.reactions:
+            return self.reactions[joint].component(attr)
+        terms = None if spec is None else spec.reaction_terms(joint)
+        if not terms or len(terms) != 1 or terms[0][0] not in self.reactions:
+            return None
+        (own, sign), = terms
+        values = self.reactions[own].component(attr)
+        return values if attr == "f" or values is None else sign * values + 0.0
 
     def values(self) -> dict[str, np.ndarray]:
         """Every unknown by name (joint.J.fx/fy/moment, driver.torque): a new dict each
@@ -154,9 +164,25 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
             m = values[f"joint.{j.name}.moment"]
             px, py = points[j.name]
             reactions[j.name] = JointReaction(j.name, "T", fx, fy, m, px, py)
+        reactions = _with_pin_hubs(spec, reactions)
     quantity = ctx.spec.driver.quantity
     return ForceResult(method, ctx.kin.angles, reactions, values[quantity], singular, cond,
                        quantity)
+
+
+def _with_pin_hubs(spec, reactions: dict[str, JointReaction]) -> dict[str, JointReaction]:
+    """``reactions`` with the force each pin joining several links exerts on its hub (minus
+    the sum of its forces on the other links: the pin is in equilibrium), in the order of
+    ``spec.reported_reactions()``."""
+    if not spec.pins:
+        return reactions
+    for pin in spec.pins:
+        parts = [reactions[pin.joint_name(x)] for x in pin.others]
+        fx = -np.sum([r.fx for r in parts], axis=0)
+        fy = -np.sum([r.fy for r in parts], axis=0)
+        reactions[pin.joint_name(pin.hub)] = JointReaction(pin.joint_name(pin.hub), "R",
+                                                           fx + 0.0, fy + 0.0)
+    return {name: reactions[name] for name in spec.reported_reactions()}
 
 
 def run_steps(method: str, ctx, steps) -> ForceResult:

@@ -9,6 +9,7 @@ out.
 from __future__ import annotations
 
 import sys
+from dataclasses import replace
 
 import numpy as np
 
@@ -93,6 +94,23 @@ def finish(mech: Mechanism, phi_deg: np.ndarray, r: dict, th: dict, branches, mo
                   for k, (kind, why) in sorted(problems.items()))
     return Kinematics(mech, phi_deg[keep], by_link(r), by_link(th), by_link(v), by_link(w),
                       by_link(acc), by_link(al), flags, tuple(branches), motion, error[keep])
+
+
+def at_unit_rate(kin: Kinematics) -> Kinematics:
+    """``kin`` with the driver moving at unit rate (1 rad/s, or 1 m/s for a T driver) and no
+    acceleration: its velocities are the velocity coefficients d(x)/d(driven coordinate),
+    the same at any speed (the virtual-work check at zero speed uses them; a driver at rest
+    gives zero velocities). Positions and flags as ``kin``'s; accelerations zero."""
+    mech = kin.mechanism
+    spec = mech.spec
+    unit = mech.with_spec(replace(spec, driver=replace(spec.driver, omega=1.0, alpha=0.0)))
+    order = [GROUND] + [link.name for link in spec.links]
+    r = {name: kin.r[:, i] for i, name in enumerate(order)}
+    th = {name: kin.theta[:, i] for i, name in enumerate(order)}
+    v, w, _, _, _ = _rates_chunked(unit, kin.angles * spec.driver.unit, r, th, {})
+    return replace(kin, v=np.stack([v[k] for k in order], axis=1),
+                   omega=np.stack([w[k] for k in order], axis=1),
+                   a=np.zeros_like(kin.a), alpha=np.zeros_like(kin.alpha))
 
 
 def kinematic_error(conds: list[np.ndarray], n: int) -> np.ndarray:
@@ -338,5 +356,5 @@ def _newton_system(spec, group, eqs: RateEquations, size: float):
     return Equilibrated(A), rs[:, None], cs
 
 
-__all__ = ["solve_kinematics", "Kinematics", "PointState", "Flag", "BranchChoice", "Motion",
+__all__ = ["solve_kinematics", "at_unit_rate", "Kinematics", "PointState", "Flag", "BranchChoice", "Motion",
            "SINGULAR_COND", "TRUST_RTOL", "EPS"]

@@ -32,6 +32,7 @@ from ..forces.result import slider_point
 from ..kinematics import Flag
 from ..kinematics.stream import kinematic_chunks, streamable
 from ..model import build_mechanism
+from ..quantities import split as split_quantity
 from ..post import Traces, Verdict, design_review_from, traces_of, verdicts
 from ..post.transmission import instant_quantities
 from ..spec import Spec
@@ -154,14 +155,14 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
 def _slider_point(e) -> bool:
     """Whether expectation ``e`` is on a T joint's point of application (joint.J.px or py):
     defined against the largest force over the whole sweep, so judged at the end."""
-    parts = e.quantity.split(".")
-    return len(parts) == 3 and parts[0] == "joint" and parts[2] in ("px", "py")
+    parts = split_quantity(e.quantity)
+    return parts is not None and parts[0] == "joint" and parts[2] in ("px", "py")
 
 
 def _slider_inputs(e, ctx: ForceContext, forces, k: int) -> dict:
     """What each method's slider point at row ``k`` is made of: (context at that angle, fx,
     fy, m); the point is computed when the sweep's largest force is known."""
-    joint = e.quantity.split(".")[1]
+    joint = split_quantity(e.quantity)[1]
     one = ForceContext(ctx.kin.take([k], ()))
     out = {}
     for name, res in forces.items():
@@ -172,7 +173,7 @@ def _slider_inputs(e, ctx: ForceContext, forces, k: int) -> dict:
 
 
 def _judge_slider(e, spec: Spec, inputs: dict, top: dict) -> list[ExpectationResult]:
-    joint, axis = e.quantity.split(".")[1:]
+    _, joint, axis = split_quantity(e.quantity)
     sources = {}
     for name, (one, fx, fy, m) in inputs.items():
         px, py = slider_point(one, spec.joint(joint), fx, fy, m, top[name, joint])

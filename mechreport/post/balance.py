@@ -56,9 +56,10 @@ def counterweight(inertia_force: np.ndarray, crank_theta: np.ndarray, omega: flo
         ux *= -w2
         uy *= -w2
     uu = w2 ** 2 + alpha ** 2                    # |u|^2, the same at every angle
-    c = -complex(np.dot(ux, sx) + np.dot(uy, sy), np.dot(ux, sy) - np.dot(uy, sx)) \
-        / (uu * len(theta))
     before = float(np.sqrt((np.dot(sx, sx) + np.dot(sy, sy)) / len(theta)))
+    # a crank at rest (omega and alpha 0) has no inertia force to balance: u = 0
+    c = 0j if uu == 0 else -complex(np.dot(ux, sx) + np.dot(uy, sy),
+                                    np.dot(ux, sy) - np.dot(uy, sx)) / (uu * len(theta))
     if abs(c) * np.sqrt(uu) <= 1e-12 * max(before, 1e-300):
         c = 0j                     # nothing to balance: no counterweight, angle 0 (not -0)
     balanced = np.empty((len(theta), 2))

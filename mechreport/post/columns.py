@@ -107,8 +107,8 @@ def result_columns(kin, forces: dict, scale: dict[str, float]) -> list[Column]:
         add("transmission_angle [deg]", transmission, "angle")
     for m, res in forces.items():
         add(f"{m}.driver.torque [N m]", res.driver_torque, "moment")
-        for j in spec.joints:
-            r = res.reactions.get(j.name)
+        for name in spec.reported_reactions():
+            r = res.reactions.get(name)
             if r is None:
                 continue
             for attr, unit, kind in (("fx", "N", "force"), ("fy", "N", "force"),
@@ -116,5 +116,5 @@ def result_columns(kin, forces: dict, scale: dict[str, float]) -> list[Column]:
                                      ("py", "m", "length")):
                 v = getattr(r, attr)
                 if v is not None:
-                    add(f"{m}.joint.{j.name}.{attr} [{unit}]", v, kind)
+                    add(f"{m}.joint.{name}.{attr} [{unit}]", v, kind)
     return out

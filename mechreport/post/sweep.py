@@ -119,8 +119,8 @@ def sweep_summary(kin, forces: dict, loads, flags) -> SweepSummary:
     res = forces[ref]
     angles = kin.angles
     near, width = near_mask(angles, [f.angle for f in flags], spec.sweep.step)
-    joints = {j.name: joint_load(j.name, angles, r.fx, r.fy, near)
-              for j in spec.joints if (r := res.reactions.get(j.name)) is not None}
+    joints = {name: joint_load(name, angles, r.fx, r.fy, near)
+              for name in spec.reported_reactions() if (r := res.reactions.get(name))}
     largest = None
     for name, jl in joints.items():
         if jl.peak is not None and (largest is None or jl.peak.value > largest[1].value):

@@ -69,7 +69,8 @@ def verdicts(design: Design, values: dict[str, float] | None, why: str = "") -> 
         if b.life_h is not None:
             rows.append((f"bearings.{joint}.life_h", f"joint.{joint}.life_h", b.life_h, True, ""))
     limits = design.limits
-    worst = max(((q.split(".")[1], x) for q, x in v.items() if q.endswith(".f_max")),
+    worst = max(((q[len("joint."):-len(".f_max")], x) for q, x in v.items()
+                 if q.startswith("joint.") and q.endswith(".f_max")),
                 key=lambda jx: jx[1], default=(None, None))
     if "joint_force" in limits:
         rows.append(("limits.joint_force", "joint.*.f_max", limits["joint_force"], False,

@@ -302,7 +302,8 @@ def display_of(analysis) -> Display:
 
 def _colors(spec) -> dict[str, str]:
     """One colour per joint, in spec order, across every figure (:data:`PALETTE`)."""
-    return {j.name: PALETTE[i % len(PALETTE)] for i, j in enumerate(spec.joints)}
+    return {name: PALETTE[i % len(PALETTE)]
+            for i, name in enumerate(spec.reported_reactions())}
 
 
 def sweep_data(analysis) -> tuple[SweepData, Display]:
@@ -314,8 +315,13 @@ def sweep_data(analysis) -> tuple[SweepData, Display]:
 
 
 def _symbols(spec) -> dict[str, str]:
-    """Textbook reaction symbol of each joint: F<first><second> by link number."""
-    return {j.name: spec.symbol(*j.links) for j in spec.joints}
+    """Textbook reaction symbol of each joint: F<first><second> by link number; a pin
+    joining several links: F<pin><link> for its force on its hub (on the others, it is the
+    reaction of the hub's joint to each)."""
+    out = {j.name: spec.symbol(*j.links) for j in spec.joints}
+    for pin in spec.pins:
+        out[pin.joint_name(pin.hub)] = f"F{pin.name}{spec.number(pin.hub)}"
+    return {name: out[name] for name in spec.reported_reactions()}
 
 
 def _xy(d: Display, p) -> str:
@@ -424,20 +430,19 @@ def _driver_text(spec) -> str:
 def _reaction_rows(spec, forces, symbols, k: int, d: Display) -> list[list[str]]:
     rows = []
     F, M, L = d.unit("force"), d.unit("moment"), d.unit("length")
-    for j in spec.joints:
-        sym = symbols[j.name]
+    for name, sym in symbols.items():
         comps = [("fx", f"{sym} x [{F}]", "force"), ("fy", f"{sym} y [{F}]", "force"),
                  ("f", f"|{sym}| [{F}]", "force")]
-        if j.type == "T":
+        if any(j.name == name and j.type == "T" for j in spec.joints):
             comps += [("moment", f"M{sym[1:]} [{M}]", "moment"),
                       ("px", f"at x [{L}]", "length"), ("py", f"at y [{L}]", "length")]
         for attr, label, kind in comps:
             vals = []
             for res in forces.values():
-                r = res.reactions.get(j.name)
+                r = res.reactions.get(name)
                 v = r.component(attr) if r is not None else None
                 vals.append(d.num(v[k], kind) if v is not None else DASH)
-            rows.append([j.name, label, *vals])
+            rows.append([name, label, *vals])
     kind = effort_of(spec)[0]
     rows.append(["driver", f"{'F' if kind == 'force' else 'M'} [{d.unit(kind)}]",
                  *(d.num(r.driver_torque[k], kind) for r in forces.values())])
@@ -447,16 +452,16 @@ def _reaction_rows(spec, forces, symbols, k: int, d: Display) -> list[list[str]]
 def _vectors(spec, res, symbols, k: int, d: Display) -> list[str]:
     out = []
     F, M = d.unit("force"), d.unit("moment")
-    for j in spec.joints:
-        r = res.reactions.get(j.name)
+    for name, sym in symbols.items():
+        r = res.reactions.get(name)
         if r is None:
             continue
         fy = d.num(r.fy[k], "force")
         sign, fy = ("-", fy[1:]) if fy.startswith("-") else ("+", fy)
-        text = (f"{j.name}: {symbols[j.name]} = {d.num(r.fx[k], 'force')} i {sign} "
-                f"{fy} j {F}, |{symbols[j.name]}| = {d.num(r.f[k], 'force')} {F}")
+        text = (f"{name}: {sym} = {d.num(r.fx[k], 'force')} i {sign} "
+                f"{fy} j {F}, |{sym}| = {d.num(r.f[k], 'force')} {F}")
         if r.moment is not None:
-            text += f", M{symbols[j.name][1:]} = {d.num(r.moment[k], 'moment')} {M}"
+            text += f", M{sym[1:]} = {d.num(r.moment[k], 'moment')} {M}"
         out.append(text)
     kind, label, _, _ = effort_of(spec)
     out.append(f"{label} = {d.num(res.driver_torque[k], kind)} {d.unit(kind)}")
@@ -500,9 +505,8 @@ def _sweep(analysis, summary: SweepSummary, symbols, colors) -> SweepData:
     """The plot data of the sweep: the reference method's arrays and the summary's traces."""
     res = analysis.forces[summary.method]
     spec = analysis.spec
-    joints = [JointSeries(j.name, symbols[j.name], j.type, colors[j.name], r.fx, r.fy, r.f,
-                          r.moment)
-              for j in spec.joints if (r := res.reactions.get(j.name)) is not None]
+    joints = [JointSeries(name, sym, r.type, colors[name], r.fx, r.fy, r.f, r.moment)
+              for name, sym in symbols.items() if (r := res.reactions.get(name)) is not None]
     polar = []
     for j in spec.joints:
         xy = summary.traces.get(j.name)

@@ -17,11 +17,12 @@ from pathlib import Path as FsPath
 from typing import Any
 
 from ..errors import Problem, SpecError
-from ..quantities import CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, is_cycle, unit_of
+from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, is_cycle, unit_of,
+                          split as split_quantity)
 from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES
 from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Expectation, Joint, Line, Link, Load,
-                    Shape, Spec, Study, Sweep, Vary, Vec)
+                    Pin, Shape, Spec, Study, Sweep, Vary, Vec)
 from .yaml_source import (MAX_DEPTH, MAX_FILE_BYTES, HugeInteger, Source, check_text, decode,
                           format_path, too_big)
 
@@ -56,6 +57,7 @@ POINT_QUANTITIES = ("x", "y", "vx", "vy", "ax", "ay", "v", "a")
 LINK_QUANTITIES = ("angle", "omega", "alpha")
 R_QUANTITIES = ("fx", "fy", "f", "angle")
 T_QUANTITIES = ("fx", "fy", "f", "moment", "px", "py")
+ON_QUANTITIES = ("fx", "fy", "f")     # joint.J.on.<link>.*: the force on one link
 
 _YAML11_BOOLS = {"yes", "no", "on", "off", "y", "n"}
 _SEXAGESIMAL = re.compile(r"[-+]?[0-9][0-9_]*(?::[0-5]?[0-9])+(?:\.[0-9_]*)?\Z")
@@ -352,8 +354,10 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     if top is None:
         return None
     version = top.get("mechreport")
-    if "mechreport" in top and (type(version) is not int or version != 1):
-        ck.error(("mechreport",), f"format version must be 1, got {_show(top['mechreport'])}")
+    if "mechreport" in top and not (type(version) is int and version == 1
+                                    or type(version) is float and version == 1.1):
+        ck.error(("mechreport",), f"format version must be 1, got {_show(top['mechreport'])}"
+                                  " (or 1.1: the same format with its version 1.1 keys)")
 
     name = ck.name(top.get("name"), ("name",)) if "name" in top else None
     description = top.get("description", "")
@@ -371,9 +375,9 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     ground = _ground(top.get("ground", {}), ck, length_scale, units["length"])
     links = _links(top.get("links", _ABSENT), ck, length_scale, mass_scale, units)
     link_names = {link.name for link in links}
-    joints = _joints(top.get("joints", _ABSENT), ck, ground, {l.name: l for l in links},
-                     length_scale, units["length"])
-    driver = (_driver(top.get("driver"), ck, joints, length_scale) if "driver" in top
+    joints, pins = _joints(top.get("joints", _ABSENT), ck, ground, {l.name: l for l in links},
+                           length_scale, units["length"])
+    driver = (_driver(top.get("driver"), ck, joints, length_scale, pins) if "driver" in top
               else None)
     sweep = _sweep(top.get("sweep"), ck)
     at = _angle_list(top.get("at"), ("at",), ck) if "at" in top else (sweep.start,)
@@ -389,7 +393,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
             if ld.profile is not None:
                 ck.error(("loads", ld.index, "profile"), "a profile is given over the crank "
                                                           "angle: it needs an R driver")
-    expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src, driver=driver)
+    expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src, driver=driver,
+                     pins=pins)
     design = _design(top.get("design"), ck, joints) if "design" in top else Design()
     report = _report(top.get("report"), ck, units) if "report" in top else ReportSettings()
     study = _study(top["study"], ck, top) if "study" in top else None
@@ -416,7 +421,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                 gravity=gravity, ground=ground, links=tuple(links), joints=tuple(joints),
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
                 expect=tuple(expect), sheet=sheet, units=units, design=design,
-                report=report, study=study)
+                report=report, study=study, pins=tuple(pins))
     _cycle_requests(spec, ck)
     if study is not None:
         _study_requests(spec, ck)
@@ -489,16 +494,32 @@ def _cycle_requests(spec: Spec, ck: _Checker) -> None:
         need = _cycle_need(spec, quantity)
         if need:
             ck.error(path, need)
+    if spec.driver.at_rest and spec.design.speed_fluctuation:
+        ck.error(("design", "speed_fluctuation"),
+                 f"the flywheel inertia it sizes is undefined: {_at_rest(spec)}")
+    if spec.driver.at_rest and spec.design.bearings:
+        ck.error(("design", "bearings"), f"a bearing's rating life is undefined: {_at_rest(spec)}")
+
+
+def _at_rest(spec: Spec) -> str:
+    """Why quantities that divide by the driver's speed are undefined for ``spec``."""
+    key = "speed" if spec.driver.kind == "T" else ("rpm" if spec.driver.rpm_given is not None
+                                                   else "omega")
+    return (f"the driver is at rest (driver.{key}: 0), and it divides by the speed; give the "
+            "speed the machine runs at")
 
 
 def _cycle_need(spec: Spec, quantity: str) -> str | None:
     """What a cycle quantity needs that ``spec`` does not give (None when nothing)."""
+    kind, name, attr = split_quantity(quantity) or ("", "", "")
+    life = kind == "joint" and attr == "life_h"
+    if spec.driver.at_rest and (quantity == "cycle.flywheel_inertia" or life):
+        return f"'{quantity}' is undefined: {_at_rest(spec)}"
     if quantity == "cycle.flywheel_inertia" and not spec.design.speed_fluctuation:
         return ("'cycle.flywheel_inertia' needs design.speed_fluctuation (the coefficient of "
                 "speed fluctuation Cs)")
-    parts = quantity.split(".")
-    if parts[0] == "joint" and parts[2] == "life_h" and parts[1] not in spec.design.bearings:
-        return (f"'{quantity}' needs design.bearings.{parts[1]}.rating (the bearing's dynamic "
+    if life and name not in spec.design.bearings:
+        return (f"'{quantity}' needs design.bearings.{name}.rating (the bearing's dynamic "
                 "load rating C)")
     return None
 
@@ -716,11 +737,11 @@ def _study_requests(spec: Spec, ck: _Checker) -> None:
         ck.error(("study",), f"a study tabulates cycle quantities, which are undefined here: "
                              f"{why}")
         return
-    joints = {j.name for j in spec.joints}
+    joints = set(spec.reported_reactions())
     for i, q in enumerate(spec.study.keep):
-        parts = q.split(".")
-        if parts[0] == "joint" and parts[1] not in joints:
-            ck.error(("study", "keep", i), f"'{q}': no joint named '{parts[1]}' (joints: "
+        kind, name, _ = split_quantity(q) or ("", "", "")
+        if kind == "joint" and name not in joints:
+            ck.error(("study", "keep", i), f"'{q}': no joint named '{name}' (joints: "
                                            f"{', '.join(sorted(joints))})")
             continue
         need = _cycle_need(spec, q)
@@ -876,14 +897,17 @@ def _link_points(lname: str, ground: dict[str, Vec], links: dict[str, Link]) -> 
 
 
 def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, Link],
-            ls: float, unit: str) -> list[Joint] | None:
+            ls: float, unit: str) -> tuple[list[Joint] | None, list[Pin]]:
+    """The joints as the methods solve them (a pin joining several links becomes a two-link
+    joint from its hub to each other link, see :class:`Pin`) and those pins."""
     if value is _ABSENT:
-        return None
+        return None, []
     if not isinstance(value, dict) or not value:
         ck.error(("joints",), "must be a mapping of joint names to joint definitions"
                               + ("" if isinstance(value, dict) else f", got {_show(value)}"))
-        return None
-    joints = []
+        return None, []
+    joints: list[Joint] = []
+    pins: list[Pin] = []
     for jname, body in value.items():
         path = ("joints", jname)
         if not isinstance(body, dict):
@@ -897,29 +921,12 @@ def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, L
         ck.mapping(body, path, allowed, required=allowed[1:] if jtype else ("links",))
         if jtype is None or "links" not in body:
             continue
-        pair = body["links"]
-        if (not isinstance(pair, list) or len(pair) != 2
-                or not all(isinstance(x, str) for x in pair)):
-            ck.error(path + ("links",), f"must be two link names [first, second], got {_show(pair)}"
-                     + (" (quote a name that looks like a number, true/false or null)"
-                        if isinstance(pair, list) and len(pair) == 2 and any(
-                            x is None or isinstance(x, (bool, int, float)) for x in pair)
-                        else ""))
-            continue
-        ok = True
-        for i, lname in enumerate(pair):
-            if lname != GROUND and lname not in links:
-                if lname not in ck.invalid_links:
-                    known = ", ".join([GROUND, *sorted({*links, *ck.invalid_links})])
-                    ck.error(path + ("links", i), f"unknown link '{lname}' (links: {known})")
-                ok = False
-        if pair[0] == pair[1]:
-            ck.error(path + ("links",), "a joint needs two different links")
-            ok = False
-        if not ok:
+        names = _joint_links(jname, jtype, body["links"], path + ("links",), ck, links)
+        if names is None:
             continue
         if jtype == "R":
-            for i, lname in enumerate(pair):
+            ok = True
+            for i, lname in enumerate(names):
                 if jname not in _link_points(lname, ground, links):
                     if lname == GROUND and jname in ck.invalid_points:
                         ok = False          # the ground point's own problem is reported
@@ -928,14 +935,54 @@ def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, L
                     ck.error(path + ("links", i),
                              f"R joint '{jname}' needs a point named '{jname}' in {where}")
                     ok = False
-            if ok:
-                joints.append(Joint(jname, "R", (pair[0], pair[1]), jname))
+            if not ok:
+                continue
+            if len(names) == 2:
+                joints.append(Joint(jname, "R", (names[0], names[1]), jname))
+                continue
+            pin = Pin(jname, tuple(names), GROUND if GROUND in names else names[0])
+            pins.append(pin)
+            joints += [Joint(pin.joint_name(x), "R", (pin.hub, x), jname) for x in pin.others]
         else:
-            joint = _t_joint(jname, body, pair, path, ck, ground, links, ls, unit)
+            joint = _t_joint(jname, body, names, path, ck, ground, links, ls, unit)
             if joint is not None:
                 joints.append(joint)
-    ck.invalid_joints.update(name for name in value if name not in {j.name for j in joints})
-    return joints
+    for pin in pins:
+        for x in pin.links:
+            if pin.joint_name(x) in value:
+                ck.error(("joints", pin.joint_name(x)), f"'{pin.joint_name(x)}' names the force "
+                         f"of pin '{pin.name}' on '{x}'; give this joint another name")
+    ck.invalid_joints.update(name for name in value
+                             if name not in {j.name for j in joints} | {p.name for p in pins})
+    return joints, pins
+
+
+def _joint_links(jname: str, jtype: str, names: Any, path: tuple, ck: _Checker,
+                 links: dict[str, Link]) -> list[str] | None:
+    """The links a joint joins: two for a T joint, two or more for an R joint (a pin joining
+    several links), each known and none twice (None after reporting what is wrong)."""
+    if (not isinstance(names, list) or len(names) < 2 or (jtype == "T" and len(names) != 2)
+            or not all(isinstance(x, str) for x in names)):
+        quote = isinstance(names, list) and any(
+            x is None or isinstance(x, (bool, int, float)) for x in names)
+        ck.error(path, f"must be two link names [first, second], got {_show(names)}"
+                 + (" (quote a name that looks like a number, true/false or null)" if quote
+                    else " (a pin joining several links lists them all)" if jtype == "R"
+                    else ""))
+        return None
+    ok = True
+    for i, lname in enumerate(names):
+        if lname != GROUND and lname not in links:
+            if lname not in ck.invalid_links:
+                known = ", ".join([GROUND, *sorted({*links, *ck.invalid_links})])
+                ck.error(path + (i,), f"unknown link '{lname}' (links: {known})")
+            ok = False
+    if len(set(names)) < len(names):
+        ck.error(path, "a joint needs two different links" if len(names) == 2 else
+                 f"a pin joins each link once; '{jname}' lists "
+                 f"{', '.join(sorted({x for x in names if names.count(x) > 1}))} twice")
+        ok = False
+    return names if ok else None
 
 
 def _t_joint(jname: str, body: dict, pair: list, path: tuple, ck: _Checker,
@@ -983,7 +1030,7 @@ def _t_joint(jname: str, body: dict, pair: list, path: tuple, ck: _Checker,
 
 
 def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
-            length_scale: float = 1.0) -> Driver | None:
+            length_scale: float = 1.0, pins: list[Pin] = ()) -> Driver | None:
     """Any joint may drive: an R joint its relative angle (``rpm`` or ``omega``, ``alpha``), a
     T joint its stroke (``speed``, ``accel`` in the length unit per s and s^2)."""
     path = ("driver",)
@@ -994,7 +1041,12 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
     jname = ck.name(body["joint"], path + ("joint",))
     joint = None if joints is None or jname is None else \
         next((j for j in joints if j.name == jname), None)
-    if joint is None:
+    pin = next((p for p in pins if p.name == jname), None)
+    if pin is not None:
+        ck.error(path + ("joint",), f"'{jname}' joins {len(pin.links)} links "
+                 f"({', '.join(pin.links)}); a driver turns one link against another: write "
+                 "the driven pair as a joint of its own")
+    elif joint is None:
         if joints is not None and jname is not None and jname not in ck.invalid_joints:
             ck.error(path + ("joint",), f"unknown joint '{jname}' (joints: "
                                         f"{', '.join(j.name for j in joints)})")
@@ -1002,7 +1054,7 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
         # problem of the file is listed at once
         for k in ("rpm", "omega", "alpha", "speed", "accel"):
             if k in body:
-                ck.number(body[k], path + (k,), nonzero=k in ("rpm", "omega", "speed"))
+                ck.number(body[k], path + (k,))
         return None
     a, b = joint.links
     link = (b if a == GROUND else a) if GROUND in joint.links else b
@@ -1013,9 +1065,10 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
                                   f"the length unit per second, not '{k}'")
         if "speed" not in body:
             if not wrong:
-                ck.error(path, "a T driver needs 'speed' (length unit per second, not zero)")
+                ck.error(path, "a T driver needs 'speed' (length unit per second; 0 for a "
+                               "static analysis)")
             return None
-        speed = ck.number(body["speed"], path + ("speed",), nonzero=True, scale=length_scale)
+        speed = ck.number(body["speed"], path + ("speed",), scale=length_scale)
         accel = (ck.number(body["accel"], path + ("accel",), scale=length_scale)
                  if "accel" in body else 0.0)
         if speed is None or accel is None or wrong:
@@ -1031,10 +1084,6 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
     rpm = None
     key = "rpm" if "rpm" in body else "omega"
     speed = ck.number(body[key], path + (key,))
-    if speed == 0:
-        ck.error(path + (key,), "must not be zero: the sweep is kinetostatic (the driver turns "
-                                "at this speed at every angle); the power balance needs it")
-        speed = None
     if key == "rpm":
         rpm = speed
         omega = None if speed is None else speed * math.pi / 30.0
@@ -1300,7 +1349,7 @@ def _element(kind: str, item: dict, i: int, path: tuple, ck: _Checker, links: di
 
 
 def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | None,
-            src_lines: Source, driver: Driver | None = None) -> list[Expectation]:
+            src_lines: Source, driver: Driver | None = None, pins=()) -> list[Expectation]:
     if value is None:
         return []
     if not isinstance(value, list):
@@ -1316,7 +1365,7 @@ def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | N
             continue
         quantity = body["quantity"]
         problem = _quantity_problem(quantity, links, joint_types, joints is not None, ck,
-                                    driver)
+                                    driver, pins)
         if problem:
             ck.error(path + ("quantity",), problem)
             continue
@@ -1365,7 +1414,7 @@ def _expect_unit(value: Any, quantity: str, path: tuple, ck: _Checker
 
 def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
                       joints_known: bool, ck: _Checker,
-                      driver: Driver | None = None) -> str | None:
+                      driver: Driver | None = None, pins=()) -> str | None:
     """None if ``q`` names something, else a message saying what it should look like."""
     usage = ("expected driver.torque, joint.J.fx|fy|f|angle|moment|px|py|f_max|f_mean|"
              "f_equivalent|life_h, point.P.x|y|vx|vy|ax|ay|v|a, link.L.angle|omega|alpha, "
@@ -1373,7 +1422,7 @@ def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
              "balance.counterweight.mr, ...; see docs/spec.md)")
     if not isinstance(q, str):
         return f"must be a quantity name ({usage}), got {_show(q)}"
-    parts = q.split(".")
+    parts = split_quantity(q)
     if q in MECHANISM_UNITS:
         return None
     if q in ("driver.torque", "driver.force") or q in CYCLE_UNITS:
@@ -1386,21 +1435,11 @@ def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
         near = difflib.get_close_matches(q, list(CYCLE_UNITS), n=1)
         hint = f"; did you mean '{near[0]}'?" if near else ""
         return f"'{q}' is not a cycle quantity{hint}"
-    if len(parts) != 3:
+    if parts is None:
         return f"'{q}' names nothing: {usage}"
     kind, name, attr = parts
     if kind == "joint":
-        if not joints_known:
-            return None
-        if name not in joint_types:
-            if name in ck.invalid_joints:
-                return None
-            return f"'{q}': no joint named '{name}' (joints: {', '.join(joint_types)})"
-        allowed = (R_QUANTITIES if joint_types[name] == "R" else T_QUANTITIES) + \
-            tuple(JOINT_CYCLE_UNITS)
-        if attr not in allowed:
-            return f"'{q}': a {joint_types[name]} joint has {', '.join(allowed)}"
-        return None
+        return _joint_quantity_problem(q, name, attr, joint_types, joints_known, ck, pins)
     if kind == "point":
         if not any(name in l.points for l in links):
             if name in ck.invalid_points:
@@ -1418,6 +1457,38 @@ def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
             return f"'{q}': a link has {', '.join(LINK_QUANTITIES)}"
         return None
     return f"'{q}' names nothing: {usage}"
+
+
+def _joint_quantity_problem(q: str, name: str, attr: str, joint_types: dict[str, str],
+                            joints_known: bool, ck: _Checker, pins) -> str | None:
+    """None if ``q`` (``joint.<name>.<attr>``) names a joint's quantity, or what a pin's
+    force on one link (``joint.J.on.<link>.fx``) names, else what is wrong."""
+    if not joints_known:
+        return None
+    pin = next((p for p in pins if p.name == name), None)
+    if pin is not None:
+        names = ", ".join(f"joint.{name}.on.{x}.{attr}" for x in pin.links)
+        return (f"'{q}': '{name}' is a pin joining {len(pin.links)} links; its force on each "
+                f"is {names}")
+    base, on, link = name.partition(".on.")
+    pin = next((p for p in pins if p.name == base), None) if on else None
+    if name in joint_types and not (pin is not None and link == pin.hub):
+        allowed = (R_QUANTITIES if joint_types[name] == "R" else T_QUANTITIES) + \
+            tuple(JOINT_CYCLE_UNITS)
+        if attr not in allowed:
+            return f"'{q}': a {joint_types[name]} joint has {', '.join(allowed)}"
+        return None
+    if pin is not None or (on and base in joint_types):
+        links = pin.links if pin is not None else None
+        if links is not None and link not in links:
+            return f"'{q}': pin '{base}' joins {', '.join(links)}, not '{link}'"
+        allowed = ON_QUANTITIES + (tuple(JOINT_CYCLE_UNITS) if pin is not None else ())
+        if attr not in allowed:
+            return f"'{q}': a pin's force on one link has {', '.join(allowed)}"
+        return None
+    if name in ck.invalid_joints or (on and base in ck.invalid_joints):
+        return None
+    return f"'{q}': no joint named '{name}' (joints: {', '.join(joint_types)})"
 
 
 def _zero_length(ck: _Checker, links: list[Link], joints: list[Joint]) -> None:

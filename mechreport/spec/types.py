@@ -84,6 +84,28 @@ class Joint:
 
 
 @dataclass(frozen=True)
+class Pin:
+    """A pin joining three or more links (``links``, in the order written; one may be ground),
+    at the point named ``name`` on each. It is solved as the pin of one link, the ``hub``
+    (ground if the pin joins it, else the first link written), with a two-link R joint from
+    the hub to each other link, named ``{name}.on.{link}``: that joint's reaction is the force
+    the pin exerts on that link. The force on the hub is minus their sum."""
+
+    name: str
+    links: tuple[str, ...]
+    hub: str
+
+    def joint_name(self, link: str) -> str:
+        """The name of the two-link joint that carries the pin's force on ``link``."""
+        return f"{self.name}.on.{link}"
+
+    @property
+    def others(self) -> tuple[str, ...]:
+        """The links the pin joins to its hub."""
+        return tuple(x for x in self.links if x != self.hub)
+
+
+@dataclass(frozen=True)
 class Driver:
     """The driven joint ``joint`` between ``links`` (first, second).
 
@@ -103,6 +125,12 @@ class Driver:
     kind: str = "R"
     links: tuple[str, str] = (GROUND, "")
     unit: float = math.pi / 180.0
+
+    @property
+    def at_rest(self) -> bool:
+        """The driven coordinate does not move (``rpm``, ``omega`` or ``speed`` 0): a static
+        analysis (``alpha`` 0) or the instant of starting from rest."""
+        return self.omega == 0.0
 
     @property
     def crank(self) -> bool:
@@ -310,6 +338,7 @@ class Spec:
     design: Design = field(default_factory=Design)
     report: "ReportSettings" = field(default_factory=lambda: ReportSettings())
     study: Study | None = None        # only `mechreport study` uses it
+    pins: tuple[Pin, ...] = ()        # pins joining three or more links (solved as joints)
 
     @property
     def axis_unit(self) -> str:
@@ -343,6 +372,43 @@ class Spec:
             if joint.name == name:
                 return joint
         raise KeyError(name)
+
+    def pin(self, name: str) -> Pin | None:
+        """The pin joining three or more links named ``name`` (None if there is none)."""
+        return next((p for p in self.pins if p.name == name), None)
+
+    def reaction_terms(self, name: str) -> tuple[tuple[str, float], ...] | None:
+        """The force named ``name`` as a signed sum of joint reactions, ((joint, sign), ...):
+        a joint's own (``B``: what its first link exerts on its second), or what a pin exerts
+        on one link, ``J.on.<link>`` (a two-link joint's second link: +J, its first: -J; a
+        pin joining several links: its joint to that link, or for its hub minus the sum of
+        them all). None if ``name`` names no force."""
+        if any(j.name == name for j in self.joints):
+            return ((name, 1.0),)
+        joint, sep, link = name.partition(".on.")
+        if not sep:
+            return None
+        pin = self.pin(joint)
+        if pin is not None:
+            if link == pin.hub:
+                return tuple((pin.joint_name(x), -1.0) for x in pin.others)
+            return ((pin.joint_name(link), 1.0),) if link in pin.others else None
+        two = next((j for j in self.joints if j.name == joint), None)
+        if two is None or link not in two.links:
+            return None
+        return ((joint, 1.0 if link == two.links[1] else -1.0),)
+
+    def reported_reactions(self) -> tuple[str, ...]:
+        """The reaction names every output lists, in the order written: each two-link joint's,
+        and each pin joining several links' force on every link it joins (``E.on.<link>``)."""
+        out: list[str] = []
+        for j in self.joints:
+            pin = self.pin(j.name.partition(".on.")[0]) if ".on." in j.name else None
+            if pin is None:
+                out.append(j.name)
+            elif j.name == pin.joint_name(pin.others[0]):
+                out += [pin.joint_name(x) for x in pin.links]
+        return tuple(out)
 
     def points_of(self, link: str) -> dict:
         """The named points of ``link`` (the ground's, for the ground) in its frame [m]."""

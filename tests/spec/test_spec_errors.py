@@ -247,11 +247,12 @@ def test_wrong_type(old, new, needle, path, expected):
     assert_problem(p, line_of(text, needle), path, expected)
 
 
-@pytest.mark.parametrize("speed, key", [("omega: 0", "omega"), ("rpm: 0", "rpm")])
-def test_driver_speed_must_not_be_zero(speed, key):
+@pytest.mark.parametrize("speed", ["omega: 0", "rpm: 0", "omega: 0, alpha: 3"])
+def test_a_driver_at_rest_is_a_static_analysis_or_a_start(speed):
+    """Format 1.1: zero speed is allowed (it was an error in format 1)."""
     text = edit(BASE, "driver: {joint: A, omega: 1}", f"driver: {{joint: A, {speed}}}")
-    p = only_problem(text)
-    assert_problem(p, line_of(text, "driver:"), f"driver.{key}", "must not be zero")
+    spec = parse_spec(text, FILE)
+    assert spec.driver.at_rest and spec.driver.omega == 0.0
 
 
 def test_negative_speed_means_clockwise():
