@@ -24,6 +24,7 @@ class JointReaction:
     moment: np.ndarray | None = None
     px: np.ndarray | None = None
     py: np.ndarray | None = None
+    derived: bool = False     # not an unknown: a pin's force on its hub, from the others
 
     @property
     def f(self) -> np.ndarray:
@@ -120,10 +121,13 @@ class ForceResult:
         return values if attr == "f" or values is None else sign * values + 0.0
 
     def values(self) -> dict[str, np.ndarray]:
-        """Every unknown by name (joint.J.fx/fy/moment, driver.torque): a new dict each
-        time, of the result's own arrays."""
+        """Every unknown by name (joint.J.fx/fy/moment, driver.torque; not a pin's force on
+        its hub, which the others give): a new dict each time, of the result's own
+        arrays."""
         out = {self.driver_quantity: self.driver_torque}
         for r in self.reactions.values():
+            if r.derived:
+                continue
             out[f"joint.{r.joint}.fx"] = r.fx
             out[f"joint.{r.joint}.fy"] = r.fy
             if r.moment is not None:
@@ -181,7 +185,7 @@ def _with_pin_hubs(spec, reactions: dict[str, JointReaction]) -> dict[str, Joint
         fx = -np.sum([r.fx for r in parts], axis=0)
         fy = -np.sum([r.fy for r in parts], axis=0)
         reactions[pin.joint_name(pin.hub)] = JointReaction(pin.joint_name(pin.hub), "R",
-                                                           fx + 0.0, fy + 0.0)
+                                                           fx + 0.0, fy + 0.0, derived=True)
     return {name: reactions[name] for name in spec.reported_reactions()}
 
 

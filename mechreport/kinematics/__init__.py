@@ -195,7 +195,7 @@ def driver_rates(spec, value: np.ndarray):
     n = len(value)
     omega, alpha = np.broadcast_to(d.omega, (n,)), np.broadcast_to(d.alpha, (n,))
     if d.kind == "R":
-        s = rotate(spec.link(d.link).points[d.joint], value)    # R(phi) p; r = pivot - s
+        s = rotate(spec.link(d.link).points[spec.joint(d.joint).point], value)  # r = pivot - s
         ds = perp(s)
         return (-omega[:, None] * ds, omega.copy(),
                 -alpha[:, None] * ds + (omega ** 2)[:, None] * s, alpha.copy())
@@ -222,8 +222,8 @@ def driver_pose(spec, value: np.ndarray) -> dict:
     n = len(value)
     link = spec.link(d.link)
     if d.kind == "R":
-        pivot = np.asarray(spec.ground[joint.name])
-        return {d.link: (pivot - rotate(link.points[joint.name], value), value)}
+        pivot = np.asarray(spec.ground[joint.point])
+        return {d.link: (pivot - rotate(link.points[joint.point], value), value)}
     u = np.asarray(joint.line.direction)
     zero = np.zeros(n)
     if joint.guide == GROUND:      # the slider moves along a line fixed to the frame

@@ -95,8 +95,8 @@ def geometry(spec: Spec, joint: Joint, frames: LinkFrames) -> RGeometry | TGeome
     follow from them)."""
     if joint.type == "R":
         a, b = joint.links
-        return RGeometry(a, b, frames.rotate(a, spec.points_of(a)[joint.name]),
-                         frames.rotate(b, spec.points_of(b)[joint.name]))
+        return RGeometry(a, b, frames.rotate(a, spec.points_of(a)[joint.point]),
+                         frames.rotate(b, spec.points_of(b)[joint.point]))
     g, s = joint.guide, joint.slider
     u = frames.rotate(g, joint.line.direction)
     s_p = frames.rotate(s, spec.points_of(s)[joint.point])

@@ -253,8 +253,8 @@ def _anchor(spec: Spec, group: Group, link: str, known: Poses, ref: int):
             if other in known:
                 at = point_global({other: (known[other][0][ref:ref + 1],
                                            known[other][1][ref:ref + 1])}, other,
-                                  spec.points_of(other)[j.name])
-                return at[0], spec.link(link).points[j.name]
+                                  spec.points_of(other)[j.point])
+                return at[0], spec.link(link).points[j.point]
     return None
 
 

@@ -117,13 +117,13 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses, trig: Trig | None = No
 
     def pivot(outer: Joint, link: str):
         known = _other(outer, link)
-        return point_global(poses, known, spec.points_of(known)[outer.name], trig)
+        return point_global(poses, known, spec.points_of(known)[outer.point], trig)
 
     out: list[Poses] = []
     if kind == "RRR":
         ki, kj = pivot(oi, i), pivot(oj, j)
-        ei, mi = np.array(pi[oi.name]), np.array(pi[inner.name])
-        ej, mj = np.array(pj[oj.name]), np.array(pj[inner.name])
+        ei, mi = np.array(pi[oi.point]), np.array(pi[inner.point])
+        ej, mj = np.array(pj[oj.point]), np.array(pj[inner.point])
         li, lj = norm(mi - ei), norm(mj - ej)
         d = kj - ki
         dist = norm(d)
@@ -139,11 +139,11 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses, trig: Trig | None = No
             out.append({i: pin_pose(ki, ei, thi), j: pin_pose(kj, ej, thj)})
     elif kind == "RRT":
         ki = pivot(oi, i)
-        ei, mi = np.array(pi[oi.name]), np.array(pi[inner.name])
+        ei, mi = np.array(pi[oi.point]), np.array(pi[inner.point])
         li = norm(mi - ei)
         thj = poses[_other(oj, j)][1]
         n, c = t_line(spec, oj, j, poses, thj)
-        mj = pj[inner.name]
+        mj = pj[inner.point]
         c_pin = c + dot(n, rotate(mj, thj))          # n . J = c_pin for the interior pin J
         u = np.stack([n[:, 1], -n[:, 0]], axis=-1)   # the guide direction
         off = c_pin - dot(n, ki)
@@ -162,8 +162,8 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses, trig: Trig | None = No
         pg, ps = spec.points_of(g), spec.points_of(s)
         line = inner.line
         nl = perp(np.asarray(line.direction, float))
-        a = (np.array(ps[inner.point]) - np.array(ps[os_.name]) - np.array(line.through)
-             + np.array(pg[og.name]))
+        a = (np.array(ps[inner.point]) - np.array(ps[os_.point]) - np.array(line.through)
+             + np.array(pg[og.point]))
         c = -dot(a, nl)
         d = ks - kg
         dist = norm(d)
@@ -174,19 +174,19 @@ def dyad_candidates(spec: Spec, dyad: Dyad, poses: Poses, trig: Trig | None = No
         base = np.arctan2(d[:, 1], d[:, 0]) - _angle(nl)
         for sign in (1, -1):
             th = base + sign * half
-            out.append({g: pin_pose(kg, pg[og.name], th), s: pin_pose(ks, ps[os_.name], th)})
+            out.append({g: pin_pose(kg, pg[og.point], th), s: pin_pose(ks, ps[os_.point], th)})
     elif kind == "TRT":
         thi, thj = poses[_other(oi, i)][1], poses[_other(oj, j)][1]
         n1, c1 = t_line(spec, oi, i, poses, thi)
         n2, c2 = t_line(spec, oj, j, poses, thj)
         # r_j = r_i + R_i m_i - R_j m_j  (interior pin): substitute into the j line
-        shift = rotate(pi[inner.name], thi) - rotate(pj[inner.name], thj)
+        shift = rotate(pi[inner.point], thi) - rotate(pj[inner.point], thj)
         ri = _solve2(n1, c1, n2, c2 - dot(n2, shift))
         out.append({i: (ri, thi), j: (ri + shift, thj)})
     elif kind == "RTT":
         thj = poses[_other(oj, j)][1]
         ki = pivot(oi, i)
-        ri = ki - rotate(pi[oi.name], thj)
+        ri = ki - rotate(pi[oi.point], thj)
         known = dict(poses)
         known[i] = (ri, thj)
         n1, c1 = t_line(spec, oj, j, known, thj)

@@ -26,7 +26,7 @@ class Dyad:
     def label(self) -> str:
         """Its joints' names as the spec writes them, outer, inner, outer: ``B C C_T`` (the
         kind, RRT, says which are pins and which sliders)."""
-        return " ".join(j.name for j in (self.outer[0], self.inner, self.outer[1]))
+        return " ".join(j.written for j in (self.outer[0], self.inner, self.outer[1]))
 
     def known_link(self, k: int) -> str:
         """The already-known link that outer joint ``k`` attaches dyad link ``k`` to."""

@@ -35,7 +35,7 @@ class Group:
         """Its joints' names as the spec writes them, e.g. ``B C C_T``."""
         if self.dyad is not None:
             return self.dyad.label
-        return " ".join(j.name for j in self.joints)
+        return " ".join(j.written for j in self.joints)
 
     @property
     def kind(self) -> str:

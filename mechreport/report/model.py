@@ -353,6 +353,9 @@ def _joint_rows(spec, symbols, d: Display) -> list[list[str]]:
             through = j.line.through_name or _xy(d, j.line.through)
             where = (f"slider point {j.point} on the line through {through}, direction "
                      f"{fmt(math.degrees(math.atan2(u[1], u[0])))} deg in {a}'s frame")
+        elif spec.pin(j.point) is not None:
+            where = (f"pin {j.point} joining {', '.join(spec.pin(j.point).links)}: its force "
+                     f"on {b}")
         else:
             where = f"pin at {j.point}"
         rows.append([j.name, "pin (R)" if j.type == "R" else "slider (T)", links,
@@ -418,10 +421,19 @@ def _element_text(ld, d: Display) -> str:
 
 def _driver_text(spec) -> str:
     d = spec.driver
+    joint = spec.joint(d.joint).written
+    if d.at_rest:
+        what = "stroke" if d.kind == "T" else "angle"
+        if d.alpha == 0:
+            return (f"joint {joint} holds {d.link} at rest at each {what} (a static "
+                    "analysis: the holding effort and the reactions)")
+        unit = "m/s²" if d.kind == "T" else "rad/s²"
+        return (f"joint {joint} starts {d.link} from rest at each {what}, "
+                f"{'accel' if d.kind == 'T' else 'α'} = {fmt(d.alpha)} {unit}")
     if getattr(d, "kind", "R") != "R":
-        return f"joint {d.joint} drives {d.link} along its line at {fmt(d.omega)} m/s"
+        return f"joint {joint} drives {d.link} along its line at {fmt(d.omega)} m/s"
     rpm = d.rpm_given if d.rpm_given is not None else d.omega * 30 / math.pi
-    return (f"joint {d.joint} turns {d.link} at ω = {fmt(d.omega)} rad/s ({fmt(rpm)} rpm), "
+    return (f"joint {joint} turns {d.link} at ω = {fmt(d.omega)} rad/s ({fmt(rpm)} rpm), "
             f"α = {fmt(d.alpha)} rad/s²")
 
 
@@ -595,11 +607,14 @@ def _agreement_rows(analysis, d: Display) -> list[list[str]]:
              str(a.n_methods)] for a in analysis.agreement]
 
 
-def _power_check(pc: PowerCheck | None, method_title: str, d: Display
+def _power_check(pc: PowerCheck | None, method_title: str, d: Display, at_rest: bool = False
                  ) -> tuple[str, dict | None]:
     if pc is None:
         return "The power balance was not solved.", None
-    text = (f"Power balance (M ω = Σ of the power of every other action) against "
+    balance = ("Virtual work (the driver at rest: M = −Σ of every other action times its "
+               "velocity coefficient)" if at_rest else
+               "Power balance (M ω = Σ of the power of every other action)")
+    text = (f"{balance} against "
             f"{method_title}: largest torque difference {_diag(pc.max_abs, 'moment', d)} "
             f"({fmt(pc.relative, 2)} of the peak torque) at {deg(pc.angle)}°.")
     return text, {"max_abs_N_m": jnum(pc.max_abs), "relative": jnum(pc.relative),
@@ -863,7 +878,8 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
     status_line = summary_line(source, analysis)
     refs, scenes = _ref_angles(analysis, ref, symbols, colors, d)
     sw = _sweep(analysis, summary, symbols, colors)
-    power_text, power_json = _power_check(summary.power_check, sw.method_title, d)
+    power_text, power_json = _power_check(summary.power_check, sw.method_title, d,
+                                          spec.driver.at_rest)
     header, rows = _csv(analysis)
     design = _design(analysis, d)
     fails = failed_expectations(analysis)

@@ -940,7 +940,7 @@ def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, L
             if len(names) == 2:
                 joints.append(Joint(jname, "R", (names[0], names[1]), jname))
                 continue
-            pin = Pin(jname, tuple(names), GROUND if GROUND in names else names[0])
+            pin = Pin(jname, tuple(names), names[0])
             pins.append(pin)
             joints += [Joint(pin.joint_name(x), "R", (pin.hub, x), jname) for x in pin.others]
         else:
@@ -1039,14 +1039,12 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
     if body is None or "joint" not in body:
         return None
     jname = ck.name(body["joint"], path + ("joint",))
+    pin = next((p for p in pins if p.name == jname), None)
+    if pin is not None:        # a pin joining several links drives its first two links
+        jname = pin.joint_name(pin.links[1])
     joint = None if joints is None or jname is None else \
         next((j for j in joints if j.name == jname), None)
-    pin = next((p for p in pins if p.name == jname), None)
-    if pin is not None:
-        ck.error(path + ("joint",), f"'{jname}' joins {len(pin.links)} links "
-                 f"({', '.join(pin.links)}); a driver turns one link against another: write "
-                 "the driven pair as a joint of its own")
-    elif joint is None:
+    if joint is None:
         if joints is not None and jname is not None and jname not in ck.invalid_joints:
             ck.error(path + ("joint",), f"unknown joint '{jname}' (joints: "
                                         f"{', '.join(j.name for j in joints)})")

@@ -75,6 +75,12 @@ class Joint:
     line: Line | None = None
 
     @property
+    def written(self) -> str:
+        """The joint's name as the spec writes it (a pin joining several links is solved as
+        two-link joints named ``E.on.<link>``; each is written ``E``)."""
+        return self.point if self.type == "R" else self.name
+
+    @property
     def guide(self) -> str:
         return self.links[0]
 
@@ -86,10 +92,11 @@ class Joint:
 @dataclass(frozen=True)
 class Pin:
     """A pin joining three or more links (``links``, in the order written; one may be ground),
-    at the point named ``name`` on each. It is solved as the pin of one link, the ``hub``
-    (ground if the pin joins it, else the first link written), with a two-link R joint from
-    the hub to each other link, named ``{name}.on.{link}``: that joint's reaction is the force
-    the pin exerts on that link. The force on the hub is minus their sum."""
+    at the point named ``name`` on each. It is solved as the pin of one link, the ``hub`` (the
+    first link written), with a two-link R joint from the hub to each other link, named
+    ``{name}.on.{link}``: that joint's reaction is the force the pin exerts on that link. The
+    force on the hub is minus their sum. As a driver, it turns its second link written
+    against its first (the joint ``{name}.on.{second}``)."""
 
     name: str
     links: tuple[str, ...]

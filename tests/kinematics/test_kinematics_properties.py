@@ -188,13 +188,13 @@ def test_revolute_joints_keep_their_points_together(sweeps):
     for joint in s.spec.joints:
         if joint.type != "R":
             continue
-        a, b = (kin.named_point(joint.name, link) for link in joint.links)
+        a, b = (kin.named_point(joint.point, link) for link in joint.links)
         assert_close(a.r, b.r, 1e-9 * L, f"R joint {joint.name}: position")
         assert_close(a.v, b.v, 1e-9 * abs(s.w) * L, f"R joint {joint.name}: velocity")
         assert_close(a.a, b.a, 1e-9 * s.w**2 * L, f"R joint {joint.name}: acceleration")
         if GROUND in joint.links:
             pin = a if joint.links[0] == GROUND else b
-            assert_close(pin.r, np.broadcast_to(s.spec.ground[joint.name], pin.r.shape), 1e-12,
+            assert_close(pin.r, np.broadcast_to(s.spec.ground[joint.point], pin.r.shape), 1e-12,
                          f"ground pin {joint.name}")
 
 

@@ -75,6 +75,17 @@ METHOD_INTRO = {
                 "sum P = M omega_1 + sum bold(F) dot bold(v) + sum M omega = 0"),
               "; it gives the driver's effort without any joint reaction."],
 }
+#: the power method's introduction when the driver is at rest (a static analysis, or the
+#: instant of starting from rest): virtual work with velocity coefficients
+VIRTUAL_WORK_INTRO = [
+    "Independent check, not in the textbook: the driver is at rest, so there is no power; "
+    "ideal joints do no virtual work either, so for a virtual displacement of the driven "
+    "coordinate q the total virtual work of the driver, the loads and d'Alembert's loads "
+    "vanishes, ",
+    R(r"\sum \delta W / \delta q = M + \sum \mathbf{F} \cdot \mathbf{v}' + \sum M\,\omega' = 0",
+      "sum delta W \\/ delta q = M + sum bold(F) dot bold(v)' + sum M omega' = 0"),
+    ", where v' = dr/dq and ω' = dθ/dq are the velocity coefficients (the velocities at unit "
+    "rate of q); it gives the driver's effort without any joint reaction."]
 
 T_NOTE = ["The textbook finds the point P (or Q) where a slider's reaction acts, which makes the "
           "equations nonlinear; here the reaction of a sliding joint is its force at the "
@@ -371,7 +382,9 @@ def _method_model(name: str, result, worked: tuple, k: int, names: Names, spec, 
     section = mod.SECTION.strip("()")
     if section[:1].isdigit():
         section = "textbook " + section
-    return MethodModel(name, mod.TITLE, section, METHOD_INTRO.get(name, []), steps, eq, check)
+    intro = VIRTUAL_WORK_INTRO if name == "power" and spec.driver.at_rest else \
+        METHOD_INTRO.get(name, [])
+    return MethodModel(name, mod.TITLE, section, intro, steps, eq, check)
 
 
 # ------------------------------------------------------------------------------ angles
@@ -596,7 +609,23 @@ def _conventions(spec) -> list:
          "solves), then with the numbers of the reference angle: terms that vanish there are "
          "left out, values found in an earlier step are substituted, coefficients are "
          "simplified. Numbers have 6 significant digits; SI units (m, kg, s, N, N·m)."],
-    ]
+    ] + [_pin_convention(spec, pin) for pin in spec.pins]
+
+
+def _pin_convention(spec, pin) -> list:
+    """How a pin joining several links enters the free bodies: as part of its hub."""
+    hub = spec.number(pin.hub)
+    others = [spec.number(x) for x in pin.others]
+    tex = [rf"\mathbf{{F}}_{{{hub}{n}}}" for n in others]
+    typ = [f"bold(F)_({hub} {n})" for n in others]
+    return [f"Pin {pin.name} joins links {', '.join(str(spec.number(x)) for x in pin.links)}"
+            f" ({', '.join(pin.links)}). It is taken as part of link {hub} ({pin.hub}), so "
+            f"each other link's free body meets it as one joint with link {hub}: ",
+            R(", ".join(tex), ", ".join(typ)), " are the pin's forces on links "
+            f"{', '.join(map(str, others))}, and its force on link {hub} is ",
+            R(rf"\mathbf{{F}}_{{{pin.name}{hub}}} = -({' + '.join(tex)})",
+              f"bold(F)_({pin.name} {hub}) = -({' + '.join(typ)})"),
+            " (the pin is in equilibrium)."]
 
 
 def choose_methods(analysis, methods) -> list[str]:
@@ -652,15 +681,25 @@ def _build_sheet(analysis, options: SheetOptions | None = None) -> SheetModel:
 
 def _driver_text(spec) -> list:
     d = spec.driver
+    joint = spec.joint(d.joint).written
     link = spec.link(d.link)
+    if d.at_rest and d.alpha == 0:
+        return [f"Driver: joint {joint} holds link {link.number} ({link.name}) at rest "
+                "(a static problem: no inertia forces; the driver's effort holds the "
+                "mechanism in each position)."]
+    if d.at_rest:
+        unit = "rad/s²" if d.kind == "R" else "m/s²"
+        return [f"Driver: joint {joint} starts link {link.number} ({link.name}) from rest, "
+                f"accelerating at {fmt(d.alpha)} {unit}: at this instant every velocity is "
+                "zero, and the inertia forces come from the accelerations alone."]
     if d.kind == "R":
         rpm = d.omega * 30 / math.pi
-        return [f"Driver: joint {d.joint}, link {link.number} ({link.name}) turns at ",
+        return [f"Driver: joint {joint}, link {link.number} ({link.name}) turns at ",
                 Equation([Expr().add(1, omega(link.number)), scalar(d.omega, Raw(
                     r"\mathrm{rad/s}", '"rad/s"', "rad/s"))]),
                 f" ({fmt(rpm)} rpm)" + (", constant" if d.alpha == 0 else
                                         f", accelerating at {fmt(d.alpha)} rad/s²") + "."]
-    return [f"Driver: the actuator {d.joint} extends at {fmt(d.omega)} m/s, moving link "
+    return [f"Driver: the actuator {joint} extends at {fmt(d.omega)} m/s, moving link "
             f"{link.number} ({link.name})."]
 
 
@@ -742,7 +781,9 @@ def _build_problem(analysis, options: SheetOptions | None = None,
                f"({j.links[1]})" + (f", line through {_vec(j.line.through)} along "
                                     f"{_vec(j.line.direction)} in the frame of "
                                     f"{j.links[0]}" if j.type == "T" else "")]
-              for j in spec.joints]
+              for j in spec.joints if spec.pin(j.point) is None]
+    joints += [[pin.name, "pin (R)", " – ".join(f"{spec.number(x)} ({x})" for x in pin.links)]
+               for pin in spec.pins]       # the pin as written, not its two-link joints
     ground = [f"{n} {_vec(xy)}" for n, xy in spec.ground.items()]
     loads = [_load_text(spec, ld) for ld in spec.loads]
     figs = []
@@ -763,7 +804,8 @@ def _build_problem(analysis, options: SheetOptions | None = None,
              f"the reaction of every joint ({', '.join(names.vec[j.name] for j in spec.joints)}"
              f") and {effort}" + (f", by {_join_and(titles)}" if titles else "") + ";"]
     if "power" in methods:
-        tasks.append(f"check {effort} with a power balance.")
+        tasks.append(f"check {effort} with " + ("virtual work." if spec.driver.at_rest
+                                                 else "a power balance."))
     return ProblemModel(spec.name, str(spec.file), spec.description.strip(), links, joints,
                         ground, _driver_text(spec), _vec(spec.gravity) + " m/s²", loads, figs,
                         tasks)

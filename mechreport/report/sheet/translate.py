@@ -24,7 +24,7 @@ import numpy as np
 from ...forces.builders import Piece, read_term
 from ...forces.equations import Equation as FEquation
 from ...forces.equations import Step, Term
-from .expr import Equation, Expr, Num, Op, Paren, Raw, RVec, Sym, fmt
+from .expr import Equation, Expr, Num, Op, Paren, Point, Raw, RVec, Sym, fmt
 from .symbols import (axis_atom, comp_sym, inertia_alpha, mass_accel, omega, point_vec,
                       scalar_sym, sum_label, vec_sym)
 
@@ -140,7 +140,9 @@ class Translator:
             e = Expr()
             for t in rhs:
                 e.add(1, *self._power_symbol(t))
-            return Equation([Expr().add(1, Raw(r"\sum P", "sum P", "sum P")), e, Expr()])
+            lead = (Raw(r"\sum \delta W / \delta q", r"sum delta W \/ delta q", "sum dW/dq")
+                    if self.spec.driver.at_rest else Raw(r"\sum P", "sum P", "sum P"))
+            return Equation([Expr().add(1, lead), e, Expr()])
         if eq.kind == "moment":
             e = Expr()
             for item in self._moment_groups(rhs):
@@ -194,7 +196,20 @@ class Translator:
         return sym
 
     def _power_symbol(self, t: Term) -> list:
+        """A term of the power balance in symbols: an action times its rate; at zero speed
+        (virtual work) times its velocity coefficient, the rate per unit rate of the driven
+        coordinate (the driver's is 1)."""
         a, spec = t.action, self.spec
+        if spec.driver.at_rest:
+            if a.category == "driver":
+                return [scalar_sym(a.symbol)]
+            if a.kind == "force":
+                p = Point(a.at_name or "")
+                return [vec_sym(a.symbol), Op("dot"),
+                        Raw(rf"\mathbf{{v}}'_{{{p.tex()}}}", f"bold(v)'_({p.typ()})",
+                            f"v'_{a.at_name or ''}")]
+            n = self.spec.number(a.link)
+            return [scalar_sym(a.symbol), Raw(rf"\omega'_{{{n}}}", f"omega'_({n})", f"omega'_{n}")]
         if a.category == "driver":
             d = spec.driver
             if d.kind == "T":
