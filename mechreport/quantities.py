@@ -16,6 +16,7 @@ CYCLE_UNITS = {
     "cycle.transmission_angle.max": "deg", "cycle.inertia_shaking.force_rms": "N",
     "balance.counterweight.mr": "kg·m", "balance.counterweight.angle": "deg",
     "balance.inertia_shaking.force_rms": "N",
+    "cycle.friction.energy": "J", "cycle.efficiency": "",
 }
 JOINT_CYCLE_UNITS = {"f_max": "N", "f_mean": "N", "f_equivalent": "N", "life_h": "h"}
 JOINT_UNITS = {"fx": "N", "fy": "N", "f": "N", "moment": "N·m", "px": "m", "py": "m",
@@ -70,6 +71,14 @@ def unit_of(quantity: str) -> str | None:
     if parts is None:
         return None
     return _UNITS_BY_KIND.get(parts[0], {}).get(parts[2])
+
+
+def joint_unit(attr: str, joint_type: str) -> str | None:
+    """The SI unit of a joint's quantity ``attr`` for a joint of ``joint_type`` (R or T): a
+    joint's friction is a couple [N·m] in an R joint, a force [N] in a T joint."""
+    if attr == "friction":
+        return "N·m" if joint_type == "R" else "N"
+    return _UNITS_BY_KIND["joint"].get(attr)
 
 
 def unit_kind(quantity: str) -> str:

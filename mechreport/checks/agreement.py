@@ -65,6 +65,9 @@ def spreads(results: dict[str, ForceResult]) -> Spreads:
     for name, res in results.items():
         for q, values in res.values().items():
             by_q.setdefault(q, {})[name] = values
+        for r in res.reactions.values():    # each method's friction, from its reactions
+            if r.friction is not None:
+                by_q.setdefault(f"joint.{r.joint}.friction", {})[name] = r.friction
     angles = next(iter(results.values())).angles if results else np.zeros(0)
     groups: dict[tuple[str, ...], list[str]] = {}
     for q, per in by_q.items():

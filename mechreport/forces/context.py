@@ -156,7 +156,26 @@ class ForceContext:
         if joint.type == "T":
             acts.append(Action(self.spec.symbol(src, dst, "M"), "couple", "reaction", on,
                                unknowns=unknowns[2:], sign=sign))
-        return tuple(acts)
+        return tuple(acts) + self._friction(joint, on)
+
+    def _friction(self, joint: Joint, on: str) -> tuple[Action, ...]:
+        """The friction of ``joint`` on its link ``on`` (none without): an R joint's couple
+        Mf, a T joint's force Ff along the line at the slider's point; the known values are
+        the kinematics' (``Kinematics.friction``: on the second link, minus on the first).
+        Part of the joint's actions, it stays in an equation written to eliminate the joint's
+        reaction (a moment about its pin, a projection on its line)."""
+        values = self.kin.friction
+        if values is None or joint.name not in values:
+            return ()
+        a, b = joint.links
+        src, dst = (a, b) if on == b else (b, a)
+        m = (1.0 if on == b else -1.0) * values[joint.name]
+        if joint.type == "R":
+            return (Action(self.spec.symbol(src, dst, "Mf"), "couple", "friction", on,
+                           value=m),)
+        u = self.line_direction(joint)
+        return (Action(self.spec.symbol(src, dst, "Ff"), "force", "friction", on,
+                       self.joint_points[joint.name], joint.point, value=m[:, None] * u),)
 
     def gravity_action(self, link: str) -> Action:
         return self.once(("gravity", link), self._gravity_action, link)
@@ -241,8 +260,10 @@ class ForceContext:
         acts: list[Action] = []
         for j in self.spec.joints:
             a, b = j.links
-            if (a in body) != (b in body) and j.name not in exclude:
-                acts.extend(self._reaction_once(j, a if a in body else b))
+            if (a in body) != (b in body):
+                on = a if a in body else b
+                acts.extend(self._reaction_once(j, on) if j.name not in exclude else
+                            self._friction(j, on))
         inner_driver = set(self.spec.driver.links) <= body   # its two sides cancel
         for link in bodies:
             acts.extend(self._link_actions(link, inertia, inner_driver))

@@ -52,7 +52,7 @@ class Action:
 
     symbol: str
     kind: str                       # "force" | "couple"
-    category: str                   # "reaction" | "driver" | "gravity" | "inertia" | "load"
+    category: str       # "reaction" | "driver" | "gravity" | "inertia" | "load" | "friction"
     link: str
     at: np.ndarray | None = None
     at_name: str | None = None

@@ -16,6 +16,7 @@ from ..kinematics import at_unit_rate
 from ..kinematics.frames import project
 from .context import ForceContext
 from .equations import Action, Equation, Step, Term, no_coefficients, no_constant
+from .friction_law import relative_rate
 from .result import ForceResult, method_steps, run_steps
 
 NAME = "power"
@@ -51,9 +52,27 @@ def power_equation(ctx: ForceContext) -> Equation:
                 omega = rates.omega[:, s.number]
                 terms.append(Term(act, no_coefficients(n), act.value * omega, rate=omega,
                                   kind="power"))
+    terms += _friction_terms(ctx, rates)
     label = ("sum dW = M + sum F . dr/dq + sum M dtheta/dq = 0 (virtual work)" if at_rest
              else "sum P = M omega1 + sum F . v + sum M omega = 0")
     return Equation(label, "power", tuple(l.name for l in ctx.spec.links), terms)
+
+
+def _friction_terms(ctx: ForceContext, rates) -> list[Term]:
+    """The power each joint's friction dissipates: its value on the second link times the
+    second link's rate relative to the first (omega_rel for a couple, v_rel for a force)."""
+    out = []
+    for joint in (ctx.spec.joint(name) for name in (ctx.kin.friction or {})):
+        act = next(a for a in ctx.reaction(joint, joint.links[1]) if a.category == "friction")
+        rate = relative_rate(rates, joint)
+        if act.kind == "force":        # the sliding velocity along the line
+            rate = rate[:, None] * ctx.line_direction(joint)
+            out.append(Term(act, no_coefficients(ctx.n), project(act.value, rate), rate=rate,
+                            kind="power"))
+        else:
+            out.append(Term(act, no_coefficients(ctx.n), act.value * rate, rate=rate,
+                            kind="power"))
+    return out
 
 
 def build_steps(ctx: ForceContext) -> tuple[Step, ...]:

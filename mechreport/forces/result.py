@@ -7,6 +7,7 @@ import numpy as np
 
 from ..quantities import split as split_quantity
 from .equations import Step
+from .friction_law import friction_from, joint_senses
 
 
 @dataclass(frozen=True)
@@ -25,6 +26,8 @@ class JointReaction:
     px: np.ndarray | None = None
     py: np.ndarray | None = None
     derived: bool = False     # not an unknown: a pin's force on its hub, from the others
+    friction: np.ndarray | None = None   # (n,) the joint's friction on its second link
+                                         # (R: couple [N m]; T: force along the line [N])
 
     @property
     def f(self) -> np.ndarray:
@@ -74,7 +77,8 @@ class ForceResult:
             px, py = cut(r.px), cut(r.py)
             if m is not None and source is not None:   # against the kept angles' forces
                 px, py = slider_point(source, source.spec.joint(k), fx, fy, m)
-            reactions[k] = replace(r, fx=fx, fy=fy, moment=m, px=px, py=py)
+            reactions[k] = replace(r, fx=fx, fy=fy, moment=m, px=px, py=py,
+                                   friction=cut(r.friction))
         return replace(self, angles=self.angles[rows], reactions=reactions,
                        driver_torque=self.driver_torque[rows], singular=self.singular[rows],
                        cond=cut(self.cond))
@@ -96,7 +100,8 @@ class ForceResult:
             px = py = None
             if m is not None:        # defined against the whole sweep's largest force
                 px, py = slider_point(source, source.spec.joint(k), fx, fy, m)
-            reactions[k] = replace(r, fx=fx, fy=fy, moment=m, px=px, py=py)
+            reactions[k] = replace(r, fx=fx, fy=fy, moment=m, px=px, py=py,
+                                   friction=cat(lambda p: p.reactions[k].friction))
         return replace(first, angles=cat(lambda p: p.angles), reactions=reactions,
                        driver_torque=cat(lambda p: p.driver_torque),
                        singular=cat(lambda p: p.singular), cond=cat(lambda p: p.cond))
@@ -168,10 +173,25 @@ def make_result(method: str, ctx, values: dict[str, np.ndarray], steps, singular
             m = values[f"joint.{j.name}.moment"]
             px, py = points[j.name]
             reactions[j.name] = JointReaction(j.name, "T", fx, fy, m, px, py)
+        reactions = _with_friction(ctx, reactions)
         reactions = _with_pin_hubs(spec, reactions)
     quantity = ctx.spec.driver.quantity
     return ForceResult(method, ctx.kin.angles, reactions, values[quantity], singular, cond,
                        quantity)
+
+
+def _with_friction(ctx, reactions: dict[str, JointReaction]) -> dict[str, JointReaction]:
+    """``reactions`` with each friction joint's friction by the law from the method's own
+    reaction (``joint.J.friction``: equal to the friction the equations were given when the
+    method is right, which the agreement between methods then shows)."""
+    if ctx.kin.friction is None:
+        return reactions
+    sense = joint_senses(ctx)
+    for fr in ctx.spec.friction:
+        r = reactions[fr.joint]
+        reactions[fr.joint] = replace(r, friction=friction_from(ctx, fr, sense[fr.joint],
+                                                                r.fx, r.fy, r.moment))
+    return reactions
 
 
 def _with_pin_hubs(spec, reactions: dict[str, JointReaction]) -> dict[str, JointReaction]:

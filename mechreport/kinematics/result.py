@@ -122,6 +122,10 @@ class Kinematics:
     branches: tuple[BranchChoice, ...]
     motion: Motion | None = None
     error: np.ndarray | None = None   # (n,) estimated relative error of the accelerations
+    # the joints' friction at these angles, once solved (mechreport.forces.friction): by
+    # joint, the signed couple [N m] or force [N] on its second link, (n,); None without
+    friction: dict[str, np.ndarray] | None = None
+    remarks: tuple[str, ...] = ()     # what the analysis adds to notes() (friction's)
     _memo: dict = field(init=False, default_factory=dict, repr=False, compare=False)
     # frames, once made (not a cached_property: that would materialise the instance's dict,
     # and every read of the kinematics' fields would be slower)
@@ -227,7 +231,9 @@ class Kinematics:
         return replace(self, angles=self.angles[rows], r=self.r[rows], theta=self.theta[rows],
                        v=self.v[rows], omega=self.omega[rows], a=self.a[rows],
                        alpha=self.alpha[rows], flags=flags,
-                       error=None if self.error is None else self.error[rows])
+                       error=None if self.error is None else self.error[rows],
+                       friction=None if self.friction is None else
+                       {j: m[rows] for j, m in self.friction.items()})
 
     def angle_deg(self, link: str) -> np.ndarray:
         """Orientation of ``link``'s x-axis [deg] in (-180, 180], (n,)."""
@@ -251,7 +257,7 @@ class Kinematics:
                 if b.rule.startswith("undecided")]
         if self.turn_problem:
             out.append(self.turn_problem)
-        return out
+        return out + list(self.remarks)
 
     @property
     def turn_problem(self) -> str:

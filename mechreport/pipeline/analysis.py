@@ -19,6 +19,7 @@ from ..checks import (Agreement, ExpectationResult, Residual, agreement, check_e
 from ..checks.trust import Inputs, inputs_of
 from ..errors import AnalysisError
 from ..forces import METHODS, ForceContext, ForceResult, Step, solve_forces, worked_steps
+from ..forces.friction import with_friction
 from ..forces.context import LinkState
 from ..forces.equations import Action
 from ..forces.loads import undefined_directions
@@ -236,6 +237,8 @@ def solve_trusted(kin: Kinematics, methods=None, memo: dict | None = None, plans
     Raises ``AnalysisError`` where an input or a result is not a finite number. ``memo``:
     choices shared with other parts of the same sweep (the contour method's plan); ``plans``:
     contour plans shared with other specs (see :func:`analyse`)."""
+    if kin.mechanism.spec.friction:         # the friction every method then includes
+        kin = _require_angles(with_friction(kin)[0])
     ctx = ForceContext(kin)                 # one per kinematics: its loads evaluated once
     ctx.plans = plans
     if memo is not None:

@@ -117,4 +117,7 @@ def result_columns(kin, forces: dict, scale: dict[str, float]) -> list[Column]:
                 v = getattr(r, attr)
                 if v is not None:
                     add(f"{m}.joint.{name}.{attr} [{unit}]", v, kind)
+            if r.friction is not None:     # a couple in an R joint, a force in a T joint
+                add(f"{m}.joint.{name}.friction [{'N m' if r.type == 'R' else 'N'}]",
+                    r.friction, "moment" if r.type == "R" else "force")
     return out

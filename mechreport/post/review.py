@@ -15,6 +15,7 @@ from .balance import Counterweight, counterweight
 from .bearings import BearingLoad, bearing_load
 from .cycle import Cycle, CycleUndefined, cycle_of
 from .frame import frame_load, inertia_force, reference_method
+from .friction import friction_losses, friction_values
 from .transmission import transmission_angles
 
 
@@ -37,6 +38,7 @@ class Review:
     shaking: np.ndarray = field(repr=False)          # (N, 2) [N] on the frame
     inertial: np.ndarray = field(repr=False)         # (N, 2) [N] sum of m a_C
     shaking_balanced: np.ndarray = field(repr=False)  # (N, 2) [N] inertial, with counterweight
+    friction: dict[str, float] = field(default_factory=dict)   # J lost per cycle, by joint
 
 
 def review(analysis, speed_fluctuation: float | None = None,
@@ -53,9 +55,10 @@ class Traces:
     """What the cycle review reads, over the analysed ``angles`` (n,) [deg], from the
     reference ``method``: the driver ``torque`` (n,) [N m or N], the frame load ``frame``
     (n, 3) (fx, fy [N], m [N m]), the inertial force ``inertial`` (n, 2) [N] (sum of m a_C),
-    each dyad's ``transmission`` angle (n,) [deg] and each joint's reaction magnitude
-    ``reactions`` (n,) [N]. A long sweep's traces are computed chunk by chunk and written one
-    after the other into traces allocated once."""
+    each dyad's ``transmission`` angle (n,) [deg], each joint's reaction magnitude
+    ``reactions`` (n,) [N] and each friction joint's ``friction`` loss, the energy it takes per
+    unit of the driven coordinate (n,) [J/rad]. A long sweep's traces are computed chunk by
+    chunk and written one after the other into traces allocated once."""
 
     method: str
     angles: np.ndarray
@@ -64,10 +67,12 @@ class Traces:
     inertial: np.ndarray
     transmission: dict[str, np.ndarray]
     reactions: dict[str, np.ndarray]
+    friction: dict[str, np.ndarray] = field(default_factory=dict)
 
     def arrays(self) -> list[np.ndarray]:
         return [self.angles, self.torque, self.frame, self.inertial,
-                *self.transmission.values(), *self.reactions.values()]
+                *self.transmission.values(), *self.reactions.values(),
+                *self.friction.values()]
 
     def allocate(self, n: int) -> "Traces":
         """Traces of ``n`` angles shaped like these, unset (for :meth:`write`)."""
@@ -75,7 +80,8 @@ class Traces:
             return np.empty((n,) + a.shape[1:])
         return Traces(self.method, e(self.angles), e(self.torque), e(self.frame),
                       e(self.inertial), {k: e(v) for k, v in self.transmission.items()},
-                      {k: e(v) for k, v in self.reactions.items()})
+                      {k: e(v) for k, v in self.reactions.items()},
+                      {k: e(v) for k, v in self.friction.items()})
 
     def write(self, part: "Traces", at: int) -> None:
         """Copy ``part`` (the next chunk's traces) into rows ``at`` on."""
@@ -86,7 +92,8 @@ class Traces:
         """The first ``n`` angles' traces (views)."""
         return Traces(self.method, self.angles[:n], self.torque[:n], self.frame[:n],
                       self.inertial[:n], {k: v[:n] for k, v in self.transmission.items()},
-                      {k: v[:n] for k, v in self.reactions.items()})
+                      {k: v[:n] for k, v in self.reactions.items()},
+                      {k: v[:n] for k, v in self.friction.items()})
 
 
 def traces_of(kin, forces, loads) -> Traces:
@@ -97,7 +104,7 @@ def traces_of(kin, forces, loads) -> Traces:
     return Traces(method, kin.angles, np.asarray(res.driver_torque, float),
                   np.stack([frame.fx, frame.fy, frame.m], axis=1), inertia_force(kin),
                   transmission_angles(kin),
-                  {name: r.f for name, r in res.reactions.items()})
+                  {name: r.f for name, r in res.reactions.items()}, friction_losses(kin))
 
 
 def review_of(kin, forces, loads, speed_fluctuation: float | None = None,
@@ -130,6 +137,9 @@ def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = ""
     if speed_fluctuation:
         values["cycle.flywheel_inertia"] = (values["cycle.energy_fluctuation"]
                                             / (speed_fluctuation * omega ** 2))
+    losses = {joint: 2 * np.pi * cyc.mean(sample(loss)) for joint, loss in tr.friction.items()}
+    if losses:
+        values.update(friction_values(losses, torque, cyc, np.sign(omega) or 1.0))
     shaking = sample(tr.frame[:, :2])
     f = np.hypot(shaking[:, 0], shaking[:, 1])
     if tr.reactions:     # the shaking force is the ground joints' reactions: none, no value
@@ -161,7 +171,7 @@ def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = ""
         if b.life_h is not None:
             values[f"joint.{name}.life_h"] = b.life_h
     return Review(cyc, tr.method, values, torque, energy, bearings, angles, cw, shaking,
-                  inertial, balanced)
+                  inertial, balanced, losses)
 
 
 def design_review(kin, forces, loads) -> tuple[Review | None, str]:

@@ -1,7 +1,8 @@
 """Stage 1: load and validate a spec file into SI dataclasses."""
 from .loader import load_spec, parse_spec
-from .types import (GROUND, BearingSpec, Design, Driver, Expectation, Joint, Line, Link, Load, Pin,
-                    Shape, Spec, Study, Sweep, Vary)
+from .types import (GROUND, BearingSpec, Design, Driver, Expectation, Friction, Joint, Line,
+                    Link, Load, Pin, Shape, Spec, Study, Sweep, Vary)
 
-__all__ = ["load_spec", "parse_spec", "GROUND", "BearingSpec", "Design", "Driver", "Expectation", "Joint", "Line", "Link", "Pin",
-           "Load", "Shape", "Spec", "Study", "Sweep", "Vary"]
+__all__ = ["load_spec", "parse_spec", "GROUND", "BearingSpec", "Design", "Driver",
+           "Expectation", "Friction", "Joint", "Line", "Link", "Load", "Pin", "Shape", "Spec",
+           "Study", "Sweep", "Vary"]

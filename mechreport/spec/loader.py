@@ -17,12 +17,12 @@ from pathlib import Path as FsPath
 from typing import Any
 
 from ..errors import Problem, SpecError
-from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, is_cycle, unit_of,
-                          split as split_quantity)
+from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, is_cycle,
+                          joint_unit, unit_of, split as split_quantity)
 from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES
 from .types import ReportSettings
-from .types import (GROUND, BearingSpec, Design, Driver, Expectation, Joint, Line, Link, Load,
-                    Pin, Shape, Spec, Study, Sweep, Vary, Vec)
+from .types import (GROUND, BearingSpec, Design, Driver, Expectation, Friction, Joint, Line, Link,
+                    Load, Pin, Shape, Spec, Study, Sweep, Vary, Vec)
 from .yaml_source import (MAX_DEPTH, MAX_FILE_BYTES, HugeInteger, Source, check_text, decode,
                           format_path, too_big)
 
@@ -46,17 +46,19 @@ __all__ = ["load_spec", "parse_spec", "load_source", "parse_source", "spec_from_
            "MAX_FILE_BYTES", "MAX_DEPTH", "MAX_PROBLEMS"]
 
 TOP_KEYS = ("mechreport", "name", "description", "units", "gravity", "ground", "links",
-            "joints", "driver", "sweep", "at", "assembly", "loads", "expect", "sheet", "design",
-            "report", "study")
+            "joints", "driver", "sweep", "at", "assembly", "loads", "friction", "expect", "sheet",
+            "design", "report", "study")
 DESIGN_KEYS = ("speed_fluctuation", "motor", "bearings", "limits")
 MOTOR_KEYS = ("rated_torque", "peak_torque", "rated_power")
-LIMIT_KEYS = ("joint_force", "transmission_angle", "shaking_force")
+LIMIT_KEYS = ("joint_force", "transmission_angle", "shaking_force", "efficiency")
+FRICTION_KEYS = {"R": ("mu", "radius", "friction_sense"),
+                 "T": ("mu", "length", "friction_sense")}
 LINK_KEYS = ("points", "mass", "density", "com", "inertia", "shape")
 JOINT_KEYS = {"R": ("type", "links"), "T": ("type", "links", "point", "line")}
 POINT_QUANTITIES = ("x", "y", "vx", "vy", "ax", "ay", "v", "a")
 LINK_QUANTITIES = ("angle", "omega", "alpha")
-R_QUANTITIES = ("fx", "fy", "f", "angle")
-T_QUANTITIES = ("fx", "fy", "f", "moment", "px", "py")
+R_QUANTITIES = ("fx", "fy", "f", "angle", "friction")
+T_QUANTITIES = ("fx", "fy", "f", "moment", "px", "py", "friction")
 ON_QUANTITIES = ("fx", "fy", "f")     # joint.J.on.<link>.*: the force on one link
 
 _YAML11_BOOLS = {"yes", "no", "on", "off", "y", "n"}
@@ -393,6 +395,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
             if ld.profile is not None:
                 ck.error(("loads", ld.index, "profile"), "a profile is given over the crank "
                                                           "angle: it needs an R driver")
+    friction = (_friction(top["friction"], ck, joints, pins, length_scale)
+                if "friction" in top else ())
     expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src, driver=driver,
                      pins=pins)
     design = _design(top.get("design"), ck, joints) if "design" in top else Design()
@@ -421,11 +425,63 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                 gravity=gravity, ground=ground, links=tuple(links), joints=tuple(joints),
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
                 expect=tuple(expect), sheet=sheet, units=units, design=design,
-                report=report, study=study, pins=tuple(pins))
+                report=report, study=study, pins=tuple(pins), friction=friction)
     _cycle_requests(spec, ck)
     if study is not None:
         _study_requests(spec, ck)
     return None if ck.problems else spec
+
+
+def _friction(value: Any, ck: _Checker, joints: list[Joint] | None, pins: list[Pin],
+              ls: float) -> tuple[Friction, ...]:
+    """``friction:`` by joint name (a pin joining several links: each of its two-link
+    joints), in spec order; entries with ``mu: 0`` add no friction (the frictionless
+    analysis, unchanged)."""
+    path = ("friction",)
+    if not isinstance(value, dict) or not value:
+        ck.error(path, "must map joint names to {mu, radius} (R) or {mu, length} (T), got "
+                       f"{_show(value)}")
+        return ()
+    known = {j.name: j for j in joints or ()}
+    pinned = {p.name: p for p in pins}
+    out: dict[str, Friction] = {}
+    for name, body in value.items():
+        where = path + (name,)
+        targets = ([known[p] for p in (pinned[name].joint_name(x)
+                                       for x in pinned[name].others)] if name in pinned
+                   else [known[name]] if name in known else [])
+        if not targets:
+            if joints is not None and name not in ck.invalid_joints:
+                near = difflib.get_close_matches(str(name), [*known, *pinned], n=1)
+                hint = f"; did you mean '{near[0]}'?" if near else \
+                    f" (joints: {', '.join(sorted({*known, *pinned}))})"
+                ck.error(where, f"no joint named '{name}'{hint}")
+            continue
+        jtype = targets[0].type
+        required = ("mu", "radius") if jtype == "R" else ("mu",)
+        entry = ck.mapping(body, where, FRICTION_KEYS[jtype], required=required)
+        if entry is None or any(k not in entry for k in required):
+            continue
+        mu = ck.number(entry["mu"], where + ("mu",))
+        if mu is not None and mu < 0:
+            ck.error(where + ("mu",), f"must be 0 or more, got {_show(entry['mu'])}")
+            mu = None
+        size_key = "radius" if jtype == "R" else "length"
+        size = (ck.number(entry[size_key], where + (size_key,), positive=True, scale=ls)
+                if size_key in entry else None)
+        sense = entry.get("friction_sense")
+        if "friction_sense" in entry and (isinstance(sense, bool) or sense not in (1, -1)):
+            ck.error(where + ("friction_sense",), "must be +1 or -1 (the way the joint is "
+                     f"about to move in a static analysis), got {_show(sense)}")
+            sense = None
+        if mu is None or (size_key in entry and size is None) or mu == 0:
+            continue
+        for joint in targets:
+            out[joint.name] = Friction(joint.name, mu, size if jtype == "R" else None,
+                                       size if jtype == "T" else None,
+                                       None if sense is None else int(sense))
+    order = [j.name for j in joints or ()]
+    return tuple(sorted(out.values(), key=lambda f: order.index(f.joint)))
 
 
 def _design(value: Any, ck: _Checker, joints: list[Joint] | None) -> Design:
@@ -439,6 +495,9 @@ def _design(value: Any, ck: _Checker, joints: list[Joint] | None) -> Design:
         if "motor" in body else {}
     limits = _positive_table(body.get("limits"), path + ("limits",), LIMIT_KEYS, ck) \
         if "limits" in body else {}
+    if limits.get("efficiency", 0) > 1:
+        ck.error(path + ("limits", "efficiency"), "must be at most 1 (an efficiency is a "
+                 "fraction: 0.85, not 85)")
     if limits.get("transmission_angle", 0) > 90:
         ck.error(path + ("limits", "transmission_angle"), "must be at most 90 degrees (the "
                  "transmission angle is folded into [0, 90])")
@@ -494,6 +553,9 @@ def _cycle_requests(spec: Spec, ck: _Checker) -> None:
         need = _cycle_need(spec, quantity)
         if need:
             ck.error(path, need)
+    if "efficiency" in spec.design.limits and not spec.friction:
+        ck.error(("design", "limits", "efficiency"), "needs friction in a joint (a "
+                 "'friction:' entry with mu > 0): without it the efficiency is 1")
     if spec.driver.at_rest and spec.design.speed_fluctuation:
         ck.error(("design", "speed_fluctuation"),
                  f"the flywheel inertia it sizes is undefined: {_at_rest(spec)}")
@@ -515,6 +577,8 @@ def _cycle_need(spec: Spec, quantity: str) -> str | None:
     life = kind == "joint" and attr == "life_h"
     if spec.driver.at_rest and (quantity == "cycle.flywheel_inertia" or life):
         return f"'{quantity}' is undefined: {_at_rest(spec)}"
+    if quantity in ("cycle.friction.energy", "cycle.efficiency") and not spec.friction:
+        return f"'{quantity}' needs friction in a joint (a 'friction:' entry with mu > 0)"
     if quantity == "cycle.flywheel_inertia" and not spec.design.speed_fluctuation:
         return ("'cycle.flywheel_inertia' needs design.speed_fluctuation (the coefficient of "
                 "speed fluctuation Cs)")
@@ -1376,7 +1440,7 @@ def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | N
             ck.error(path, "missing required key 'angle' (only cycle quantities such as "
                            "cycle.torque.rms have none)")
             continue
-        unit, scale = (_expect_unit(body["unit"], quantity, path + ("unit",), ck)
+        unit, scale = (_expect_unit(body["unit"], quantity, path + ("unit",), ck, joint_types)
                        if "unit" in body else (None, 1.0))
         if scale is None:                 # still checked, so every problem is listed at once
             for key in ("angle", "value", "tol"):
@@ -1396,11 +1460,13 @@ def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | N
     return out
 
 
-def _expect_unit(value: Any, quantity: str, path: tuple, ck: _Checker
-                 ) -> tuple[str | None, float | None]:
+def _expect_unit(value: Any, quantity: str, path: tuple, ck: _Checker,
+                 joint_types: dict[str, str] | None = None) -> tuple[str | None, float | None]:
     """The unit an ``expect`` entry is written in and its size in SI; (None, None) reported
     when it is not a unit of the quantity's kind."""
-    si = unit_of(quantity)
+    parts = split_quantity(quantity)
+    si = (joint_unit(parts[2], (joint_types or {}).get(parts[1], "R"))
+          if parts and parts[0] == "joint" else unit_of(quantity))
     table = EXPECT_UNITS.get(si or "", {si: 1.0} if si else {})
     if not isinstance(value, str) or value not in table:
         shown = ", ".join(table) if table else "none"

@@ -113,6 +113,20 @@ class Pin:
 
 
 @dataclass(frozen=True)
+class Friction:
+    """Coulomb friction in the two-link joint ``joint`` (format 1.1 ``friction:``): ``mu``;
+    an R joint's journal ``radius`` [m]; a T joint's slider ``length`` [m] (None: the normal
+    force alone presses); ``sense`` +1 or -1, which way the joint is about to move in a static
+    analysis (None: no friction at rest). See :mod:`mechreport.forces.friction`."""
+
+    joint: str
+    mu: float
+    radius: float | None = None
+    length: float | None = None
+    sense: int | None = None
+
+
+@dataclass(frozen=True)
 class Driver:
     """The driven joint ``joint`` between ``links`` (first, second).
 
@@ -346,6 +360,7 @@ class Spec:
     report: "ReportSettings" = field(default_factory=lambda: ReportSettings())
     study: Study | None = None        # only `mechreport study` uses it
     pins: tuple[Pin, ...] = ()        # pins joining three or more links (solved as joints)
+    friction: tuple[Friction, ...] = ()   # by solved joint, in spec order
 
     @property
     def axis_unit(self) -> str:
