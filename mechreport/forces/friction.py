@@ -181,7 +181,7 @@ def _left_out(kin: Kinematics, joints: list[Joint], stopped: np.ndarray,
         out[int(k)] = (f"friction direction undetermined: the relative motion in joint "
                        f"{names} stops here")
     for k in np.flatnonzero(~(gain < 1.0)):
-        out.setdefault(int(k), f"self-locking: friction's loop gain {gain[k]:.3g} >= 1 (the "
+        out.setdefault(int(k), f"self-locking: friction's loop gain {gain[k]:.4g} >= 1 (the "
                                "friction force grows with the reaction it causes: no "
                                "determined solution)")
     for k in np.flatnonzero(~converged):
