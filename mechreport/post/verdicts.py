@@ -81,6 +81,8 @@ def verdicts(design: Design, values: dict[str, float] | None, why: str = "") -> 
     if "shaking_force" in limits:
         rows.append(("limits.shaking_force", "cycle.shaking.force_max", limits["shaking_force"],
                      False, ""))
+    if "efficiency" in limits:
+        rows.append(("limits.efficiency", "cycle.efficiency", limits["efficiency"], True, ""))
     out = []
     for item, quantity, limit, at_least, where in rows:
         if values is None:
@@ -93,7 +95,11 @@ def verdicts(design: Design, values: dict[str, float] | None, why: str = "") -> 
             value = v.get(quantity)
             reason = "" if value is not None else (
                 "the mechanism has no RRR group and no slider fed by a rod"
-                if "transmission" in quantity else "not computed")
-        unit = unit_of(quantity) or ("N·m" if quantity == PEAK_TORQUE else "N")
+                if "transmission" in quantity else
+                "the driver does no positive work over the cycle"
+                if quantity == "cycle.efficiency" else "not computed")
+        unit = unit_of(quantity)
+        if unit is None:
+            unit = "N·m" if quantity == PEAK_TORQUE else "N"
         out.append(Verdict(item, quantity, value, limit, unit, at_least, where, reason))
     return out

@@ -591,8 +591,8 @@ def far_text(pk, fp, d: Display, unit: str) -> str:
     return f"{d.num(fp.value, 'force')} at {deg(fp.angle)}{unit}"
 
 
-def _kind(quantity: str) -> str:
-    return kind_of(unit_of(quantity) or "N")
+def _kind(quantity: str, spec) -> str:
+    return kind_of(spec.unit_of(quantity) or "N")
 
 
 def _diag(x: float, kind: str, d: Display) -> str:
@@ -602,7 +602,8 @@ def _diag(x: float, kind: str, d: Display) -> str:
 
 
 def _agreement_rows(analysis, d: Display) -> list[list[str]]:
-    return [[a.quantity, fmt(a.relative, 2), _diag(a.absolute, _kind(a.quantity), d),
+    spec = analysis.spec
+    return [[a.quantity, fmt(a.relative, 2), _diag(a.absolute, _kind(a.quantity, spec), d),
              f"{METHODS[a.methods[0]].TITLE} vs {METHODS[a.methods[1]].TITLE}", deg(a.angle),
              str(a.n_methods)] for a in analysis.agreement]
 
@@ -703,10 +704,11 @@ def _summary(analysis, summary: SweepSummary, sw: SweepData, status_line: str,
         "agreement": {
             "worst": None if w is None else {"quantity": w.quantity, "relative": w.relative,
                                              "absolute": w.absolute,
-                                             "unit": unit_of(w.quantity) or "N",
+                                             "unit": analysis.spec.unit_of(w.quantity) or "N",
                                              "methods": list(w.methods), "angle_deg": w.angle},
             "quantities": [{"quantity": a.quantity, "relative": a.relative,
-                            "absolute": a.absolute, "unit": unit_of(a.quantity) or "N",
+                            "absolute": a.absolute,
+                            "unit": analysis.spec.unit_of(a.quantity) or "N",
                             "methods": list(a.methods),
                             "angle_deg": a.angle} for a in analysis.agreement]},
         "power_balance": power,

@@ -10,6 +10,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..quantities import joint_unit, unit_of
+from ..quantities import split as split_quantity
+
 Vec = tuple[float, float]
 GROUND = "ground"
 
@@ -419,6 +422,15 @@ class Spec:
         if two is None or link not in two.links:
             return None
         return ((joint, 1.0 if link == two.links[1] else -1.0),)
+
+    def unit_of(self, quantity: str) -> str | None:
+        """The SI unit of ``quantity`` in this mechanism (a joint's friction is a couple in
+        an R joint, a force in a T joint); see :func:`mechreport.quantities.unit_of`."""
+        parts = split_quantity(quantity)
+        if parts is not None and parts[0] == "joint" and parts[2] == "friction":
+            joint = next((j for j in self.joints if j.name == parts[1]), None)
+            return joint_unit("friction", joint.type if joint is not None else "R")
+        return unit_of(quantity)
 
     def reported_reactions(self) -> tuple[str, ...]:
         """The reaction names every output lists, in the order written: each two-link joint's,
