@@ -46,8 +46,9 @@ class Verdict:
             return f"{self.item}: {self.quantity} is undefined: {self.why}"
         op = (">=" if self.passed else "<") if self.at_least else ("<=" if self.passed else ">")
         where = f" (joint {self.where})" if self.where else ""
-        return (f"{self.item}: {self.quantity}{where} = {fmt(self.value)} {self.unit} {op} "
-                f"limit {fmt(self.limit)} {self.unit}")
+        unit = f" {self.unit}" if self.unit else ""
+        return (f"{self.item}: {self.quantity}{where} = {fmt(self.value)}{unit} {op} "
+                f"limit {fmt(self.limit)}{unit}")
 
 
 PEAK_TORQUE = "max |driver.torque|"
