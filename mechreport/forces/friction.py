@@ -103,37 +103,20 @@ def solve_friction(kin: Kinematics, parts: dict[str, dict[str, np.ndarray]],
 def with_friction(kin: Kinematics) -> tuple[Kinematics, FrictionSolution]:
     """``kin`` carrying the friction every method then includes (``Kinematics.friction``),
     found from the Newton-Euler equations' responses, with the angles that have no
-    determined friction left out and flagged, and a remark where friction alone reverses the
-    driver's effort (the load cannot drive the mechanism back: self-locking)."""
+    determined friction left out and flagged, and those where friction alone reverses the
+    driver's effort (``reversed_by_friction``: the loads cannot drive the mechanism back
+    there, a note says so)."""
     unit = ForceContext(unit_friction(kin, kin.mechanism.spec.friction))
     parts = split_by_source(unit, newton_euler_steps(unit), friction_apart=True)
     solution = solve_friction(kin, parts, unit)
-    spec = kin.mechanism.spec
     keep = np.ones(kin.n, bool)
     keep[list(solution.left_out)] = False
     flags = tuple(sorted(kin.flags + tuple(
         Flag(float(kin.angles[k]), why, "friction") for k, why in solution.left_out.items()),
         key=lambda f: f.angle))
-    remarks = kin.remarks
-    flipped = solution.reversed & keep
-    if flipped.any():
-        where = _ranges(kin.angles[flipped], spec.sweep.step)
-        remarks += (f"self-locking at {where} {spec.axis_unit}: friction alone reverses "
-                    f"the sign of {spec.driver.quantity} (without friction the loads would "
-                    "drive the mechanism there; with it they cannot)",)
-    out = replace(kin, friction=solution.values, remarks=remarks)
+    reversed_at = tuple(float(x) for x in kin.angles[solution.reversed & keep])
+    out = replace(kin, friction=solution.values, reversed_by_friction=reversed_at)
     return (out if keep.all() else out.take(keep, flags)), solution
-
-
-def _ranges(angles: np.ndarray, step: float) -> str:
-    """``10-40, 200`` : runs of consecutive sweep angles."""
-    runs: list[list[float]] = []
-    for a in map(float, angles):
-        if runs and a - runs[-1][-1] <= step * 1.000001:
-            runs[-1].append(a)
-        else:
-            runs.append([a])
-    return ", ".join(f"{r[0]:g}" if len(r) == 1 else f"{r[0]:g}-{r[-1]:g}" for r in runs)
 
 
 def _law(m, base, response, names, frictions, joints, ctx):

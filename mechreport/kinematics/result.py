@@ -98,6 +98,20 @@ class PointState:
     a: np.ndarray
 
 
+def reversal_note(angles, spec) -> str:
+    """The note on the angles [deg] where friction alone reverses the driver's effort."""
+    runs: list[list[float]] = []
+    for a in sorted(map(float, angles)):
+        if runs and a - runs[-1][-1] <= spec.sweep.step * 1.000001:
+            runs[-1].append(a)
+        else:
+            runs.append([a])
+    where = ", ".join(f"{r[0]:g}" if len(r) == 1 else f"{r[0]:g}-{r[-1]:g}" for r in runs)
+    return (f"self-locking at {where} {spec.axis_unit}: friction alone reverses the sign of "
+            f"{spec.driver.quantity} (without friction the loads would drive the mechanism "
+            "there; with it they cannot)")
+
+
 @dataclass(frozen=True)
 class Kinematics:
     """Positions, velocities and accelerations over the analysed angles that could be solved.
@@ -125,7 +139,8 @@ class Kinematics:
     # the joints' friction at these angles, once solved (mechreport.forces.friction): by
     # joint, the signed couple [N m] or force [N] on its second link, (n,); None without
     friction: dict[str, np.ndarray] | None = None
-    remarks: tuple[str, ...] = ()     # what the analysis adds to notes() (friction's)
+    # angles [deg] where friction alone reverses the sign of the driver's effort
+    reversed_by_friction: tuple[float, ...] = ()
     _memo: dict = field(init=False, default_factory=dict, repr=False, compare=False)
     # frames, once made (not a cached_property: that would materialise the instance's dict,
     # and every read of the kinematics' fields would be slower)
@@ -233,7 +248,10 @@ class Kinematics:
                        alpha=self.alpha[rows], flags=flags,
                        error=None if self.error is None else self.error[rows],
                        friction=None if self.friction is None else
-                       {j: m[rows] for j, m in self.friction.items()})
+                       {j: m[rows] for j, m in self.friction.items()},
+                       reversed_by_friction=tuple(
+                           a for a in self.reversed_by_friction
+                           if np.any(np.abs(self.angles[rows] - a) < 1e-9)))
 
     def angle_deg(self, link: str) -> np.ndarray:
         """Orientation of ``link``'s x-axis [deg] in (-180, 180], (n,)."""
@@ -257,7 +275,9 @@ class Kinematics:
                 if b.rule.startswith("undecided")]
         if self.turn_problem:
             out.append(self.turn_problem)
-        return out + list(self.remarks)
+        if self.reversed_by_friction:
+            out.append(reversal_note(self.reversed_by_friction, self.mechanism.spec))
+        return out
 
     @property
     def turn_problem(self) -> str:

@@ -30,6 +30,7 @@ from ..checks.expectations import at_angle, check_cycle, judge, left_out
 from ..forces import METHODS, PROBES, ForceContext, sweep_choices
 from ..forces.result import slider_point
 from ..kinematics import Flag
+from ..kinematics.result import reversal_note
 from ..kinematics.stream import kinematic_chunks, streamable
 from ..model import build_mechanism
 from ..quantities import split as split_quantity
@@ -88,6 +89,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     top: dict[tuple[str, str], float] = {}   # (method, T joint) -> largest force component
     traces: Traces | None = None          # every chunk's, one after the other
     trust: dict = {}                      # (method, kind) -> checks.trust.Bound
+    reversed_at: list[float] = []         # where friction alone reverses the effort
     n = 0
     timed = [(i, e) for i, e in enumerate(spec.expect) if e.angle is not None]
     for kin in chunks:
@@ -97,6 +99,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
         if not kin.n:
             continue
         n += kin.n
+        reversed_at += kin.reversed_by_friction
         parts = merge(parts, spreads(forces))
         for r in residuals(ctx, forces):
             w = worst.setdefault(r.method, [0.0, 0.0])
@@ -148,8 +151,9 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     untrusted = {name: judged(b, tol, name, spec.axis_unit) for name, b in found.items()}
     return SweepCheck(spec, n, tuple(flags), finish(parts),
                       [Residual(m, f, mo) for m, (f, mo) in worst.items()], expectations, tol,
-                      values, why, tuple(verdicts(spec.design, values, why)), chunks.notes(),
-                      untrusted)
+                      values, why, tuple(verdicts(spec.design, values, why)),
+                      chunks.notes() + ([reversal_note(reversed_at, spec)] if reversed_at
+                                        else []), untrusted)
 
 
 def _slider_point(e) -> bool:

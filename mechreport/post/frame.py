@@ -43,9 +43,9 @@ def frame_load(kin: Kinematics, res: ForceResult, loads=()) -> FrameLoad:
     [ground, X] the frame receives -F, for [X, ground] +F; T couples likewise), a crank motor's
     reaction torque -M (a T driver on a frame guide: its push back on the frame; a driver
     between moving links reacts on them, not on the frame), the reaction -F (or -M) of each
-    load that ``reacts_on: ground``, and the frame end of every spring, damper and torsion
-    spring anchored on ground (``loads``: the analysis' AppliedLoads). Weights reach the frame
-    through the joints."""
+    load that ``reacts_on: ground``, the frame end of every spring, damper and torsion
+    spring anchored on ground (``loads``: the analysis' AppliedLoads), and the friction of every
+    joint with ground. Weights reach the frame through the joints."""
     spec = kin.mechanism.spec
     d = spec.driver
     n = kin.n
@@ -70,6 +70,14 @@ def frame_load(kin: Kinematics, res: ForceResult, loads=()) -> FrameLoad:
         m = m + cross(joint_point(kin, joint) - pivot, f)
         if r.moment is not None:
             m = m + sign * r.moment
+        if r.friction is not None:       # the joint's friction on the frame, likewise
+            if joint.type == "R":
+                m = m + sign * r.friction
+            else:
+                u = kin.frames.rotate(joint.guide, joint.line.direction)
+                f = (sign * r.friction)[:, None] * u
+                fx, fy = fx + f[:, 0], fy + f[:, 1]
+                m = m + cross(joint_point(kin, joint) - pivot, f)
     for ld in loads:
         if ld.link == GROUND:            # a spring, damper or torsion spring's frame end
             sign = 1.0
