@@ -202,3 +202,22 @@ def test_friction_mistakes_are_reported_where_they_are(entry, path, words):
         parse_spec(text, "f.yaml")
     found = [p for p in info.value.problems if p.path == path]
     assert found and words in found[0].message, info.value.problems
+
+
+def test_friction_at_a_pin_joining_several_links_rubs_in_each_links_bearing():
+    """`friction: {C: ...}` for a pin joining three links puts a journal in each of its
+    two-link joints (the bearing of each link on the pin); every method agrees."""
+    text = (ROOT / "tests" / "data" / "compound_pin_six_bar.yaml").read_text(encoding="utf-8")
+    a = mechreport.analyse(text + "friction:\n  C: {mu: 0.1, radius: 8}\n")
+    assert [fr.joint for fr in a.spec.friction] == ["C.on.rocker", "C.on.rod"]
+    assert a.worst.relative < 1e-9
+    frictionless = mechreport.analyse(text)
+    common = np.isin(frictionless.angles, a.angles)
+    extra = (a.forces["newton_euler"].driver_torque
+             - frictionless.forces["newton_euler"].driver_torque[common])
+    assert np.any(np.abs(extra) > 1e-6)
+    for name, res in a.forces.items():
+        if res.reactions:
+            law = 0.1 * 0.008 * res.reactions["C.on.rod"].f
+            np.testing.assert_allclose(np.abs(res.reactions["C.on.rod"].friction), law,
+                                       rtol=1e-12, err_msg=name)
