@@ -53,6 +53,11 @@ def _cmd_study(ns: argparse.Namespace) -> int:
                          cross=ns.cross_check, chunk=ns.chunk, wait=ns.wait)
 
 
+def _cmd_schema(ns: argparse.Namespace) -> int:
+    from .schema import schema_command
+    return schema_command(ns.output)
+
+
 # ------------------------------------------------------------------- argument checks
 
 def _checked(convert, ok, what: str):
@@ -244,6 +249,15 @@ def main(argv: list[str] | None = None) -> int:
     p.set_defaults(func=_cmd_diff)
 
     _add_study_parser(sub)
+
+    p = sub.add_parser("schema", help="print the JSON Schema of a spec file (for editors)",
+                       description="Print the JSON Schema of a spec file: an editor with a "
+                       "YAML language server uses it to check and complete specs as they are "
+                       "typed (docs/spec.md, 'Editor support'). Exit status 1 if FILE cannot "
+                       "be written.")
+    p.add_argument("-o", "--output", metavar="FILE", default=None,
+                   help="write the schema to FILE instead of printing it")
+    p.set_defaults(func=_cmd_schema)
 
     ns = parser.parse_args(argv)
     if getattr(ns, "func", None) is None:           # bare `mechreport`

@@ -5,6 +5,13 @@ file, line, key path and what was expected. Whatever the input, loading ends in 
 ``SpecError``, quickly and in little memory: the reader (``yaml_source``) caps the file size
 and the nesting depth and refuses aliases, tags and non-UTF-8 text; this module checks every
 value's type and every number's range (docs/spec.md, "What the loader refuses, and why").
+
+The format's shape (its keys, which are required, their types, enumerations and number
+ranges) is declared once, by the pydantic models of :mod:`.schema`: the key tables below come
+from them, and their validation runs on every file after the checks here, so that a shape
+problem these checks do not see is reported too, in the same ``file:line: key.path: message``
+form (:func:`_shape_check`). What needs more than one value at a time (references between
+names, mobility, cycle quantities, units to SI) is checked here in plain Python.
 """
 from __future__ import annotations
 
@@ -20,6 +27,9 @@ from ..errors import Problem, SpecError
 from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, is_cycle,
                           joint_unit, unit_of, split as split_quantity)
 from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES
+import mechreport.spec.schema as schema   # the models (not `from . import`: spec/__init__)
+from .schema import (MAX_SEED, MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, REPORT_TEXT_MAX,
+                     choices_of, keys_of, required_of)
 from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Expectation, Friction, Joint, Line, Link,
                     Load, Pin, Shape, Spec, Study, Sweep, Vary, Vec)
@@ -32,10 +42,7 @@ MASS_UNITS = {u: UNIT_TABLES["mass"][u] for u in SPEC_UNITS["mass"]}
 DEFAULT_GRAVITY = (0.0, -9.80665)
 
 # Every number in a spec is finite and, unless exactly zero, has a magnitude between
-# NUMBER_MIN and NUMBER_MAX, as written and in SI: squares, products and sums of such numbers
-# (kinematics, forces, power, condition numbers) stay far from float overflow and underflow.
-NUMBER_MAX = 1e20
-NUMBER_MIN = 1e-20
+# NUMBER_MIN and NUMBER_MAX (declared in .schema), as written and in SI.
 NUMBER_RANGE = (f"between {-NUMBER_MAX:g} and {NUMBER_MAX:g} "
                 f"(nonzero magnitudes at least {NUMBER_MIN:g})")
 POSITIVE_RANGE = f"between {NUMBER_MIN:g} and {NUMBER_MAX:g}"
@@ -45,16 +52,36 @@ __all__ = ["load_spec", "parse_spec", "load_source", "parse_source", "spec_from_
            "LENGTH_UNITS", "MASS_UNITS", "NUMBER_MAX", "NUMBER_MIN",
            "MAX_FILE_BYTES", "MAX_DEPTH", "MAX_PROBLEMS"]
 
-TOP_KEYS = ("mechreport", "name", "description", "units", "gravity", "ground", "links",
-            "joints", "driver", "sweep", "at", "assembly", "loads", "friction", "expect", "sheet",
-            "design", "report", "study")
-DESIGN_KEYS = ("speed_fluctuation", "motor", "bearings", "limits")
-MOTOR_KEYS = ("rated_torque", "peak_torque", "rated_power")
-LIMIT_KEYS = ("joint_force", "transmission_angle", "shaking_force", "efficiency")
-FRICTION_KEYS = {"R": ("mu", "radius", "friction_sense"),
-                 "T": ("mu", "length", "friction_sense")}
-LINK_KEYS = ("points", "mass", "density", "com", "inertia", "shape")
-JOINT_KEYS = {"R": ("type", "links"), "T": ("type", "links", "point", "line")}
+# The key tables, from the models of .schema (the one place a key is declared): the keys a
+# mapping may have, in their order, and those it must have.
+TOP_KEYS, TOP_REQUIRED = keys_of(schema.SpecFile), required_of(schema.SpecFile)
+UNITS_KEYS = keys_of(schema.Units)
+POLAR_KEYS, POLAR_REQUIRED = keys_of(schema.Polar), required_of(schema.Polar)
+LINK_KEYS, LINK_REQUIRED = keys_of(schema.Link), required_of(schema.Link)
+SHAPE_KEYS = {"bar": keys_of(schema.Bar), "block": keys_of(schema.Block)}
+JOINT_KEYS = {"R": keys_of(schema.RJoint), "T": keys_of(schema.TJoint)}
+LINE_KEYS, LINE_REQUIRED = keys_of(schema.Line), required_of(schema.Line)
+DRIVER_KEYS, DRIVER_REQUIRED = keys_of(schema.Driver), required_of(schema.Driver)
+SWEEP_KEYS = keys_of(schema.Sweep)
+LOAD_KEYS = {kind: keys_of(model) for kind, model in schema.LOAD_MODELS.items()}
+LOAD_REQUIRED = {kind: tuple(k for k in required_of(model) if k != "type")
+                 for kind, model in schema.LOAD_MODELS.items()}
+OPPOSE = {kind: choices_of(schema.LOAD_MODELS[kind], "oppose") for kind in ("force", "moment")}
+REACTS_ON = choices_of(schema.ForceLoad, "reacts_on")
+FRICTION_KEYS = {"R": keys_of(schema.RFriction), "T": keys_of(schema.TFriction)}
+FRICTION_REQUIRED = {"R": required_of(schema.RFriction), "T": required_of(schema.TFriction)}
+EXPECT_KEYS, EXPECT_REQUIRED = keys_of(schema.Expectation), required_of(schema.Expectation)
+DESIGN_KEYS = keys_of(schema.Design)
+MOTOR_KEYS = keys_of(schema.Motor)
+LIMIT_KEYS = keys_of(schema.Limits)
+BEARING_KEYS, BEARING_REQUIRED = keys_of(schema.Bearing), required_of(schema.Bearing)
+REPORT_KEYS = keys_of(schema.Report)
+REPORT_UNIT_KEYS = keys_of(schema.ReportUnits)
+STUDY_KEYS, STUDY_REQUIRED = keys_of(schema.Study), required_of(schema.Study)
+VARY_KEYS, VARY_REQUIRED = keys_of(schema.Vary), required_of(schema.Vary)
+SAMPLES = choices_of(schema.Study, "sample")
+JOINT_TYPES = tuple(JOINT_KEYS)
+LOAD_TYPES = tuple(LOAD_KEYS)
 POINT_QUANTITIES = ("x", "y", "vx", "vy", "ax", "ay", "v", "a")
 LINK_QUANTITIES = ("angle", "omega", "alpha")
 R_QUANTITIES = ("fx", "fy", "f", "angle", "friction")
@@ -80,6 +107,39 @@ def _show(value: Any) -> str:
     else:
         text = str(value)
     return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _unknown_key(key: str, allowed: tuple[str, ...]) -> str:
+    """What is said of a key that ``allowed`` does not have: the nearest allowed key, or the
+    list of them."""
+    near = difflib.get_close_matches(key, allowed, n=1)
+    return "unknown key" + (f"; did you mean '{near[0]}'?" if near
+                            else f"; allowed: {', '.join(allowed)}")
+
+
+def _number_problem(value: Any, positive: bool = False) -> str | None:
+    """Why ``value`` is not a number in range (greater than zero if ``positive``), or None."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, HugeInteger)):
+        kind = "a positive number" if positive else "a number"
+        return f"must be {kind}, got {_show(value)}{_text_hint(value)}"
+    wanted = (f"must be a positive number {POSITIVE_RANGE}" if positive else
+              f"must be a number {NUMBER_RANGE}")
+    # compare ints exactly: float() of a 400-digit integer overflows
+    if isinstance(value, HugeInteger) or (isinstance(value, int) and abs(value) > NUMBER_MAX):
+        return f"{wanted}, got {_show(value)}"
+    if not _in_range(float(value)):
+        return f"{wanted}, got {_show(value)}"
+    if positive and value <= 0:
+        return f"must be a positive number, got {_show(value)}"
+    return None
+
+
+def _whole_problem(value: Any, low: int, high: int) -> str | None:
+    """Why ``value`` is not a whole number in [low, high], or None."""
+    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+        return f"must be a whole number from {low} to {high}, got {_show(value)}" \
+               f"{_text_hint(value)}"
+    return None
 
 
 def _in_range(x: float) -> bool:
@@ -135,9 +195,7 @@ class _Checker:
             return None
         for key in value:
             if key not in allowed:
-                near = difflib.get_close_matches(key, allowed, n=1)
-                hint = f"; did you mean '{near[0]}'?" if near else f"; allowed: {', '.join(allowed)}"
-                self.error(path + (key,), f"unknown key{hint}")
+                self.error(path + (key,), _unknown_key(key, allowed))
         for key in required:
             if key not in value:
                 self.error(path, f"missing required key '{key}'")
@@ -147,26 +205,15 @@ class _Checker:
                nonzero: bool = False, scale: float = 1.0, unit: str = "") -> float | None:
         """A finite number in range, times ``scale`` (to SI; ``unit`` names the written unit);
         None (reported) otherwise."""
-        kind = "a positive number" if positive else "a number"
-        if (isinstance(value, bool) or not isinstance(value, (int, float, HugeInteger))):
-            if len(self.problems) >= MAX_PROBLEMS:   # not listed: skip the message
-                self.dropped += 1
-                return None
-            self.error(path, f"must be {kind}, got {_show(value)}{_text_hint(value)}")
+        if (isinstance(value, bool) or not isinstance(value, (int, float, HugeInteger))) \
+                and len(self.problems) >= MAX_PROBLEMS:   # not listed: skip the message
+            self.dropped += 1
             return None
-        wanted = (f"must be a positive number {POSITIVE_RANGE}" if positive else
-                  f"must be a number {NUMBER_RANGE}")
-        # compare ints exactly: float() of a 400-digit integer overflows
-        if isinstance(value, HugeInteger) or (isinstance(value, int) and abs(value) > NUMBER_MAX):
-            self.error(path, f"{wanted}, got {_show(value)}")
+        problem = _number_problem(value, positive)
+        if problem is not None:
+            self.error(path, problem)
             return None
         number = float(value)
-        if not _in_range(number):
-            self.error(path, f"{wanted}, got {_show(value)}")
-            return None
-        if positive and number <= 0:
-            self.error(path, f"must be a positive number, got {_show(value)}")
-            return None
         if nonzero and number == 0:
             self.error(path, "must not be zero")
             return None
@@ -194,8 +241,8 @@ class _Checker:
         if not isinstance(value, dict) or not ({"r", "angle"} & set(value)):
             return self.vec2(value, path, f"{what} or {{r: R, angle: A}}", scale=scale,
                              unit=unit)
-        body = self.mapping(value, path, ("r", "angle"), required=("r", "angle"))
-        if body is None or "r" not in body or "angle" not in body:
+        body = self.mapping(value, path, POLAR_KEYS, required=POLAR_REQUIRED)
+        if body is None or any(k not in body for k in POLAR_REQUIRED):
             return None
         r = self.number(body["r"], path + ("r",), scale=scale, unit=unit)
         if r is not None and r < 0:
@@ -304,12 +351,137 @@ def _source(text: str | bytes, filename: str) -> Source:
 def _checked(data: Any, src: Source) -> Spec:
     ck = _Checker(src)
     spec = _build(data, ck)
+    _shape_check(data, ck)
     if spec is None or ck.problems:
         if not ck.problems:   # pragma: no cover - every refusal records its reason
             ck.error((), "internal error: the spec was refused without a reason; please "
                          "report this")
         raise SpecError(_listed(ck))
     return spec
+
+
+# ------------------------------------------------------------------ the models' verdict
+
+def _shape_check(data: Any, ck: _Checker) -> None:
+    """Validate ``data`` with the models of :mod:`.schema` and report each problem they find
+    that the checks of this module did not: at the line of its key path, in their wording.
+    A problem is not reported twice: nothing is added at a key path that has a problem,
+    below one (unless that one is only a missing key) or above one."""
+    if not isinstance(data, dict) or len(ck.problems) >= MAX_PROBLEMS:
+        return              # a document that is not a mapping is reported as it is
+    reported = [(p.path, p.message) for p in ck.problems]
+    added: set[tuple[str, str]] = set()
+    for error in schema.shape_errors(data):
+        path, message = _shape_problem(error)
+        shown = format_path(path)
+        if (shown, message) in added or _already_reported(shown, message, reported):
+            continue
+        added.add((shown, message))
+        ck.error(path, message)
+
+
+def _already_reported(path: str, message: str, reported: list[tuple[str, str]]) -> bool:
+    """Whether a problem ``message`` at ``path`` (formatted) repeats one of ``reported``: the
+    same key path (at the top level, the same message), a path below it, or a path above it
+    whose problem is more than a missing key (then what is below was not looked at, or is
+    that problem)."""
+    for other, text in reported:
+        if other == path and (path or text == message):
+            return True
+        if path and _below(other, path):
+            return True
+        if other and _below(path, other) and not text.startswith("missing required key"):
+            return True
+    return False
+
+
+def _below(path: str, ancestor: str) -> bool:
+    """Whether formatted key path ``path`` lies strictly below ``ancestor``."""
+    return path.startswith(ancestor) and path[len(ancestor):len(ancestor) + 1] in (".", "[")
+
+
+def _shape_problem(error: dict) -> tuple[tuple, str]:
+    """A pydantic error (``loc``, ``type``, ``input``) as a key path and a message in the
+    wording of this module's checks."""
+    loc, kind, value = tuple(error["loc"]), error["type"], error.get("input")
+    if kind == "missing" and loc and isinstance(loc[-1], int):    # a short pair
+        where = schema.locate(loc[:-1])
+        return where.path, f"must be {_wording(where, 'a longer list')}, got {_show(value)}"
+    where = schema.locate(loc)
+    if kind == "missing":
+        return where.path[:-1], f"missing required key '{where.path[-1]}'"
+    if kind == "extra_forbidden" and where.owner is not None:
+        return where.path, _unknown_key(str(where.path[-1]), keys_of(where.owner))
+    if kind in ("union_tag_invalid", "union_tag_not_found"):
+        return _tag_problem(where, value)
+    return where.path, _value_problem(where, kind, value, error.get("msg", ""))
+
+
+def _tag_problem(where: schema.Located, value: Any) -> tuple[tuple, str]:
+    """A mapping whose tag (a joint's or load's ``type``, a shape's kind ...) picks none of
+    the models it may be."""
+    picker = where.picker()
+    if isinstance(picker, schema.ByKey) and isinstance(value, dict):
+        options = ", ".join(picker.tags)
+        if picker.key in value:
+            return (where.path + (picker.key,),
+                    f"must be one of {options}, got {_show(value[picker.key])}")
+        return where.path, f"missing required key '{picker.key}' ({' or '.join(picker.tags)})"
+    return where.path, f"must be {_wording(where, 'a mapping')}, got {_show(value)}"
+
+
+def _value_problem(where: schema.Located, kind: str, value: Any, fallback: str) -> str:
+    """What is wrong with a value of the wrong type, out of range or not one of a list."""
+    options = schema.literal_values(where.annotation)
+    if options:
+        return f"must be one of {', '.join(map(str, options))}, got {_show(value)}"
+    if where.annotation is float:
+        return _range_problem(where, value) or _fallback(fallback)
+    if where.annotation is int:
+        return (_whole_problem(value, where.constraint("ge"), where.constraint("le"))
+                or _fallback(fallback))
+    if where.annotation is bool:
+        return f"must be true or false, got {_show(value)}{_text_hint(value, boolean=True)}"
+    if kind in ("string_too_long", "string_pattern_mismatch"):
+        return f"must be one line of at most {where.constraint('max_length')} characters"
+    if where.is_model():
+        keys = ", ".join(keys_of(where.annotation))
+        return f"must be a mapping of keys ({keys}), got {_show(value)}"
+    what = _wording(where, {"dict_type": "a mapping", "list_type": "a list",
+                            "string_type": "text"}.get(kind, ""))
+    if not what:
+        return _fallback(fallback)
+    quote = (" (quote a name that looks like a number, true/false or null)"
+             if what == "a name" and (value is None or isinstance(value, (bool, int, float)))
+             else "")
+    return f"must be {what}, got {_show(value)}{quote}"
+
+
+def _range_problem(where: schema.Located, value: Any) -> str | None:
+    """A number's problem: not a number, out of the range every number keeps, or out of the
+    range of its key (greater than zero, 0 or more, at most some limit)."""
+    low, high = where.constraint("ge"), where.constraint("le")
+    problem = _number_problem(value, positive=low is not None and low > 0)
+    if problem is not None:
+        return problem
+    if low == 0 and value < 0:
+        return f"must be 0 or more, got {_show(value)}"
+    if high is not None and value > high:
+        return f"must be at most {high:g}, got {_show(value)}"
+    return None
+
+
+def _wording(where: schema.Located, default: str) -> str:
+    """What the value at ``where`` must be, as the models word it (``default`` if they do
+    not)."""
+    wording = where.marker(schema.Wording)
+    return wording.text if wording is not None else default
+
+
+def _fallback(message: str) -> str:
+    """pydantic's own message, in the house form ("must be ...")."""
+    message = message.replace("Input should be", "must be").replace("Value error, ", "")
+    return message[:1].lower() + message[1:]
 
 
 def _guarded(filename: str, work):
@@ -351,8 +523,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     if data is None:
         ck.error((), "the file is empty; a spec starts with 'mechreport: 1'")
         return None
-    top = ck.mapping(data, (), TOP_KEYS, required=("mechreport", "name", "links", "joints",
-                                                   "driver"))
+    top = ck.mapping(data, (), TOP_KEYS, required=TOP_REQUIRED)
     if top is None:
         return None
     version = top.get("mechreport")
@@ -385,7 +556,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     at = _angle_list(top.get("at"), ("at",), ck) if "at" in top else (sweep.start,)
     assembly = _assembly(top.get("assembly"), ck, links, length_scale, units["length"])
     loads = _loads(top.get("loads"), ck, {l.name: l for l in links}, joints, ground,
-                   length_scale)
+                   length_scale, pins)
     if driver is not None and driver.kind == "T":
         if "sweep" not in top:
             ck.error((), "a T driver needs a 'sweep': a plain range of strokes in the length "
@@ -399,7 +570,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                 if "friction" in top else ())
     expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src, driver=driver,
                      pins=pins)
-    design = _design(top.get("design"), ck, joints) if "design" in top else Design()
+    design = _design(top.get("design"), ck, joints, pins) if "design" in top else Design()
     report = _report(top.get("report"), ck, units) if "report" in top else ReportSettings()
     study = _study(top["study"], ck, top) if "study" in top else None
     sheet = top.get("sheet", False)
@@ -458,7 +629,7 @@ def _friction(value: Any, ck: _Checker, joints: list[Joint] | None, pins: list[P
                 ck.error(where, f"no joint named '{name}'{hint}")
             continue
         jtype = targets[0].type
-        required = ("mu", "radius") if jtype == "R" else ("mu",)
+        required = FRICTION_REQUIRED[jtype]
         entry = ck.mapping(body, where, FRICTION_KEYS[jtype], required=required)
         if entry is None or any(k not in entry for k in required):
             continue
@@ -484,7 +655,7 @@ def _friction(value: Any, ck: _Checker, joints: list[Joint] | None, pins: list[P
     return tuple(sorted(out.values(), key=lambda f: order.index(f.joint)))
 
 
-def _design(value: Any, ck: _Checker, joints: list[Joint] | None) -> Design:
+def _design(value: Any, ck: _Checker, joints: list[Joint] | None, pins=()) -> Design:
     path = ("design",)
     body = ck.mapping(value, path, DESIGN_KEYS)
     if body is None:
@@ -512,11 +683,12 @@ def _design(value: Any, ck: _Checker, joints: list[Joint] | None) -> Design:
                 where = path + ("bearings", jname)
                 if joints is not None and jname not in names:
                     if jname not in ck.invalid_joints:
-                        ck.error(where, f"no joint named '{jname}' (joints: "
-                                        f"{', '.join(sorted(names))})")
+                        ck.error(where, _pin_hint(jname, pins, "bearing")
+                                 or f"no joint named '{jname}' (joints: "
+                                    f"{', '.join(sorted(names))})")
                     continue
-                b = ck.mapping(item, where, ("rating", "life_h"), required=("rating",))
-                if b is None or "rating" not in b:
+                b = ck.mapping(item, where, BEARING_KEYS, required=BEARING_REQUIRED)
+                if b is None or any(k not in b for k in BEARING_REQUIRED):
                     continue
                 rating = ck.number(b["rating"], where + ("rating",), positive=True)
                 life = (ck.number(b["life_h"], where + ("life_h",), positive=True)
@@ -524,6 +696,18 @@ def _design(value: Any, ck: _Checker, joints: list[Joint] | None) -> Design:
                 if rating is not None and ("life_h" not in b or life is not None):
                     bearings[jname] = BearingSpec(rating, life)
     return Design(cs, motor, bearings, limits)
+
+
+def _pin_hint(name: str, pins, what: str) -> str | None:
+    """Why ``name`` does not name one joint, for a ``what`` that sits between two links,
+    when it is a pin joining several links; None when it is not one."""
+    pin = next((p for p in pins if p.name == name), None)
+    if pin is None:
+        return None
+    choices = ", ".join(f"'{pin.joint_name(link)}' ({pin.hub} and {link})"
+                        for link in pin.others)
+    return (f"'{name}' is a pin joining {', '.join(pin.links)}: a {what} sits between two of "
+            f"them; name one of {choices}")
 
 
 def _positive_table(value: Any, path: tuple, keys: tuple[str, ...],
@@ -590,20 +774,15 @@ def _cycle_need(spec: Spec, quantity: str) -> str | None:
 
 # --------------------------------------------------------------------------------- study
 
-STUDY_KEYS = ("vary", "sample", "count", "seed", "keep")
-VARY_KEYS = ("key", "from", "to", "count", "values")
-SAMPLES = ("grid", "random", "lhs")
-MAX_STUDY_VARIANTS = 1_000_000
-MAX_SEED = 2**63 - 1
 #: top-level keys whose numbers a study does not vary: they describe the file, not the machine
 NOT_VARIED = ("mechreport", "study", "expect", "report")
 
 
 def _whole(value: Any, path: tuple, ck: _Checker, low: int, high: int) -> int | None:
     """A whole number in [low, high] (reported otherwise)."""
-    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
-        ck.error(path, f"must be a whole number from {low} to {high}, got {_show(value)}"
-                       f"{_text_hint(value)}")
+    problem = _whole_problem(value, low, high)
+    if problem is not None:
+        ck.error(path, problem)
         return None
     return value
 
@@ -612,8 +791,8 @@ def _study(value: Any, ck: _Checker, top: dict) -> Study | None:
     """The ``study`` section (docs/spec.md, section 17): every key path must lead to a number
     of this spec; values are kept as written (the spec's own units)."""
     path = ("study",)
-    body = ck.mapping(value, path, STUDY_KEYS, required=("vary", "keep"))
-    if body is None or "vary" not in body or "keep" not in body:
+    body = ck.mapping(value, path, STUDY_KEYS, required=STUDY_REQUIRED)
+    if body is None or any(k not in body for k in STUDY_REQUIRED):
         return None
     ok = True
     sample = "grid"
@@ -656,8 +835,8 @@ def _vary(value: Any, path: tuple, ck: _Checker, top: dict,
     ok = True
     for i, item in enumerate(value):
         where = path + (i,)
-        body = ck.mapping(item, where, VARY_KEYS, required=("key",))
-        if body is None or "key" not in body:
+        body = ck.mapping(item, where, VARY_KEYS, required=VARY_REQUIRED)
+        if body is None or any(k not in body for k in VARY_REQUIRED):
             ok = False
             continue
         leaf = _key_path(body["key"], where + ("key",), ck, top)
@@ -816,7 +995,7 @@ def _study_requests(spec: Spec, ck: _Checker) -> None:
 def _units(value: Any, ck: _Checker) -> tuple[float, float, dict[str, str]]:
     if value is None:
         return 1.0, 1.0, {"length": "m", "mass": "kg"}
-    units = ck.mapping(value, ("units",), ("length", "mass")) or {}
+    units = ck.mapping(value, ("units",), UNITS_KEYS) or {}
     length = ck.choice(units.get("length", "m"), ("units", "length"), tuple(LENGTH_UNITS)) or "m"
     mass = ck.choice(units.get("mass", "kg"), ("units", "mass"), tuple(MASS_UNITS)) or "kg"
     return LENGTH_UNITS[length], MASS_UNITS[mass], {"length": length, "mass": mass}
@@ -863,7 +1042,7 @@ def _links(value: Any, ck: _Checker, ls: float, ms: float, units: dict[str, str]
 
 def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
           ls: float, ms: float, units: dict[str, str]) -> Link | None:
-    body = ck.mapping(body, path, LINK_KEYS, required=("points",))
+    body = ck.mapping(body, path, LINK_KEYS, required=LINK_REQUIRED)
     if body is None:
         return None
     lu, mu = units["length"], units["mass"]
@@ -940,12 +1119,11 @@ def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
 
 
 def _shape(value: Any, path: tuple, ck: _Checker, ls: float, unit: str) -> Shape | None:
-    if not isinstance(value, dict) or len(value) != 1 or next(iter(value)) not in ("bar", "block"):
+    if not isinstance(value, dict) or len(value) != 1 or next(iter(value)) not in SHAPE_KEYS:
         ck.error(path, "must be {bar: {length, height, depth}} or {block: {width, height, depth}}")
         return None
     kind, dims = next(iter(value.items()))
-    first = "length" if kind == "bar" else "width"
-    keys = (first, "height", "depth")
+    keys = SHAPE_KEYS[kind]
     dims = ck.mapping(dims, path + (kind,), keys, required=keys)
     if dims is None or any(k not in dims for k in keys):
         return None
@@ -977,7 +1155,7 @@ def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, L
         if not isinstance(body, dict):
             ck.error(path, f"must be a mapping like {{type: R, links: [a, b]}}, got {_show(body)}")
             continue
-        jtype = ck.choice(body.get("type"), path + ("type",), ("R", "T")) if "type" in body \
+        jtype = ck.choice(body.get("type"), path + ("type",), JOINT_TYPES) if "type" in body \
             else None
         if "type" not in body:
             ck.error(path, "missing required key 'type' (R or T)")
@@ -1060,9 +1238,8 @@ def _t_joint(jname: str, body: dict, pair: list, path: tuple, ck: _Checker,
         point = None
     if "line" not in body:   # reported as a missing key
         return None
-    line = ck.mapping(body["line"], path + ("line",), ("through", "direction"),
-                      required=("through", "direction"))
-    if line is None or "through" not in line or "direction" not in line:
+    line = ck.mapping(body["line"], path + ("line",), LINE_KEYS, required=LINE_REQUIRED)
+    if line is None or any(k not in line for k in LINE_REQUIRED):
         return None
     through_raw, through_name = line["through"], None
     if isinstance(through_raw, str):
@@ -1098,9 +1275,8 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
     """Any joint may drive: an R joint its relative angle (``rpm`` or ``omega``, ``alpha``), a
     T joint its stroke (``speed``, ``accel`` in the length unit per s and s^2)."""
     path = ("driver",)
-    body = ck.mapping(value, path, ("joint", "rpm", "omega", "alpha", "speed", "accel"),
-                      required=("joint",))
-    if body is None or "joint" not in body:
+    body = ck.mapping(value, path, DRIVER_KEYS, required=DRIVER_REQUIRED)
+    if body is None or any(k not in body for k in DRIVER_REQUIRED):
         return None
     jname = ck.name(body["joint"], path + ("joint",))
     pin = next((p for p in pins if p.name == jname), None)
@@ -1164,7 +1340,7 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
 def _sweep(value: Any, ck: _Checker) -> Sweep:
     if value is None:
         return Sweep()
-    body = ck.mapping(value, ("sweep",), ("start", "stop", "step")) or {}
+    body = ck.mapping(value, ("sweep",), SWEEP_KEYS) or {}
     vals = {}
     for key, default in (("start", 0.0), ("stop", 360.0), ("step", 1.0)):
         v = ck.number(body[key], ("sweep", key), positive=(key == "step")) if key in body \
@@ -1230,7 +1406,7 @@ def _profile(value: Any, path: tuple, ck: _Checker) -> tuple[tuple[float, float]
 
 
 def _loads(value: Any, ck: _Checker, links: dict[str, Link], joints: list[Joint] | None = None,
-           ground: dict[str, Vec] | None = None, ls: float = 1.0) -> list[Load]:
+           ground: dict[str, Vec] | None = None, ls: float = 1.0, pins=()) -> list[Load]:
     if value is None:
         return []
     if not isinstance(value, list):
@@ -1244,21 +1420,18 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link], joints: list[Joint]
             ck.error(path, f"must be a mapping like {{type: force, link, point, value}}, "
                            f"got {_show(item)}")
             continue
-        kind = ck.choice(item.get("type"), path + ("type",),
-                         ("force", "moment", "spring", "damper", "torsion_spring"))
+        kind = ck.choice(item.get("type"), path + ("type",), LOAD_TYPES)
         if kind is None:
             continue
         if kind in ("spring", "damper", "torsion_spring"):
-            load = _element(kind, item, i, path, ck, links, joints, ground, names, ls)
+            load = _element(kind, item, i, path, ck, links, joints, ground, names, ls, pins)
             if load is not None:
                 names[load.label] = i
                 loads.append(load)
             continue
-        allowed = (("type", "link", "point", "value", "direction", "profile", "oppose", "name",
-                    "reacts_on") if kind == "force"
-                   else ("type", "link", "value", "profile", "oppose", "name", "reacts_on"))
-        req = ("link", "point") if kind == "force" else ("link",)
-        if ck.mapping(item, path, allowed, required=req) is None or any(k not in item for k in req):
+        req = LOAD_REQUIRED[kind]
+        if ck.mapping(item, path, LOAD_KEYS[kind], required=req) is None or \
+                any(k not in item for k in req):
             continue
         lname = ck.name(item["link"], path + ("link",))
         if lname is None:
@@ -1305,8 +1478,7 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link], joints: list[Joint]
                 profile = _profile(item["profile"], path + ("profile",), ck)
         oppose = None
         if "oppose" in item:
-            oppose = ck.choice(item["oppose"], path + ("oppose",),
-                               ("velocity",) if kind == "force" else ("rotation",))
+            oppose = ck.choice(item["oppose"], path + ("oppose",), OPPOSE[kind])
         if (has_value and value_ is None) or (has_profile and profile is None) or \
                 ("oppose" in item and oppose is None):
             continue
@@ -1318,7 +1490,7 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link], joints: list[Joint]
                                        "load names must differ (they label the torque "
                                        "breakdown)")
             label = None
-        reacts = (ck.choice(item["reacts_on"], path + ("reacts_on",), (GROUND,))
+        reacts = (ck.choice(item["reacts_on"], path + ("reacts_on",), REACTS_ON)
                   if "reacts_on" in item else None)
         if label is None or ("reacts_on" in item and reacts is None):
             continue
@@ -1330,19 +1502,12 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link], joints: list[Joint]
 
 def _element(kind: str, item: dict, i: int, path: tuple, ck: _Checker, links: dict[str, Link],
              joints: list[Joint] | None, ground: dict[str, Vec] | None, names: dict[str, int],
-             ls: float) -> Load | None:
+             ls: float, pins=()) -> Load | None:
     """A spring, damper or torsion spring: machine elements whose force follows from the
     kinematics (docs/spec.md, section 8)."""
-    if kind == "torsion_spring":
-        keys = ("type", "joint", "stiffness", "free_angle", "name")
-        body = ck.mapping(item, path, keys, required=("joint", "stiffness", "free_angle"))
-    else:
-        value_key = "stiffness" if kind == "spring" else "damping"
-        keys = ("type", "between", value_key, "name") + (("free_length",) if kind == "spring"
-                                                         else ())
-        body = ck.mapping(item, path, keys, required=keys[1:3] + (("free_length",)
-                                                                  if kind == "spring" else ()))
-    if body is None or any(k not in body for k in keys[1:3]):
+    required = LOAD_REQUIRED[kind]
+    body = ck.mapping(item, path, LOAD_KEYS[kind], required=required)
+    if body is None or any(k not in body for k in required):
         return None
     label = ck.name(item["name"], path + ("name",)) if "name" in item else f"load {i + 1}"
     if label is not None and label in names:
@@ -1354,7 +1519,8 @@ def _element(kind: str, item: dict, i: int, path: tuple, ck: _Checker, links: di
         joint = next((j for j in joints or () if j.name == jname), None)
         if jname is not None and joint is None and joints is not None:
             if jname not in ck.invalid_joints:
-                ck.error(path + ("joint",), f"unknown joint '{jname}'")
+                ck.error(path + ("joint",), _pin_hint(jname, pins, "torsion spring")
+                         or f"unknown joint '{jname}'")
             return None
         if joint is not None and joint.type != "R":
             ck.error(path + ("joint",), f"a torsion spring sits at an R joint; '{jname}' is a "
@@ -1421,9 +1587,8 @@ def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | N
     joint_types = {j.name: j.type for j in (joints or [])}
     for i, item in enumerate(value):
         path = ("expect", i)
-        body = ck.mapping(item, path, ("angle", "quantity", "value", "tol", "unit"),
-                          required=("quantity", "value"))
-        if body is None or any(k not in body for k in ("quantity", "value")):
+        body = ck.mapping(item, path, EXPECT_KEYS, required=EXPECT_REQUIRED)
+        if body is None or any(k not in body for k in EXPECT_REQUIRED):
             continue
         quantity = body["quantity"]
         problem = _quantity_problem(quantity, links, joint_types, joints is not None, ck,
@@ -1598,24 +1763,19 @@ def _structure(ck: _Checker, links: list[Link], joints: list[Joint]) -> None:
                                       f"{', '.join(loose)}")
 
 
-REPORT_KEYS = ("units", "title", "project", "author", "revision")
-REPORT_TEXT_MAX = 200
-
-
 def _report(value: Any, ck: _Checker, units: dict[str, str]) -> ReportSettings:
     """The ``report`` section: display units (lengths default to the spec's ``units.length``,
     the rest to SI) and first-page metadata (docs/spec.md, section 16)."""
-    from ..units import UNIT_TABLES
     body = ck.mapping(value, ("report",), REPORT_KEYS) if value is not None else {}
     if body is None:
         return ReportSettings()
     shown = {"length": units.get("length", "m"), "force": "N", "moment": "N*m", "mass": "kg"}
     if "units" in body:
-        given = ck.mapping(body["units"], ("report", "units"), tuple(UNIT_TABLES)) or {}
-        for key, table in UNIT_TABLES.items():
+        given = ck.mapping(body["units"], ("report", "units"), REPORT_UNIT_KEYS) or {}
+        for key in REPORT_UNIT_KEYS:
             if key in given:
                 shown[key] = ck.choice(given[key], ("report", "units", key),
-                                       tuple(table)) or shown[key]
+                                       choices_of(schema.ReportUnits, key)) or shown[key]
     meta = {}
     for key in REPORT_KEYS[1:]:
         text = body.get(key, "")

@@ -108,10 +108,15 @@ def test_results_list_the_pins_force_on_every_link(pinned):
      "lists coupler twice"),
     (("[coupler, rocker, rod]", "[coupler, rocker, rods]"), "joints.C.links[2]",
      "unknown link 'rods'"),
+    (("loads:\n", "loads:\n  - {type: torsion_spring, joint: C, stiffness: 2, free_angle: 0}\n"),
+     "loads[0].joint", "name one of 'C.on.rocker' (coupler and rocker), 'C.on.rod'"),
+    (("expect:\n", "design: {bearings: {C: {rating: 5000}}}\nexpect:\n"),
+     "design.bearings.C", "a bearing sits between two of them; name one of 'C.on.rocker'"),
 ])
 def test_mistakes_with_a_pin_are_reported_where_they_are(edit, path, words):
     text = PIN + "expect:\n  - {angle: 30, quantity: driver.torque, value: 1}\n"
     old, new = edit
+    assert old in text, "the edit finds nothing to change"
     text = text.replace(old, new, 1) if old != "quantity: " else \
         text.replace("quantity: driver.torque", new)
     with pytest.raises(SpecError) as info:
@@ -167,3 +172,16 @@ def test_a_pin_on_the_frame_may_drive_its_first_two_links():
             np.testing.assert_allclose(res.reactions["A.on.ground"].fy,
                                        -other.reactions["A"].fy - other.reactions["A2"].fy,
                                        atol=1e-9 * scale)
+
+
+def test_a_torsion_spring_and_a_bearing_sit_at_one_link_of_a_pin():
+    """`C.on.rod` names the pin's joint between its hub (the coupler) and the rod: a torsion
+    spring there acts between those two links, a bearing there carries the pin's force on the
+    rod."""
+    text = PIN.replace("loads:\n", "loads:\n  - {type: torsion_spring, joint: C.on.rod, "
+                                    "stiffness: 2, free_angle: 0, name: spring}\n")
+    text += "design: {bearings: {C.on.rod: {rating: 5000}}}\n"
+    spec = parse_spec(text, "pin.yaml")
+    spring = next(ld for ld in spec.loads if ld.label == "spring")
+    assert spring.joint == "C.on.rod" and spring.link == "rod"
+    assert set(spec.design.bearings) == {"C.on.rod"}

@@ -9,7 +9,6 @@ import pytest
 import yaml
 
 import mechreport
-from mechreport.forces import contour
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -1,0 +1,849 @@
+"""The spec format's shape, declared once: pydantic models of a spec as written in YAML.
+
+These models are the single source of the format's keys, their types, which of them are
+required, their enumerations (joint and load types, unit names, ...) and the ranges a number
+may take, as written in the spec (lengths in its ``units.length``, before any conversion).
+From them come
+
+- the key tables of the loader (``TOP_KEYS = keys_of(SpecFile)``, ...), so that a key is
+  added to the format by one edit here;
+- a second opinion on every file the loader reads (:func:`shape_errors`): the loader maps
+  each pydantic error to ``file:line: key.path: message`` in its own wording;
+- the JSON Schema (:func:`json_schema`, ``mechreport schema``, ``docs/spec.schema.json``)
+  with which an editor's YAML language server checks and completes a spec as it is typed;
+  the field descriptions below are its hover texts (from docs/spec.md).
+
+Only the shape lives here. What needs more than one value at a time (a joint naming a link
+that exists, points present on both links, mobility, which cycle quantities are defined,
+units converted to SI) stays in the loader's plain Python. Every model forbids unknown keys.
+Nothing here is built until it is used: the validator is built on the first validation, the
+JSON Schema on request.
+"""
+import functools
+import json
+import typing
+from dataclasses import dataclass
+from typing import Annotated, Any, Literal, Optional, Union
+
+from pydantic import (AfterValidator, BaseModel, ConfigDict, Discriminator, Field, Tag,
+                      ValidationError)
+from pydantic.fields import FieldInfo
+from pydantic.json_schema import GenerateJsonSchema
+from pydantic_core import PydanticCustomError
+
+from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES
+from .types import GROUND
+
+__all__ = ["SpecFile", "LOAD_MODELS", "NUMBER_MAX", "NUMBER_MIN", "MAX_STUDY_VARIANTS",
+           "MAX_SEED", "REPORT_TEXT_MAX", "SCHEMA_ID", "keys_of", "required_of", "choices_of",
+           "literal_values", "shape_errors", "locate", "Located", "Wording", "ByKey",
+           "json_schema"]
+
+# Every number in a spec is finite and, unless exactly zero, has a magnitude between
+# NUMBER_MIN and NUMBER_MAX, as written and in SI: squares, products and sums of such numbers
+# (kinematics, forces, power, condition numbers) stay far from float overflow and underflow.
+NUMBER_MAX = 1e20
+NUMBER_MIN = 1e-20
+MAX_STUDY_VARIANTS = 1_000_000
+MAX_SEED = 2**63 - 1
+
+SCHEMA_ID = "urn:mechreport:spec-schema:1.1"
+SCHEMA_DIALECT = "https://json-schema.org/draft/2020-12/schema"
+
+
+# -------------------------------------------------------------------------------- markers
+
+@dataclass(frozen=True)
+class Wording:
+    """What a value must be, in the loader's words ("a pair [x, y]"): how a type error on it
+    is reported (``must be <text>, got ...``). Metadata only: it changes no validation."""
+
+    text: str
+
+
+@dataclass(frozen=True, eq=False)
+class _JsonExtra:
+    """Keywords added to a type's JSON Schema (where pydantic has no constraint for them);
+    compared and hashed by identity (typing hashes Annotated metadata)."""
+
+    extra: tuple
+
+    def __get_pydantic_json_schema__(self, core_schema, handler):
+        schema = handler(core_schema)
+        schema.update(dict(self.extra))
+        return schema
+
+
+_SHARED = "x-mechreport-shared"     # a temporary keyword, replaced by a $ref
+
+
+def _shared(name: str, description: str) -> _JsonExtra:
+    """Marks a type whose JSON Schema is written once, under ``$defs/<name>``, and referred
+    to wherever the type is used (see :meth:`_SpecSchema.generate`)."""
+    return _JsonExtra(((_SHARED, (name, description)),))
+
+
+class ByKey:
+    """A discriminator: the tag of a mapping is the text of its ``key`` (a load's ``type``),
+    None when it has none. ``tags`` lists the tags in the spec's order."""
+
+    def __init__(self, key: str, tags: tuple[str, ...]):
+        self.key, self.tags = key, tags
+        self.__name__ = f"by_{key}"       # pydantic names a discriminator by it
+
+    def __call__(self, value: Any) -> str | None:
+        tag = value.get(self.key) if isinstance(value, dict) else None
+        return tag if isinstance(tag, str) else None
+
+
+def _point_tag(value: Any) -> str:
+    """A point is polar when it is a mapping with ``r`` or ``angle`` (as the loader reads it),
+    else a pair."""
+    return "polar" if isinstance(value, dict) and ({"r", "angle"} & set(value)) else "pair"
+
+
+def _shape_tag(value: Any) -> str | None:
+    """``{bar: ...}`` or ``{block: ...}``: a mapping of exactly one of the two."""
+    if isinstance(value, dict) and len(value) == 1 and next(iter(value)) in ("bar", "block"):
+        return next(iter(value))
+    return None
+
+
+def _through_tag(value: Any) -> str:
+    """A T joint's ``line.through``: a point's name (text), or a point."""
+    return "name" if isinstance(value, str) else "point"
+
+
+def _direction_tag(value: Any) -> str:
+    """A T joint's ``line.direction``: a vector (a list), or an angle."""
+    return "vector" if isinstance(value, list) else "angle"
+
+
+def _text_tag(value: Any) -> str:
+    """Report metadata: text, or a whole number read as its text (``revision: 2``)."""
+    return "number" if isinstance(value, int) and not isinstance(value, bool) else "text"
+
+
+def _friction_tag(value: Any) -> str:
+    """A friction entry with a journal ``radius`` is an R joint's, else a T joint's (which
+    one it must be is the loader's to say: it knows the joint)."""
+    return "R" if isinstance(value, dict) and "radius" in value else "T"
+
+
+# -------------------------------------------------------------------------------- numbers
+
+def _magnitude(x: float) -> float:
+    """Zero, or a magnitude of at least NUMBER_MIN (what ``ge``/``le`` cannot say)."""
+    if x != 0 and abs(x) < NUMBER_MIN:
+        raise PydanticCustomError("number_range", "nonzero magnitudes must be at least "
+                                                  "{minimum}", {"minimum": NUMBER_MIN})
+    return x
+
+
+# in JSON Schema: not (a nonzero number of magnitude below NUMBER_MIN)
+_NOT_TINY = _JsonExtra((("not", {"exclusiveMinimum": -NUMBER_MIN,
+                                 "exclusiveMaximum": NUMBER_MIN, "not": {"const": 0}}),))
+_RANGE = (f"between {-NUMBER_MAX:g} and {NUMBER_MAX:g}, zero or at least {NUMBER_MIN:g} in "
+          "magnitude")
+
+#: a finite number in range (an int or a float, never true/false or quoted text)
+Number = Annotated[float, Field(strict=True, ge=-NUMBER_MAX, le=NUMBER_MAX,
+                                allow_inf_nan=False),
+                   AfterValidator(_magnitude), _NOT_TINY, Wording("a number"),
+                   _shared("number", f"A finite number {_RANGE}.")]
+#: a number greater than zero, in range
+Positive = Annotated[float, Field(strict=True, ge=NUMBER_MIN, le=NUMBER_MAX,
+                                  allow_inf_nan=False), Wording("a positive number"),
+                     _shared("positive", f"A positive number, between {NUMBER_MIN:g} and "
+                                         f"{NUMBER_MAX:g}.")]
+#: zero or a positive number in range
+NonNegative = Annotated[float, Field(strict=True, ge=0, le=NUMBER_MAX, allow_inf_nan=False),
+                        AfterValidator(_magnitude), _NOT_TINY,
+                        Wording("a number, 0 or more"),
+                        _shared("non_negative", f"0, or a positive number between "
+                                                f"{NUMBER_MIN:g} and {NUMBER_MAX:g}.")]
+#: a name (of a point, link, joint or load): non-empty text
+Name = Annotated[str, Field(strict=True, min_length=1), Wording("a name"),
+                 _shared("name", "A name (case-sensitive); quote one that reads as a number, "
+                                 "true/false or null.")]
+Text = Annotated[str, Field(strict=True), Wording("text")]
+
+
+def _whole(low: int, high: int) -> Any:
+    """A whole number (an int, not 2.0) from ``low`` to ``high``."""
+    return Annotated[int, Field(strict=True, ge=low, le=high),
+                     Wording(f"a whole number from {low} to {high}")]
+
+
+Pair = Annotated[tuple[Number, Number], Wording("a pair [x, y]"),
+                 _shared("pair", "[x, y]: two numbers.")]
+
+
+# ---------------------------------------------------------------------------------- models
+
+class _Model(BaseModel):
+    """Unknown keys are errors at every level; validators are built on first use."""
+
+    model_config = ConfigDict(extra="forbid", defer_build=True)
+
+
+class Polar(_Model):
+    """A point in polar form: ``{r: R, angle: A}``."""
+
+    model_config = ConfigDict(title="polar point")
+    r: NonNegative = Field(description="Distance from the frame's origin, in the length unit "
+                                       "(not negative).")
+    angle: Number = Field(description="Degrees from the frame's x-axis, counter-clockwise.")
+
+
+Point = Annotated[Union[Annotated[Pair, Tag("pair")], Annotated[Polar, Tag("polar")]],
+                  Discriminator(_point_tag), Wording("a pair [x, y] or {r: R, angle: A}"),
+                  _shared("point", "A point: [x, y], or {r: R, angle: A} (R in the length "
+                                   "unit, A in degrees from the frame's x-axis, "
+                                   "counter-clockwise).")]
+
+
+class Units(_Model):
+    """The units the spec's lengths and masses are written in."""
+
+    length: Literal[SPEC_UNITS["length"]] = Field(
+        "m", description="Unit of every length and coordinate in the spec: ground and link "
+                         "points, com, shape sizes, line.through, assembly hints.")
+    mass: Literal[SPEC_UNITS["mass"]] = Field("kg", description="Unit of `mass`.")
+
+
+class Bar(_Model):
+    """A plate along the link's x-axis from x = 0 to x = length, centred on y = 0."""
+
+    length: Positive = Field(description="Along the link's x-axis, in the length unit.")
+    height: Positive = Field(description="Across the link, in the length unit.")
+    depth: Positive = Field(description="Thickness normal to the plane, in the length unit.")
+
+
+class Block(_Model):
+    """A rectangle centred on the link's origin, `width` along its x-axis."""
+
+    width: Positive = Field(description="Along the link's x-axis, in the length unit.")
+    height: Positive = Field(description="Across the link, in the length unit.")
+    depth: Positive = Field(description="Thickness normal to the plane, in the length unit.")
+
+
+class BarShape(_Model):
+    """``{bar: {length, height, depth}}``."""
+
+    model_config = ConfigDict(title="bar shape")
+    bar: Bar = Field(description="A bar: centroid (length/2, 0); I = m (length² + height²) "
+                                 "/ 12.")
+
+
+class BlockShape(_Model):
+    """``{block: {width, height, depth}}``."""
+
+    model_config = ConfigDict(title="block shape")
+    block: Block = Field(description="A block: centroid (0, 0); I = m (width² + height²) / 12.")
+
+
+Shape = Annotated[Union[Annotated[BarShape, Tag("bar")], Annotated[BlockShape, Tag("block")]],
+                  Discriminator(_shape_tag),
+                  Wording("{bar: {length, height, depth}} or {block: {width, height, depth}}")]
+
+
+class Link(_Model):
+    """A moving link: its named points in its own frame and its mass properties."""
+
+    points: dict[str, Point] = Field(
+        min_length=1, description="Named points in the link's own frame: `NAME: [x, y]` in "
+                                  "the length unit (at least one).")
+    mass: NonNegative = Field(
+        None, description="Mass, kg (or g with units.mass: g). Or give density with a shape. "
+                          "`mass: 0` alone is a massless link.")
+    density: Positive = Field(
+        None, description="kg/m³, with `shape`, when `mass` is absent (mass = density x "
+                          "shape volume).")
+    com: Point = Field(
+        None, description="Centre of mass [x, y] in the link frame. Default: the shape's "
+                          "centroid.")
+    inertia: NonNegative = Field(
+        None, description="kg·m² about the centre of mass. Default: from the shape. "
+                          "`inertia: 0` with a mass is a point mass.")
+    shape: Shape = Field(
+        None, description="`{bar: {length, height, depth}}` or `{block: {width, height, "
+                          "depth}}`, sizes in the length unit.")
+
+
+class Line(_Model):
+    """The line a T joint's slider moves along, in the guide's frame."""
+
+    through: Annotated[Union[Annotated[Name, Tag("name")], Annotated[Point, Tag("point")]],
+                       Discriminator(_through_tag),
+                       Wording("a pair [x, y], a point name or {r: R, angle: A}")] = Field(
+        description="A point of the guide (its name), or [x, y] in the guide's frame.")
+    direction: Annotated[Union[Annotated[Number, Tag("angle")],
+                               Annotated[Pair, Tag("vector")]],
+                         Discriminator(_direction_tag),
+                         Wording("a pair [dx, dy] or an angle in degrees")] = Field(
+        description="An angle in degrees, or a vector [dx, dy], in the guide's frame.")
+
+
+class RJoint(_Model):
+    """A revolute joint (pin): joins the point named like the joint on each of its links."""
+
+    model_config = ConfigDict(title="R joint")
+    type: Literal["R"] = Field(description="R: revolute (pin).")
+    links: Annotated[list[Name], Wording("two link names [first, second]")] = Field(
+        min_length=2, description="[first, second]: the reaction reported is the force of the "
+                                  "first on the second. Three or more: one pin joining them "
+                                  "all (format 1.1).")
+
+
+class TJoint(_Model):
+    """A prismatic joint (slider): the second link slides on the first."""
+
+    model_config = ConfigDict(title="T joint")
+    type: Literal["T"] = Field(description="T: prismatic (slider).")
+    links: Annotated[list[Name], Wording("two link names [first, second]")] = Field(
+        min_length=2, max_length=2, description="[guide, slider]: the second link slides on "
+                                                "the first.")
+    point: Name = Field(description="A point of the slider that stays on the guide's line.")
+    line: Line = Field(description="The guide's line: {through, direction}.")
+
+
+JOINT_TYPES = ("R", "T")
+Joint = Annotated[Union[Annotated[RJoint, Tag("R")], Annotated[TJoint, Tag("T")]],
+                  Discriminator(ByKey("type", JOINT_TYPES)),
+                  Wording("a mapping like {type: R, links: [a, b]}")]
+
+
+class Driver(_Model):
+    """The driving joint and its speed (R: rpm or omega; T: speed)."""
+
+    joint: Name = Field(description="The driving joint. An R joint turns (rpm or omega); a T "
+                                    "joint drives its stroke (speed).")
+    rpm: Number = Field(None, description="R driver: speed in rpm (negative: clockwise; 0: "
+                                          "at rest).")
+    omega: Number = Field(None, description="R driver: speed in rad/s (instead of rpm).")
+    alpha: Number = Field(None, description="R driver: angular acceleration, rad/s² (default "
+                                            "0).")
+    speed: Number = Field(None, description="T driver: stroke speed, length unit per second "
+                                            "(0: at rest).")
+    accel: Number = Field(None, description="T driver: stroke acceleration, length unit per "
+                                            "s² (default 0).")
+
+
+class Sweep(_Model):
+    """The crank angles analysed: start, start + step, ... up to stop (degrees)."""
+
+    start: Number = Field(0, description="First angle, degrees (stroke for a T driver).")
+    stop: Number = Field(360, description="Last angle, degrees; greater than start.")
+    step: Positive = Field(1, description="Step, degrees (positive).")
+
+
+Profile = Annotated[list[Annotated[Pair, Wording("a pair [crank_angle_deg, magnitude]")]],
+                    Field(min_length=1), Wording("a list of [crank_angle_deg, magnitude] pairs")]
+End = Annotated[tuple[Name, Name], Wording("an end [link, point]"),
+                _shared("end", "[link, point]: a point of a link (or of ground).")]
+Ends = Annotated[tuple[End, End], Wording("two ends [[link, point], [link, point]]")]
+LOAD_NAME = ("Labels the load in the torque breakdown, the plots and summary.json (names "
+             "must differ).")
+
+
+class ForceLoad(_Model):
+    """A force at a point of a moving link."""
+
+    model_config = ConfigDict(title="force")
+    type: Literal["force"] = Field(description="A force at a point of a link.")
+    link: Name = Field(description="The moving link it acts on.")
+    point: Name = Field(description="The point of the link where it acts.")
+    value: Pair = Field(None, description="[Fx, Fy] in N, global.")
+    direction: Pair = Field(None, description="[dx, dy], with `profile`.")
+    profile: Profile = Field(
+        None, description="[[crank_angle_deg, magnitude_N], ...], angles strictly increasing "
+                          "within [0, 360).")
+    oppose: Literal["velocity"] = Field(
+        None, description="velocity: the force opposes the motion of its point.")
+    name: Name = Field(None, description=LOAD_NAME)
+    reacts_on: Literal[GROUND] = Field(
+        None, description="ground: the load's reaction acts on the frame.")
+
+
+class MomentLoad(_Model):
+    """A moment on a moving link."""
+
+    model_config = ConfigDict(title="moment")
+    type: Literal["moment"] = Field(description="A moment on a link.")
+    link: Name = Field(description="The moving link it acts on.")
+    value: Number = Field(None, description="M in N·m, counter-clockwise positive.")
+    profile: Profile = Field(
+        None, description="[[crank_angle_deg, M], ...], angles strictly increasing within "
+                          "[0, 360).")
+    oppose: Literal["rotation"] = Field(
+        None, description="rotation: M = -sign(omega) |M0|.")
+    name: Name = Field(None, description=LOAD_NAME)
+    reacts_on: Literal[GROUND] = Field(
+        None, description="ground: the load's reaction acts on the frame.")
+
+
+class SpringLoad(_Model):
+    """A linear spring between two points; its tension k (L - L0) pulls them together."""
+
+    model_config = ConfigDict(title="spring")
+    type: Literal["spring"] = Field(description="A linear spring between two points.")
+    between: Ends = Field(description="[[link, point], [link, point]]; either link may be "
+                                      "ground.")
+    stiffness: Positive = Field(description="N/m.")
+    name: Name = Field(None, description=LOAD_NAME)
+    free_length: NonNegative = Field(description="In the length unit.")
+
+
+class DamperLoad(_Model):
+    """A damper between two points: a force c dL/dt along the line, resisting extension."""
+
+    model_config = ConfigDict(title="damper")
+    type: Literal["damper"] = Field(description="A linear damper between two points.")
+    between: Ends = Field(description="[[link, point], [link, point]]; either link may be "
+                                      "ground.")
+    damping: Positive = Field(description="N·s/m.")
+    name: Name = Field(None, description=LOAD_NAME)
+
+
+class TorsionSpringLoad(_Model):
+    """A torsion spring at an R joint: a couple k (relative angle - free angle)."""
+
+    model_config = ConfigDict(title="torsion spring")
+    type: Literal["torsion_spring"] = Field(description="A torsion spring at an R joint.")
+    joint: Name = Field(description="The R joint it sits at.")
+    stiffness: Positive = Field(description="N·m/rad.")
+    free_angle: Number = Field(description="Degrees.")
+    name: Name = Field(None, description=LOAD_NAME)
+
+
+#: the load models by their ``type``, in the spec's order
+LOAD_MODELS = {"force": ForceLoad, "moment": MomentLoad, "spring": SpringLoad,
+               "damper": DamperLoad, "torsion_spring": TorsionSpringLoad}
+Load = Annotated[Union[tuple(Annotated[m, Tag(t)] for t, m in LOAD_MODELS.items())],
+                 Discriminator(ByKey("type", tuple(LOAD_MODELS))),
+                 Wording("a mapping like {type: force, link, point, value}")]
+
+
+FrictionSense = Annotated[Literal[1, -1], Field(
+    description="At rest: the sign of the relative motion the joint is about to have.")]
+
+
+class RFriction(_Model):
+    """Coulomb friction in an R joint: a couple mu radius |F|."""
+
+    model_config = ConfigDict(title="R joint friction")
+    mu: NonNegative = Field(description="Coefficient of friction (0 or more; 0 adds nothing).")
+    radius: Positive = Field(description="Journal radius, in the length unit.")
+    friction_sense: FrictionSense = None
+
+
+class TFriction(_Model):
+    """Coulomb friction in a T joint: a force mu |N| along the line."""
+
+    model_config = ConfigDict(title="T joint friction")
+    mu: NonNegative = Field(description="Coefficient of friction (0 or more; 0 adds nothing).")
+    length: Positive = Field(None, description="Slider length, in the length unit (its two "
+                                               "ends carry the normal force and couple).")
+    friction_sense: FrictionSense = None
+
+
+Friction = Annotated[Union[Annotated[RFriction, Tag("R")], Annotated[TFriction, Tag("T")]],
+                     Discriminator(_friction_tag),
+                     Wording("{mu, radius} (an R joint) or {mu, length} (a T joint)")]
+
+EXPECT_UNIT_NAMES = tuple(dict.fromkeys(u for table in EXPECT_UNITS.values() for u in table))
+
+
+class Expectation(_Model):
+    """A value the results must reproduce (`mechreport check`)."""
+
+    angle: Number = Field(None, description="Crank angle, degrees. Cycle quantities have "
+                                            "none.")
+    quantity: Name = Field(description="driver.torque, joint.J.fx|fy|f|..., point.P.x|y|..., "
+                                       "link.L.angle|omega|alpha, transmission_angle, or a "
+                                       "cycle quantity (cycle.torque.rms, ...).")
+    value: Number = Field(description="SI, or in `unit`.")
+    tol: Positive = Field(None, description="Absolute tolerance; default 1e-4 x max(1, "
+                                            "|value|).")
+    unit: Literal[EXPECT_UNIT_NAMES] = Field(
+        None, description="The unit value and tol are written in (one of the quantity's "
+                          "kind).")
+
+
+class Motor(_Model):
+    """The motor's ratings, checked against the cycle."""
+
+    rated_torque: Positive = Field(None, description="N·m, against cycle.torque.rms.")
+    peak_torque: Positive = Field(None, description="N·m, against the largest |driver "
+                                                    "torque|.")
+    rated_power: Positive = Field(None, description="W, against cycle.power.max.")
+
+
+class Bearing(_Model):
+    """A joint's bearing: its dynamic load rating and required life."""
+
+    rating: Positive = Field(description="Dynamic load rating C, N.")
+    life_h: Positive = Field(None, description="Required L10 life, hours.")
+
+
+class Limits(_Model):
+    """Limits the cycle must keep."""
+
+    joint_force: Positive = Field(None, description="N, every joint over the cycle.")
+    transmission_angle: Annotated[Positive, Field(le=90)] = Field(
+        None, description="Degrees, the smallest allowed (at most 90).")
+    shaking_force: Positive = Field(None, description="N, the largest allowed.")
+    efficiency: Annotated[Positive, Field(le=1)] = Field(
+        None, description="The smallest cycle.efficiency allowed (at most 1; needs friction).")
+
+
+class Design(_Model):
+    """The design review's inputs."""
+
+    speed_fluctuation: Positive = Field(None, description="Cs: enables "
+                                                          "cycle.flywheel_inertia.")
+    motor: Motor = Field(None, description="{rated_torque, peak_torque, rated_power}.")
+    bearings: dict[str, Bearing] = Field(None, description="Joint name -> {rating, life_h}.")
+    limits: Limits = Field(None, description="{joint_force, transmission_angle, "
+                                             "shaking_force, efficiency}.")
+
+
+class ReportUnits(_Model):
+    """How reports show values (results.csv and summary.json stay SI)."""
+
+    model_config = ConfigDict(title="report units")
+    length: Literal[tuple(UNIT_TABLES["length"])] = Field(
+        None, description="Default: the spec's units.length.")
+    force: Literal[tuple(UNIT_TABLES["force"])] = Field(None, description="Default N.")
+    moment: Literal[tuple(UNIT_TABLES["moment"])] = Field(None, description="Default N*m.")
+    mass: Literal[tuple(UNIT_TABLES["mass"])] = Field(None, description="Default kg.")
+
+
+REPORT_TEXT_MAX = 200
+#: one line of at most REPORT_TEXT_MAX characters (a number is read as its text), or nothing
+ReportText = Optional[Annotated[
+    Union[Annotated[str, Field(strict=True, max_length=REPORT_TEXT_MAX,
+                               pattern=r"^\s*[^\n]*\s*$"), Tag("text")],
+          Annotated[int, Field(strict=True), Tag("number")]],
+    Discriminator(_text_tag), Wording("text")]]
+
+
+class Report(_Model):
+    """Display units and first-page metadata of the reports."""
+
+    units: ReportUnits = Field(None, description="{length, force, moment, mass}.")
+    title: ReportText = Field(None, description="First page and page header; default: the "
+                                                "spec's name. One line, at most 200 "
+                                                "characters.")
+    project: ReportText = Field(None, description="First page and page header; one line.")
+    author: ReportText = Field(None, description="First page and page header; one line.")
+    revision: ReportText = Field(None, description="First page and page header; one line (a "
+                                                   "number is read as its text).")
+
+
+class Vary(_Model):
+    """A varied leaf of the spec: {key, from, to, count} or {key, values}."""
+
+    key: Name = Field(description="A key path into this spec, dots between keys, a list index "
+                                  "as a number (links.rod.points.C.0).")
+    from_: Number = Field(None, alias="from", description="One end of the range.")
+    to: Number = Field(None, description="The other end of the range.")
+    count: _whole(1, MAX_STUDY_VARIANTS) = Field(
+        None, description="Grid values from `from` to `to`, both included (at least 2).")
+    values: Annotated[list[Number],
+                      Wording(f"a list of 1 to {MAX_STUDY_VARIANTS} numbers")] = Field(
+        None, min_length=1, max_length=MAX_STUDY_VARIANTS,
+        description="The values the key takes, instead of a range.")
+
+
+class Study(_Model):
+    """The variants `mechreport study` runs."""
+
+    vary: Annotated[list[Vary], Wording("a list of {key, from, to, count} or {key, "
+                                        "values}")] = Field(
+        min_length=1, description="The varied leaves.")
+    sample: Literal["grid", "random", "lhs"] = Field(
+        "grid", description="grid (every combination), random or lhs (Latin hypercube).")
+    count: _whole(1, MAX_STUDY_VARIANTS) = Field(
+        None, description="How many variants random and lhs draw.")
+    seed: _whole(0, MAX_SEED) = Field(0, description="The same spec and seed give the same "
+                                                     "variants.")
+    keep: Annotated[list[Name], Wording("a list of cycle quantities")] = Field(
+        min_length=1, description="The cycle quantities to tabulate (cycle.*, balance.*, "
+                                  "joint.J.f_max|f_mean|f_equivalent|life_h).")
+
+
+class SpecFile(_Model):
+    """A mechreport spec: one planar linkage (docs/spec.md)."""
+
+    model_config = ConfigDict(title="mechreport spec")
+    mechreport: Literal[1, 1.1] = Field(description="Format version: 1, or 1.1.")
+    name: Name = Field(description="The mechanism's name, used in report titles.")
+    description: Optional[Text] = Field(None, description="Markdown shown at the top of the "
+                                                          "report.")
+    units: Optional[Units] = Field(None, description="{length: m|cm|mm, mass: kg|g}, default "
+                                                     "{length: m, mass: kg}.")
+    gravity: Pair = Field((0.0, -9.80665), description="[gx, gy] in m/s²; acts on every "
+                                                       "moving link.")
+    ground: Optional[dict[str, Point]] = Field(
+        None, description="Named points of the frame, global [x, y] in the length unit.")
+    links: dict[str, Link] = Field(min_length=1, description="The moving links, numbered 1, "
+                                                             "2, 3 ... in the order written.")
+    joints: dict[str, Joint] = Field(min_length=1, description="The joints, by unique name.")
+    driver: Driver = Field(description="The driving joint and its speed.")
+    sweep: Optional[Sweep] = Field(None, description="Crank angles to analyse, default 0 to "
+                                                     "360 by 1 degree.")
+    at: Annotated[list[Number], Wording("a list of crank angles in degrees")] = Field(
+        None, min_length=1, description="Reference angles, degrees; the first is where the "
+                                        "assembly branch is chosen. Default [sweep.start].")
+    assembly: Optional[dict[str, Point]] = Field(
+        None, description="Rough global [x, y] of points at the first reference angle: they "
+                          "choose the assembly branch.")
+    loads: Optional[Annotated[list[Load], Wording("a list of loads")]] = Field(
+        None, description="External forces, moments, springs, dampers, torsion springs.")
+    friction: dict[str, Friction] = Field(
+        None, min_length=1, description="Coulomb friction by joint name: {mu, radius} (R), "
+                                        "{mu, length} (T) (format 1.1).")
+    expect: Optional[Annotated[list[Expectation], Wording("a list of {angle, quantity, value, "
+                                                          "tol}")]] = Field(
+        None, description="Values the results must reproduce.")
+    sheet: bool = Field(False, strict=True, description="true adds worked solution sheets to "
+                                                        "mechreport build.")
+    design: Design = Field(None, description="The design review: speed_fluctuation, motor, "
+                                             "bearings, limits (docs/spec.md, section 15).")
+    report: Optional[Report] = Field(None, description="Display units and first-page "
+                                                       "metadata of the reports.")
+    study: Study = Field(None, description="The variants mechreport study runs.")
+
+
+# ------------------------------------------------------------------------- the key tables
+
+def _key_of(name: str, field: FieldInfo) -> str:
+    """The key a field is written as in a spec (``from`` for ``from_``)."""
+    return field.alias or name
+
+
+def keys_of(model: type[BaseModel]) -> tuple[str, ...]:
+    """The keys a mapping of ``model`` may have, in the order they are declared."""
+    return tuple(_key_of(n, f) for n, f in model.model_fields.items())
+
+
+def required_of(model: type[BaseModel]) -> tuple[str, ...]:
+    """The keys a mapping of ``model`` must have, in the order they are declared."""
+    return tuple(_key_of(n, f) for n, f in model.model_fields.items() if f.is_required())
+
+
+def choices_of(model: type[BaseModel], key: str) -> tuple:
+    """The values an enumerated key of ``model`` may take (its Literal's, in order)."""
+    field = next(f for n, f in model.model_fields.items() if _key_of(n, f) == key)
+    return _literal_args(field.annotation)
+
+
+def literal_values(annotation: Any) -> tuple:
+    """The values of ``annotation`` if it is a Literal (an enumeration), else ()."""
+    return typing.get_args(annotation) if typing.get_origin(annotation) is Literal else ()
+
+
+def _literal_args(annotation: Any) -> tuple:
+    """The values of the Literal in ``annotation`` (inside Optional or Annotated too)."""
+    while True:
+        origin = typing.get_origin(annotation)
+        if origin is Literal:
+            return typing.get_args(annotation)
+        if origin is Annotated:
+            annotation = typing.get_args(annotation)[0]
+        elif origin is Union:
+            annotation = next(a for a in typing.get_args(annotation) if a is not type(None))
+        else:
+            raise TypeError(f"{annotation!r} is not an enumeration")
+
+
+# ----------------------------------------------------------------------------- validation
+
+def shape_errors(data: Any) -> list[dict]:
+    """pydantic's errors for a spec's data tree (``loc``, ``type``, ``input``, ``ctx``; none
+    when its shape is right). The validator is built on the first call."""
+    try:
+        SpecFile.model_validate(data)
+    except ValidationError as exc:
+        return exc.errors(include_url=False)
+    return []
+
+
+@dataclass(frozen=True)
+class Located:
+    """Where a pydantic error ``loc`` points in the spec: the key ``path`` in the data (union
+    tags left out), the model whose keys hold its last key (``owner``), and the type there
+    (``annotation``, unwrapped) with its constraints and markers (``metadata``, those of the
+    outermost declaration first: a point's wording before a pair's)."""
+
+    path: tuple
+    owner: type[BaseModel] | None
+    annotation: Any
+    metadata: tuple
+
+    def marker(self, kind: type) -> Any:
+        """The first metadata item of type ``kind`` (a Wording, a Discriminator ...)."""
+        return next((m for m in self.metadata if isinstance(m, kind)), None)
+
+    def picker(self) -> Any:
+        """The discriminator of the tagged union at this place (a :class:`ByKey`, a
+        function), None if there is none."""
+        found = self.marker(Discriminator)
+        return found.discriminator if found is not None else None
+
+    def is_model(self) -> bool:
+        """Whether the value here is one of the models (a mapping of known keys)."""
+        return isinstance(self.annotation, type) and issubclass(self.annotation, BaseModel)
+
+    def constraint(self, name: str) -> Any:
+        """A constraint's value (``ge``, ``le``, ``min_length`` ...), the tightest where
+        several apply (a limit of 90 on a positive number); None when absent."""
+        values = [getattr(m, name) for m in self.metadata if hasattr(m, name)]
+        if not values:
+            return None
+        return max(values) if name in ("ge", "gt", "min_length") else min(values)
+
+
+def _unwrap(annotation: Any, metadata: list) -> Any:
+    """Strip Annotated and Optional, adding the metadata to ``metadata`` outermost first
+    (typing flattens nested Annotated innermost first: they are taken in reverse)."""
+    while True:
+        origin = typing.get_origin(annotation)
+        if origin is Annotated:
+            args = typing.get_args(annotation)
+            metadata.extend(reversed(_flat(args[1:])))
+            annotation = args[0]
+        elif origin is Union and type(None) in typing.get_args(annotation):
+            members = [a for a in typing.get_args(annotation) if a is not type(None)]
+            annotation = members[0] if len(members) == 1 else Union[tuple(members)]
+        else:
+            return annotation
+
+
+def _flat(items) -> list:
+    """Annotated metadata with FieldInfo objects opened into their constraints."""
+    out = []
+    for item in items:
+        if isinstance(item, FieldInfo):
+            out.extend(item.metadata)
+        else:
+            out.append(item)
+    return out
+
+
+def _member(annotation: Any, tag: Any) -> Any:
+    """The member of a tagged union whose Tag is ``tag`` (None if none is)."""
+    for member in typing.get_args(annotation):
+        if typing.get_origin(member) is Annotated and any(
+                isinstance(m, Tag) and m.tag == tag for m in typing.get_args(member)[1:]):
+            return member
+    return None
+
+
+def locate(loc: tuple) -> Located:
+    """Follow a pydantic error's ``loc`` through the models (see :class:`Located`)."""
+    annotation: Any = SpecFile
+    metadata: list = []
+    path: list = []
+    owner = None
+    for part in loc:
+        annotation = _unwrap(annotation, metadata)
+        origin = typing.get_origin(annotation)
+        if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+            owner = annotation
+            path.append(part)
+            field = next((f for n, f in annotation.model_fields.items()
+                          if _key_of(n, f) == part), None)
+            annotation = field.annotation if field is not None else None
+            metadata = list(reversed(field.metadata)) if field is not None else []
+            continue
+        if origin is Union:
+            member = _member(annotation, part)
+            if member is not None:          # a union's tag: not a key of the data
+                annotation = member
+                continue
+        path.append(part)
+        args = typing.get_args(annotation)
+        metadata = []
+        if origin is dict:
+            annotation = args[1]
+        elif origin is list:
+            annotation = args[0]
+        elif origin is tuple and isinstance(part, int) and part < len(args):
+            annotation = args[part]
+        else:
+            annotation = None               # beyond what the models describe
+    metadata_list = list(metadata)
+    annotation = _unwrap(annotation, metadata_list)
+    return Located(tuple(path), owner, annotation, tuple(metadata_list))
+
+
+# ---------------------------------------------------------------------------- JSON Schema
+
+class _SpecSchema(GenerateJsonSchema):
+    """Draft 2020-12 with ``$schema`` and ``$id``; no ``"default": null`` on keys that may
+    not be null (an absent key is not a null one), and no titles made up from key names (an
+    editor shows the key and its description)."""
+
+    def field_title_should_be_set(self, schema) -> bool:
+        return False
+
+    def generate(self, schema, mode="validation"):
+        out = super().generate(schema, mode=mode)
+        shared: dict[str, dict] = {}
+        out = _hoisted(out, shared)
+        defs = dict(sorted({**out.pop("$defs", {}), **shared}.items()))
+        head = {key: out.pop(key) for key in ("title", "description", "type") if key in out}
+        return {"$schema": SCHEMA_DIALECT, "$id": SCHEMA_ID, **head, **out, "$defs": defs}
+
+    def default_schema(self, schema):
+        out = super().default_schema(schema)
+        if out.get("default", 0) is None and not _nullable(out):
+            del out["default"]
+        return out
+
+
+#: what stays where a shared type is used: what the key means, not what its value is
+_USE_KEYWORDS = ("description", "default", "title", "examples")
+
+
+def _hoisted(node: Any, shared: dict[str, dict]) -> Any:
+    """``node`` with every schema marked by :func:`_shared` replaced by a ``$ref`` to its one
+    copy in ``shared`` (inner ones first, so that a pair refers to the number)."""
+    if isinstance(node, list):
+        return [_hoisted(item, shared) for item in node]
+    if not isinstance(node, dict):
+        return node
+    node = {key: _hoisted(value, shared) for key, value in node.items()}
+    items = node.get("prefixItems")
+    if items and "items" not in node and all(item == items[0] for item in items):
+        # [x, y], [link, point]: two of one kind. ``items`` says so to tools that read only
+        # draft-07 (YAML language servers); in 2020-12 it adds nothing (maxItems is 2).
+        node["items"] = items[0]
+    if _SHARED not in node:
+        return node
+    name, description = node.pop(_SHARED)
+    body = {k: v for k, v in node.items() if k not in _USE_KEYWORDS}
+    if shared.setdefault(name, {"description": description, **body}) != {
+            "description": description, **body}:
+        return node                  # constrained further where it is used: written out
+    return {"$ref": f"#/$defs/{name}", **{k: v for k, v in node.items() if k in _USE_KEYWORDS}}
+
+
+def _nullable(schema: dict) -> bool:
+    return schema.get("type") == "null" or any(s.get("type") == "null"
+                                               for s in schema.get("anyOf", ()))
+
+
+@functools.cache
+def _schema_text() -> str:
+    """The JSON Schema as JSON text (built once; text, so that the cached value cannot be
+    changed by a caller)."""
+    return json.dumps(SpecFile.model_json_schema(schema_generator=_SpecSchema))
+
+
+def json_schema() -> dict:
+    """The JSON Schema of a spec file (a new dict each call)."""
+    return json.loads(_schema_text())
