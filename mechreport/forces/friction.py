@@ -43,13 +43,15 @@ class FrictionSolution:
     over the angles of the kinematics it was solved on; ``left_out`` by angle index: why that
     angle has no determined solution (the direction undetermined, self-locking, no
     convergence); ``reversed`` (n,) where friction alone reverses the sign of the driver's
-    effort; ``frictionless`` (n,) the effort without friction; ``steps`` Newton's steps."""
+    effort; ``frictionless`` (n,) the effort without friction; ``steps`` Newton's steps;
+    ``stopped`` the indices of ``left_out`` where a joint's relative motion stops."""
 
     values: dict[str, np.ndarray]
     left_out: dict[int, str]
     reversed: np.ndarray
     frictionless: np.ndarray
     steps: int
+    stopped: frozenset[int] = frozenset()
 
 
 def unit_friction(kin: Kinematics, frictions: tuple[Friction, ...]) -> Kinematics:
@@ -97,7 +99,8 @@ def solve_friction(kin: Kinematics, parts: dict[str, dict[str, np.ndarray]],
     flip = (np.sign(with_friction) * np.sign(frictionless) < 0)
     left_out = _left_out(kin, joints, stopped, converged, gain)
     return FrictionSolution({fr.joint: m[:, k] + 0.0 for k, fr in enumerate(frictions)},
-                            left_out, flip, frictionless, steps)
+                            left_out, flip, frictionless, steps,
+                            frozenset(int(k) for k in np.flatnonzero(stopped.any(axis=1))))
 
 
 def with_friction(kin: Kinematics) -> tuple[Kinematics, FrictionSolution]:
@@ -112,7 +115,8 @@ def with_friction(kin: Kinematics) -> tuple[Kinematics, FrictionSolution]:
     keep = np.ones(kin.n, bool)
     keep[list(solution.left_out)] = False
     flags = tuple(sorted(kin.flags + tuple(
-        Flag(float(kin.angles[k]), why, "friction") for k, why in solution.left_out.items()),
+        Flag(float(kin.angles[k]), why, "friction direction" if k in solution.stopped
+             else "friction") for k, why in solution.left_out.items()),
         key=lambda f: f.angle))
     reversed_at = tuple(float(x) for x in kin.angles[solution.reversed & keep])
     out = replace(kin, friction=solution.values, reversed_by_friction=reversed_at)

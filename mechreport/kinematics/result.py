@@ -15,11 +15,24 @@ from .position import BranchChoice
 class Flag:
     """A crank angle left out of the results, and why. ``kind``: ``unreachable`` (beyond a
     lock), ``cannot close``, ``singular`` or ``near-singular`` (not trustworthy to
-    ``TRUST_RTOL``)."""
+    ``TRUST_RTOL``); with friction in the joints, ``friction`` (self-locking: no determined
+    friction) or ``friction direction`` (a joint's relative motion stops: the friction's
+    sign is undetermined at that angle alone, its neighbours are regular)."""
 
     angle: float   # [deg]
     reason: str
     kind: str = "singular"
+
+    @property
+    def by_friction(self) -> bool:
+        """Left out because the friction in a joint is not determined there."""
+        return self.kind in ("friction", "friction direction")
+
+    @property
+    def isolated(self) -> bool:
+        """Only this angle is affected: the values beside it do not rise towards a
+        singularity (a joint whose motion reverses there)."""
+        return self.kind == "friction direction"
 
 
 @dataclass(frozen=True)

@@ -118,7 +118,7 @@ def sweep_summary(kin, forces: dict, loads, flags) -> SweepSummary:
     ref = reference_method(forces)
     res = forces[ref]
     angles = kin.angles
-    near, width = near_mask(angles, [f.angle for f in flags], spec.sweep.step)
+    near, width = near_mask(angles, [f.angle for f in flags if not f.isolated], spec.sweep.step)
     joints = {name: joint_load(name, angles, r.fx, r.fy, near)
               for name in spec.reported_reactions() if (r := res.reactions.get(name))}
     largest = None

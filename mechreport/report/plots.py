@@ -1,6 +1,7 @@
 """Sweep and cycle plots of a report model: driver torque, joint reactions, polar bearing
 diagrams, shaking force and moment, flywheel diagram, torque by source, transmission angle,
-balancing. Each figure is one SVG file, shown by both the PDF and the Markdown report.
+balancing, the driver torque with and without friction. Each figure is one SVG file, shown
+by both the PDF and the Markdown report.
 
 Values are plotted in the report's display units (``model.display``) and labelled by the one
 number formatter. Near-singular stretches (within ``sweep.near_deg`` of a left-out angle) are
@@ -529,14 +530,17 @@ def polar_figure(sw, d):
     rows = math.ceil(n / cols)
     cell = WIDTH / cols
     F = d.unit("force")
-    margins = (0.55, 0.1, 0.42, 0.3)
-    fig, axes = figure(cell * rows, rows, cols, gap=0.6, wgap=0.6, margins=margins)
+    margins, gap, wgap = (0.55, 0.1, 0.42, 0.3), 0.6, 0.6
+    titles = _polar_titles(sw.polar, (WIDTH - margins[0] - margins[1]) / cols - wgap)
+    if any("\n" in t for t in titles):             # a second line of title above each row
+        margins, gap = (margins[0], margins[1], margins[2], margins[3] + 0.12), gap + 0.12
+    fig, axes = figure(cell * rows, rows, cols, gap=gap, wgap=wgap, margins=margins)
     rend = _renderer(fig)
     ref_idx = [int(np.argmin(np.abs(sw.angles - r))) for r in sw.ref_angles
                if len(sw.angles) and np.min(np.abs(sw.angles - r)) < 1e-9]
     near = sw.near if len(sw.near) == len(sw.angles) else np.zeros(len(sw.angles), bool)
     from matplotlib.ticker import MaxNLocator
-    for ax, ps in zip(axes.flat, sw.polar):
+    for ax, ps, title in zip(axes.flat, sw.polar, titles):
         px, py = d.value(ps.x, "force"), d.value(ps.y, "force")
         _, x, y = with_gaps(sw.angles, px, py)
         if len(sw.flagged) == 0 and len(px):
@@ -555,8 +559,10 @@ def polar_figure(sw, d):
         for k in ref_idx:
             ax.plot([0, px[k]], [0, py[k]], color=ps.color, lw=0.7, alpha=0.7)
             ax.plot([px[k]], [py[k]], "o", color=ps.color, ms=3.5)
-            ax.annotate(f"{sw.angles[k]:g}°", (px[k], py[k]), fontsize=6.5,
-                        xytext=(4 if px[k] >= 0 else -4, 4 if py[k] >= 0 else -4),
+        for group in _coincident(ref_idx, px, py, 0.05 * lim):
+            k = group[0]
+            ax.annotate(", ".join(f"{sw.angles[j]:g}°" for j in group), (px[k], py[k]),
+                        fontsize=6.5, xytext=(4 if px[k] >= 0 else -4, 4 if py[k] >= 0 else -4),
                         textcoords="offset points", ha="left" if px[k] >= 0 else "right",
                         va="bottom" if py[k] >= 0 else "top", clip_on=True)
         ax.set_xlim(-lim, lim)
@@ -566,8 +572,7 @@ def polar_figure(sw, d):
         _keep_inside(ax, rend)
         ax.xaxis.set_major_locator(MaxNLocator(4, symmetric=True))
         ax.yaxis.set_major_locator(MaxNLocator(4, symmetric=True))
-        frame = "global frame" if ps.carrier == "ground" else f"frame of {ps.carrier}"
-        ax.set_title(literal(f"{ps.name} ({ps.symbol}), {frame}"), loc="left", fontsize=7.5)
+        ax.set_title(literal(title), loc="left", fontsize=POLAR_TITLE_SIZE)
         if clipped:
             ax.text(0.02, 0.02, f"peak {fmt(r_all)} {F}\noff scale", transform=ax.transAxes,
                     fontsize=6.2, color=INK, va="bottom", ha="left",
@@ -581,12 +586,49 @@ def polar_figure(sw, d):
         ax.set_visible(False)
 
     def relayout(left, wgap):
-        _layout(fig, rows, cols, 0.6, wgap, (left, *margins[1:]))
+        _layout(fig, rows, cols, gap, wgap, (left, *margins[1:]))
         for ax in axes.flat[:n]:
             ax.apply_aspect()
             _keep_inside(ax, rend)
-    _fit_y_labels(fig, axes, relayout, margins[0], 0.6)
+    _fit_y_labels(fig, axes, relayout, margins[0], wgap)
     return fig
+
+
+#: the polar title's font size [pt], and how far it may run past its axes' right edge [in]
+POLAR_TITLE_SIZE = 7.5
+POLAR_TITLE_OVERHANG = 0.1
+
+
+def _polar_titles(polar, axes_width: float) -> list[str]:
+    """Each polar diagram's title, "name (symbol), frame", with the frame on a second line
+    where one line would be wider than the axes (``axes_width`` [in]) and a little more
+    (a force on one link of a pin, ``C.on.upper``, has long names)."""
+    from matplotlib.backends.backend_agg import RendererAgg
+    r = RendererAgg(10, 10, 72)                     # 1 px = 1 pt: widths in pt
+    titles = []
+    for ps in polar:
+        frame = "global frame" if ps.carrier == "ground" else f"frame of {ps.carrier}"
+        title = f"{ps.name} ({ps.symbol}), {frame}"
+        if _text_size(r, title, POLAR_TITLE_SIZE)[0] > 72 * (axes_width + POLAR_TITLE_OVERHANG):
+            title = f"{ps.name} ({ps.symbol}),\n{frame}"
+        titles.append(title)
+    return titles
+
+
+def _coincident(indices, x, y, within: float) -> list[list[int]]:
+    """``indices`` grouped where their points (``x``, ``y``) lie ``within`` of the group's
+    first point, in the order of their first member: reference angles where a force is
+    the same (a two-force member's force at angles symmetric about a dead centre) share one
+    label, "30°, 200°", instead of printing one label on the other."""
+    groups: list[list[int]] = []
+    for k in indices:
+        home = next((g for g in groups if math.hypot(x[k] - x[g[0]], y[k] - y[g[0]]) <= within),
+                    None)
+        if home is None:
+            groups.append([k])
+        else:
+            home.append(k)
+    return groups
 
 
 def _keep_inside(ax, renderer) -> None:
@@ -817,6 +859,68 @@ def balance_figure(cd, d):
     return fig
 
 
+#: room kept beyond a measured legend's width for the PDF's wider setting of its text
+LEGEND_SLACK = 0.05
+FRICTION_COLOR = "#D55E00"       # the effort with friction
+FRICTIONLESS_COLOR = "#0072B2"   # and without it
+
+
+def friction_figure(fp, d):
+    """The driver's effort with and without friction (a report's FrictionPlot ``fp``); the
+    angles where friction alone reverses its sign marked on the zero line. The legend takes
+    one row above the axes, or two where one would run past the figure's edge."""
+    margins = (0.72, 0.12, 0.46, 0.39)
+    fig, axes = figure(2.9, margins=margins)
+    ax = axes[0, 0]
+    draw_friction(ax, fp, d)
+    legend = ax.get_legend()
+    box = legend.get_window_extent(_renderer(fig))
+    # Agg's metrics run a few per cent narrower than the SVG's text as a PDF sets it
+    if box.x1 + LEGEND_SLACK * box.width > fig.bbox.width - _px(fig, CLEAR):
+        _layout(fig, 1, 1, 0.55, 0.75, (*margins[:3], margins[3] + 0.17))
+        handles, labels = legend.legend_handles, [t.get_text() for t in legend.get_texts()]
+        order = [0, 2, 1]               # columns filled first: with, without; then the marks
+        legend_top(ax, 2, handles=[handles[i] for i in order],
+                   labels=[labels[i] for i in order])
+    return fig
+
+
+def draw_friction(ax, fp, d) -> None:
+    """The driver's effort with friction in the joints and without it on ``ax``, two lines
+    on one scale: over one turn (``fp.means`` given: each in the legend), or over the sweep
+    (``fp.sweep``: its axis, gaps at left-out angles, near-singular values kept off the
+    scale); ``fp`` a report's FrictionPlot, ``d`` its Display."""
+    kind = fp.effort
+    u = d.unit(kind)
+    with_f, without = d.value(fp.torque, kind), d.value(fp.frictionless, kind)
+    labels = ["with friction", "without friction"]
+    if fp.means is not None:
+        labels = [f"{text} (mean {fmt(d.value(m, kind))} {u})"
+                  for text, m in zip(labels, fp.means)]
+    a, w, wo = (fp.angles, with_f, without) if fp.sweep is None else \
+        with_gaps(fp.angles, with_f, without)
+    ax.plot(a, wo, color=FRICTIONLESS_COLOR, lw=1.2, ls=(0, (5, 2)), label=labels[1])
+    ax.plot(a, w, color=FRICTION_COLOR, lw=1.5, label=labels[0])
+    ax.axhline(0, color="0.3", lw=0.6)
+    if fp.reversed:
+        ax.plot(fp.reversed, np.zeros(len(fp.reversed)), ls="none", marker="x", ms=5,
+                mew=1.2, color=INK, zorder=5, label="sign reversed by friction")
+    if fp.sweep is None:
+        ax.set_xlim(0, 360)
+        ax.set_xticks(np.arange(0, 361, 45))
+        ax.set_xlabel("crank angle φ [deg]")
+        for x in fp.shaded:
+            ax.axvspan(x - 0.5, x + 0.5, color="0.45", alpha=0.35, lw=0)
+    else:
+        crank_axis(ax, fp.sweep)
+        scale_to_trusted(ax, fp.sweep, [with_f, without], u, names=["with", "without"])
+    ax.set_ylabel(f"{'force' if kind == 'force' else 'torque'} [{u}]")
+    handles, texts = ax.get_legend_handles_labels()
+    order = [1, 0] + list(range(2, len(handles)))        # with friction first
+    legend_top(ax, len(handles), handles=[handles[i] for i in order],
+               labels=[texts[i] for i in order])
+
+
 @styled
 def write_plots(model, outdir: Path) -> list[Path]:
     """Every sweep and cycle figure of ``model`` into ``outdir`` (SVG)."""
@@ -828,6 +932,9 @@ def write_plots(model, outdir: Path) -> list[Path]:
                           ("transmission", transmission_figure), ("balance", balance_figure)):
             if key in figs:
                 out += save(make(cd, d), outdir, figs[key].stem)
+    fr = model.friction
+    if "friction" in figs and fr is not None and fr.plot is not None:
+        out += save(friction_figure(fr.plot, d), outdir, figs["friction"].stem)
     if len(sw.angles) == 0:
         return out
     makers = {"torque": torque_figure, "reactions": reactions_figure,
@@ -871,4 +978,19 @@ def plot_reactions(analysis, ax=None):
     sw, d = sweep_data(analysis)
     ax = _axes(ax, 3.0)
     draw_reactions(ax, sw, d)
+    return ax
+
+
+@styled
+def plot_friction(analysis, ax=None):
+    """The driver's effort with and without friction in the joints of ``analysis`` as the
+    report draws it, on ``ax`` (default: a new figure's); returns the Axes. Raises
+    ValueError when the spec has no friction."""
+    from .model import friction_data
+    fp, d = friction_data(analysis)
+    if fp is None:
+        raise ValueError(f"{analysis.spec.file}: no friction in its joints (a 'friction:' "
+                         "entry with mu > 0) to plot")
+    ax = _axes(ax, 2.9)
+    draw_friction(ax, fp, d)
     return ax

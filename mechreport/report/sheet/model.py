@@ -19,9 +19,11 @@ from ...forces import METHODS
 from ...forces.equations import Equation as FEquation
 from ...forces.equations import Step
 from ...spec import GROUND
-from .expr import ZERO, Equation, Expr, Num, Point, Raw, fmt, round_off, sheet_zero
+from ...kinematics.frames import perp
+from .expr import (ZERO, Equation, Expr, Num, Op, Paren, Point, Raw, Sym, fmt, round_off,
+                   sheet_zero)
 from .kinematics import derive, scalar, vec_expr
-from .symbols import (M_, N_, R, Names, alpha, axis_atom, comp_sym, omega, scalar_sym,
+from .symbols import (M_, N_, NM_, R, Names, alpha, axis_atom, comp_sym, omega, scalar_sym,
                       unit_atom, vec_sym)
 from .translate import Translator, zero_by_constraint
 
@@ -86,6 +88,14 @@ VIRTUAL_WORK_INTRO = [
       "sum delta W \\/ delta q = M + sum bold(F) dot bold(v)' + sum M omega' = 0"),
     ", where v' = dr/dq and ω' = dθ/dq are the velocity coefficients (the velocities at unit "
     "rate of q); it gives the driver's effort without any joint reaction."]
+
+#: the power method's introduction, continued when joints rub
+FRICTION_POWER = [
+    " Here the joints rub: each friction's power is its value times its joint's relative "
+    "rate, ", R(r"M_{fij}\,(\omega_j - \omega_i)", "M_(f i j) (omega_j - omega_i)"), " or ",
+    R(r"\mathbf{F}_{fij} \cdot \mathbf{v}_{j/i}", "bold(F)_(f i j) dot bold(v)_(j \\/ i)"),
+    " (at rest, per unit rate of q); friction opposes the relative motion, so this power is "
+    "lost."]
 
 T_NOTE = ["The textbook finds the point P (or Q) where a slider's reaction acts, which makes the "
           "equations nonlinear; here the reaction of a sliding joint is its force at the "
@@ -174,6 +184,7 @@ class AngleModel:
     answers: list = field(default_factory=list)        # (symbol, value Equation, exact)
     answers_note: str = ""
     shown: list = field(default_factory=list)
+    friction: list = field(default_factory=list)      # rich text: how friction is found
 
 
 @dataclass
@@ -384,6 +395,8 @@ def _method_model(name: str, result, worked: tuple, k: int, names: Names, spec, 
         section = "textbook " + section
     intro = VIRTUAL_WORK_INTRO if name == "power" and spec.driver.at_rest else \
         METHOD_INTRO.get(name, [])
+    if name == "power" and spec.friction:
+        intro = intro + FRICTION_POWER
     return MethodModel(name, mod.TITLE, section, intro, steps, eq, check)
 
 
@@ -532,7 +545,8 @@ def _fbds(analysis, k: int, tag: str, methods) -> tuple[list, list]:
     return figs, note
 
 
-def _angle_model(analysis, angle: float, names: Names, exact, methods, display) -> AngleModel:
+def _angle_model(analysis, angle: float, names: Names, exact, methods, display,
+                 parts: dict | None = None) -> AngleModel:
     kin, spec = analysis.kinematics, analysis.spec
     title, short = coordinate(spec, angle)
     k = kin.index_of(angle)
@@ -551,6 +565,7 @@ def _angle_model(analysis, angle: float, names: Names, exact, methods, display) 
     am.actions = _inertia_rows(analysis, k)
     am.loads = _load_rows(analysis, k)
     am.fbds, am.fbd_note = _fbds(analysis, k, tag, methods)
+    am.friction = _friction_iteration(analysis, k, parts)
     counter = [0]
     others = {}
     for name in methods:
@@ -581,6 +596,122 @@ def _angle_model(analysis, angle: float, names: Names, exact, methods, display) 
     return am
 
 
+# ------------------------------------------------------------------------------ friction
+
+ITERATION = ("Friction depends on the reactions it changes, so it is found by iteration: start "
+             "from the frictionless reactions, compute each joint's friction from them, solve "
+             "again with those frictions as known loads, and repeat until the frictions no "
+             "longer change (the program solves the same equations by Newton's method). The "
+             "equations below hold the converged values.")
+
+
+def _friction_iteration(analysis, k: int, parts: dict | None) -> list:
+    """How the friction at angle index ``k`` is found, in words, with the first iteration's
+    numbers for the first friction joint (its frictionless reaction: every source of
+    ``parts``, the reference method's unknowns split by source, but friction) and the
+    converged friction of every joint."""
+    spec, kin = analysis.spec, analysis.kinematics
+    if not spec.friction or kin.friction is None:
+        return []
+    out: list = [ITERATION]
+    first = _first_iteration(analysis, k, parts)
+    if first:
+        out += [" At this angle, for joint ", *first]
+    out.append(" The converged frictions at this angle: ")
+    for i, fr in enumerate(spec.friction):
+        j = spec.joint(fr.joint)
+        out += [Equation([Expr().add(1, _friction_atom_scalar(spec, j)),
+                          _scalar(kin.friction[fr.joint][k], NM_ if j.type == "R" else N_)]),
+                ", " if i < len(spec.friction) - 1 else "."]
+    return out
+
+
+def _friction_atom_scalar(spec, joint) -> Sym:
+    """A friction's signed value: M_f12 (a pin's couple), F_f03 (a slider's force along its
+    line)."""
+    return scalar_sym(_friction_name(spec, joint))
+
+
+def _first_iteration(analysis, k: int, parts: dict | None) -> list:
+    """The first iteration at angle index ``k`` for the first friction joint, as rich text:
+    its frictionless reaction, the friction the law gives from it, and the converged
+    reaction and friction; [] where it cannot be shown (no split by source, no friction
+    there: the joint does not move at this angle and has no friction_sense)."""
+    from ...forces.friction_law import relative_rate, senses
+    spec, kin = analysis.spec, analysis.kinematics
+    fr = spec.friction[0]
+    joint = spec.joint(fr.joint)
+    s = float(senses(kin, spec.friction)[0][k, 0])
+    if parts is None or s == 0:
+        return []
+    own = ("friction",)
+    unknowns = [f"joint.{joint.name}.{c}" for c in ("fx", "fy", "moment")]
+    base = {u: sum(float(p[u][k]) for src, p in parts.items() if src not in own and u in p)
+            for u in unknowns}
+    res = analysis.forces[reference_method_of(analysis)]
+    r = res.reactions[joint.name]
+    f0, f = math.hypot(base[unknowns[0]], base[unknowns[1]]), float(r.f[k])
+    mag = _abs(vec_sym(spec.symbol(*joint.links)))
+    value = _friction_atom_scalar(spec, joint)
+    unit = NM_ if joint.type == "R" else N_
+    if joint.type == "R":
+        law = R(r"\mu\,r", "mu r")
+        numbers = Expr().add(1, Num(fr.mu), Op("mul"), Num(fr.radius), Op("mul"), Num(f0))
+        first = fr.mu * fr.radius * f0
+    elif fr.length is None:
+        law = R(r"\mu", "mu")
+        numbers = Expr().add(1, Num(fr.mu), Op("mul"), Num(f0))
+        first = fr.mu * f0
+    else:
+        n = perp(kin.frames.rotate(joint.guide, joint.line.direction)[k])
+        normal = base[unknowns[0]] * n[0] + base[unknowns[1]] * n[1]
+        lo = normal / 2 - base[unknowns[2]] / fr.length
+        hi = normal / 2 + base[unknowns[2]] / fr.length
+        law = None
+        inner = Expr().add(1, _abs(Num(lo))).add(1, _abs(Num(hi)))
+        numbers = Expr().add(1, Num(fr.mu), Paren(inner))
+        first = fr.mu * (abs(lo) + abs(hi))
+    rate = relative_rate(kin, joint)[k]
+    i, j = (spec.number(x) for x in joint.links)
+    if joint.type == "R":
+        rel = Expr()
+        for sign, m in ((1, j), (-1, i)):
+            if m:
+                rel.add(sign, omega(m))
+        rate_eq = Equation([rel, _scalar(rate, Raw(r"\mathrm{rad/s}", '"rad/s"', "rad/s"))])
+    else:
+        rate_eq = Equation([Expr().add(1, Raw(rf"v_{{{j}/{i}}}", f"v_({j} \\/ {i})",
+                                                f"v_{j}/{i}")),
+                            _scalar(rate, Raw(r"\mathrm{m/s}", '"m/s"', "m/s"))])
+    if spec.driver.at_rest:
+        opposing = [f"opposing the motion it is about to have (friction_sense {int(s):+d})"]
+    else:
+        opposing = ["opposing ", rate_eq]
+    opposing.append(": ")
+    lhs = Expr().add(1, _abs(value))
+    if law is not None:
+        middle = Expr().add(1, law, mag)
+    else:
+        middle = Expr().add(1, R(r"\mu\,(|N_1| + |N_2|)", "mu (|N_1| + |N_2|)"))
+    return [f"{joint.written}: without friction ", Equation([Expr().add(1, mag), _scalar(f0, N_)]),
+            ", so the first estimate is ",
+            Equation([lhs, middle, numbers, _scalar(first, unit)]), ", ", *opposing,
+            Equation([Expr().add(1, value), _scalar(-s * first, unit)]),
+            "; converged, ", Equation([Expr().add(1, mag), _scalar(f, N_)]), " and ",
+            Equation([Expr().add(1, value), _scalar(kin.friction[fr.joint][k], unit)]), "."]
+
+
+def _abs(atom) -> Raw:
+    """|atom|: a magnitude."""
+    return Raw(f"|{atom.tex()}|", f"|{atom.typ()}|", f"|{atom.plain()}|")
+
+
+def reference_method_of(analysis) -> str:
+    """The reference method of ``analysis`` (the one its by-source split is of)."""
+    from ...post import reference_method
+    return reference_method(analysis.forces)
+
+
 # ------------------------------------------------------------------------------ the sheet
 
 def _conventions(spec) -> list:
@@ -609,7 +740,74 @@ def _conventions(spec) -> list:
          "solves), then with the numbers of the reference angle: terms that vanish there are "
          "left out, values found in an earlier step are substituted, coefficients are "
          "simplified. Numbers have 6 significant digits; SI units (m, kg, s, N, N·m)."],
-    ] + [_pin_convention(spec, pin) for pin in spec.pins]
+    ] + [_pin_convention(spec, pin) for pin in spec.pins] + _friction_convention(spec)
+
+
+def _friction_convention(spec) -> list:
+    """What the friction symbols mean, the law of each kind of joint with friction, and each
+    one's data (SI); none without friction."""
+    if not spec.friction:
+        return []
+    joints = [(fr, spec.joint(fr.joint)) for fr in spec.friction]
+    pins = any(j.type == "R" for _, j in joints)
+    sliders = any(j.type == "T" for _, j in joints)
+    out: list = []
+    if pins:
+        out += [R("M_{fij}", "M_(f i j)"), " is the friction couple of link i on link j in a "
+                "pin joint" + (", " if sliders else " (")]
+    if sliders:
+        out += [R(r"\mathbf{F}_{fij}", "bold(F)_(f i j)"), " the friction force of link i on "
+                "link j along a slider's line" if pins else " is the friction force of link i "
+                "on link j along a slider's line", " ("]
+    if pins:
+        out.append(R(r"M_{fji} = -M_{fij}", "M_(f j i) = -M_(f i j)"))
+    if sliders:
+        out += [", " if pins else "", R(r"\mathbf{F}_{fji} = -\mathbf{F}_{fij}",
+                                        "bold(F)_(f j i) = -bold(F)_(f i j)")]
+    out.append("). Each opposes the motion of link j relative to link i: ")
+    motion = []
+    if pins:
+        motion += ["the relative rotation ", R(r"\omega_j - \omega_i", "omega_j - omega_i")]
+    if sliders:
+        motion += [" or " if pins else "", "the sliding velocity ",
+                   R(r"\mathbf{v}_{j/i}", "bold(v)_(j \\/ i)"), " along the line"]
+    out += motion
+    if spec.driver.at_rest:
+        out.append(" (the driver at rest: the motion each joint is about to have, its "
+                   "friction_sense)")
+    out.append(". Its magnitude is ")
+    laws = []
+    if pins:
+        laws.append([R(r"\mu\,r\,|\mathbf{F}_{ij}|", "mu r |bold(F)_(i j)|"),
+                     " in a pin of journal radius r"])
+    if any(j.type == "T" and fr.length is None for fr, j in joints):
+        laws.append([R(r"\mu\,|N|", "mu |N|"), " in a slider (N its normal force)"])
+    if any(fr.length is not None for fr, _ in joints):
+        laws.append([R(r"\mu\,(|N_1| + |N_2|)", "mu (|N_1| + |N_2|)"), " in a slider of length "
+                     "L, whose ends carry ", R(r"N_{1,2} = N/2 \mp M/L",
+                                               "N_(1,2) = N \\/ 2 minus.plus M \\/ L"),
+                     " (N its normal force, M its couple)"])
+    for i, law in enumerate(laws):
+        out += ([", " if i < len(laws) - 1 else " and "] if i else []) + law
+    out.append(". The friction in the joints: ")
+    for i, (fr, j) in enumerate(joints):
+        size = (f"r = {fmt(fr.radius)} m" if j.type == "R" else
+                f"L = {fmt(fr.length)} m" if fr.length is not None else "")
+        out += [f"{j.written} (", _friction_atom(spec, j), f"): μ = {fmt(fr.mu)}"
+                + (f", {size}" if size else "") + (";  " if i < len(joints) - 1 else ".")]
+    return [out]
+
+
+def _friction_name(spec, joint) -> str:
+    """Mf12, the friction couple of link 1 on link 2 in an R joint; Ff03, the friction force
+    of link 0 on link 3 along a T joint's line."""
+    return spec.symbol(*joint.links, "Mf" if joint.type == "R" else "Ff")
+
+
+def _friction_atom(spec, joint):
+    """M_f12 (a pin's friction couple) or **F**_f03 (a slider's friction force)."""
+    name = _friction_name(spec, joint)
+    return scalar_sym(name) if joint.type == "R" else vec_sym(name)
 
 
 def _pin_convention(spec, pin) -> list:
@@ -670,8 +868,11 @@ def _build_sheet(analysis, options: SheetOptions | None = None) -> SheetModel:
         a, b = j.links
         joints.append([j.name, j.type, f"{spec.number(a)} ({a}) on {spec.number(b)} ({b})",
                        vec_sym(names.vec[j.name])])
+    # the reference method's unknowns by source: the frictionless reactions the friction
+    # iteration starts from (every source but friction)
+    parts = analysis.by_source() if spec.friction and analysis.kinematics.friction else None
     angle_models = [_angle_model(analysis, float(a), names, exact, methods,
-                                 None if si else display) for a in angles]
+                                 None if si else display, parts) for a in angles]
     return SheetModel(spec.name, str(spec.file), spec.description.strip(), options.exact,
                       links, joints, _driver_text(spec), _conventions(spec),
                       T_NOTE if any(j.type == "T" for j in spec.joints) else [],
@@ -784,6 +985,10 @@ def _build_problem(analysis, options: SheetOptions | None = None,
               for j in spec.joints if spec.pin(j.point) is None]
     joints += [[pin.name, "pin (R)", " – ".join(f"{spec.number(x)} ({x})" for x in pin.links)]
                for pin in spec.pins]       # the pin as written, not its two-link joints
+    for fr in spec.friction:               # its friction, with the joint (or the pin)
+        joint = spec.joint(fr.joint)
+        row = next(r for r in joints if r[0] == joint.written)
+        row[2] += "; " + _friction_datum(spec, fr, joint)
     ground = [f"{n} {_vec(xy)}" for n, xy in spec.ground.items()]
     loads = [_load_text(spec, ld) for ld in spec.loads]
     figs = []
@@ -803,12 +1008,34 @@ def _build_problem(analysis, options: SheetOptions | None = None,
              "the inertia force and inertia couple of every link;",
              f"the reaction of every joint ({', '.join(names.vec[j.name] for j in spec.joints)}"
              f") and {effort}" + (f", by {_join_and(titles)}" if titles else "") + ";"]
+    if spec.friction:
+        named = [f"{spec.joint(fr.joint).written} ({_friction_name(spec, spec.joint(fr.joint))})"
+                 for fr in spec.friction]
+        tasks.append(f"the friction in joint{'s' if len(named) > 1 else ''} "
+                     f"{_join_and(named)}, found together with the reactions it changes;")
     if "power" in methods:
         tasks.append(f"check {effort} with " + ("virtual work." if spec.driver.at_rest
                                                  else "a power balance."))
     return ProblemModel(spec.name, str(spec.file), spec.description.strip(), links, joints,
                         ground, _driver_text(spec), _vec(spec.gravity) + " m/s²", loads, figs,
                         tasks)
+
+
+def _friction_datum(spec, fr, joint) -> str:
+    """A joint's friction as the problem states it (SI): ``Coulomb friction mu = 0.05,
+    journal radius 0.04 m``, of a pin's joint with one of its links naming the link."""
+    size = (f", journal radius {fmt(fr.radius)} m" if joint.type == "R" else
+            f", slider length {fmt(fr.length)} m" if fr.length is not None else "")
+    pin = spec.pin(joint.point) if joint.type == "R" else None
+    on = f" (in link {joint.links[1]}'s bearing)" if pin is not None else ""
+    sense = ""
+    if spec.driver.at_rest and fr.sense:
+        a, b = joint.links
+        sense = (f", {b} about to turn {'counterclockwise' if fr.sense > 0 else 'clockwise'} "
+                 f"relative to {a}" if joint.type == "R" else
+                 f", {b} about to slide {'along' if fr.sense > 0 else 'against'} its line's "
+                 "direction")
+    return f"Coulomb friction{on} μ = {fmt(fr.mu)}{size}{sense}"
 
 
 def _join_and(items: list[str]) -> str:

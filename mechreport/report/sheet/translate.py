@@ -200,6 +200,8 @@ class Translator:
         (virtual work) times its velocity coefficient, the rate per unit rate of the driven
         coordinate (the driver's is 1)."""
         a, spec = t.action, self.spec
+        if a.category == "friction":
+            return self._friction_power(a)
         if spec.driver.at_rest:
             if a.category == "driver":
                 return [scalar_sym(a.symbol)]
@@ -222,6 +224,26 @@ class Translator:
         if a.kind == "force":
             return [vec_sym(a.symbol), Op("dot"), point_vec("v", a.at_name or "")]
         return [scalar_sym(a.symbol), omega(self.spec.number(a.link))]
+
+    def _friction_power(self, a) -> list:
+        """A joint's friction in the power balance: its value on the joint's second link j
+        times j's rate relative to the first link i, M_fij (omega_j - omega_i) for a couple
+        (the frame's omega_0 = 0 left out), F_fij . v_j/i for a force along a slider's line;
+        at zero speed the velocity coefficients' (omega', v')."""
+        i, j = (self.spec.number(x) for x in friction_links(self.spec, a.symbol))
+        prime = "'" if self.spec.driver.at_rest else ""
+        if a.kind == "force":
+            return [vec_sym(a.symbol), Op("dot"),
+                    Raw(rf"\mathbf{{v}}{prime}_{{{j}/{i}}}", f"bold(v){prime}_({j} \\/ {i})",
+                        f"v{prime}_{j}/{i}", f"v{j}_{i}")]
+        rates = Expr()
+        for sign, n in ((1, j), (-1, i)):
+            if n != 0:
+                rates.add(sign, Raw(rf"\omega{prime}_{{{n}}}", f"omega{prime}_({n})",
+                                    f"omega{prime}_{n}", f"omega{n}"))
+        if len(rates.terms) == 1 and rates.terms[0][0] > 0:
+            return [scalar_sym(a.symbol), *rates.terms[0][1]]
+        return [scalar_sym(a.symbol), Paren(rates)]
 
     @staticmethod
     def _moment_groups(terms: list[Term]) -> list:
@@ -309,6 +331,17 @@ class Translator:
         if p.comp in ("x", "y"):
             return comp_sym(t.action.symbol, p.comp)
         return scalar_sym(t.action.symbol)
+
+
+def friction_links(spec, symbol: str) -> tuple[str, str]:
+    """The links (i, j) of the joint whose friction is named ``symbol`` (Mf12, Ff03: of link
+    i on link j, the joint's first link on its second)."""
+    for fr in spec.friction:
+        a, b = spec.joint(fr.joint).links
+        for i, j in ((a, b), (b, a)):
+            if spec.symbol(i, j, symbol[:2]) == symbol:
+                return i, j
+    raise KeyError(f"no friction named {symbol}")
 
 
 def _is_one(x: float) -> bool:
