@@ -59,6 +59,8 @@ def make(model, key: str):
         return CYCLE[key](model.design.data, model.display)
     if key in SWEEP:
         return SWEEP[key](model.sweep, model.display)
+    if key == "friction":
+        return plots.friction_figure(model.friction.plot, model.display)
     from mechreport.report.drawing import draw_scene
     scene, title = drawings(model)[key]
     return draw_scene(scene, model.display, title)
@@ -70,6 +72,8 @@ def figure_keys(model) -> list[str]:
     keys = [k for k in CYCLE if model.design.data is not None and k in figs]
     if len(sw.angles):
         keys += [k for k in SWEEP if k in figs and (k != "reactions" or sw.joints)]
+    if "friction" in figs:
+        keys.append("friction")
     return keys + list(drawings(model))
 
 
