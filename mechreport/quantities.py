@@ -17,7 +17,12 @@ CYCLE_UNITS = {
     "balance.counterweight.mr": "kg·m", "balance.counterweight.angle": "deg",
     "balance.inertia_shaking.force_rms": "N",
     "cycle.friction.energy": "J", "cycle.efficiency": "",
+    # the steady cycle of machine dynamics (``dynamics:``)
+    "dynamics.speed_fluctuation": "", "dynamics.mean_rpm": "rpm", "dynamics.startup_time": "s",
+    "dynamics.motor_rms_torque": "N·m",
 }
+#: the cycle quantities machine dynamics gives (``dynamics:`` with ``until: steady``)
+DYNAMICS_QUANTITIES = tuple(q for q in CYCLE_UNITS if q.startswith("dynamics."))
 JOINT_CYCLE_UNITS = {"f_max": "N", "f_mean": "N", "f_equivalent": "N", "life_h": "h"}
 JOINT_UNITS = {"fx": "N", "fy": "N", "f": "N", "moment": "N·m", "px": "m", "py": "m",
                "angle": "deg"}      # angle: an R joint's relative angle (kinematics)

@@ -32,9 +32,9 @@ def power_equation(ctx: ForceContext) -> Equation:
     terms = []
     at_rest = ctx.spec.driver.at_rest
     rates = ctx.once(("unit rate",), at_unit_rate, ctx.kin) if at_rest else ctx.kin
-    # the driver's power: its effort times the driven coordinate's rate (constant: rad/s for
-    # an R driver, relative to its first link; m/s for a T driver; 1 for virtual work)
-    rate = np.full(n, 1.0 if at_rest else ctx.spec.driver.omega)
+    # the driver's power: its effort times the driven coordinate's rate (rad/s for an R
+    # driver, relative to its first link; m/s for a T driver; 1 for virtual work)
+    rate = np.ones(n) if at_rest else ctx.kin.driver_rate.copy()
     driver = next(a for link in ctx.spec.driver.links for a in ctx.driver_actions(link))
     driver = Action(driver.symbol, driver.kind, "driver", ctx.spec.driver.link,
                     unknowns=driver.unknowns)

@@ -113,6 +113,31 @@ def at_unit_rate(kin: Kinematics) -> Kinematics:
                    a=np.zeros_like(kin.a), alpha=np.zeros_like(kin.alpha))
 
 
+def with_rates(kin: Kinematics, omega: np.ndarray, alpha: np.ndarray) -> Kinematics:
+    """``kin`` with the driver at its own rate at each angle: ``omega`` (n,) [rad/s] and
+    ``alpha`` (n,) [rad/s^2] (machine dynamics: the crank's true motion). A one-degree-of-
+    freedom mechanism's velocities are its velocity coefficients k times omega, and its
+    accelerations k alpha + k' omega^2 (k' the accelerations at unit rate and no angular
+    acceleration): both from one solve at unit rate. Positions and flags as ``kin``'s."""
+    mech = kin.mechanism
+    spec = mech.spec
+    unit = mech.with_spec(replace(spec, driver=replace(spec.driver, omega=1.0, alpha=0.0)))
+    order = [GROUND] + [link.name for link in spec.links]
+    r = {name: kin.r[:, i] for i, name in enumerate(order)}
+    th = {name: kin.theta[:, i] for i, name in enumerate(order)}
+    v, w, a, al, _ = _rates_chunked(unit, kin.angles * spec.driver.unit, r, th, {})
+    omega = np.asarray(omega, float)
+    alpha = np.asarray(alpha, float)
+    k = np.stack([v[name] for name in order], axis=1)           # (n, L+1, 2)
+    kw = np.stack([w[name] for name in order], axis=1)          # (n, L+1)
+    ka = np.stack([a[name] for name in order], axis=1)
+    kal = np.stack([al[name] for name in order], axis=1)
+    return replace(kin, v=k * omega[:, None, None], omega=kw * omega[:, None],
+                   a=k * alpha[:, None, None] + ka * (omega ** 2)[:, None, None],
+                   alpha=kw * alpha[:, None] + kal * (omega ** 2)[:, None],
+                   rates=omega.copy())
+
+
 def kinematic_error(conds: list[np.ndarray], n: int) -> np.ndarray:
     """Estimated relative error (n,) of the accelerations, from each dyad's equilibrated
     velocity-system condition number c_d (n,): eps c_max^2 prod(c_d).
@@ -356,5 +381,5 @@ def _newton_system(spec, group, eqs: RateEquations, size: float):
     return Equilibrated(A), rs[:, None], cs
 
 
-__all__ = ["solve_kinematics", "at_unit_rate", "Kinematics", "PointState", "Flag", "BranchChoice", "Motion",
+__all__ = ["solve_kinematics", "at_unit_rate", "with_rates", "Kinematics", "PointState", "Flag", "BranchChoice", "Motion",
            "SINGULAR_COND", "TRUST_RTOL", "EPS"]

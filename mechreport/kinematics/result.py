@@ -154,6 +154,9 @@ class Kinematics:
     friction: dict[str, np.ndarray] | None = None
     # angles [deg] where friction alone reverses the sign of the driver's effort
     reversed_by_friction: tuple[float, ...] = ()
+    # the driven coordinate's rate (n,) [rad/s or m/s] where it varies from angle to angle
+    # (machine dynamics: the crank's true speed); None: the driver's constant omega
+    rates: np.ndarray | None = None
     _memo: dict = field(init=False, default_factory=dict, repr=False, compare=False)
     # frames, once made (not a cached_property: that would materialise the instance's dict,
     # and every read of the kinematics' fields would be slower)
@@ -264,7 +267,16 @@ class Kinematics:
                        {j: m[rows] for j, m in self.friction.items()},
                        reversed_by_friction=tuple(
                            a for a in self.reversed_by_friction
-                           if np.any(np.abs(self.angles[rows] - a) < 1e-9)))
+                           if np.any(np.abs(self.angles[rows] - a) < 1e-9)),
+                       rates=None if self.rates is None else self.rates[rows])
+
+    @property
+    def driver_rate(self) -> np.ndarray:
+        """The driven coordinate's rate at each angle, (n,) [rad/s, or m/s for a T driver]:
+        the driver's constant ``omega``, or the true speed of a machine-dynamics cycle."""
+        if self.rates is not None:
+            return self.rates
+        return np.full(self.n, float(self.mechanism.spec.driver.omega))
 
     def angle_deg(self, link: str) -> np.ndarray:
         """Orientation of ``link``'s x-axis [deg] in (-180, 180], (n,)."""

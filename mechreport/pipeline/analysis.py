@@ -77,6 +77,9 @@ class Analysis(Checked):
     review: Review | None = None      # cycle quantities (whole-turn sweeps of a full-turn crank)
     review_problem: str = ""          # why there is no review
     verdicts: tuple[Verdict, ...] = ()
+    # machine dynamics (a spec with ``dynamics:``): the motion the motor gives, and the
+    # steady turn's own analysis (a :class:`mechreport.pipeline.dynamics.DynamicsResult`)
+    dynamics: object | None = None
 
     @property
     def angles(self) -> np.ndarray:
@@ -210,17 +213,36 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL,
         spec = load_spec(spec)
     with np.errstate(all="ignore"):    # what is not finite is flagged or refused below, never a warning
         mech = build_mechanism(spec)
-        kin, ctx, forces = solve_trusted(_require_angles(solve_kinematics(mech)), methods,
-                                         plans=plans)
+        dynamics = None
+        if spec.dynamics is not None:
+            from .dynamics import run_dynamics
+            dynamics = run_dynamics(mech, methods, tol, plans)
+        return analysis_of(mech, solve_kinematics(mech), methods, tol, plans, dynamics)
+
+
+def analysis_of(mech: Mechanism, kin: Kinematics, methods=None, tol: float = DEFAULT_TOL,
+                plans=None, dynamics=None, extra: dict[str, float] | None = None
+                ) -> Analysis:
+    """The :class:`Analysis` of ``mech`` over the kinematics ``kin`` (a sweep's, or a machine-
+    dynamics turn's with the crank's true speed at each angle): every method, the checks, the
+    design review. ``dynamics``: the spec's machine-dynamics result, whose ``dynamics.*``
+    quantities join the cycle quantities (expectations and verdicts read them), as
+    ``extra`` quantities do."""
+    spec = mech.spec
+    with np.errstate(all="ignore"):
+        kin, ctx, forces = solve_trusted(_require_angles(kin), methods, plans=plans)
         kin = _require_angles(kin)
         rev, why = design_review(kin, forces, ctx.loads)
         values = rev.values if rev is not None else None
+        extra = {**(extra or {}), **(dynamics.values if dynamics is not None else {})}
+        if extra:
+            values = {**(values or {}), **extra}
         res = residuals(ctx, forces)
     ctx.cache.clear()   # the actions and equations the methods shared: rebuilt if asked for
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces), res,
                     check_expectations(kin, forces, kin.flags, values, why,
                                        _instant(spec, kin)), tol, rev, why,
-                    tuple(verdicts(spec.design, values, why)))
+                    tuple(verdicts(spec.design, values, why)), dynamics)
 
 
 def _instant(spec: Spec, kin: Kinematics) -> dict[str, np.ndarray] | None:

@@ -17,7 +17,7 @@ def friction_losses(kin: Kinematics) -> dict[str, np.ndarray]:
         return {}
     spec = kin.mechanism.spec
     rates = at_unit_rate(kin) if spec.driver.at_rest else kin
-    speed = 1.0 if spec.driver.at_rest else abs(spec.driver.omega)
+    speed = 1.0 if spec.driver.at_rest else np.abs(kin.driver_rate)
     return {name: np.abs(m * relative_rate(rates, spec.joint(name))) / speed
             for name, m in kin.friction.items()}
 

@@ -57,7 +57,8 @@ class Traces:
     (n, 3) (fx, fy [N], m [N m]), the inertial force ``inertial`` (n, 2) [N] (sum of m a_C),
     each dyad's ``transmission`` angle (n,) [deg], each joint's reaction magnitude
     ``reactions`` (n,) [N] and each friction joint's ``friction`` loss, the energy it takes per
-    unit of the driven coordinate (n,) [J/rad]. A long sweep's traces are computed chunk by
+    unit of the driven coordinate (n,) [J/rad]; ``rates`` (n,) the driver's rate where it
+    varies (a machine-dynamics cycle), else None. A long sweep's traces are computed chunk by
     chunk and written one after the other into traces allocated once."""
 
     method: str
@@ -68,11 +69,12 @@ class Traces:
     transmission: dict[str, np.ndarray]
     reactions: dict[str, np.ndarray]
     friction: dict[str, np.ndarray] = field(default_factory=dict)
+    rates: np.ndarray | None = None
 
     def arrays(self) -> list[np.ndarray]:
         return [self.angles, self.torque, self.frame, self.inertial,
                 *self.transmission.values(), *self.reactions.values(),
-                *self.friction.values()]
+                *self.friction.values(), *([] if self.rates is None else [self.rates])]
 
     def allocate(self, n: int) -> "Traces":
         """Traces of ``n`` angles shaped like these, unset (for :meth:`write`)."""
@@ -81,7 +83,8 @@ class Traces:
         return Traces(self.method, e(self.angles), e(self.torque), e(self.frame),
                       e(self.inertial), {k: e(v) for k, v in self.transmission.items()},
                       {k: e(v) for k, v in self.reactions.items()},
-                      {k: e(v) for k, v in self.friction.items()})
+                      {k: e(v) for k, v in self.friction.items()},
+                      None if self.rates is None else e(self.rates))
 
     def write(self, part: "Traces", at: int) -> None:
         """Copy ``part`` (the next chunk's traces) into rows ``at`` on."""
@@ -93,7 +96,8 @@ class Traces:
         return Traces(self.method, self.angles[:n], self.torque[:n], self.frame[:n],
                       self.inertial[:n], {k: v[:n] for k, v in self.transmission.items()},
                       {k: v[:n] for k, v in self.reactions.items()},
-                      {k: v[:n] for k, v in self.friction.items()})
+                      {k: v[:n] for k, v in self.friction.items()},
+                      None if self.rates is None else self.rates[:n])
 
 
 def traces_of(kin, forces, loads) -> Traces:
@@ -104,7 +108,8 @@ def traces_of(kin, forces, loads) -> Traces:
     return Traces(method, kin.angles, np.asarray(res.driver_torque, float),
                   np.stack([frame.fx, frame.fy, frame.m], axis=1), inertia_force(kin),
                   transmission_angles(kin),
-                  {name: r.f for name, r in res.reactions.items()}, friction_losses(kin))
+                  {name: r.f for name, r in res.reactions.items()}, friction_losses(kin),
+                  kin.rates)
 
 
 def review_of(kin, forces, loads, speed_fluctuation: float | None = None,
@@ -131,7 +136,11 @@ def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = ""
     values = {
         "cycle.torque.max": float(np.max(torque)), "cycle.torque.min": float(np.min(torque)),
         "cycle.torque.mean": mean, "cycle.torque.rms": cyc.rms(torque),
-        "cycle.power.max": float(np.max(torque * omega)), "cycle.power.mean": mean * omega,
+        # the mean power is the work per cycle over its period: mean torque x mean speed
+        # (a machine-dynamics cycle's spec carries the time-mean speed 2 pi / period)
+        "cycle.power.max": float(np.max(torque * (omega if tr.rates is None
+                                                  else sample(tr.rates)))),
+        "cycle.power.mean": mean * omega,
         "cycle.energy_fluctuation": float(np.max(energy)) - float(np.min(energy)),
     }
     if speed_fluctuation:

@@ -135,7 +135,7 @@ def sweep_summary(kin, forces: dict, loads, flags) -> SweepSummary:
     frame = frame_load(kin, res, loads)
     check = forces.get("power")
     return SweepSummary(
-        ref, near, width, torque_stats(res, np.full(kin.n, spec.driver.omega)), frame,
+        ref, near, width, torque_stats(res, kin.driver_rate), frame,
         peak(angles, frame.f), peak(angles, frame.m), joints, largest, traces,
         None if check is None or check is res else power_check(res.driver_torque,
                                                                check.driver_torque, angles))

@@ -31,8 +31,8 @@ import mechreport.spec.schema as schema   # the models (not `from . import`: spe
 from .schema import (MAX_SEED, MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, REPORT_TEXT_MAX,
                      choices_of, keys_of, required_of)
 from .types import ReportSettings
-from .types import (GROUND, BearingSpec, Design, Driver, Expectation, Friction, Joint, Line, Link,
-                    Load, Pin, Shape, Spec, Study, Sweep, Vary, Vec)
+from .types import (GROUND, BearingSpec, Design, Driver, Dynamics, Expectation, Friction, Joint,
+                    Line, Link, Load, MotorCurve, Pin, Shape, Spec, Study, Sweep, Vary, Vec)
 from .yaml_source import (MAX_DEPTH, MAX_FILE_BYTES, HugeInteger, Source, check_text, decode,
                           format_path, too_big)
 
@@ -69,6 +69,10 @@ LOAD_REQUIRED = {kind: tuple(k for k in required_of(model) if k != "type")
 OPPOSE = {kind: choices_of(schema.LOAD_MODELS[kind], "oppose") for kind in ("force", "moment")}
 REACTS_ON = choices_of(schema.ForceLoad, "reacts_on")
 FRICTION_KEYS = {"R": keys_of(schema.RFriction), "T": keys_of(schema.TFriction)}
+DYNAMICS_KEYS, DYNAMICS_REQUIRED = keys_of(schema.Dynamics), required_of(schema.Dynamics)
+DYN_MOTOR_KEYS = keys_of(schema.DynamicsMotor)
+LINEAR_MOTOR_KEYS = keys_of(schema.LinearMotor)
+START_KEYS = keys_of(schema.DynamicsStart)
 FRICTION_REQUIRED = {"R": required_of(schema.RFriction), "T": required_of(schema.TFriction)}
 EXPECT_KEYS, EXPECT_REQUIRED = keys_of(schema.Expectation), required_of(schema.Expectation)
 DESIGN_KEYS = keys_of(schema.Design)
@@ -568,6 +572,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                                                           "angle: it needs an R driver")
     friction = (_friction(top["friction"], ck, joints, pins, length_scale)
                 if "friction" in top else ())
+    dynamics = (_dynamics(top["dynamics"], ck, driver, sweep)
+                if "dynamics" in top else None)
     expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src, driver=driver,
                      pins=pins)
     design = _design(top.get("design"), ck, joints, pins) if "design" in top else Design()
@@ -596,7 +602,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                 gravity=gravity, ground=ground, links=tuple(links), joints=tuple(joints),
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
                 expect=tuple(expect), sheet=sheet, units=units, design=design,
-                report=report, study=study, pins=tuple(pins), friction=friction)
+                report=report, study=study, pins=tuple(pins), friction=friction,
+                dynamics=dynamics)
     _cycle_requests(spec, ck)
     if study is not None:
         _study_requests(spec, ck)
@@ -653,6 +660,96 @@ def _friction(value: Any, ck: _Checker, joints: list[Joint] | None, pins: list[P
                                        None if sense is None else int(sense))
     order = [j.name for j in joints or ()]
     return tuple(sorted(out.values(), key=lambda f: order.index(f.joint)))
+
+
+def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep
+              ) -> Dynamics | None:
+    """``dynamics:`` (docs/spec.md, "Machine dynamics"): the motor, flywheel, initial state,
+    end and output step; the driver must be a crank (an R joint with ground)."""
+    path = ("dynamics",)
+    body = ck.mapping(value, path, DYNAMICS_KEYS, required=DYNAMICS_REQUIRED)
+    if body is None or "motor" not in body:
+        return None
+    ok = True
+    if driver is not None and not driver.crank:
+        ck.error(path, "machine dynamics needs a crank: the driver an R joint with ground (the "
+                       f"motor turns it); '{driver.joint}' is "
+                       + ("a slider (T)" if driver.kind == "T" else "between two moving links"))
+        ok = False
+    motor = _dynamics_motor(body["motor"], path + ("motor",), ck)
+    flywheel = (ck.number(body["flywheel"], path + ("flywheel",)) if "flywheel" in body
+                else 0.0)
+    if flywheel is not None and flywheel < 0:
+        ck.error(path + ("flywheel",), f"must be 0 or more (kg·m²), got {_show(body['flywheel'])}")
+        flywheel = None
+    start_angle, start_rpm = sweep.start, 0.0
+    if "start" in body:
+        start = ck.mapping(body["start"], path + ("start",), START_KEYS)
+        if start is None:
+            ok = False
+        else:
+            if "angle" in start:
+                start_angle = ck.number(start["angle"], path + ("start", "angle"))
+            if "rpm" in start:
+                start_rpm = ck.number(start["rpm"], path + ("start", "rpm"))
+                if start_rpm is not None and start_rpm < 0:
+                    ck.error(path + ("start", "rpm"), "must be 0 or more: the crank starts at "
+                             "rest or turning the way the motor drives it")
+                    start_rpm = None
+    until = None
+    if "until" in body and body["until"] != "steady":
+        if isinstance(body["until"], str):
+            ck.error(path + ("until",), f"must be steady or a time in s, got {_show(body['until'])}")
+            ok = False
+        else:
+            until = ck.number(body["until"], path + ("until",), positive=True)
+            ok = ok and until is not None
+    step = (ck.number(body["output_step"], path + ("output_step",), positive=True)
+            if "output_step" in body else None)
+    if None in (motor, flywheel, start_angle, start_rpm) or not ok or \
+            ("output_step" in body and step is None):
+        return None
+    return Dynamics(motor, flywheel, start_angle, start_rpm, until, step)
+
+
+def _dynamics_motor(value: Any, path: tuple, ck: _Checker) -> MotorCurve | None:
+    """The motor of ``dynamics:``: exactly one of ``torque``, ``curve``, ``linear``."""
+    body = ck.mapping(value, path, DYN_MOTOR_KEYS)
+    if body is None:
+        return None
+    given = [k for k in DYN_MOTOR_KEYS if k in body]
+    if len(given) != 1:
+        ck.error(path, "give exactly one of torque (N·m), curve ([[rpm, N·m], ...]) or linear "
+                       "({stall_torque, no_load_rpm})" + (f", not {' and '.join(given)}"
+                                                          if given else ""))
+        return None
+    kind = given[0]
+    if kind == "torque":
+        torque = ck.number(body["torque"], path + ("torque",))
+        return None if torque is None else MotorCurve(constant=torque)
+    if kind == "linear":
+        lin = ck.mapping(body["linear"], path + ("linear",), LINEAR_MOTOR_KEYS,
+                         required=LINEAR_MOTOR_KEYS)
+        if lin is None or any(k not in lin for k in LINEAR_MOTOR_KEYS):
+            return None
+        stall = ck.number(lin["stall_torque"], path + ("linear", "stall_torque"), positive=True)
+        rpm = ck.number(lin["no_load_rpm"], path + ("linear", "no_load_rpm"), positive=True)
+        return None if stall is None or rpm is None else MotorCurve(stall_torque=stall,
+                                                                    no_load_rpm=rpm)
+    curve = body["curve"]
+    where = path + ("curve",)
+    if not isinstance(curve, list) or len(curve) < 2:
+        ck.error(where, f"must be a list of at least two [rpm, N·m] points, got {_show(curve)}")
+        return None
+    points = [ck.vec2(p, where + (i,), "[rpm, N·m]") for i, p in enumerate(curve)]
+    if any(p is None for p in points):
+        return None
+    for i in range(1, len(points)):
+        if not points[i][0] > points[i - 1][0]:
+            ck.error(where + (i, 0), f"the speeds must increase: {points[i][0]:g} rpm follows "
+                                     f"{points[i - 1][0]:g} rpm")
+            return None
+    return MotorCurve(curve=tuple((float(a), float(b)) for a, b in points))
 
 
 def _design(value: Any, ck: _Checker, joints: list[Joint] | None, pins=()) -> Design:
@@ -745,6 +842,21 @@ def _cycle_requests(spec: Spec, ck: _Checker) -> None:
                  f"the flywheel inertia it sizes is undefined: {_at_rest(spec)}")
     if spec.driver.at_rest and spec.design.bearings:
         ck.error(("design", "bearings"), f"a bearing's rating life is undefined: {_at_rest(spec)}")
+    if "speed_fluctuation" in spec.design.limits:
+        need = _dynamics_need(spec, "dynamics.speed_fluctuation")
+        if need:
+            ck.error(("design", "limits", "speed_fluctuation"), need)
+
+
+def _dynamics_need(spec: Spec, quantity: str) -> str | None:
+    """What a ``dynamics.*`` quantity needs that ``spec`` does not give (None when nothing)."""
+    if spec.dynamics is None:
+        return (f"'{quantity}' needs a 'dynamics:' section (a motor, and the steady state it "
+                "reaches)")
+    if spec.dynamics.until is not None:
+        return (f"'{quantity}' is a quantity of the steady cycle: with dynamics.until a time "
+                "the simulation gives the transient only (write until: steady)")
+    return None
 
 
 def _at_rest(spec: Spec) -> str:
@@ -761,6 +873,8 @@ def _cycle_need(spec: Spec, quantity: str) -> str | None:
     life = kind == "joint" and attr == "life_h"
     if spec.driver.at_rest and (quantity == "cycle.flywheel_inertia" or life):
         return f"'{quantity}' is undefined: {_at_rest(spec)}"
+    if quantity.startswith("dynamics."):
+        return _dynamics_need(spec, quantity)
     if quantity in ("cycle.friction.energy", "cycle.efficiency") and not spec.friction:
         return f"'{quantity}' needs friction in a joint (a 'friction:' entry with mu > 0)"
     if quantity == "cycle.flywheel_inertia" and not spec.design.speed_fluctuation:

@@ -496,6 +496,49 @@ class Limits(_Model):
     shaking_force: Positive = Field(None, description="N, the largest allowed.")
     efficiency: Annotated[Positive, Field(le=1)] = Field(
         None, description="The smallest cycle.efficiency allowed (at most 1; needs friction).")
+    speed_fluctuation: Positive = Field(
+        None, description="The largest dynamics.speed_fluctuation allowed (needs dynamics).")
+
+
+class LinearMotor(_Model):
+    """A motor whose torque falls linearly from its stall torque at rest to 0 at its
+    no-load speed."""
+
+    stall_torque: Positive = Field(description="N·m, at rest.")
+    no_load_rpm: Positive = Field(description="rpm, where the torque is 0.")
+
+
+CurvePoint = Annotated[tuple[Number, Number], Wording("a pair [rpm, torque]")]
+
+
+class DynamicsMotor(_Model):
+    """The motor on the crank shaft: exactly one of torque, curve, linear."""
+
+    torque: Number = Field(None, description="A constant torque, N·m.")
+    curve: Annotated[list[CurvePoint], Wording("a list of [rpm, torque] pairs")] = Field(
+        None, min_length=2, description="[[rpm, N·m], ...], speeds increasing; linear between "
+                                        "the points and along the end segments beyond them.")
+    linear: LinearMotor = Field(None, description="{stall_torque, no_load_rpm}.")
+
+
+class DynamicsStart(_Model):
+    """The initial state of the crank."""
+
+    angle: Number = Field(None, description="Crank angle, degrees (default sweep.start).")
+    rpm: NonNegative = Field(None, description="Crank speed, rpm (default 0: from rest).")
+
+
+class Dynamics(_Model):
+    """Machine dynamics: the motion a motor and a flywheel give (format 1.1)."""
+
+    motor: DynamicsMotor = Field(description="One of {torque}, {curve}, {linear}.")
+    flywheel: NonNegative = Field(None, description="Extra inertia on the crank shaft, kg·m² "
+                                                    "(default 0).")
+    start: DynamicsStart = Field(None, description="{angle, rpm}, default sweep.start at rest.")
+    until: Union[Literal["steady"], Positive] = Field(
+        None, description="steady (default: until two cycles agree), or a time in s.")
+    output_step: Positive = Field(None, description="s, the sampling of the time histories "
+                                                    "(default 200 per steady cycle).")
 
 
 class Design(_Model):
@@ -605,6 +648,9 @@ class SpecFile(_Model):
     friction: dict[str, Friction] = Field(
         None, min_length=1, description="Coulomb friction by joint name: {mu, radius} (R), "
                                         "{mu, length} (T) (format 1.1).")
+    dynamics: Dynamics = Field(None, description="The motion a motor and a flywheel give: "
+                                                 "{motor, flywheel, start, until, output_step} "
+                                                 "(format 1.1).")
     expect: Optional[Annotated[list[Expectation], Wording("a list of {angle, quantity, value, "
                                                           "tol}")]] = Field(
         None, description="Values the results must reproduce.")

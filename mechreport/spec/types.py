@@ -288,6 +288,47 @@ class Design:
 
 
 @dataclass(frozen=True)
+class MotorCurve:
+    """The motor of ``dynamics:``: its torque [N m] against its speed, one of a ``constant``
+    torque, a ``curve`` of (speed [rpm], torque [N m]) points (speeds increasing; linear
+    between them and along the end segments beyond them), or a ``linear`` characteristic
+    from ``stall_torque`` [N m] at rest to 0 at ``no_load_rpm`` (and on, braking beyond)."""
+
+    constant: float | None = None
+    curve: tuple[tuple[float, float], ...] = ()
+    stall_torque: float | None = None
+    no_load_rpm: float | None = None
+
+    @property
+    def kind(self) -> str:
+        return ("torque" if self.constant is not None else "curve" if self.curve
+                else "linear")
+
+    def points(self) -> tuple[tuple[float, float], ...]:
+        """The characteristic as (rpm, N m) points: two for a constant or linear motor."""
+        if self.constant is not None:
+            return ((0.0, self.constant), (1.0, self.constant))
+        if self.curve:
+            return self.curve
+        return ((0.0, self.stall_torque), (self.no_load_rpm, 0.0))
+
+
+@dataclass(frozen=True)
+class Dynamics:
+    """``dynamics:`` (format 1.1): the ``motor``, the ``flywheel``'s extra inertia on the crank
+    shaft [kg m^2], the initial state (``start_angle`` [deg], ``start_rpm``), ``until``
+    (None: until the steady state; else a time [s]) and ``output_step`` [s] of the time
+    histories (None: 200 samples per steady cycle)."""
+
+    motor: MotorCurve
+    flywheel: float = 0.0
+    start_angle: float = 0.0
+    start_rpm: float = 0.0
+    until: float | None = None
+    output_step: float | None = None
+
+
+@dataclass(frozen=True)
 class Vary:
     """One varied leaf of a study: ``key`` as written (``links.rod.points.C.0``), ``path`` the
     same as keys and list indices (``("links", "rod", "points", "C", 0)``). Either ``values``
@@ -364,6 +405,7 @@ class Spec:
     study: Study | None = None        # only `mechreport study` uses it
     pins: tuple[Pin, ...] = ()        # pins joining three or more links (solved as joints)
     friction: tuple[Friction, ...] = ()   # by solved joint, in spec order
+    dynamics: Dynamics | None = None      # machine dynamics (format 1.1 ``dynamics:``)
 
     @property
     def axis_unit(self) -> str:

@@ -159,7 +159,7 @@ def test_every_key_has_a_description_for_the_editor():
 def test_keys_that_are_not_in_the_format_yet_are_unknown():
     props = json_schema()["properties"]
     report = json_schema()["$defs"]["Report"]["properties"]
-    for key in ("dynamics", "section", "material", "materials"):
+    for key in ("section", "material", "materials"):
         assert key not in props
     assert "animation" not in report and "dxf" not in report
 

@@ -1,0 +1,221 @@
+"""The equation of motion of a one-degree-of-freedom mechanism driven by its crank.
+
+With phi the crank angle [rad] and omega = dphi/dt, every velocity of the mechanism is its
+velocity coefficient k(phi) times omega and every acceleration k alpha + k' omega^2. The
+torque the crank must receive to move the mechanism so (the driver torque of the
+kinetostatic methods, the chapter's motor moment Mm) is therefore
+
+    M(phi, omega, alpha) = J(phi) alpha + B(phi) omega^2 + C(phi) omega + D(phi)
+
+for omega > 0: J the generalized inertia (the reduced moment of inertia on the crank), B =
+J'/2 (the inertia forces of the changing velocity ratios), C the viscous loads (dampers), D
+the loads that do not depend on the speed (gravity, springs, forces and moments, profiles,
+and loads opposing the motion with a constant magnitude, whose sign is fixed for omega > 0).
+A motor torque Mm(omega) and a flywheel If on the crank shaft then give
+
+    (J(phi) + If) alpha = Mm(omega) - B(phi) omega^2 - C(phi) omega - D(phi).
+
+J, B, C and D are found from mechreport's own reference method: its driver torque at four
+rate states on a grid of crank angles (omega = 1, 2, 3 rad/s at alpha = 0, and alpha = 1 at
+omega = 1), and interpolated between the grid angles by periodic quintic splines, B as half
+the derivative of J's. So the equation conserves (J + If) omega^2 / 2 exactly when nothing
+else acts (a spline of B's own values would not quite agree with J's slope: the energy
+would drift by their difference, 2e-8 relative with cubic splines on a 0.5-degree grid),
+and its right-hand side stays smooth enough for the integrator's error control (cubic
+pieces would leave B with a kinked slope at every grid angle: 1e-6 drift at the same
+tolerance). B's values from the method are checked against J's slope by the tests.
+:func:`generalized_inertia` computes J independently, from the velocity coefficients
+(J = sum m |v_G / omega|^2 + I (omega_link / omega)^2), for the tests and the sheets.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..errors import AnalysisError
+from ..forces import METHODS, solve_forces
+from ..kinematics import Kinematics, at_unit_rate, solve_kinematics, with_rates
+from ..model import Mechanism
+from ..spec import Spec
+from ..spec.types import MotorCurve
+
+#: crank angles of the grid the equation's coefficients are found on [deg]
+GRID_STEP_DEG = 0.5
+#: the degree of the splines between them (the scalar right-hand side is written for 5)
+DEGREE = 5
+#: the rate states (omega [rad/s], alpha [rad/s^2]) the reference method is solved at
+STATES = ((1.0, 0.0), (2.0, 0.0), (3.0, 0.0), (1.0, 1.0))
+RPM = math.pi / 30.0          # rad/s per rpm
+
+
+@dataclass(frozen=True)
+class EquationOfMotion:
+    """(J(phi) + flywheel) alpha = motor(omega) - B(phi) omega^2 - C(phi) omega - D(phi),
+    phi the crank angle [rad] (periodic over a turn), omega [rad/s]. ``grid`` (N,) [deg] and
+    ``J``, ``B``, ``C``, ``D`` (N,) their values there [kg m^2, kg m^2, N m s, N m];
+    ``coefficients`` (N, 4, DEGREE + 1) the periodic splines through them, by grid
+    interval, function and power of the angle from the interval's start (highest first; see
+    :meth:`at`)."""
+
+    grid: np.ndarray
+    J: np.ndarray
+    B: np.ndarray
+    C: np.ndarray
+    D: np.ndarray
+    flywheel: float
+    motor: MotorCurve
+    coefficients: np.ndarray
+
+    def at(self, phi: np.ndarray) -> np.ndarray:
+        """(J, B, C, D) at crank angles ``phi`` (n,) [rad], (n, 4)."""
+        h = math.radians(GRID_STEP_DEG)
+        x = np.mod(np.asarray(phi, float), 2 * math.pi) / h
+        i = np.minimum(x.astype(int), len(self.grid) - 1)
+        t = ((x - i) * h)[:, None]
+        c = self.coefficients[i]                     # (n, 4 functions, powers)
+        out = c[..., 0]
+        for k in range(1, c.shape[-1]):
+            out = out * t + c[..., k]
+        return out
+
+    def alpha(self, phi: np.ndarray, omega: np.ndarray) -> np.ndarray:
+        """The crank's angular acceleration [rad/s^2] at ``phi`` [rad] and ``omega``
+        [rad/s], (n,)."""
+        j, b, c, d = self.at(phi).T
+        omega = np.asarray(omega, float)
+        return (motor_torque(self.motor, omega) - b * omega ** 2 - c * omega - d) \
+            / (j + self.flywheel)
+
+    def load_torque(self, phi: np.ndarray, omega: np.ndarray, alpha: np.ndarray) -> np.ndarray:
+        """The torque the mechanism takes from the crank shaft [N m] (without the
+        flywheel's): J alpha + B omega^2 + C omega + D."""
+        j, b, c, d = self.at(phi).T
+        return j * alpha + b * omega ** 2 + c * omega + d
+
+    def scalar(self):
+        """alpha(phi, omega) for one state in plain floats (what the integrator calls
+        thousands of times: numpy's per-call overhead would be most of its time)."""
+        coef = self.coefficients.tolist()
+        h = math.radians(GRID_STEP_DEG)
+        n = len(coef)
+        fly = self.flywheel
+        torque = motor_function(self.motor)
+        two_pi = 2 * math.pi
+
+        def alpha(phi: float, omega: float) -> float:
+            x = (phi % two_pi) / h
+            i = min(int(x), n - 1)
+            t = (x - i) * h
+            (j5, j4, j3, j2, j1, j0), (b5, b4, b3, b2, b1, b0), (c5, c4, c3, c2, c1, c0), \
+                (d5, d4, d3, d2, d1, d0) = coef[i]
+            j = ((((j5 * t + j4) * t + j3) * t + j2) * t + j1) * t + j0
+            b = ((((b5 * t + b4) * t + b3) * t + b2) * t + b1) * t + b0
+            c = ((((c5 * t + c4) * t + c3) * t + c2) * t + c1) * t + c0
+            d = ((((d5 * t + d4) * t + d3) * t + d2) * t + d1) * t + d0
+            return (torque(omega) - (b * omega + c) * omega - d) / (j + fly)
+        return alpha
+
+
+def motor_torque(motor: MotorCurve, omega: np.ndarray) -> np.ndarray:
+    """The motor's torque [N m] at crank speeds ``omega`` [rad/s]: linear between the
+    characteristic's points and along its end segments beyond them."""
+    pts = np.asarray(motor.points(), float)
+    rpm = np.asarray(omega, float) / RPM
+    x, y = pts[:, 0], pts[:, 1]
+    k = np.clip(np.searchsorted(x, rpm) - 1, 0, len(x) - 2)
+    slope = (y[k + 1] - y[k]) / (x[k + 1] - x[k])
+    return y[k] + slope * (rpm - x[k])
+
+
+def motor_function(motor: MotorCurve):
+    """:func:`motor_torque` for one speed, in plain floats."""
+    pts = [tuple(map(float, p)) for p in motor.points()]
+    xs = [p[0] for p in pts]
+    last = len(pts) - 2
+    import bisect
+
+    def torque(omega: float) -> float:
+        rpm = omega / RPM
+        k = min(max(bisect.bisect_left(xs, rpm) - 1, 0), last)
+        (x0, y0), (x1, y1) = pts[k], pts[k + 1]
+        return y0 + (y1 - y0) / (x1 - x0) * (rpm - x0)
+    return torque
+
+
+def equation_of_motion(mech: Mechanism) -> EquationOfMotion:
+    """The equation of motion of ``mech`` (its spec's ``dynamics``: motor and flywheel),
+    from its reference method's driver torque at the rate states ``STATES`` over the grid.
+    Raises ``AnalysisError`` where the crank cannot turn fully (a grid angle unreachable
+    or singular: the motion could not continue there)."""
+    spec = mech.spec
+    grid = np.arange(0.0, 360.0, GRID_STEP_DEG)
+    unit_spec = replace(spec, driver=replace(spec.driver, omega=1.0, alpha=0.0),
+                        friction=(), expect=())
+    unit = mech.with_spec(unit_spec)
+    kin = solve_kinematics(unit, grid)
+    if kin.n != len(grid):
+        missed = [f for f in kin.flags]
+        where = f" at {missed[0].angle:g}°: {missed[0].reason}" if missed else ""
+        raise AnalysisError(f"{spec.file}: machine dynamics needs a crank that turns fully "
+                            f"and smoothly; the motion cannot continue{where}")
+    method = next(iter(METHODS))
+    torque = []
+    for omega, alpha in STATES:
+        moving = with_rates(kin, np.full(kin.n, omega), np.full(kin.n, alpha))
+        torque.append(np.asarray(solve_forces(moving, [method])[method].driver_torque, float))
+    m1, m2, m3, m11 = torque
+    b = (m3 - 2 * m2 + m1) / 2
+    c = (m2 - m1) - 3 * b
+    d = m1 - c - b
+    j = m11 - m1
+    values = np.stack([j, b, c, d], axis=1)
+    if not np.all(np.isfinite(values)):
+        raise AnalysisError(f"{spec.file}: the equation of motion is not finite at every "
+                            "crank angle")
+    return EquationOfMotion(grid, j, b, c, d, spec.dynamics.flywheel, spec.dynamics.motor,
+                            _pieces(np.radians(grid), values))
+
+
+def _pieces(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """The polynomial pieces (N, 4, DEGREE + 1) of J, B, C, D (``y`` (N, 4) at the equally
+    spaced ``x`` (N,) over one turn), by interval, function and power of the angle from the
+    interval's start (highest first): J, C and D periodic splines of degree DEGREE, B half
+    the derivative of J's. Each piece is the spline's Taylor polynomial at its interval's
+    start (exact: the spline is one polynomial over the interval)."""
+    from scipy.interpolate import make_interp_spline
+    xx = np.append(x, x[0] + 2 * math.pi)
+    yy = np.vstack([y, y[:1]])
+    spline = make_interp_spline(xx, yy, k=DEGREE, bc_type="periodic", axis=0)
+    taylor = np.stack([spline(x, nu=k) / math.factorial(k) for k in range(DEGREE + 1)],
+                      axis=-1)                                    # (N, 4, powers t^0 ..)
+    taylor[:, 1] = 0.0
+    taylor[:, 1, :-1] = 0.5 * taylor[:, 0, 1:] * np.arange(1, DEGREE + 1)   # B = J' / 2
+    return taylor[..., ::-1].copy()
+
+
+def generalized_inertia(kin: Kinematics) -> np.ndarray:
+    """The reduced moment of inertia on the crank J(phi) (n,) [kg m^2] over ``kin``'s angles,
+    from the velocity coefficients: sum over the links of m |v_G / omega|^2 + I_G
+    (omega_link / omega)^2 (the kinetic energy at unit crank speed, doubled)."""
+    unit = at_unit_rate(kin)
+    spec = kin.mechanism.spec
+    out = np.zeros(kin.n)
+    for link in spec.links:
+        if link.mass:
+            v = unit.com(link.name).v
+            out += link.mass * np.einsum("ij,ij->i", v, v)
+        if link.inertia:
+            out += link.inertia * unit.omega[:, spec.number(link.name)] ** 2
+    return out
+
+
+def spec_at_speed(spec: Spec, omega: float) -> Spec:
+    """``spec`` with its driver turning at ``omega`` [rad/s] and no angular acceleration."""
+    return replace(spec, driver=replace(spec.driver, omega=omega, alpha=0.0,
+                                        rpm_given=omega / RPM))
+
+
+__all__ = ["EquationOfMotion", "GRID_STEP_DEG", "RPM", "STATES", "equation_of_motion",
+           "generalized_inertia", "motor_function", "motor_torque", "spec_at_speed"]
