@@ -53,6 +53,11 @@ def _cmd_study(ns: argparse.Namespace) -> int:
                          cross=ns.cross_check, chunk=ns.chunk, wait=ns.wait)
 
 
+def _cmd_dynamics(ns: argparse.Namespace) -> int:
+    from .dynamics import dynamics_command
+    return dynamics_command(ns.specs, ns.output)
+
+
 def _cmd_schema(ns: argparse.Namespace) -> int:
     from .schema import schema_command
     return schema_command(ns.output)
@@ -249,6 +254,18 @@ def main(argv: list[str] | None = None) -> int:
     p.set_defaults(func=_cmd_diff)
 
     _add_study_parser(sub)
+
+    p = sub.add_parser("dynamics", help="simulate the motion a motor and flywheel give "
+                       "(a spec's dynamics: section)",
+                       description="Simulate each spec's machine dynamics alone: the time "
+                       "histories into OUT/<spec>/dynamics.csv and dynamics.parquet, the "
+                       "steady state's quantities and verdicts printed. Exit status 1 if any "
+                       "spec fails or misses a verdict.")
+    p.add_argument("specs", nargs="+", metavar="SPEC", help="spec files with a dynamics: "
+                   "section")
+    p.add_argument("-o", "--output", metavar="OUT", default="out",
+                   help="output folder (default: out)")
+    p.set_defaults(func=_cmd_dynamics)
 
     p = sub.add_parser("schema", help="print the JSON Schema of a spec file (for editors)",
                        description="Print the JSON Schema of a spec file: an editor with a "

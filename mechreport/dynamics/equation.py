@@ -218,4 +218,17 @@ def spec_at_speed(spec: Spec, omega: float) -> Spec:
 
 
 __all__ = ["EquationOfMotion", "GRID_STEP_DEG", "RPM", "STATES", "equation_of_motion",
-           "generalized_inertia", "motor_function", "motor_torque", "spec_at_speed"]
+           "flywheel_estimate", "generalized_inertia", "motor_function", "motor_torque", "spec_at_speed"]
+
+
+def flywheel_estimate(eom: EquationOfMotion, omega: float) -> tuple[float, float, float]:
+    """The constant-speed estimate the design review's flywheel formula makes, at the mean
+    speed ``omega`` [rad/s]: (the energy fluctuation dE [J] of the torque the mechanism takes
+    at constant speed, B omega^2 + C omega + D, against its mean; the mean reduced inertia
+    J_mean + If [kg m^2]; the speed fluctuation it predicts, dE / ((J_mean + If) omega^2))."""
+    torque = eom.B * omega ** 2 + eom.C * omega + eom.D
+    h = math.radians(GRID_STEP_DEG)
+    energy = np.concatenate([[0.0], np.cumsum(torque - torque.mean()) * h])
+    swing = float(np.max(energy) - np.min(energy))
+    inertia = float(np.mean(eom.J)) + eom.flywheel
+    return swing, inertia, swing / (inertia * omega ** 2)

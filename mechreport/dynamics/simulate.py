@@ -34,7 +34,8 @@ class SteadyCycle:
     """The periodic motion reached: at the sweep's ``angles`` (n,) [deg] the speed ``omega``
     and acceleration ``alpha`` (n,) [rad/s, rad/s^2]; the turn's ``period`` [s], its time-mean
     speed ``mean_omega`` = 2 pi / period [rad/s], its ``omega_min`` and ``omega_max``, the
-    motor's RMS torque over time ``motor_rms`` [N m], and when it began, ``t0`` [s]."""
+    motor's RMS torque over time ``motor_rms``, its largest magnitude ``motor_peak`` [N m]
+    and largest power ``motor_power`` [W], and when the turn began, ``t0`` [s]."""
 
     angles: np.ndarray
     omega: np.ndarray
@@ -44,6 +45,8 @@ class SteadyCycle:
     omega_min: float
     omega_max: float
     motor_rms: float
+    motor_peak: float
+    motor_power: float
     t0: float
 
     @property
@@ -204,7 +207,8 @@ def _steady(segments: _Segments, eom: EquationOfMotion, start_turns, angles) -> 
     mean = 2 * math.pi / period
     return SteadyCycle(np.asarray(angles, float), v, eom.alpha(p, v), period, mean,
                        float(min(np.min(w), np.min(v))), float(max(np.max(w), np.max(v))),
-                       float(np.sqrt(np.mean(motor ** 2))), t0)
+                       float(np.sqrt(np.mean(motor ** 2))), float(np.max(np.abs(motor))),
+                       float(np.max(motor * w[:-1])), t0)
 
 
 def _startup(segments: _Segments, t_end: float, mean: float) -> float:

@@ -9,7 +9,7 @@ of every result, so all arrays share one angle axis.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -80,6 +80,14 @@ class Analysis(Checked):
     # machine dynamics (a spec with ``dynamics:``): the motion the motor gives, and the
     # steady turn's own analysis (a :class:`mechreport.pipeline.dynamics.DynamicsResult`)
     dynamics: object | None = None
+
+    @property
+    def passed(self) -> bool:
+        """As :attr:`Checked.passed`, and the methods agreeing over a machine-dynamics steady
+        turn too (its forces are reported beside the sweep's)."""
+        steady = getattr(self.dynamics, "steady", None)
+        worst = steady.worst if steady is not None else None
+        return super().passed and (worst is None or worst.relative <= self.tol)
 
     @property
     def angles(self) -> np.ndarray:
@@ -233,10 +241,10 @@ def analysis_of(mech: Mechanism, kin: Kinematics, methods=None, tol: float = DEF
         kin, ctx, forces = solve_trusted(_require_angles(kin), methods, plans=plans)
         kin = _require_angles(kin)
         rev, why = design_review(kin, forces, ctx.loads)
-        values = rev.values if rev is not None else None
         extra = {**(extra or {}), **(dynamics.values if dynamics is not None else {})}
-        if extra:
-            values = {**(values or {}), **extra}
+        if extra and rev is not None:    # cycle quantities too: every output lists them
+            rev = replace(rev, values={**rev.values, **extra})
+        values = rev.values if rev is not None else (extra or None)
         res = residuals(ctx, forces)
     ctx.cache.clear()   # the actions and equations the methods shared: rebuilt if asked for
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces), res,

@@ -77,8 +77,8 @@ def analyse_variants(specs: list[Spec], method: str, plans=None) -> list[Outcome
         if len(s.analysed_angles()) > STREAM_ANGLES:     # bounded memory: streamed alone
             out[i] = _streamed(s, method)
             continue
-        if s.friction:          # its friction is solved with its own forces: alone
-            continue
+        if s.friction or s.dynamics:    # friction solved with its own forces, a motion of
+            continue                    # its own: alone
         groups.setdefault((np.sign(s.driver.omega), s.sweep, tuple(s.at)), []).append(i)
     for members in groups.values():
         per = len(specs[members[0]].analysed_angles())

@@ -13,8 +13,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..dynamics import (EquationOfMotion, Simulation, equation_of_motion, simulate,
-                        spec_at_speed)
+from ..dynamics import (EquationOfMotion, Simulation, equation_of_motion, flywheel_estimate,
+                        simulate, spec_at_speed)
 from ..dynamics.equation import RPM
 from ..kinematics import solve_kinematics, with_rates
 from ..model import Mechanism
@@ -25,12 +25,18 @@ class DynamicsResult:
     """The machine dynamics of one spec: its ``equation`` of motion, the ``simulation`` (time
     histories, the steady turn), the ``steady`` turn's own :class:`Analysis` (every method,
     check, cycle quantity and verdict at the true motion; None with ``until`` a time), and
-    ``values``: the ``dynamics.*`` quantities (SI; empty without a steady state)."""
+    ``values``: the ``dynamics.*`` quantities (SI; empty without a steady state);
+    ``estimate`` what the design review's constant-speed flywheel formula predicts at the
+    steady mean speed: (energy fluctuation [J], mean inertia on the crank with the flywheel
+    [kg m^2], speed fluctuation), None without a steady state; ``verdicts`` the steady turn's
+    design verdicts."""
 
     equation: EquationOfMotion
     simulation: Simulation
     steady: object | None
     values: dict[str, float]
+    estimate: tuple[float, float, float] | None = None
+    verdicts: tuple = ()      # the steady turn's design verdicts (steady_verdicts)
 
 
 def run_dynamics(mech: Mechanism, methods=None, tol: float = 1e-6, plans=None
@@ -56,7 +62,28 @@ def run_dynamics(mech: Mechanism, methods=None, tol: float = 1e-6, plans=None
               "dynamics.startup_time": sim.startup_time,
               "dynamics.motor_rms_torque": cycle.motor_rms}
     steady = analysis_of(smech, kin, methods, tol, plans, extra=values)
-    return DynamicsResult(eom, sim, steady, values)
+    return DynamicsResult(eom, sim, steady, values, flywheel_estimate(eom, cycle.mean_omega),
+                          steady_verdicts(steady.verdicts, cycle))
 
 
-__all__ = ["DynamicsResult", "run_dynamics"]
+#: the motor's own quantities a steady turn's motor verdicts read (the crank shaft's torque,
+#: cycle.torque.*, is the motor's and the flywheel's together)
+MOTOR_QUANTITIES = {"motor.rated_torque": ("dynamics.motor_rms_torque", "motor_rms", "N·m"),
+                    "motor.peak_torque": ("max |motor torque|", "motor_peak", "N·m"),
+                    "motor.rated_power": ("max motor power", "motor_power", "W")}
+
+
+def steady_verdicts(verdicts, cycle) -> tuple:
+    """The steady turn's design verdicts, the motor's against the motor's own torque and
+    power over the turn (with a flywheel the crank shaft's torque is not the motor's)."""
+    from dataclasses import replace as _replace
+    out = []
+    for v in verdicts:
+        if v.item in MOTOR_QUANTITIES:
+            quantity, attr, unit = MOTOR_QUANTITIES[v.item]
+            v = _replace(v, quantity=quantity, value=getattr(cycle, attr), unit=unit, why="")
+        out.append(v)
+    return tuple(out)
+
+
+__all__ = ["DynamicsResult", "MOTOR_QUANTITIES", "run_dynamics", "steady_verdicts"]

@@ -84,6 +84,9 @@ def verdicts(design: Design, values: dict[str, float] | None, why: str = "") -> 
                      False, ""))
     if "efficiency" in limits:
         rows.append(("limits.efficiency", "cycle.efficiency", limits["efficiency"], True, ""))
+    if "speed_fluctuation" in limits:
+        rows.append(("limits.speed_fluctuation", "dynamics.speed_fluctuation",
+                     limits["speed_fluctuation"], False, ""))
     out = []
     for item, quantity, limit, at_least, where in rows:
         if values is None:

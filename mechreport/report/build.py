@@ -1,6 +1,7 @@
 """One spec's report folder from its analysis: the one way a report is written.
 
     folder/report.md, report.pdf, results.csv, summary.json, figures/*.svg
+    folder/dynamics.csv, dynamics.parquet           (with dynamics:)
     folder/solution.md, .pdf, problem.md, .pdf      (with sheets)
 
 ``mechreport build`` (:mod:`mechreport.app.build`) and a study's best-variant reports both
@@ -25,6 +26,8 @@ def write_report_folder(analysis, folder: Path, source: str | Path, sha256: str,
     asks for angles the sweep does not have). ``stage(i, n, what)`` is called before
     each stage after the analysis (stage 1)."""
     from .drawing import write_drawings
+    from .dynamics import write_histories
+    from .dynamics_plots import write_dynamics_plot
     from .model import build_model, index_row
     from .plots import write_plots
     from .render import write_report
@@ -40,8 +43,11 @@ def write_report_folder(analysis, folder: Path, source: str | Path, sha256: str,
     stage(2, n, "figures")
     write_plots(model, folder / "figures")
     write_drawings(model, folder / "figures")
+    write_dynamics_plot(model, folder / "figures")
     stage(3, n, "report (Markdown, PDF, CSV, JSON)")
     write_report(model, folder)
+    if model.dynamics is not None:
+        write_histories(model.dynamics.histories, folder)
     if sheet:
         from .sheet import SheetOptions, sheet_analysis, write_sheet
         stage(4, n, "solution sheet and problem")

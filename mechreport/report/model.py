@@ -31,6 +31,7 @@ from ..spec import GROUND
 from ..checks.failures import failed_expectations
 from ..units import DASH, SIG_DIGITS, Display, clean, deg, fmt, kind_of
 from .check_text import failure_rows, summary_line
+from .dynamics import dynamics_json, dynamics_section
 from .scene import Scene, build_scene
 from .text import kinematics_rows
 
@@ -312,6 +313,7 @@ class ReportModel:
     coord: str = "crank angle"
     coord_unit: str = "°"
     friction: FrictionSection | None = None    # a spec with friction: its section
+    dynamics: object | None = None    # a spec with dynamics: its section (.dynamics)
 
 # ------------------------------------------------------------------------ traceability
 
@@ -941,9 +943,11 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
                       d.scales)
     record["design"] = _design_json(analysis, d.scales)
     record["friction"] = _friction_json(analysis, d.scales)
+    record["dynamics"] = dynamics_json(analysis)
     friction = _friction(analysis, design, sw, d)
+    dynamics = dynamics_section(analysis, d)
     figures = (_figures(sw, refs, ref, d) | _design_figures(design)
-               | _friction_figures(friction, sw))
+               | _friction_figures(friction, sw) | _dynamics_figures(dynamics))
     shaking = {"force": _peak_text(summary.shaking_force, "force", d, sw.at_unit),
                "moment": _peak_text(summary.shaking_moment, "moment", d, sw.at_unit)}
     sweep = spec.sweep
@@ -975,7 +979,7 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
         notes=analysis.kinematics.notes(), failures=failure_rows(fails), design=design,
         figures=figures, sweep=sw, scenes=scenes, csv_header=header, csv_rows=rows,
         summary=record, index_row=index_row(record, stem), meta=meta, display=d,
-        heads=heads, friction=friction)
+        heads=heads, friction=friction, dynamics=dynamics)
 
 
 def _left_out_text(analysis, summary: SweepSummary, sw: SweepData, d: Display) -> str:
@@ -1238,6 +1242,15 @@ def _friction_json(analysis, sc: dict) -> dict | None:
             "reversed_by_friction_deg": [float(a) for a in
                                          analysis.kinematics.reversed_by_friction],
             "left_out_deg": [f.angle for f in analysis.flags if f.by_friction]}
+
+
+def _dynamics_figures(section) -> dict[str, Figure]:
+    """The Machine dynamics figure and its caption (none without dynamics)."""
+    if section is None:
+        return {}
+    text = ("Crank speed from the start (left: the steady mean dashed, 95 % of it dotted)"
+            + (" and over the steady turn (right)." if len(section.plot.angles) else "."))
+    return {"dynamics": Figure("dynamics", text, "dynamics")}
 
 
 def _friction_figures(section: FrictionSection | None, sw: SweepData) -> dict[str, Figure]:

@@ -574,6 +574,12 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                 if "friction" in top else ())
     dynamics = (_dynamics(top["dynamics"], ck, driver, sweep)
                 if "dynamics" in top else None)
+    if dynamics is not None and friction:
+        # the friction would depend on the motion in the equation itself (not done yet):
+        # refused rather than simulated without it
+        ck.error(("dynamics",), "machine dynamics does not include friction in the joints "
+                 "yet; simulate without the 'friction:' section (its losses then come from "
+                 "the kinetostatic analysis alone)")
     expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src, driver=driver,
                      pins=pins)
     design = _design(top.get("design"), ck, joints, pins) if "design" in top else Design()
@@ -675,6 +681,11 @@ def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep
         ck.error(path, "machine dynamics needs a crank: the driver an R joint with ground (the "
                        f"motor turns it); '{driver.joint}' is "
                        + ("a slider (T)" if driver.kind == "T" else "between two moving links"))
+        ok = False
+    elif driver is not None and driver.omega < 0:
+        ck.error(path, "machine dynamics turns the crank counter-clockwise (the motor's "
+                       "positive sense); write the driver's speed positive and the mechanism "
+                       "mirrored, or leave dynamics out")
         ok = False
     motor = _dynamics_motor(body["motor"], path + ("motor",), ck)
     flywheel = (ck.number(body["flywheel"], path + ("flywheel",)) if "flywheel" in body

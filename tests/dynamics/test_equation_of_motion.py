@@ -213,6 +213,11 @@ def test_a_large_flywheel_approaches_the_design_estimate():
         energy = a.dynamics.steady.review.values["cycle.energy_fluctuation"]
         estimate = energy / (flywheel * cycle.mean_omega ** 2)
         errors.append(abs(cycle.fluctuation - estimate) / estimate)
+        # the report's estimate: the same formula from the equation's constant-speed torque
+        swing, inertia, predicted = a.dynamics.estimate
+        assert inertia > flywheel and predicted == pytest.approx(
+            swing / (inertia * cycle.mean_omega ** 2))
+        assert abs(cycle.fluctuation - predicted) / predicted < 2 * errors[-1] + 0.02
     assert errors[1] < 0.05 and errors[1] < errors[0]
 
 
@@ -264,3 +269,19 @@ def test_steady_quantities_need_a_steady_state():
     paths = {p.path: p.message for p in info.value.problems}
     assert "transient only" in paths["expect[0]"]
     assert "transient only" in paths["design.limits.speed_fluctuation"]
+
+
+def test_friction_with_dynamics_is_refused_not_left_out():
+    """The equation of motion does not include joint friction yet: a spec with both is an
+    error, never a simulation that silently leaves the friction out."""
+    text = four_bar("{motor: {torque: 1}}") + "friction: {A: {mu: 0.1, radius: 10}}\n"
+    with pytest.raises(SpecError, match="does not include friction"):
+        parse_spec(text, "dyn.yaml")
+
+
+def test_the_speed_fluctuation_limit_is_a_verdict_on_the_simulated_value(steady):
+    text = four_bar(STEADY, DAMPER, step=0.5) + "design: {limits: {speed_fluctuation: 0.01}}\n"
+    a = mechreport.analyse(text)
+    verdict = next(v for v in a.verdicts if v.item == "limits.speed_fluctuation")
+    assert verdict.value == steady.dynamics.values["dynamics.speed_fluctuation"]
+    assert verdict.passed == (verdict.value <= 0.01)

@@ -61,6 +61,9 @@ def make(model, key: str):
         return SWEEP[key](model.sweep, model.display)
     if key == "friction":
         return plots.friction_figure(model.friction.plot, model.display)
+    if key == "dynamics":
+        from mechreport.report.dynamics_plots import dynamics_figure
+        return dynamics_figure(model.dynamics.plot, model.display)
     from mechreport.report.drawing import draw_scene
     scene, title = drawings(model)[key]
     return draw_scene(scene, model.display, title)
@@ -72,8 +75,7 @@ def figure_keys(model) -> list[str]:
     keys = [k for k in CYCLE if model.design.data is not None and k in figs]
     if len(sw.angles):
         keys += [k for k in SWEEP if k in figs and (k != "reactions" or sw.joints)]
-    if "friction" in figs:
-        keys.append("friction")
+    keys += [k for k in ("friction", "dynamics") if k in figs]
     return keys + list(drawings(model))
 
 

@@ -1,0 +1,221 @@
+"""The report's Machine dynamics section, summary.json's ``dynamics`` and the time histories
+(dynamics.csv, dynamics.parquet), read from an analysis's machine-dynamics result
+(:class:`mechreport.pipeline.dynamics.DynamicsResult`): the simulation's numbers are
+computed there once; this module only arranges them."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..units import Display, deg, fmt
+
+RPM = math.pi / 30.0
+#: the columns of dynamics.csv / dynamics.parquet, in order, as the format names them
+HISTORY_COLUMNS = ("time [s]", "crank.angle [deg]", "crank.omega [rad/s]",
+                   "crank.alpha [rad/s^2]", "motor.torque [N·m]")
+#: the cycle quantities compared between the constant-speed sweep and the steady turn
+COMPARED = ("cycle.torque.max", "cycle.torque.min", "cycle.torque.rms", "cycle.power.max",
+            "cycle.shaking.force_max")
+
+
+@dataclass
+class DynamicsPlot:
+    """The section's figure: the speed [rpm] against ``time`` [s] from the start, and over
+    the steady turn against the crank ``angles`` [deg] (empty without a steady state);
+    ``mean`` the steady mean speed [rpm] (None without)."""
+
+    time: np.ndarray
+    rpm: np.ndarray
+    angles: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    turn_rpm: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    mean: float | None = None
+    startup: float | None = None
+
+
+@dataclass
+class DynamicsSection:
+    """The report's Machine dynamics section: ``intro`` (the motor, flywheel, start and the
+    equation), ``outcome`` (how the simulation ended), ``rows`` (quantity, value, what it is)
+    of the simulated quantities and the flywheel estimate beside them, ``why`` the reason
+    they differ, ``compared`` (quantity, constant-speed sweep, steady turn) rows,
+    ``verdicts`` the steady turn's design verdicts as lines, ``plot`` the figure's data,
+    ``histories`` the time histories' columns (SI, HISTORY_COLUMNS)."""
+
+    intro: str
+    outcome: str
+    rows: list[list[str]]
+    why: str
+    compared: list[list[str]]
+    verdicts: list[str]
+    plot: DynamicsPlot
+    histories: list[np.ndarray]
+
+
+def _motor_text(motor) -> str:
+    if motor.kind == "torque":
+        return f"a constant motor torque of {fmt(motor.constant)} N·m"
+    if motor.kind == "linear":
+        return (f"a motor whose torque falls linearly from {fmt(motor.stall_torque)} N·m at "
+                f"rest to 0 at {fmt(motor.no_load_rpm)} rpm")
+    pts = ", ".join(f"{fmt(r)} rpm: {fmt(t)} N·m" for r, t in motor.curve)
+    return f"a motor of torque curve ({pts}; linear between the points)"
+
+
+def dynamics_section(analysis, d: Display) -> DynamicsSection | None:
+    """The Machine dynamics section of ``analysis`` (None without ``dynamics:``)."""
+    dyn = analysis.dynamics
+    spec = analysis.spec
+    if dyn is None or spec.dynamics is None:
+        return None
+    sim, cycle, sd = dyn.simulation, dyn.simulation.steady, spec.dynamics
+    start = (f"started at crank angle {deg(sd.start_angle)}° "
+             + ("from rest" if sd.start_rpm == 0 else f"at {fmt(sd.start_rpm)} rpm"))
+    intro = (f"The crank is driven by {_motor_text(sd.motor)}, with a flywheel of "
+             f"{fmt(sd.flywheel)} kg·m² on its shaft, {start}. Its equation of motion, "
+             "(J(φ) + I_f) α = M_m(ω) − B(φ) ω² − C(φ) ω − D(φ), has the mechanism's reduced "
+             "inertia J on the crank (from its velocity coefficients), B = J′/2, C its viscous "
+             "loads and D its other loads and weights, all from the same kinematics and loads "
+             "as the sweep; it is integrated in time (scipy solve_ivp, DOP853, relative "
+             "tolerance 1e-10).")
+    rows, compared, verdicts, why = [], [], [], ""
+    if cycle is None:
+        outcome = (f"Integrated to t = {fmt(sim.time[-1])} s (dynamics.until) over "
+                   f"{sim.turns} whole turn{'s' if sim.turns != 1 else ''}: the transient only; "
+                   "the steady-state quantities need until: steady.")
+    else:
+        v = dyn.values
+        swing, inertia, estimate = dyn.estimate
+        outcome = (f"Steady state after {sim.turns} turns (t = {fmt(cycle.t0 + cycle.period)} "
+                   f"s): two successive turns agree in speed and period to 1e-6. Over the "
+                   f"steady turn the crank runs at {fmt(v['dynamics.mean_rpm'])} rpm on "
+                   f"average, between {fmt(cycle.omega_min / RPM)} and "
+                   f"{fmt(cycle.omega_max / RPM)} rpm; one turn takes "
+                   f"{fmt(cycle.period)} s." + _checked_text(dyn.steady))
+        rows = [["dynamics.mean_rpm", f"{fmt(v['dynamics.mean_rpm'])} rpm",
+                 "the time-mean speed of the steady turn, 60 / period"],
+                ["dynamics.speed_fluctuation", fmt(v["dynamics.speed_fluctuation"]),
+                 "(max − min) / mean of the steady turn's speed"],
+                ["flywheel estimate", fmt(estimate),
+                 f"ΔE / ((J_mean + I_f) ω²): ΔE = {fmt(swing)} J at a constant "
+                 f"{fmt(v['dynamics.mean_rpm'])} rpm, J_mean + I_f = {fmt(inertia)} kg·m²"],
+                ["dynamics.startup_time", f"{fmt(v['dynamics.startup_time'])} s",
+                 "from the start to 95 % of the steady mean speed"],
+                ["dynamics.motor_rms_torque", f"{fmt(v['dynamics.motor_rms_torque'])} N·m",
+                 "the motor's RMS torque over the steady turn, in time"]]
+        why = _why_they_differ(v["dynamics.speed_fluctuation"], estimate, sd.motor)
+        compared = _compared(analysis, dyn.steady, d)
+        verdicts = [vd.describe(fmt) + (" — met" if vd.passed else " — NOT MET")
+                    for vd in dyn.verdicts]
+    plot = DynamicsPlot(sim.time, sim.omega / RPM,
+                        cycle.angles if cycle else np.zeros(0),
+                        cycle.omega / RPM if cycle else np.zeros(0),
+                        cycle.mean_omega / RPM if cycle else None,
+                        sim.startup_time)
+    return DynamicsSection(intro, outcome, rows, why, compared, verdicts, plot,
+                           histories_of(sim))
+
+
+def histories_of(sim) -> list[np.ndarray]:
+    """The columns of dynamics.csv (HISTORY_COLUMNS, SI) of a simulation."""
+    return [sim.time, np.degrees(sim.angle), sim.omega, sim.alpha, sim.motor]
+
+
+def _checked_text(steady) -> str:
+    """How well the methods agree over the steady turn, and its largest residual."""
+    worst = steady.worst
+    if worst is None:
+        return ""
+    residual = max((r.force for r in steady.residuals), default=0.0)
+    return (f" Over the steady turn the methods agree to {worst.relative:.1e} of each "
+            f"quantity's largest value (worst: {worst.quantity}) and the largest equilibrium "
+            f"residual is {residual:.1e} N.")
+
+
+def _why_they_differ(simulated: float, estimate: float, motor) -> str:
+    """Why the simulated fluctuation differs from the constant-speed estimate."""
+    gap = (simulated - estimate) / estimate if estimate else 0.0
+    motor_part = ("; and the motor's torque follows the speed (a torque that falls as the "
+                  "speed rises takes up part of the energy swing itself)"
+                  if motor.kind != "torque" else "")
+    return (f"The simulated fluctuation is {fmt(abs(gap) * 100, 3)} % "
+            f"{'above' if gap > 0 else 'below'} the flywheel estimate of the design review's "
+            "formula. The estimate takes the speed as constant while the energy swings, and "
+            "the inertia on the crank as its mean; the simulation lets the speed change the "
+            "loads that depend on it and the inertia change with the crank angle"
+            f"{motor_part}. The two meet as the flywheel grows.")
+
+
+def _compared(analysis, steady, d: Display) -> list[list[str]]:
+    """Cycle quantities at the sweep's constant speed beside the steady turn's."""
+    if analysis.review is None or steady is None or steady.review is None:
+        return []
+    a, b = analysis.review.values, steady.review.values
+    rows = []
+    names = list(COMPARED) + sorted(k for k in b if k.startswith("joint.")
+                                    and k.endswith(".f_max"))
+    for name in names:
+        if name in a and name in b:
+            kind = "moment" if name.startswith("cycle.torque") else \
+                "power" if "power" in name else "force"
+            unit_value = (lambda x: f"{fmt(x)} W") if kind == "power" else \
+                (lambda x: d.q(x, kind))
+            rows.append([name, unit_value(a[name]), unit_value(b[name])])
+    return rows
+
+
+def dynamics_json(analysis) -> dict | None:
+    """summary.json's ``dynamics`` (None without ``dynamics:``): the simulation's outcome,
+    the ``dynamics.*`` quantities and the estimate (SI, with units)."""
+    dyn = analysis.dynamics
+    if dyn is None:
+        return None
+    sim, cycle = dyn.simulation, dyn.simulation.steady
+    out = {"turns": sim.turns, "end_time": {"value": float(sim.time[-1]), "unit": "s"},
+           "steady": cycle is not None, "histories": "dynamics.csv"}
+    if cycle is not None:
+        swing, inertia, estimate = dyn.estimate
+        out.update({
+            "quantities": {k: {"value": float(x), "unit": _unit(k)}
+                           for k, x in dyn.values.items()},
+            "period": {"value": cycle.period, "unit": "s"},
+            "rpm_min": {"value": cycle.omega_min / RPM, "unit": "rpm"},
+            "rpm_max": {"value": cycle.omega_max / RPM, "unit": "rpm"},
+            "flywheel_estimate": {"speed_fluctuation": {"value": estimate, "unit": ""},
+                                  "energy_fluctuation": {"value": swing, "unit": "J"},
+                                  "inertia": {"value": inertia, "unit": "kg·m^2"}},
+            "verdicts": [{"item": v.item, "passed": v.passed,
+                          "value": None if v.value is None else float(v.value),
+                          "limit": v.limit, "unit": v.unit}
+                         for v in dyn.verdicts]})
+    return out
+
+
+def _unit(quantity: str) -> str:
+    from ..quantities import unit_of
+    return unit_of(quantity) or ""
+
+
+def write_histories(histories: list[np.ndarray], folder: Path) -> list[Path]:
+    """dynamics.csv and dynamics.parquet of the time ``histories`` (:func:`histories_of`)
+    in ``folder``."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from .files import atomic_write_bytes, atomic_write_text
+    folder = Path(folder)
+    cols = [np.asarray(c, float) for c in histories]
+    lines = [",".join(HISTORY_COLUMNS)]
+    lines += [",".join(repr(float(x)) for x in row) for row in zip(*cols)]
+    out = [atomic_write_text(folder / "dynamics.csv", "\n".join(lines) + "\n")]
+    table = pa.table({name: c for name, c in zip(HISTORY_COLUMNS, cols)})
+    sink = pa.BufferOutputStream()
+    pq.write_table(table, sink)
+    out.append(atomic_write_bytes(folder / "dynamics.parquet", sink.getvalue().to_pybytes()))
+    return out
+
+
+__all__ = ["DynamicsPlot", "DynamicsSection", "HISTORY_COLUMNS", "dynamics_json",
+           "dynamics_section", "histories_of", "write_histories"]

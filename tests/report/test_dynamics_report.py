@@ -1,0 +1,90 @@
+"""The machine-dynamics outputs agree with the simulation they come from: dynamics.csv and
+dynamics.parquet (the format's columns, one row per output step, the last at `until`),
+summary.json's `dynamics`, the report's section, `mechreport dynamics`."""
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mechreport
+from mechreport.app.cli import main
+from mechreport.report.build import write_report_folder
+from mechreport.report.dynamics import HISTORY_COLUMNS
+
+ROOT = Path(__file__).resolve().parents[2]
+MOTOR = ROOT / "specs" / "four_bar_motor.yaml"
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    a = mechreport.analyse(MOTOR)
+    folder = tmp_path_factory.mktemp("dyn") / "four_bar_motor"
+    write_report_folder(a, folder, MOTOR, "0" * 64)
+    return a, folder
+
+
+def read_csv(path: Path):
+    lines = path.read_text(encoding="utf-8").splitlines()
+    return lines[0].split(","), np.array([[float(x) for x in ln.split(",")] for ln in lines[1:]])
+
+
+@pytest.mark.slow
+def test_the_time_histories_are_the_simulation_sampled_per_output_step(built):
+    a, folder = built
+    sim = a.dynamics.simulation
+    header, rows = read_csv(folder / "dynamics.csv")
+    assert tuple(header) == HISTORY_COLUMNS
+    step = sim.steady.period / 200                       # the default: 200 per steady turn
+    assert np.allclose(np.diff(rows[:, 0]), step, rtol=1e-9)
+    assert rows[0, 0] == 0 and rows[-1, 0] <= sim.steady.t0 + sim.steady.period
+    assert np.array_equal(rows[:, 2], sim.omega) and np.array_equal(rows[:, 1],
+                                                                    np.degrees(sim.angle))
+    assert rows[-1, 1] > 360 * 30                        # unwrapped: past the 30th turn
+    import pyarrow.parquet as pq
+    table = pq.read_table(folder / "dynamics.parquet")
+    assert tuple(table.column_names) == HISTORY_COLUMNS
+    assert np.array_equal(table.column("crank.omega [rad/s]").to_numpy(), rows[:, 2])
+
+
+@pytest.mark.slow
+def test_summary_and_report_show_the_simulations_numbers(built):
+    a, folder = built
+    summary = json.loads((folder / "summary.json").read_text(encoding="utf-8"))
+    dyn = summary["dynamics"]
+    for name, value in a.dynamics.values.items():
+        assert dyn["quantities"][name]["value"] == value
+        assert summary["quantities"][name]["value"] == pytest.approx(value, rel=1e-12)
+    assert dyn["flywheel_estimate"]["speed_fluctuation"]["value"] == a.dynamics.estimate[2]
+    report = (folder / "report.md").read_text(encoding="utf-8")
+    assert "## Machine dynamics" in report and "figures/dynamics.svg" in report
+    rpm = a.dynamics.values["dynamics.mean_rpm"]
+    from mechreport.units import fmt
+    assert f"| dynamics.mean\\_rpm | {fmt(rpm)} rpm |" in report
+    assert (folder / "figures" / "dynamics.svg").is_file()
+
+
+UNTIL = MOTOR.read_text(encoding="utf-8").replace("  until: steady\n",
+                                                  "  until: 0.25\n  output_step: 0.01\n")
+UNTIL = UNTIL[:UNTIL.index("expect:")] + "\n"
+UNTIL = UNTIL.replace("    speed_fluctuation: 0.07        # the simulated (max - min) / mean "
+                      "speed, at most\n", "")
+
+
+def test_until_a_time_gives_the_transient_with_its_last_row_at_that_time(tmp_path):
+    spec = tmp_path / "transient.yaml"
+    spec.write_text(UNTIL, encoding="utf-8")
+    assert main(["dynamics", str(spec), "-o", str(tmp_path / "out")]) == 0
+    header, rows = read_csv(tmp_path / "out" / "transient" / "dynamics.csv")
+    assert rows[-1, 0] == 0.25 and len(rows) == 26
+    assert np.allclose(rows[:, 0], np.arange(26) * 0.01, rtol=0, atol=1e-12)
+    assert rows[0, 2] == 0 and np.all(np.diff(rows[:, 2]) > 0)      # from rest, speeding up
+    assert np.allclose(rows[:, 4], 6 * (1 - rows[:, 2] / (320 * math.pi / 30)))
+
+
+def test_the_dynamics_command_refuses_a_spec_without_dynamics(tmp_path, capsys):
+    assert main(["dynamics", str(ROOT / "specs" / "four_bar.yaml"), "-o", str(tmp_path)]) == 1
+    assert "no 'dynamics:' section" in capsys.readouterr().err
