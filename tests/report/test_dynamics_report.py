@@ -88,3 +88,21 @@ def test_until_a_time_gives_the_transient_with_its_last_row_at_that_time(tmp_pat
 def test_the_dynamics_command_refuses_a_spec_without_dynamics(tmp_path, capsys):
     assert main(["dynamics", str(ROOT / "specs" / "four_bar.yaml"), "-o", str(tmp_path)]) == 1
     assert "no 'dynamics:' section" in capsys.readouterr().err
+
+
+def test_the_sheet_states_the_equation_of_motion_with_its_numbers():
+    """At each reference angle the sheet gives J(phi) from the velocity coefficients (the
+    value generalized_inertia computes) and the acceleration of the steady turn there."""
+    from mechreport.dynamics import generalized_inertia
+    from mechreport.report.sheet.model import build_sheet
+    from mechreport.units import fmt
+    a = mechreport.analyse(MOTOR)
+    sheet = build_sheet(a)
+    cycle = a.dynamics.simulation.steady
+    for am in sheet.angles:
+        text = " ".join(p[0] for p in am.dynamics)
+        k = a.kinematics.index_of(am.angle)
+        j = generalized_inertia(a.kinematics.take(np.array([k]), ()))[0]
+        assert f"= {fmt(j)} kg·m² at φ = {fmt(am.angle)}°" in text
+        i = int(np.flatnonzero(np.isclose(cycle.angles, am.angle))[0])
+        assert f"= {fmt(cycle.alpha[i])} rad/s²" in text

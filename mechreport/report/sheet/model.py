@@ -185,6 +185,7 @@ class AngleModel:
     answers_note: str = ""
     shown: list = field(default_factory=list)
     friction: list = field(default_factory=list)      # rich text: how friction is found
+    dynamics: list = field(default_factory=list)      # paragraphs: the equation of motion
 
 
 @dataclass
@@ -566,6 +567,8 @@ def _angle_model(analysis, angle: float, names: Names, exact, methods, display,
     am.loads = _load_rows(analysis, k)
     am.fbds, am.fbd_note = _fbds(analysis, k, tag, methods)
     am.friction = _friction_iteration(analysis, k, parts)
+    from .dynamics import equation_of_motion_text
+    am.dynamics = [[text] for text in equation_of_motion_text(analysis, k)]
     counter = [0]
     others = {}
     for name in methods:
