@@ -285,3 +285,27 @@ def test_the_speed_fluctuation_limit_is_a_verdict_on_the_simulated_value(steady)
     verdict = next(v for v in a.verdicts if v.item == "limits.speed_fluctuation")
     assert verdict.value == steady.dynamics.values["dynamics.speed_fluctuation"]
     assert verdict.passed == (verdict.value <= 0.01)
+
+
+def test_a_study_varies_the_flywheel_and_keeps_the_simulated_fluctuation():
+    """Sizing a flywheel is a study: `vary: dynamics.flywheel`, `keep:
+    dynamics.speed_fluctuation`; each row is what analysing that variant alone gives, and a
+    larger flywheel smooths the speed."""
+    from mechreport.app.study_workers import run_variants
+    from mechreport.spec.loader import parse_source, spec_from_data
+    from mechreport.study import plan_of
+    from mechreport.study.variants import base_of
+    keep = ["dynamics.speed_fluctuation", "dynamics.mean_rpm"]
+    text = four_bar(STEADY, DAMPER, step=10) + (
+        "study:\n  vary:\n    - {key: dynamics.flywheel, values: [0.005, 0.02]}\n"
+        f"  keep: [{', '.join(keep)}]\n")
+    src = parse_source(text, "flywheel_study.yaml")
+    base = base_of(spec_from_data(src.data, src), src)
+    table = run_variants(base, plan_of(base.spec.study), "newton_euler", keep, jobs=1)
+    assert table.ok.all()
+    for i, flywheel in enumerate((0.005, 0.02)):
+        alone = mechreport.analyse(text.replace("flywheel: 0.01", f"flywheel: {flywheel}"),
+                                   methods=["newton_euler"])
+        np.testing.assert_allclose(table.values[i], [alone.dynamics.values[q] for q in keep],
+                                   rtol=1e-12)
+    assert table.values[1][0] < table.values[0][0]
