@@ -57,7 +57,8 @@ class EquationOfMotion:
     ``J``, ``B``, ``C``, ``D`` (N,) their values there [kg m^2, kg m^2, N m s, N m];
     ``coefficients`` (N, 4, DEGREE + 1) the periodic splines through them, by grid
     interval, function and power of the angle from the interval's start (highest first; see
-    :meth:`at`)."""
+    :meth:`at`); ``viscous`` whether any load depends on the speed (a damper: C is not 0
+    but for round-off)."""
 
     grid: np.ndarray
     J: np.ndarray
@@ -67,6 +68,7 @@ class EquationOfMotion:
     flywheel: float
     motor: MotorCurve
     coefficients: np.ndarray
+    viscous: bool = True
 
     def at(self, phi: np.ndarray) -> np.ndarray:
         """(J, B, C, D) at crank angles ``phi`` (n,) [rad], (n, 4)."""
@@ -177,7 +179,8 @@ def equation_of_motion(mech: Mechanism) -> EquationOfMotion:
         raise AnalysisError(f"{spec.file}: the equation of motion is not finite at every "
                             "crank angle")
     return EquationOfMotion(grid, j, b, c, d, spec.dynamics.flywheel, spec.dynamics.motor,
-                            _pieces(np.radians(grid), values))
+                            _pieces(np.radians(grid), values),
+                            any(ld.kind == "damper" for ld in spec.loads))
 
 
 def _pieces(x: np.ndarray, y: np.ndarray) -> np.ndarray:

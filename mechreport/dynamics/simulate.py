@@ -26,6 +26,7 @@ MAX_TURNS = 5_000         # turns integrated at most before giving up on a stead
 SETTLE_TURNS = 20         # turns after which the approach to a steady state is extrapolated
 STARTUP_FRACTION = 0.95   # the start-up ends at this fraction of the steady mean speed
 DEFAULT_SAMPLES = 200     # time-history samples per steady turn, without output_step
+MAX_ROWS = 2_000_000      # time-history rows at most (about 80 MB of CSV)
 FINE = 2000               # samples of a steady turn in time for its extremes and means
 
 
@@ -109,6 +110,8 @@ def simulate(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarray, file: str
     omega = dyn.start_rpm * RPM
     if omega <= STALL_SPEED and alpha(phi, 0.0) <= 0:
         raise AnalysisError(_stall(file, eom, 0.0, phi, 0.0, start=True))
+    if dyn.until is None:
+        _require_balance(eom, file)
 
     def stall(t, y):
         return y[1] - STALL_SPEED
@@ -152,6 +155,10 @@ def simulate(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarray, file: str
         if t >= end:
             break
     else:
+        if dyn.until is not None:
+            raise AnalysisError(
+                f"{file}: dynamics.until = {dyn.until:g} s is more than {MAX_TURNS} turns "
+                f"(reached at {t:.6g} s): simulate a shorter time")
         w = [s[1] for s in start_turns[-2:]]
         raise AnalysisError(
             f"{file}: no steady state after {MAX_TURNS} turns ({t:.6g} s): the speed at the "
@@ -159,11 +166,30 @@ def simulate(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarray, file: str
             "per turn; write dynamics.until as a time to see the transient")
     cycle = _steady(segments, eom, start_turns, angles) if steady else None
     startup = _startup(segments, t, cycle.mean_omega) if cycle else None
-    time = _output_times(t, dyn, cycle)
+    time = _output_times(t, dyn, cycle, file)
     (ang, w) = segments(time)
     acc = eom.alpha(ang, w)
     return Simulation(time, ang, w, acc, motor_torque(eom.motor, w), len(start_turns), cycle,
                       startup)
+
+
+def _require_balance(eom: EquationOfMotion, file: str) -> None:
+    """Raise ``AnalysisError`` when nothing in the equation depends on the speed (a constant
+    motor torque, no viscous load): the motor's work per turn and the loads' are then fixed
+    numbers that balance only by accident, and the crank speeds up or runs down for ever."""
+    if eom.motor.kind != "torque" or eom.viscous:
+        return
+    h = math.radians(eom.grid[1] - eom.grid[0])
+    motor = 2 * math.pi * eom.motor.constant
+    loads = float(np.sum(eom.D)) * h
+    if abs(motor - loads) <= 1e-9 * max(abs(motor), abs(loads)):
+        return
+    raise AnalysisError(
+        f"{file}: no steady state: the motor's torque is constant and no load depends on the "
+        f"speed, so every turn the motor does {motor:.6g} J of work against the loads' "
+        f"{loads:.6g} J and the crank {'speeds up without end' if motor > loads else 'runs down'}"
+        "; give the motor a torque curve that falls with speed (curve or linear), or write "
+        "dynamics.until as a time to see the transient")
 
 
 def _require_settling(file: str, start_turns, t: float) -> None:
@@ -230,14 +256,20 @@ def _startup(segments: _Segments, t_end: float, mean: float) -> float:
     return float(hi)
 
 
-def _output_times(t_end: float, dyn: Dynamics, cycle: SteadyCycle | None) -> np.ndarray:
+def _output_times(t_end: float, dyn: Dynamics, cycle: SteadyCycle | None, file: str
+                  ) -> np.ndarray:
     """One time per output step from 0 to ``t_end`` [s], and ``t_end`` itself last when
-    ``until`` is a time."""
+    ``until`` is a time. Raises ``AnalysisError`` beyond ``MAX_ROWS`` rows."""
     step = dyn.output_step
     if step is None:
         period = cycle.period if cycle else None
         step = period / DEFAULT_SAMPLES if period else t_end / (DEFAULT_SAMPLES * 10)
-    n = int(math.floor(t_end / step + 1e-9)) + 1
+    rows = t_end / step
+    if not rows < MAX_ROWS:
+        raise AnalysisError(f"{file}: dynamics.output_step = {step:g} s gives {rows:.3g} rows "
+                            f"of time history up to {t_end:.6g} s, more than {MAX_ROWS}: "
+                            "write a larger output_step")
+    n = int(math.floor(rows + 1e-9)) + 1
     times = np.arange(n) * step
     if dyn.until is not None and times[-1] < t_end - 1e-12 * max(t_end, 1.0):
         times = np.append(times, t_end)

@@ -232,11 +232,19 @@ def test_a_motor_too_weak_to_start_the_crank_is_a_clear_error():
         mechreport.analyse(text)
 
 
-def test_a_motor_that_speeds_the_crank_up_without_end_has_no_steady_state():
-    """A constant torque and nothing that takes energy away: the speed rises turn after
-    turn; the simulation says so after a few turns instead of integrating on."""
-    with pytest.raises(AnalysisError, match="no steady state"):
+def test_a_constant_torque_against_speed_independent_loads_has_no_steady_state():
+    """Nothing depends on the speed: the motor's work per turn exceeds the loads' for ever.
+    Said before integrating."""
+    with pytest.raises(AnalysisError, match="speeds up without end"):
         mechreport.analyse(four_bar("{motor: {torque: 2}}", gravity="[0, 0]"))
+
+
+def test_a_motor_whose_torque_rises_with_speed_runs_away_and_is_stopped():
+    """A torque that grows with the speed faster than the damper's: the change per turn
+    grows; from the 20th turn on the extrapolation says it will not settle."""
+    with pytest.raises(AnalysisError, match="does not settle"):
+        mechreport.analyse(four_bar("{motor: {curve: [[0, 1], [100, 30]]}}", DAMPER,
+                                    gravity="[0, 0]"))
 
 
 def test_a_crank_that_runs_down_stalls_with_a_clear_error():
@@ -309,3 +317,18 @@ def test_a_study_varies_the_flywheel_and_keeps_the_simulated_fluctuation():
         np.testing.assert_allclose(table.values[i], [alone.dynamics.values[q] for q in keep],
                                    rtol=1e-12)
     assert table.values[1][0] < table.values[0][0]
+
+
+@pytest.mark.parametrize("dynamics, words", [
+    ("{motor: {torque: 0}, start: {rpm: 300}, until: 2.0e3}", "more than 12 turns"),
+    ("{motor: {linear: {stall_torque: 40, no_load_rpm: 330}}, until: 1, "
+     "output_step: 1.0e-7}", "more than 2000000"),
+])
+def test_a_run_too_long_to_simulate_or_store_is_a_clear_error(dynamics, words, monkeypatch):
+    """The turn limit (lowered here: the real one is minutes of integration) and the row
+    limit are errors that say which key to change."""
+    import importlib
+    monkeypatch.setattr(importlib.import_module("mechreport.dynamics.simulate"), "MAX_TURNS",
+                        12)
+    with pytest.raises(AnalysisError, match=words):
+        mechreport.analyse(four_bar(dynamics, gravity="[0, 0]"))
