@@ -57,8 +57,10 @@ class EquationOfMotion:
     ``J``, ``B``, ``C``, ``D`` (N,) their values there [kg m^2, kg m^2, N m s, N m];
     ``coefficients`` (N, 4, DEGREE + 1) the periodic splines through them, by grid
     interval, function and power of the angle from the interval's start (highest first; see
-    :meth:`at`); ``viscous`` whether any load depends on the speed (a damper: C is not 0
-    but for round-off)."""
+    :meth:`at`); ``viscous`` whether any load depends on the speed (a damper, or friction:
+    C is not 0 but for round-off); ``friction`` the friction's parts
+    (:class:`~mechreport.dynamics.friction.FrictionTerms`, None without friction), whose
+    states' equation is solved with it; ``file`` the spec's, for messages."""
 
     grid: np.ndarray
     J: np.ndarray
@@ -69,6 +71,8 @@ class EquationOfMotion:
     motor: MotorCurve
     coefficients: np.ndarray
     viscous: bool = True
+    friction: object | None = None
+    file: str = ""
 
     def at(self, phi: np.ndarray) -> np.ndarray:
         """(J, B, C, D) at crank angles ``phi`` (n,) [rad], (n, 4)."""
@@ -85,6 +89,9 @@ class EquationOfMotion:
     def alpha(self, phi: np.ndarray, omega: np.ndarray) -> np.ndarray:
         """The crank's angular acceleration [rad/s^2] at ``phi`` [rad] and ``omega``
         [rad/s], (n,)."""
+        if self.friction is not None:
+            from .friction import friction_state
+            return friction_state(self, phi, omega, self.file)[0]
         j, b, c, d = self.at(phi).T
         omega = np.asarray(omega, float)
         return (motor_torque(self.motor, omega) - b * omega ** 2 - c * omega - d) \
@@ -100,7 +107,10 @@ class EquationOfMotion:
         """alpha(phi, omega) for one state in plain floats: the integrator calls it about
         2100 times a turn, and it takes 3.1 us a call against 92 us for :meth:`alpha` on
         one-element arrays (bench/bench_dynamics.py: the steady state in 0.5 s of CPU, not
-        2.8 s)."""
+        2.8 s). With friction: :func:`~mechreport.dynamics.friction.friction_scalar`."""
+        if self.friction is not None:
+            from .friction import friction_scalar
+            return friction_scalar(self)
         coef = self.coefficients.tolist()
         h = math.radians(GRID_STEP_DEG)
         n = len(coef)
@@ -157,6 +167,7 @@ def equation_of_motion(mech: Mechanism) -> EquationOfMotion:
     grid = np.arange(0.0, 360.0, GRID_STEP_DEG)
     unit_spec = replace(spec, driver=replace(spec.driver, omega=1.0, alpha=0.0),
                         friction=(), expect=())
+    friction = None
     unit = mech.with_spec(unit_spec)
     kin = solve_kinematics(unit, grid)
     if kin.n != len(grid):
@@ -178,9 +189,15 @@ def equation_of_motion(mech: Mechanism) -> EquationOfMotion:
     if not np.all(np.isfinite(values)):
         raise AnalysisError(f"{spec.file}: the equation of motion is not finite at every "
                             "crank angle")
+    if spec.friction:
+        from .friction import friction_terms, method_parts_of
+        rubbed = mech.with_spec(replace(unit_spec, friction=spec.friction))
+        friction = friction_terms(spec, replace(kin, mechanism=rubbed), STATES,
+                                  method_parts_of)
     return EquationOfMotion(grid, j, b, c, d, spec.dynamics.flywheel, spec.dynamics.motor,
                             _pieces(np.radians(grid), values),
-                            any(ld.kind == "damper" for ld in spec.loads))
+                            bool(spec.friction) or any(ld.kind == "damper" for ld in spec.loads),
+                            friction, spec.file)
 
 
 def _pieces(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -189,15 +206,34 @@ def _pieces(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     interval's start (highest first): J, C and D periodic splines of degree DEGREE, B half
     the derivative of J's. Each piece is the spline's Taylor polynomial at its interval's
     start (exact: the spline is one polynomial over the interval)."""
+    pieces = periodic_pieces(x, y)[..., ::-1].copy()          # (N, 4, powers t^0 ..)
+    pieces[:, 1] = 0.0
+    pieces[:, 1, :-1] = 0.5 * pieces[:, 0, 1:] * np.arange(1, DEGREE + 1)   # B = J' / 2
+    return pieces[..., ::-1].copy()
+
+
+def periodic_pieces(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """The pieces (N, F, DEGREE + 1) of periodic splines of degree DEGREE through ``y``
+    (N, F) at the equally spaced ``x`` (N,) [rad] over one turn, by interval, function and
+    power of the angle from the interval's start (highest first): each piece the spline's
+    Taylor polynomial at its interval's start (exact: one polynomial over the interval)."""
     from scipy.interpolate import make_interp_spline
     xx = np.append(x, x[0] + 2 * math.pi)
     yy = np.vstack([y, y[:1]])
     spline = make_interp_spline(xx, yy, k=DEGREE, bc_type="periodic", axis=0)
     taylor = np.stack([spline(x, nu=k) / math.factorial(k) for k in range(DEGREE + 1)],
-                      axis=-1)                                    # (N, 4, powers t^0 ..)
-    taylor[:, 1] = 0.0
-    taylor[:, 1, :-1] = 0.5 * taylor[:, 0, 1:] * np.arange(1, DEGREE + 1)   # B = J' / 2
+                      axis=-1)
     return taylor[..., ::-1].copy()
+
+
+def pieces_at(pieces: np.ndarray, phi: float) -> np.ndarray:
+    """Every function of ``pieces`` (:func:`periodic_pieces` on the GRID_STEP_DEG grid) at
+    one crank angle ``phi`` [rad], (F,)."""
+    h = math.radians(GRID_STEP_DEG)
+    x = (phi % (2 * math.pi)) / h
+    i = min(int(x), len(pieces) - 1)
+    t = (x - i) * h
+    return pieces[i] @ (t ** np.arange(DEGREE, -1, -1))
 
 
 def generalized_inertia(kin: Kinematics) -> np.ndarray:

@@ -284,13 +284,16 @@ def _stall(file: str, eom: EquationOfMotion, t: float, phi: float, omega: float,
                                  np.array([0.0]))[0])
     motor = float(motor_torque(eom.motor, np.array([max(omega, 0.0)]))[0])
     where = f"at crank angle {deg % 360:.4g}° (turn {int(deg // 360) + 1})"
+    # with friction the load's own number would leave the friction out: not printed
+    needs = ("the mechanism's loads and friction" if eom.friction is not None
+             else f"the {load:.6g} N·m the mechanism needs")
     if start:
         return (f"{file}: the crank cannot start {where}: the motor's starting torque "
-                f"{motor:.6g} N·m does not exceed the {load:.6g} N·m the mechanism needs to "
-                "move there (dynamics.motor, or dynamics.start)")
+                f"{motor:.6g} N·m does not overcome {needs} to move there (dynamics.motor, "
+                "or dynamics.start)")
     return (f"{file}: the crank stalls {where}, t = {t:.6g} s: its speed falls to zero, the "
-            f"motor's {motor:.6g} N·m there cannot carry the mechanism's {load:.6g} N·m on "
-            "(a stronger motor, a larger flywheel, or a faster start)")
+            f"motor's {motor:.6g} N·m there cannot carry {needs.replace('needs', 'takes')} "
+            "on (a stronger motor, a larger flywheel, or a faster start)")
 
 
 __all__ = ["MAX_TURNS", "RTOL", "STEADY_RTOL", "Simulation", "SteadyCycle", "simulate"]

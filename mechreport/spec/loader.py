@@ -574,12 +574,6 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                 if "friction" in top else ())
     dynamics = (_dynamics(top["dynamics"], ck, driver, sweep)
                 if "dynamics" in top else None)
-    if dynamics is not None and friction:
-        # the friction would depend on the motion in the equation itself (not done yet):
-        # refused rather than simulated without it
-        ck.error(("dynamics",), "machine dynamics does not include friction in the joints "
-                 "yet; simulate without the 'friction:' section (its losses then come from "
-                 "the kinetostatic analysis alone)")
     expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src, driver=driver,
                      pins=pins)
     design = _design(top.get("design"), ck, joints, pins) if "design" in top else Design()

@@ -5,6 +5,7 @@ turn, and the steady turn's forces against kinetostatic analyses at the same spe
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -279,12 +280,50 @@ def test_steady_quantities_need_a_steady_state():
     assert "transient only" in paths["design.limits.speed_fluctuation"]
 
 
-def test_friction_with_dynamics_is_refused_not_left_out():
-    """The equation of motion does not include joint friction yet: a spec with both is an
-    error, never a simulation that silently leaves the friction out."""
-    text = four_bar("{motor: {torque: 1}}") + "friction: {A: {mu: 0.1, radius: 10}}\n"
-    with pytest.raises(SpecError, match="does not include friction"):
-        parse_spec(text, "dyn.yaml")
+FRICTION = "friction: {A: {mu: 0.08, radius: 12}, B: {mu: 0.1, radius: 8}, C: {mu: 0.1, " \
+           "radius: 8}}\n"
+
+
+@pytest.fixture(scope="module")
+def rubbed():
+    """The damped four-bar with friction in its pins A, B, C, swept from 0.25° so that no
+    angle falls where a joint's relative motion stops (0° and 180°: left out)."""
+    text = four_bar(STEADY, DAMPER, step=0.5).replace(
+        "sweep: {start: 0, stop: 360, step: 0.5}", "sweep: {start: 0.25, stop: 360.25, "
+                                                   "step: 0.5}").replace("at: [30, 210]",
+                                                                         "at: [30.25, 210.25]")
+    return mechreport.analyse(text + FRICTION)
+
+
+def test_with_friction_the_motor_does_the_work_the_damper_and_the_joints_dissipate(rubbed):
+    """Over the steady turn the motor's work equals the damper's dissipation plus each
+    joint's, |friction x relative rate| integrated over the turn: the frictions as the
+    steady turn's kinetostatic analysis finds them at the true motion (its own Newton
+    iteration over the sweep), the equation of motion's solved per state in time."""
+    cycle = rubbed.dynamics.simulation.steady
+    turn = rubbed.dynamics.steady
+    assert np.array_equal(turn.angles, cycle.angles)     # no angle left out
+    kin = at_unit_rate(turn.kinematics)
+    c_pt, a_pt = kin.named_point("C", "coupler"), kin.named_point("A", "crank")
+    d = c_pt.r - a_pt.r
+    rate = np.einsum("ij,ij->i", c_pt.v - a_pt.v, d) / np.hypot(d[:, 0], d[:, 1])
+    w = cycle.omega
+    h = math.radians(0.5)
+    from mechreport.forces.friction_law import relative_rate
+    rubbing = sum(np.abs(turn.kinematics.friction[j] * relative_rate(kin, turn.spec.joint(j)))
+                  for j in ("A", "B", "C"))
+    motor = np.sum(motor_torque(rubbed.spec.dynamics.motor, w)) * h
+    lost = np.sum(40 * rate ** 2 * w + rubbing) * h
+    assert np.sum(rubbing) * h > 0.05 * lost                   # the friction matters here
+    assert motor == pytest.approx(lost, rel=1e-6)
+
+
+def test_with_friction_the_steady_turn_is_slower_and_checked_like_a_sweep(rubbed, steady):
+    turn = rubbed.dynamics.steady
+    assert turn.worst.relative <= 1e-9
+    assert rubbed.dynamics.values["dynamics.mean_rpm"] < steady.dynamics.values[
+        "dynamics.mean_rpm"]
+    assert "cycle.friction.energy" in turn.review.values
 
 
 def test_the_speed_fluctuation_limit_is_a_verdict_on_the_simulated_value(steady):
@@ -332,3 +371,24 @@ def test_a_run_too_long_to_simulate_or_store_is_a_clear_error(dynamics, words, m
                         12)
     with pytest.raises(AnalysisError, match=words):
         mechreport.analyse(four_bar(dynamics, gravity="[0, 0]"))
+
+
+PRESS = (Path(__file__).resolve().parents[2] / "specs" / "crank_press_friction.yaml")
+
+
+@pytest.mark.parametrize("which", ["pins", "slider with length"])
+def test_the_integrators_friction_path_is_the_batched_one(which):
+    """The plain-float right-hand side with friction gives the batched solver's alpha: the
+    four-bar's rubbing pins, and the crank press's pins and ram guide (a slider with a
+    length: the drawer effect)."""
+    from mechreport.dynamics.friction import friction_state
+    text = (four_bar(STEADY, DAMPER) + FRICTION if which == "pins" else
+            PRESS.read_text(encoding="utf-8")
+            + "dynamics: {motor: {linear: {stall_torque: 400, no_load_rpm: 66}}, flywheel: 30}\n")
+    spec, mech, eom = equation(text)
+    rng = np.random.default_rng(7)
+    phi, w = rng.uniform(0, 2 * math.pi, 40), rng.uniform(5, 40, 40)
+    one = eom.scalar()
+    np.testing.assert_allclose([one(p, x) for p, x in zip(phi, w)],
+                               friction_state(eom, phi, w, "dyn.yaml")[0], rtol=1e-12,
+                               atol=1e-12 * np.max(np.abs(eom.D)))

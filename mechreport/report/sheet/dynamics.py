@@ -50,7 +50,10 @@ def equation_of_motion_text(analysis, k: int) -> list[str]:
         "(J(φ) + I_f) α = M_m(ω) − B(φ) ω² − C(φ) ω − D(φ), with the flywheel "
         f"I_f = {fmt(fly)} kg·m², the viscous loads C = {fmt(c, scale=scale / speed)} N·m·s "
         f"and the other loads and weights D = {fmt(d, scale=scale)} N·m (their generalized "
-        "force, the power they take per unit crank speed, is −(C ω + D)).",
+        "force, the power they take per unit crank speed, is −(C ω + D))"
+        + ("; with friction in the joints, each joint's friction (found with α at each "
+           "state, by the friction law) adds its own generalized force, and α below is the "
+           "simulation's." if spec.friction else "."),
     ]
     if cycle is not None:
         hit = np.flatnonzero(np.abs(cycle.angles - angle) < 1e-9)
@@ -63,10 +66,12 @@ def equation_of_motion_text(analysis, k: int) -> list[str]:
                 f"In the steady turn the crank passes φ = {fmt(angle)}° at ω = {fmt(w)} rad/s "
                 f"({fmt(w * 30 / math.pi)} rpm): the motor gives M_m = {fmt(m)} N·m, the loads' "
                 f"generalized force is −(C ω + D) = {fmt(q, scale=scale)} N·m, "
-                f"B ω² = {fmt(b * w * w)} N·m, so α = ({fmt(m)}{_term(-b * w * w)}"
-                f"{_term(q, scale)}) / ({fmt(j)} + {fmt(fly)}) = {fmt(alpha)} rad/s². The "
-                "report's steady-turn forces are found with this ω and α; the equations below "
-                "are the sweep's, at the driver's constant speed.")
+                f"B ω² = {fmt(b * w * w)} N·m, so "
+                + (f"with the joints' friction α = {fmt(alpha)} rad/s². The " if spec.friction
+                   else f"α = ({fmt(m)}{_term(-b * w * w)}{_term(q, scale)}) / ({fmt(j)} + "
+                        f"{fmt(fly)}) = {fmt(alpha)} rad/s². The ")
+                + "report's steady-turn forces are found with this ω and α; the equations "
+                "below are the sweep's, at the driver's constant speed.")
     return out
 
 
