@@ -17,6 +17,7 @@ from pathlib import Path  # noqa: E402
 
 from mechreport.dynamics import equation_of_motion, simulate  # noqa: E402
 from mechreport.model import build_mechanism  # noqa: E402
+from mechreport.pipeline.analysis import analysis_of  # noqa: E402
 from mechreport.pipeline.dynamics import run_dynamics  # noqa: E402
 from mechreport.spec import parse_spec  # noqa: E402
 
@@ -42,10 +43,10 @@ def main() -> None:
     text = text.replace("mechreport: 1\n", "mechreport: 1.1\n") + DYNAMICS
     spec = parse_spec(text, "four_bar_motor_curve.yaml")
     mech = build_mechanism(spec)
-    run_dynamics(mech)                                   # warm: imports, caches
+    run_dynamics(mech, analysis_of)                      # warm: imports, caches
     t_eom, eom = cpu(lambda: equation_of_motion(mech))
     t_sim, sim = cpu(lambda: simulate(eom, spec.dynamics, spec.analysed_angles(), spec.file))
-    t_all, dyn = cpu(lambda: run_dynamics(mech))
+    t_all, dyn = cpu(lambda: run_dynamics(mech, analysis_of))
     print(f"steady after {sim.turns} turns ({sim.steady.t0 + sim.steady.period:.3g} s), "
           f"fluctuation {sim.steady.fluctuation:.4g}")
     print(f"equation of motion  {t_eom:6.3f} s CPU")

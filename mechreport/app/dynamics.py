@@ -20,6 +20,7 @@ def dynamics_command(paths: list[str], out: str = "out") -> int:
 
 def _one(path: str, out: Path) -> int:
     from ..model import build_mechanism
+    from ..pipeline.analysis import analysis_of
     from ..pipeline.dynamics import run_dynamics
     from ..report.dynamics import histories_of, write_histories
     from ..spec import load_spec
@@ -31,7 +32,7 @@ def _one(path: str, out: Path) -> int:
             print(f"{path}: no 'dynamics:' section: nothing to simulate (docs/spec.md, "
                   "'Machine dynamics')", file=sys.stderr)
             return 1
-        dyn = run_dynamics(build_mechanism(spec))
+        dyn = run_dynamics(build_mechanism(spec), analysis_of)
         folder = out / Path(path).stem
         folder.mkdir(parents=True, exist_ok=True)
         files = write_histories(histories_of(dyn.simulation), folder)

@@ -40,14 +40,12 @@ from ..kinematics import Kinematics, at_unit_rate, solve_kinematics, with_rates
 from ..model import Mechanism
 from ..spec import Spec
 from ..spec.types import MotorCurve
+from .friction import friction_scalar, friction_state, friction_terms, method_parts_of
+from .motor import RPM, motor_function, motor_torque
+from .pieces import DEGREE, GRID_STEP_DEG, periodic_pieces
 
-#: crank angles of the grid the equation's coefficients are found on [deg]
-GRID_STEP_DEG = 0.5
-#: the degree of the splines between them (the scalar right-hand side is written for 5)
-DEGREE = 5
 #: the rate states (omega [rad/s], alpha [rad/s^2]) the reference method is solved at
 STATES = ((1.0, 0.0), (2.0, 0.0), (3.0, 0.0), (1.0, 1.0))
-RPM = math.pi / 30.0          # rad/s per rpm
 
 
 @dataclass(frozen=True)
@@ -90,7 +88,6 @@ class EquationOfMotion:
         """The crank's angular acceleration [rad/s^2] at ``phi`` [rad] and ``omega``
         [rad/s], (n,)."""
         if self.friction is not None:
-            from .friction import friction_state
             return friction_state(self, phi, omega, self.file)[0]
         j, b, c, d = self.at(phi).T
         omega = np.asarray(omega, float)
@@ -109,7 +106,6 @@ class EquationOfMotion:
         one-element arrays (bench/bench_dynamics.py: the steady state in 0.5 s of CPU, not
         2.8 s). With friction: :func:`~mechreport.dynamics.friction.friction_scalar`."""
         if self.friction is not None:
-            from .friction import friction_scalar
             return friction_scalar(self)
         coef = self.coefficients.tolist()
         h = math.radians(GRID_STEP_DEG)
@@ -130,32 +126,6 @@ class EquationOfMotion:
             d = ((((d5 * t + d4) * t + d3) * t + d2) * t + d1) * t + d0
             return (torque(omega) - (b * omega + c) * omega - d) / (j + fly)
         return alpha
-
-
-def motor_torque(motor: MotorCurve, omega: np.ndarray) -> np.ndarray:
-    """The motor's torque [N m] at crank speeds ``omega`` [rad/s]: linear between the
-    characteristic's points and along its end segments beyond them."""
-    pts = np.asarray(motor.points(), float)
-    rpm = np.asarray(omega, float) / RPM
-    x, y = pts[:, 0], pts[:, 1]
-    k = np.clip(np.searchsorted(x, rpm) - 1, 0, len(x) - 2)
-    slope = (y[k + 1] - y[k]) / (x[k + 1] - x[k])
-    return y[k] + slope * (rpm - x[k])
-
-
-def motor_function(motor: MotorCurve):
-    """:func:`motor_torque` for one speed, in plain floats."""
-    pts = [tuple(map(float, p)) for p in motor.points()]
-    xs = [p[0] for p in pts]
-    last = len(pts) - 2
-    import bisect
-
-    def torque(omega: float) -> float:
-        rpm = omega / RPM
-        k = min(max(bisect.bisect_left(xs, rpm) - 1, 0), last)
-        (x0, y0), (x1, y1) = pts[k], pts[k + 1]
-        return y0 + (y1 - y0) / (x1 - x0) * (rpm - x0)
-    return torque
 
 
 def equation_of_motion(mech: Mechanism) -> EquationOfMotion:
@@ -190,7 +160,6 @@ def equation_of_motion(mech: Mechanism) -> EquationOfMotion:
         raise AnalysisError(f"{spec.file}: the equation of motion is not finite at every "
                             "crank angle")
     if spec.friction:
-        from .friction import friction_terms, method_parts_of
         rubbed = mech.with_spec(replace(unit_spec, friction=spec.friction))
         friction = friction_terms(spec, replace(kin, mechanism=rubbed), STATES,
                                   method_parts_of)
@@ -210,30 +179,6 @@ def _pieces(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     pieces[:, 1] = 0.0
     pieces[:, 1, :-1] = 0.5 * pieces[:, 0, 1:] * np.arange(1, DEGREE + 1)   # B = J' / 2
     return pieces[..., ::-1].copy()
-
-
-def periodic_pieces(x: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """The pieces (N, F, DEGREE + 1) of periodic splines of degree DEGREE through ``y``
-    (N, F) at the equally spaced ``x`` (N,) [rad] over one turn, by interval, function and
-    power of the angle from the interval's start (highest first): each piece the spline's
-    Taylor polynomial at its interval's start (exact: one polynomial over the interval)."""
-    from scipy.interpolate import make_interp_spline
-    xx = np.append(x, x[0] + 2 * math.pi)
-    yy = np.vstack([y, y[:1]])
-    spline = make_interp_spline(xx, yy, k=DEGREE, bc_type="periodic", axis=0)
-    taylor = np.stack([spline(x, nu=k) / math.factorial(k) for k in range(DEGREE + 1)],
-                      axis=-1)
-    return taylor[..., ::-1].copy()
-
-
-def pieces_at(pieces: np.ndarray, phi: float) -> np.ndarray:
-    """Every function of ``pieces`` (:func:`periodic_pieces` on the GRID_STEP_DEG grid) at
-    one crank angle ``phi`` [rad], (F,)."""
-    h = math.radians(GRID_STEP_DEG)
-    x = (phi % (2 * math.pi)) / h
-    i = min(int(x), len(pieces) - 1)
-    t = (x - i) * h
-    return pieces[i] @ (t ** np.arange(DEGREE, -1, -1))
 
 
 def generalized_inertia(kin: Kinematics) -> np.ndarray:
@@ -258,8 +203,8 @@ def spec_at_speed(spec: Spec, omega: float) -> Spec:
                                         rpm_given=omega / RPM))
 
 
-__all__ = ["EquationOfMotion", "GRID_STEP_DEG", "RPM", "STATES", "equation_of_motion",
-           "flywheel_estimate", "generalized_inertia", "motor_function", "motor_torque", "spec_at_speed"]
+__all__ = ["EquationOfMotion", "STATES", "equation_of_motion", "flywheel_estimate",
+           "generalized_inertia", "spec_at_speed"]
 
 
 def flywheel_estimate(eom: EquationOfMotion, omega: float) -> tuple[float, float, float]:

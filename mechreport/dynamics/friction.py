@@ -30,7 +30,8 @@ from ..forces.friction_law import magnitude, relative_rate
 from ..forces.newton_euler import build_steps as newton_euler_steps
 from ..forces.sources import split_by_source
 from ..kinematics import Kinematics, at_unit_rate, with_rates
-from .equation import periodic_pieces
+from .motor import motor_function, motor_torque
+from .pieces import DEGREE, GRID_STEP_DEG, periodic_pieces
 
 TOL = 1e-13          # Newton's convergence: the last step, relative to the friction's scale
 MAX_STEPS = 50
@@ -116,7 +117,6 @@ class _Lines:
 
 def channels_at(pieces: np.ndarray, phi: np.ndarray) -> np.ndarray:
     """Every channel of ``pieces`` at crank angles ``phi`` (n,) [rad], (n, channels)."""
-    from .equation import DEGREE, GRID_STEP_DEG
     h = math.radians(GRID_STEP_DEG)
     x = np.mod(np.asarray(phi, float), 2 * math.pi) / h
     i = np.minimum(x.astype(int), len(pieces) - 1)
@@ -131,7 +131,6 @@ def friction_state(eom, phi: np.ndarray, omega: np.ndarray, file: str
     with its friction at the states (``phi`` [rad], ``omega`` [rad/s] > 0), by Newton's
     method on the friction law, batched over the states. Raises ``AnalysisError`` where
     the friction jams the mechanism (loop gain 1 or more) or Newton does not converge."""
-    from .equation import motor_torque
     terms = eom.friction
     frictions, joints, layout = terms.frictions, terms.joints, terms.layout
     phi, omega = np.atleast_1d(np.asarray(phi, float)), np.atleast_1d(np.asarray(omega, float))
@@ -184,7 +183,6 @@ def friction_scalar(eom):
     warm-started from the previous call's frictions. A state where Newton's method does not
     converge raises ``AnalysisError``; the loop gain is checked on the sampled motion by
     :func:`friction_state`."""
-    from .equation import DEGREE, GRID_STEP_DEG, motor_function
     terms = eom.friction
     frictions, joints, layout = terms.frictions, terms.joints, terms.layout
     J = len(frictions)

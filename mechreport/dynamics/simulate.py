@@ -16,7 +16,8 @@ import numpy as np
 
 from ..errors import AnalysisError
 from ..spec.types import Dynamics
-from .equation import RPM, EquationOfMotion, motor_torque
+from .equation import EquationOfMotion
+from .motor import RPM, motor_torque
 
 RTOL = 1e-10              # the integrator's relative tolerance (speed and angle)
 ATOL_ANGLE = 1e-10        # [rad]

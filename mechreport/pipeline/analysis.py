@@ -33,6 +33,7 @@ from ..post.transmission import instant_quantities
 from ..quantities import MECHANISM_UNITS
 from ..post.sweep import SweepSummary, sweep_summary
 from ..spec import Spec, load_spec, parse_spec
+from .dynamics import run_dynamics
 
 DEFAULT_TOL = 1e-6
 
@@ -223,8 +224,7 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL,
         mech = build_mechanism(spec)
         dynamics = None
         if spec.dynamics is not None:
-            from .dynamics import run_dynamics
-            dynamics = run_dynamics(mech, methods, tol, plans)
+            dynamics = run_dynamics(mech, analysis_of, methods, tol, plans)
         return analysis_of(mech, solve_kinematics(mech), methods, tol, plans, dynamics)
 
 

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..dynamics import (EquationOfMotion, Simulation, equation_of_motion, flywheel_estimate,
                         simulate, spec_at_speed)
-from ..dynamics.equation import RPM
+from ..dynamics.motor import RPM
 from ..kinematics import solve_kinematics, with_rates
 from ..model import Mechanism
 
@@ -39,16 +39,33 @@ class DynamicsResult:
     verdicts: tuple = ()      # the steady turn's design verdicts (steady_verdicts)
 
 
-def run_dynamics(mech: Mechanism, methods=None, tol: float = 1e-6, plans=None
-                 ) -> DynamicsResult:
-    """The machine dynamics of ``mech``'s spec (its ``dynamics:``). Raises
-    ``AnalysisError`` at a stall, where the crank cannot turn, or without a steady state."""
-    from .analysis import analysis_of
+def simulated(mech: Mechanism) -> tuple[EquationOfMotion, Simulation, dict[str, float]]:
+    """The equation of motion of ``mech``'s spec, the motion it gives and the
+    ``dynamics.*`` quantities of its steady turn (empty without one): what a check needs of
+    machine dynamics. Raises ``AnalysisError`` at a stall, where the crank cannot turn, or
+    without a steady state."""
     spec = mech.spec
     eom = equation_of_motion(mech)
-    angles = spec.analysed_angles()
-    sim = simulate(eom, spec.dynamics, angles, spec.file)
+    sim = simulate(eom, spec.dynamics, spec.analysed_angles(), spec.file)
     cycle = sim.steady
+    if cycle is None:
+        return eom, sim, {}
+    return eom, sim, {"dynamics.speed_fluctuation": cycle.fluctuation,
+                      "dynamics.mean_rpm": cycle.mean_omega / RPM,
+                      "dynamics.startup_time": sim.startup_time,
+                      "dynamics.motor_rms_torque": cycle.motor_rms}
+
+
+def run_dynamics(mech: Mechanism, analyse_turn, methods=None, tol: float = 1e-6, plans=None
+                 ) -> DynamicsResult:
+    """The machine dynamics of ``mech``'s spec (its ``dynamics:``), its steady turn analysed
+    by ``analyse_turn(mech, kin, methods, tol, plans, extra=values)`` (the pipeline's
+    :func:`~mechreport.pipeline.analysis.analysis_of`). Raises ``AnalysisError`` at a stall,
+    where the crank cannot turn, or without a steady state."""
+    spec = mech.spec
+    eom, sim, values = simulated(mech)
+    cycle = sim.steady
+    angles = spec.analysed_angles()
     if cycle is None:
         return DynamicsResult(eom, sim, None, {})
     # the steady turn's own analysis: the spec's expectations are the sweep's (at its speed)
@@ -57,11 +74,7 @@ def run_dynamics(mech: Mechanism, methods=None, tol: float = 1e-6, plans=None
     kin = solve_kinematics(smech)
     pick = np.searchsorted(np.round(angles, 9), np.round(kin.angles, 9))
     kin = with_rates(kin, cycle.omega[pick], cycle.alpha[pick])
-    values = {"dynamics.speed_fluctuation": cycle.fluctuation,
-              "dynamics.mean_rpm": cycle.mean_omega / RPM,
-              "dynamics.startup_time": sim.startup_time,
-              "dynamics.motor_rms_torque": cycle.motor_rms}
-    steady = analysis_of(smech, kin, methods, tol, plans, extra=values)
+    steady = analyse_turn(smech, kin, methods, tol, plans, extra=values)
     return DynamicsResult(eom, sim, steady, values, flywheel_estimate(eom, cycle.mean_omega),
                           steady_verdicts(steady.verdicts, cycle))
 
@@ -76,14 +89,14 @@ MOTOR_QUANTITIES = {"motor.rated_torque": ("dynamics.motor_rms_torque", "motor_r
 def steady_verdicts(verdicts, cycle) -> tuple:
     """The steady turn's design verdicts, the motor's against the motor's own torque and
     power over the turn (with a flywheel the crank shaft's torque is not the motor's)."""
-    from dataclasses import replace as _replace
     out = []
     for v in verdicts:
         if v.item in MOTOR_QUANTITIES:
             quantity, attr, unit = MOTOR_QUANTITIES[v.item]
-            v = _replace(v, quantity=quantity, value=getattr(cycle, attr), unit=unit, why="")
+            v = replace(v, quantity=quantity, value=getattr(cycle, attr), unit=unit, why="")
         out.append(v)
     return tuple(out)
 
 
-__all__ = ["DynamicsResult", "MOTOR_QUANTITIES", "run_dynamics", "steady_verdicts"]
+__all__ = ["DynamicsResult", "MOTOR_QUANTITIES", "run_dynamics", "simulated",
+           "steady_verdicts"]

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .dynamics import simulated
 from .analysis import (DEFAULT_TOL, Analysis, Checked, analyse, no_angle_error,
                        solve_trusted)
 from ..checks import Agreement, ExpectationResult, Residual, residuals
@@ -134,6 +135,8 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     rev, why = design_review_from(traces.head(n), spec, chunks.motion.full,
                                   chunks.turn_problem)
     values = rev.values if rev is not None else None
+    if spec.dynamics is not None:       # the steady turn's quantities, from the simulation
+        values = {**(values or {}), **simulated(mech)[2]}
     del rev, traces
     expectations: list[ExpectationResult] = []
     for i, e in enumerate(spec.expect):

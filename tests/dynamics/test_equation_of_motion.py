@@ -12,7 +12,7 @@ import pytest
 
 import mechreport
 from mechreport.dynamics import equation_of_motion, generalized_inertia, simulate
-from mechreport.dynamics.equation import RPM, motor_torque
+from mechreport.dynamics.motor import RPM, motor_torque
 from mechreport.errors import AnalysisError, SpecError
 from mechreport.kinematics import at_unit_rate, solve_kinematics
 from mechreport.model import build_mechanism

@@ -75,8 +75,10 @@ def test_every_variant_equals_its_single_analysis(spec_path):
         assert o.error is None
         _same_outcome(o, a)
     if stacked is not None and stacked.clean.all():   # dyads only, every angle clean
-        # (a spec with friction solves it with each variant's own forces: alone)
-        assert all(o.batched != bool(spec.friction) for o in outcomes)
+        # (a spec with friction solves it with each variant's own forces, one with dynamics
+        # its own motion: alone)
+        alone = bool(spec.friction) or spec.dynamics is not None
+        assert all(o.batched != alone for o in outcomes)
 
 
 def test_mechanisms_of_dyads_with_clean_sweeps_are_solved_in_the_batch():
