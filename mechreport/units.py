@@ -41,6 +41,7 @@ EXPECT_UNITS = {
     "m/s^2": {"m/s^2": 1.0},
     "deg": {"deg": 1.0, "rad": 57.29577951308232},
     "rad/s": {"rad/s": 1.0, "rpm": 0.10471975511965977},
+    "Pa": {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9},
 }
 
 #: the units a spec's own numbers may be written in (its ``units:``); a report may show any

@@ -27,7 +27,8 @@ from ..kinematics import EPS, TRUST_RTOL, Flag, Kinematics, solve_kinematics
 from ..kinematics.frames import scaled
 from ..linalg import SINGULAR_COND
 from ..model import Mechanism, build_mechanism
-from ..post import Review, Verdict, design_review, verdicts
+from ..post import Review, Verdict, design_review, reference_method, verdicts
+from ..post.strength import StrengthReview, strength_review
 from ..post.columns import Column, result_columns, scales, sweep_rows
 from ..post.transmission import instant_quantities
 from ..quantities import MECHANISM_UNITS
@@ -77,6 +78,7 @@ class Analysis(Checked):
     review: Review | None = None      # cycle quantities (whole-turn sweeps of a full-turn crank)
     review_problem: str = ""          # why there is no review
     verdicts: tuple[Verdict, ...] = ()
+    strength: StrengthReview | None = None   # the members of links with a section
 
     @property
     def angles(self) -> np.ndarray:
@@ -216,11 +218,21 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL,
         rev, why = design_review(kin, forces, ctx.loads)
         values = rev.values if rev is not None else None
         res = residuals(ctx, forces)
+        strength = strength_of(ctx, forces)
+    members = strength.values if strength is not None else None
     ctx.cache.clear()   # the actions and equations the methods shared: rebuilt if asked for
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces), res,
                     check_expectations(kin, forces, kin.flags, values, why,
-                                       _instant(spec, kin)), tol, rev, why,
-                    tuple(verdicts(spec.design, values, why)))
+                                       _instant(spec, kin), members), tol, rev, why,
+                    tuple(verdicts(spec.design, values, why, members)), strength)
+
+
+def strength_of(ctx: ForceContext, forces: dict[str, ForceResult]) -> StrengthReview | None:
+    """The members' internal forces and safety factors (links with a ``section``), from the
+    reference method's reactions; None when no link has a section."""
+    if not any(link.strength for link in ctx.spec.links):
+        return None
+    return strength_review(ctx, forces[reference_method(forces)])
 
 
 def _instant(spec: Spec, kin: Kinematics) -> dict[str, np.ndarray] | None:
