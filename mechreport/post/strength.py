@@ -94,8 +94,8 @@ class MemberStrength:
     length: float
     section: Section
     material: Material
-    diagram: Diagram = field(repr=False)
-    stress: np.ndarray = field(repr=False)
+    diagram: Diagram | None = field(repr=False)     # None for a sweep checked in chunks
+    stress: np.ndarray | None = field(repr=False)
     stress_max: float
     stress_angle: float
     stress_s: float
@@ -361,20 +361,121 @@ def mass_note(link: Link, lengths: list[float], mids: list[np.ndarray]) -> str:
 
 # ------------------------------------------------------------------------- the review
 
+@dataclass(frozen=True)
+class Extremes:
+    """What a member's safety factors need from some angles, mergeable chunk by chunk: the
+    largest stress ``stress_max`` [Pa] at ``stress_angle`` [deg] and position index
+    ``stress_k``; each outer fibre's largest and smallest stress at each position ``hi``,
+    ``lo`` (2, K) [Pa]; the largest compression ``compression`` [N] at
+    ``compression_angle``; ``scale`` the largest |N| or |V| [N]."""
+
+    stress_max: float
+    stress_angle: float
+    stress_k: int
+    hi: np.ndarray
+    lo: np.ndarray
+    compression: float
+    compression_angle: float
+    scale: float
+
+    def merge(self, other: "Extremes") -> "Extremes":
+        """These extremes and ``other``'s (later angles) together."""
+        a = self if self.stress_max >= other.stress_max else other
+        c = self if self.compression >= other.compression else other
+        return Extremes(a.stress_max, a.stress_angle, a.stress_k,
+                        np.maximum(self.hi, other.hi), np.minimum(self.lo, other.lo),
+                        c.compression, c.compression_angle, max(self.scale, other.scale))
+
+
+def extremes(angles: np.ndarray, dia: Diagram, sec: Section) -> Extremes:
+    """The :class:`Extremes` of the diagrams ``dia`` over ``angles`` (n,) [deg]."""
+    axial, bending = dia.N / sec.area, dia.M * sec.c / sec.inertia
+    stress = np.abs(axial) + np.abs(bending)
+    a, j = np.unravel_index(int(np.argmax(stress)), stress.shape)
+    fibres = np.stack([axial - bending, axial + bending])               # (2, n, K)
+    comp = -dia.N.min(axis=1)                                           # (n,)
+    ac = int(np.argmax(comp))
+    scale = float(max(np.max(np.abs(dia.N)), np.max(np.abs(dia.V))))
+    return Extremes(float(stress[a, j]), float(angles[a]), int(j), fibres.max(axis=1),
+                    fibres.min(axis=1), float(comp[ac]), float(angles[ac]), scale)
+
+
+@dataclass(frozen=True)
+class MemberPart:
+    """One member's results over some angles, before the safety factors: its identity
+    (``name``, ``link``, ``P``, ``Q``, ``length`` [m], positions ``s`` (K,) [m], ``note``)
+    and its :class:`Extremes`; ``diagram`` and ``stress`` (n, K) only for one whole
+    in-memory sweep (None once merged)."""
+
+    name: str
+    link: Link
+    P: str
+    Q: str
+    length: float
+    s: np.ndarray
+    note: str
+    extremes: Extremes
+    diagram: Diagram | None = None
+    stress: np.ndarray | None = None
+
+    def merge(self, other: "MemberPart") -> "MemberPart":
+        return MemberPart(self.name, self.link, self.P, self.Q, self.length, self.s,
+                          self.note, self.extremes.merge(other.extremes))
+
+
+def strength_parts(ctx: ForceContext, res: ForceResult, positions: int = POSITIONS,
+                   keep: bool = True) -> dict[str, MemberPart]:
+    """Every member of every link with a ``section`` over ``ctx``'s angles, from the
+    reactions ``res``; ``keep``: keep the diagrams (else only the extremes)."""
+    out: dict[str, MemberPart] = {}
+    g = np.asarray(ctx.spec.gravity, float)
+    for link in ctx.spec.links:
+        if link.strength is not None and ctx.n:
+            out.update(_link_parts(ctx, res, link, g, positions, keep))
+    return out
+
+
+def merge_parts(a: dict[str, MemberPart] | None,
+                b: dict[str, MemberPart]) -> dict[str, MemberPart]:
+    """Parts of consecutive chunks of a sweep merged (``a`` None: the first chunk's)."""
+    if a is None:
+        return {k: MemberPart(p.name, p.link, p.P, p.Q, p.length, p.s, p.note, p.extremes)
+                for k, p in b.items()}
+    return {k: a[k].merge(b[k]) if k in a else b[k] for k in b}
+
+
 def strength_review(ctx: ForceContext, res: ForceResult,
                     positions: int = POSITIONS) -> StrengthReview | None:
     """Every member of every link with a ``section``: internal forces, stresses and safety
     factors over the analysed angles (``res``: the reference method's reactions). None when
     no link has a section."""
-    spec, kin = ctx.spec, ctx.kin
-    links = [link for link in spec.links if link.strength is not None]
-    if not links or kin.n == 0:
-        return None
-    out: dict[str, MemberStrength] = {}
-    g = np.asarray(spec.gravity, float)
-    for link in links:
-        out.update(link_strength(ctx, res, link, g, positions))
-    return StrengthReview(res.method, out)
+    parts = strength_parts(ctx, res, positions)
+    return review_of_parts(parts, res.method) if parts else None
+
+
+def review_of_parts(parts: dict[str, MemberPart], method: str) -> StrengthReview:
+    """The safety factors of each member from its extremes (see the module docstring)."""
+    return StrengthReview(method, {k: member_strength(p) for k, p in parts.items()})
+
+
+def member_strength(part: MemberPart) -> MemberStrength:
+    link, ext = part.link, part.extremes
+    sec, mat = link.strength.section, link.strength.material
+    sa, sm = (ext.hi - ext.lo) / 2, (ext.hi + ext.lo) / 2
+    nf = goodman(sa, sm, mat.endurance, mat.ultimate)
+    f, jf = np.unravel_index(int(np.argmin(nf)), nf.shape)
+    fatigue = float(nf[f, jf])
+    pcr, slender, rule = critical_load(sec, mat, part.length)
+    compressed = ext.compression > 1e-9 * ext.scale and ext.compression > 0
+    smax = ext.stress_max
+    return MemberStrength(
+        part.name, link.name, part.P, part.Q, part.length, sec, mat, part.diagram,
+        part.stress, smax, ext.stress_angle, float(part.s[ext.stress_k]),
+        mat.yield_ / smax if smax > 0 else None,
+        fatigue if math.isfinite(fatigue) else None, float(part.s[jf]), float(sa[f, jf]),
+        float(sm[f, jf]), max(ext.compression, 0.0),
+        ext.compression_angle if compressed else None, pcr, slender, rule,
+        pcr / ext.compression if compressed else None, part.note)
 
 
 def link_members(ctx: ForceContext, link: Link) -> list[_Member]:
@@ -391,11 +492,11 @@ def link_members(ctx: ForceContext, link: Link) -> list[_Member]:
     return out
 
 
-def link_strength(ctx: ForceContext, res: ForceResult, link: Link, g: np.ndarray,
-                  positions: int = POSITIONS) -> dict[str, MemberStrength]:
+def _link_parts(ctx: ForceContext, res: ForceResult, link: Link, g: np.ndarray,
+                positions: int, keep: bool) -> dict[str, MemberPart]:
     kin = ctx.kin
     st = link.strength
-    sec, mat = st.section, st.material
+    sec = st.section
     k = link.number
     w, al = kin.omega[:, k], kin.alpha[:, k]
     members = link_members(ctx, link)
@@ -407,40 +508,20 @@ def link_strength(ctx: ForceContext, res: ForceResult, link: Link, g: np.ndarray
     mids = [(np.asarray(link.points[p]) + np.asarray(link.points[q])) / 2
             for p, q in st.members]
     note = mass_note(link, lengths, mids)
-    angles = kin.angles
     out = {}
     for i, name in enumerate(member_names(link)):
         m = members[i]
         s = np.linspace(0.0, m.L, positions)
         dia = internal_forces(members, acts, mu, k2, g, w, al, i, s, side_sets)
-        axial, bending = dia.N / sec.area, dia.M * sec.c / sec.inertia
-        stress = np.abs(axial) + np.abs(bending)
-        a, j = np.unravel_index(int(np.argmax(stress)), stress.shape)
-        smax = float(stress[a, j])
-        # fatigue: each outer fibre at each section over the angles
-        fibres = np.stack([axial - bending, axial + bending])            # (2, n, K)
-        hi, lo = fibres.max(axis=1), fibres.min(axis=1)                  # (2, K)
-        sa, sm = (hi - lo) / 2, (hi + lo) / 2
-        nf = goodman(sa, sm, mat.endurance, mat.ultimate)
-        f, jf = np.unravel_index(int(np.argmin(nf)), nf.shape)
-        fatigue = float(nf[f, jf])
-        # buckling: the largest compression anywhere along the member
-        scale = float(max(np.max(np.abs(dia.N)), np.max(np.abs(dia.V)), 1e-300))
-        comp = -dia.N.min(axis=1)                                        # (n,)
-        ac = int(np.argmax(comp))
-        pcr, slender, rule = critical_load(sec, mat, m.L)
-        compressed = comp[ac] > 1e-9 * scale
+        stress = (np.abs(dia.N) / sec.area + np.abs(dia.M) * sec.c / sec.inertia
+                  if keep else None)
         p, q = st.members[i]
-        out[name] = MemberStrength(
-            name, link.name, p, q, m.L, sec, mat, dia, stress, smax, float(angles[a]),
-            float(s[j]), mat.yield_ / smax if smax > 0 else None,
-            fatigue if math.isfinite(fatigue) else None, float(s[jf]), float(sa[f, jf]),
-            float(sm[f, jf]), float(max(comp[ac], 0.0)),
-            float(angles[ac]) if compressed else None, pcr, slender, rule,
-            pcr / float(comp[ac]) if compressed else None, note)
+        out[name] = MemberPart(name, link, p, q, m.L, s, note,
+                               extremes(kin.angles, dia, sec), dia if keep else None, stress)
     return out
 
 
-__all__ = ["POSITIONS", "Diagram", "MemberStrength", "PointAction", "StrengthReview",
-           "critical_load", "goodman", "internal_forces", "link_members", "member_names",
-           "point_actions", "sides", "strength_review"]
+__all__ = ["POSITIONS", "Diagram", "Extremes", "MemberPart", "MemberStrength", "PointAction",
+           "StrengthReview", "critical_load", "extremes", "goodman", "internal_forces",
+           "link_members", "member_names", "merge_parts", "point_actions", "review_of_parts",
+           "sides", "strength_parts", "strength_review"]

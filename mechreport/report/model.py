@@ -32,6 +32,7 @@ from ..checks.failures import failed_expectations
 from ..units import DASH, SIG_DIGITS, Display, clean, deg, fmt, kind_of
 from .check_text import failure_rows, summary_line
 from .scene import Scene, build_scene
+from .strength import StrengthSection, strength_json, strength_section
 from .text import kinematics_rows
 
 #: one colour per joint, in spec order, across every figure: Okabe & Ito's colour-blind-safe
@@ -312,6 +313,7 @@ class ReportModel:
     coord: str = "crank angle"
     coord_unit: str = "°"
     friction: FrictionSection | None = None    # a spec with friction: its section
+    strength: StrengthSection | None = None    # links with a section: their strength
 
 # ------------------------------------------------------------------------ traceability
 
@@ -941,9 +943,11 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
                       d.scales)
     record["design"] = _design_json(analysis, d.scales)
     record["friction"] = _friction_json(analysis, d.scales)
+    record["strength"] = strength_json(analysis)
     friction = _friction(analysis, design, sw, d)
+    strength = strength_section(analysis, d, spec.axis_unit)
     figures = (_figures(sw, refs, ref, d) | _design_figures(design)
-               | _friction_figures(friction, sw))
+               | _friction_figures(friction, sw) | _strength_figures(strength, d))
     shaking = {"force": _peak_text(summary.shaking_force, "force", d, sw.at_unit),
                "moment": _peak_text(summary.shaking_moment, "moment", d, sw.at_unit)}
     sweep = spec.sweep
@@ -975,7 +979,7 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
         notes=analysis.kinematics.notes(), failures=failure_rows(fails), design=design,
         figures=figures, sweep=sw, scenes=scenes, csv_header=header, csv_rows=rows,
         summary=record, index_row=index_row(record, stem), meta=meta, display=d,
-        heads=heads, friction=friction)
+        heads=heads, friction=friction, strength=strength)
 
 
 def _left_out_text(analysis, summary: SweepSummary, sw: SweepData, d: Display) -> str:
@@ -1257,6 +1261,21 @@ def _friction_figures(section: FrictionSection | None, sw: SweepData) -> dict[st
                 "(dashed: the same motion and loads, the joints frictionless)"
                 + (", the curves broken at the left-out angles." if sw.flagged else "."))
     return {"friction": Figure("friction", text, "friction")}
+
+
+def _strength_figures(section: StrengthSection | None, d: Display) -> dict[str, Figure]:
+    """The Strength section's figures: N, V, M of the most loaded member, the stress over
+    the sweep (none without a section)."""
+    if section is None or section.plot is None:
+        return {}
+    sp = section.plot
+    where = f"φ = {deg(sp.angle)}°" if sp.xlabel.startswith("crank") else f"{deg(sp.angle)}"
+    return {"strength": Figure("strength", f"Internal forces along member {sp.member} at "
+                               f"{where}, where its stress is largest: axial force N "
+                               "(tension positive), shear V and bending moment M (sagging "
+                               "positive), s from its first point.", "strength"),
+            "stress": Figure("stress", "The largest stress |N|/A + |M|c/I along each member "
+                             "over the sweep.", "stress")}
 
 
 #: what each cycle quantity means, for the Design summary table

@@ -28,6 +28,7 @@ OVERLAP_PX = 1.5            # texts may touch by this much [px at 100 dpi] (anti
 
 CYCLE = {"flywheel": plots.flywheel_figure, "breakdown": plots.breakdown_figure,
          "transmission": plots.transmission_figure, "balance": plots.balance_figure}
+STRENGTH = {"strength": plots.strength_figure, "stress": plots.stress_figure}
 SWEEP = {"torque": plots.torque_figure, "reactions": plots.reactions_figure,
          "polar": plots.polar_figure, "shaking": plots.shaking_figure}
 
@@ -61,6 +62,8 @@ def make(model, key: str):
         return SWEEP[key](model.sweep, model.display)
     if key == "friction":
         return plots.friction_figure(model.friction.plot, model.display)
+    if key in STRENGTH:
+        return STRENGTH[key](model.strength.plot, model.display)
     from mechreport.report.drawing import draw_scene
     scene, title = drawings(model)[key]
     return draw_scene(scene, model.display, title)
@@ -74,6 +77,7 @@ def figure_keys(model) -> list[str]:
         keys += [k for k in SWEEP if k in figs and (k != "reactions" or sw.joints)]
     if "friction" in figs:
         keys.append("friction")
+    keys += [k for k in STRENGTH if k in figs]
     return keys + list(drawings(model))
 
 
