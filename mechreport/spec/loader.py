@@ -988,8 +988,9 @@ def _keep(value: Any, path: tuple, ck: _Checker) -> tuple[str, ...] | None:
             near = (difflib.get_close_matches(q, list(CYCLE_UNITS), n=1)
                     if isinstance(q, str) else [])
             hint = f"; did you mean '{near[0]}'?" if near else ""
-            ck.error(path + (i,), f"must be a cycle quantity (cycle.*, balance.*, or "
-                                  f"joint.J.{'|'.join(JOINT_CYCLE_UNITS)}), got {_show(q)}"
+            ck.error(path + (i,), f"must be a cycle quantity (cycle.*, balance.*, "
+                                  f"joint.J.{'|'.join(JOINT_CYCLE_UNITS)}) or a member's "
+                                  f"(member.L.{'|'.join(MEMBER_UNITS)}), got {_show(q)}"
                                   f"{hint}")
             ok = False
         elif q in out:
@@ -1004,13 +1005,19 @@ def _study_requests(spec: Spec, ck: _Checker) -> None:
     """A study tabulates cycle quantities: they must be defined for the spec, and each kept
     one must name a joint of the mechanism and have the design inputs it needs."""
     why = spec.cycle_problem()
-    if why is not None:
+    if why is not None and not (all(is_member(q) for q in spec.study.keep)
+                                and cycle_design(spec.design).empty):
         ck.error(("study",), f"a study tabulates cycle quantities, which are undefined here: "
                              f"{why}")
         return
     joints = set(spec.reported_reactions())
     for i, q in enumerate(spec.study.keep):
-        kind, name, _ = split_quantity(q) or ("", "", "")
+        kind, name, attr = split_quantity(q) or ("", "", "")
+        if kind == "member":
+            problem = _member_quantity_problem(q, name, attr, list(spec.links), ck)
+            if problem:
+                ck.error(("study", "keep", i), problem)
+            continue
         if kind == "joint" and name not in joints:
             ck.error(("study", "keep", i), f"'{q}': no joint named '{name}' (joints: "
                                            f"{', '.join(sorted(joints))})")
