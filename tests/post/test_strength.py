@@ -5,6 +5,7 @@ against a worked example."""
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -231,3 +232,65 @@ def test_strength_keys_are_checked_with_their_key_paths():
     assert any("'member.rod.stress': a member has stress_max" in m for m in got)
     assert any("expect[1].angle: 'member.rod.stress_max' is a cycle quantity" in m
                for m in got)
+
+
+FOUR_BAR = (Path(__file__).resolve().parents[2] / "specs" / "four_bar.yaml").read_text()
+
+
+def four_bar(members: str) -> str:
+    """specs/four_bar.yaml with a massless coupler (so that its reactions balance its
+    members' loads exactly) made of ``members``, carrying the process load at E."""
+    text = FOUR_BAR.split("expect:")[0].replace("mechreport: 1\n", "mechreport: 1.1\n")
+    text = text.replace("sweep: {start: 0, stop: 360, step: 1}",
+                        "sweep: {start: 0, stop: 360, step: 20}")
+    old = text[text.index("  coupler:"):text.index("  rocker:")]
+    return text.replace(old, "  coupler:\n    points: {B: [0, 0], C: [180, 0], E: [90, 30]}\n"
+                        "    mass: 0\n    section: {tube: {d: 12, t: 2}}\n"
+                        "    material: {E: 70e9, yield: 270e6, ultimate: 310e6, "
+                        f"endurance: 95e6}}\n    members: {members}\n")
+
+
+@pytest.mark.parametrize("members", ["[[B, E], [E, C]]", "[[E, B], [C, E]]"])
+def test_a_link_of_several_members_is_cut_as_a_tree(members):
+    a = analyse(four_bar(members))
+    names = sorted(a.strength.members)
+    pairs = [tuple(p.strip() for p in pq.split(",")) for pq in members[2:-2].split("], [")]
+    assert names == sorted(f"coupler.{p}_{q}" for p, q in pairs)
+    assert all(f"member.{n}.stress_max" in a.strength.values for n in names)
+    ctx, link = a._context, a.spec.link("coupler")
+    res = a.forces[a.strength.method]
+    members_ = link_members(ctx, link)
+    acts = point_actions(ctx, res, "coupler", [(m.rP, m.e, m.L) for m in members_])
+    g = np.asarray(a.spec.gravity)
+    zero = np.zeros(a.n)
+    for i, m in enumerate(members_):
+        s = m.L * np.array([0.21, 0.5, 0.83])
+        args = (members_, acts, 0.0, 1.0, g, zero, zero, i, s, sides(link.strength.members))
+        right, left = internal_forces(*args), internal_forces(*args, from_end=False)
+        for x, y in ((right.N, left.N), (right.V, left.V), (right.M, left.M)):
+            np.testing.assert_allclose(x, y, atol=1e-9 * max(1.0, np.abs(x).max()))
+    # at B, the member from B carries what the crank exerts on the coupler (joint B)
+    which = next(i for i, (p, q) in enumerate(link.strength.members) if "B" in (p, q))
+    p, q = link.strength.members[which]
+    d = a.strength.members[f"coupler.{p}_{q}"].diagram
+    FB = np.stack([res.reactions["B"].fx, res.reactions["B"].fy], axis=1)
+    e = members_[which].e
+    end = 0 if p == "B" else -1
+    sign = -1.0 if p == "B" else 1.0      # at P: minus the load there; at Q: the load there
+    np.testing.assert_allclose(d.N[:, end], sign * np.sum(FB * e, axis=1), atol=1e-9)
+
+
+def test_members_that_close_a_loop_or_fall_apart_are_refused():
+    got = spec_problems(four_bar("[[B, E], [E, C], [C, B]]"))
+    assert any("links.coupler.members: the members close a loop" in m for m in got)
+    got = spec_problems(four_bar("[[B, E]]").replace("points: {B: [0, 0], C: [180, 0], "
+                                                     "E: [90, 30]}", "points: {B: [0, 0], "
+                                                     "C: [180, 0], E: [90, 30], F: [0, 9]}")
+                        .replace("members: [[B, E]]", "members: [[B, E], [C, F]]"))
+    assert any("must join into one piece" in m for m in got)
+    # a link with one joint point has no default member: list them
+    text = slider_crank().replace("    mass: 1\n    shape: {block:", "    mass: 1\n    section: "
+                                  "{round: {d: 0.01}}\n    material: steel\n    shape: {block:")
+    got = spec_problems(text)
+    assert any("links.slider.section: link 'slider' has 1 joint points (C): list its "
+               "straight members" in m for m in got)
