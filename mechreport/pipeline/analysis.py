@@ -110,6 +110,12 @@ class Analysis(Checked):
         """Link ``link``'s weight m g at its centre of mass."""
         return self._context.gravity_action(link)
 
+    def strength_context(self) -> ForceContext:
+        """What the members' internal forces are computed from (the loads, points and
+        actions of the force methods): for the solution sheet's cuts
+        (:mod:`mechreport.report.sheet.strength`)."""
+        return self._context
+
     def trust_inputs(self) -> Inputs:
         """The largest input of each kind at each angle (loads, m a_C, m g, I alpha) and the
         mechanism's span: what bounds one method's rounding (:mod:`mechreport.checks.trust`)."""
