@@ -235,10 +235,12 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL,
 
 def strength_of(ctx: ForceContext, forces: dict[str, ForceResult]) -> StrengthReview | None:
     """The members' internal forces and safety factors (links with a ``section``), from the
-    reference method's reactions; None when no link has a section."""
-    if not any(link.strength for link in ctx.spec.links):
+    reference method's reactions; None when no link has a section, or when no method solved
+    the reactions (the power balance alone)."""
+    res = forces[reference_method(forces)]
+    if not any(link.strength for link in ctx.spec.links) or not res.reactions:
         return None
-    return strength_review(ctx, forces[reference_method(forces)])
+    return strength_review(ctx, res)
 
 
 def _instant(spec: Spec, kin: Kinematics) -> dict[str, np.ndarray] | None:

@@ -126,7 +126,8 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
             else:
                 found[i] = at_angle(e, kin, forces, k, instant_quantities(kin)
                                     if e.quantity == "transmission_angle" else None)
-        if any(link.strength for link in spec.links):
+        if any(link.strength for link in spec.links) and \
+                forces[reference_method(forces)].reactions:
             strength = merge_parts(strength, strength_parts(
                 ctx, forces[reference_method(forces)], keep=False))
         part = traces_of(kin, forces, ctx.loads)

@@ -116,17 +116,22 @@ def verdicts(design: Design, values: dict[str, float] | None, why: str = "",
         out.append(Verdict(item, quantity, value, limit, unit, at_least, where, reason))
     for attr in MEMBER_LIMITS:
         if attr in limits:
-            out.append(member_verdict(attr, limits[attr], members or {}))
+            out.append(member_verdict(attr, limits[attr], members))
     return out
 
 
-def member_verdict(attr: str, limit: float, members: dict[str, float]) -> Verdict:
+def member_verdict(attr: str, limit: float, members: dict[str, float] | None) -> Verdict:
     """The verdict on ``limits.<attr>``: the smallest ``member.*.<attr>`` against ``limit``
     (``where``: the member). With no member that has the value (none in compression, for
-    buckling) there is nothing to fail: it passes, and says why."""
+    buckling) there is nothing to fail: it passes, and says why. ``members`` None: the
+    members were not computed (no joint reactions were solved): it fails, saying so."""
+    item = f"limits.{attr}"
+    if members is None:
+        return Verdict(item, f"member.*.{attr}", None, limit, "", True, "",
+                       "the members' internal forces need the joint reactions, which no "
+                       "method solved")
     found = [(q[len("member."):-len(attr) - 1], v) for q, v in members.items()
              if q.startswith("member.") and q.endswith("." + attr)]
-    item = f"limits.{attr}"
     if not found:
         why = ("no member is in compression" if attr == "buckling_safety" else
                "no member is loaded")

@@ -722,6 +722,8 @@ def _summary(analysis, summary: SweepSummary, sw: SweepData, status_line: str,
             "units": {"driver_torque": EU, "reactions": "N"}}
     w = analysis.worst
     cycle = analysis.review.values if analysis.review is not None else {}
+    if analysis.strength is not None:   # the members' quantities: key figures too (diff)
+        cycle = {**cycle, **analysis.strength.values}
     return {
         "mechreport_version": meta.version, "spec": analysis.spec.file,
         "axis_unit": analysis.spec.axis_unit,

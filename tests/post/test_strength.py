@@ -294,3 +294,21 @@ def test_members_that_close_a_loop_or_fall_apart_are_refused():
     got = spec_problems(text)
     assert any("links.slider.section: link 'slider' has 1 joint points (C): list its "
                "straight members" in m for m in got)
+
+
+def test_a_buckling_limit_with_no_member_in_compression_passes_and_says_why():
+    """The spinning crank of a massless rod and slider is only ever in tension."""
+    a = analyse(slider_crank(omega=3.0, gravity="[0, 0]", rod_mass="0", slider_mass="0",
+                             load=False, crank_mass="2",
+                             extra="design: {limits: {buckling_safety: 3}}\n"))
+    (v,) = a.verdicts
+    assert v.passed and v.value is None and v.why == "no member is in compression"
+    assert v.describe() == "limits.buckling_safety: passes: no member is in compression"
+
+
+def test_strength_limits_fail_where_no_method_solved_the_reactions():
+    a = analyse(slider_crank(extra="design: {limits: {static_safety: 1e-9}}\n"),
+                methods=["power"])
+    assert a.strength is None
+    (v,) = a.verdicts
+    assert not v.passed and "need the joint reactions" in v.why
