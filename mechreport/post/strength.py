@@ -46,6 +46,9 @@ from ..spec import Link, Material, Section
 
 #: positions along each member where the internal forces are evaluated (ends included)
 POSITIONS = 41
+#: a link's inertia and its uniform members' differ when they differ by more than this
+#: share (a bar shape's plate and a round section's rotary inertia differ by less)
+INERTIA_RTOL = 1e-3
 
 
 @dataclass(frozen=True)
@@ -339,7 +342,8 @@ def critical_load(section: Section, material: Material, length: float
 
 def mass_note(link: Link, lengths: list[float], mids: list[np.ndarray]) -> str:
     """What differs between ``link``'s own centre of mass and inertia and those of its
-    members with its mass spread uniformly ("" when nothing does, within 1e-6)."""
+    members with its mass spread uniformly ("" when nothing does: the centres within 1e-6
+    of the members' length, the inertias within ``INERTIA_RTOL``)."""
     total = sum(lengths)
     com = sum(L * c for L, c in zip(lengths, mids)) / total
     k2 = link.strength.section.inertia / link.strength.section.area
@@ -350,7 +354,7 @@ def mass_note(link: Link, lengths: list[float], mids: list[np.ndarray]) -> str:
     if off > 1e-6 * total:
         parts.append(f"its centre of mass is {off:.4g} m from its members' middle "
                      f"({com[0]:.4g}, {com[1]:.4g}) m")
-    if abs(link.inertia - spread) > 1e-6 * max(link.inertia, spread, 1e-300):
+    if abs(link.inertia - spread) > INERTIA_RTOL * max(link.inertia, spread, 1e-300):
         parts.append(f"its inertia is {link.inertia:.4g} kg·m², its uniform members' "
                      f"{spread:.4g} kg·m²")
     if not parts or link.mass == 0:

@@ -1271,7 +1271,8 @@ def _strength_figures(section: StrengthSection | None, d: Display) -> dict[str, 
     if section is None or section.plot is None:
         return {}
     sp = section.plot
-    where = f"φ = {deg(sp.angle)}°" if sp.xlabel.startswith("crank") else f"{deg(sp.angle)}"
+    where = (f"φ = {deg(sp.angle)}°" if sp.xlabel.startswith("crank") else
+             f"{sp.xlabel.split(' [')[0]} {deg(sp.angle)} {sp.xlabel.split('[')[-1][:-1]}")
     return {"strength": Figure("strength", f"Internal forces along member {sp.member} at "
                                f"{where}, where its stress is largest: axial force N "
                                "(tension positive), shear V and bending moment M (sagging "
