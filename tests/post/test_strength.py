@@ -312,3 +312,25 @@ def test_strength_limits_fail_where_no_method_solved_the_reactions():
     assert a.strength is None
     (v,) = a.verdicts
     assert not v.passed and "need the joint reactions" in v.why
+
+
+def test_section_sizes_are_in_the_length_unit_and_area_inertia_c_give_the_same_stress():
+    """The press (mm): the rod's 12 x 20 rectangle written as {area: 240, inertia: 8000,
+    c: 10} (mm², mm⁴, mm) gives the same stresses; its buckling then uses the in-plane
+    inertia, the only one given, I = 8000 mm⁴: L / r = 400 / sqrt(8000 / 240) = 69.3, below
+    the transition pi sqrt(2 E / S_y) = 92.0, so Johnson's A (S_y - (S_y L / (2 pi r))^2 /
+    E)."""
+    text = (Path(__file__).resolve().parents[2] / "specs" / "crank_press_strength.yaml"
+            ).read_text().replace("sweep: {start: 0, stop: 360, step: 1}",
+                                  "sweep: {start: 0, stop: 360, step: 5}")
+    rect = analyse(text).strength.members["rod"]
+    given = analyse(text.replace("section: {rect: {width: 12, height: 20}}",
+                                 "section: {area: 240, inertia: 8000, c: 10}"))
+    rod = given.strength.members["rod"]
+    assert rod.section.area == pytest.approx(240e-6) and rod.section.c == pytest.approx(0.01)
+    assert rod.stress_max == pytest.approx(rect.stress_max, rel=1e-12)
+    assert rod.fatigue_safety == pytest.approx(rect.fatigue_safety, rel=1e-12)
+    slender = 400 / math.sqrt(8000 / 240)
+    assert rod.buckling_rule == "Johnson" and rod.slenderness == pytest.approx(slender)
+    assert rod.critical_load == pytest.approx(
+        240e-6 * (490e6 - (490e6 * slender / (2 * math.pi)) ** 2 / 210e9), rel=1e-12)
