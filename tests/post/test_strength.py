@@ -93,9 +93,9 @@ def _frame(a, link):
 def test_the_ends_of_each_diagram_are_the_joint_reactions_in_the_member_frame():
     """Rod B -> C: at B (s = 0) the rod's inside pushes back what the crank exerts, N e + V n
     = -F_B (joint B: crank on rod); at C (s = L), N e + V n = what the slider exerts on the
-    rod, -F_C (joint C: rod on slider). M vanishes at both pins. The crank at A carries the
-    motor torque as bending: M(0) = -(moment of everything else about A) = M_motor... seen
-    from the far side, M(0) = -driver torque."""
+    rod, -F_C (joint C: rod on slider). M vanishes at both pins.
+    The crank carries the motor torque M to its pin as bending: at A, M(0) is the moment
+    about A of everything beyond the cut, which balances M: M(0) = -M."""
     a = analyse(slider_crank())
     res = a.forces[a.strength.method]
     e, n = _frame(a, "rod")
