@@ -23,6 +23,9 @@ CYCLE_UNITS = {
 }
 #: the cycle quantities machine dynamics gives (``dynamics:`` with ``until: steady``)
 DYNAMICS_QUANTITIES = tuple(q for q in CYCLE_UNITS if q.startswith("dynamics."))
+#: a member's quantities over the sweep (``member.L.attr``, ``member.L.P_Q.attr``)
+MEMBER_UNITS = {"stress_max": "Pa", "static_safety": "", "fatigue_safety": "",
+                "buckling_safety": ""}
 JOINT_CYCLE_UNITS = {"f_max": "N", "f_mean": "N", "f_equivalent": "N", "life_h": "h"}
 JOINT_UNITS = {"fx": "N", "fy": "N", "f": "N", "moment": "N·m", "px": "m", "py": "m",
                "angle": "deg"}      # angle: an R joint's relative angle (kinematics)
@@ -34,7 +37,7 @@ MECHANISM_UNITS = {"transmission_angle": "deg"}
 KINEMATIC_KINDS = ("point", "link")
 LINK_UNITS = {"angle": "deg", "omega": "rad/s", "alpha": "rad/s^2"}
 _UNITS_BY_KIND = {"joint": {**JOINT_UNITS, **JOINT_CYCLE_UNITS}, "point": POINT_UNITS,
-                  "link": LINK_UNITS}
+                  "link": LINK_UNITS, "member": MEMBER_UNITS}
 
 
 def split(quantity: str) -> tuple[str, str, str] | None:
@@ -54,9 +57,17 @@ def is_kinematic(quantity: str) -> bool:
             or (parts is not None and parts[0] == "joint" and parts[2] == "angle"))
 
 
+def is_member(quantity: str) -> bool:
+    """True for a member's quantity (``member.rod.static_safety``): one value over the
+    sweep, for any sweep (a whole turn or not)."""
+    parts = split(quantity)
+    return parts is not None and parts[0] == "member" and parts[2] in MEMBER_UNITS
+
+
 def is_cycle(quantity: str) -> bool:
-    """True for a cycle quantity name (``cycle.*``, ``balance.*``, ``joint.J.f_max`` ...)."""
-    if quantity in CYCLE_UNITS:
+    """True for a quantity with one value per sweep, given in ``expect`` without an angle:
+    a cycle quantity (``cycle.*``, ``balance.*``, ``joint.J.f_max`` ...) or a member's."""
+    if quantity in CYCLE_UNITS or is_member(quantity):
         return True
     parts = split(quantity)
     return parts is not None and parts[0] == "joint" and parts[2] in JOINT_CYCLE_UNITS

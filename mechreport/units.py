@@ -41,6 +41,7 @@ EXPECT_UNITS = {
     "m/s^2": {"m/s^2": 1.0},
     "deg": {"deg": 1.0, "rad": 57.29577951308232},
     "rad/s": {"rad/s": 1.0, "rpm": 0.10471975511965977},
+    "Pa": {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9},
 }
 
 #: the units a spec's own numbers may be written in (its ``units:``); a report may show any
@@ -119,7 +120,7 @@ class Display:
         return {"length": 1 / L, "velocity": 1 / L, "acceleration": 1 / L,
                 "force": 1 / FORCE_UNITS[self.force], "moment": 1 / MOMENT_UNITS[self.moment],
                 "mass": 1 / MASS_UNITS[self.mass],
-                "mass_length": 1 / (MASS_UNITS[self.mass] * L)}.get(kind, 1.0)
+                "mass_length": 1 / (MASS_UNITS[self.mass] * L), "stress": 1e-6}.get(kind, 1.0)
 
     def unit(self, kind: str) -> str:
         """The printed unit of ``kind`` ("" for a ratio)."""
@@ -128,7 +129,7 @@ class Display:
                 "force": self.force, "moment": pretty(self.moment), "mass": self.mass,
                 "mass_length": f"{self.mass}·{L}", "inertia": "kg·m²", "energy": "J",
                 "power": "W", "angle": "deg", "omega": "rad/s", "alpha": "rad/s²",
-                "time": "h", "ratio": ""}[kind]
+                "time": "h", "ratio": "", "stress": "MPa"}[kind]
 
     def value(self, x, kind: str):
         """``x`` [SI] (a number or an array) in display units."""
@@ -164,7 +165,7 @@ class Display:
 KIND_OF_UNIT = {"m": "length", "m/s": "velocity", "m/s^2": "acceleration", "N": "force",
                 "N·m": "moment", "kg": "mass", "kg·m": "mass_length", "kg·m^2": "inertia",
                 "J": "energy", "W": "power", "deg": "angle", "rad/s": "omega",
-                "rad/s^2": "alpha", "h": "time"}
+                "rad/s^2": "alpha", "h": "time", "Pa": "stress"}
 
 
 def kind_of(si_unit: str | None) -> str:

@@ -7,7 +7,7 @@ import numpy as np
 
 from ..forces import ForceResult
 from ..kinematics import Kinematics
-from ..quantities import MECHANISM_UNITS, is_kinematic
+from ..quantities import MECHANISM_UNITS, is_kinematic, is_member
 from ..quantities import split as split_quantity
 from ..spec import Expectation
 
@@ -51,14 +51,19 @@ def kinematic_value(kin: Kinematics, quantity: str, k: int,
 def check_expectations(kin: Kinematics, results: dict[str, ForceResult], flags,
                        cycle: dict[str, float] | None = None,
                        cycle_why: str = "",
-                       instant: dict[str, np.ndarray] | None = None
+                       instant: dict[str, np.ndarray] | None = None,
+                       members: dict[str, float] | None = None
                        ) -> list[ExpectationResult]:
     """Every ``expect`` entry: instantaneous quantities against the kinematics or every force
     method at their angle; cycle quantities (no angle) against ``cycle`` (the review's values,
-    from the reference method; None when undefined, because ``cycle_why``)."""
+    from the reference method; None when undefined, because ``cycle_why``); members'
+    quantities against ``members`` (the strength review's values, any sweep)."""
     out = []
     spec = kin.mechanism.spec
     for e in spec.expect:
+        if is_member(e.quantity):
+            out.append(check_cycle(e, members or {}, ""))
+            continue
         if e.angle is None:
             out.append(check_cycle(e, cycle, cycle_why))
             continue
@@ -116,13 +121,22 @@ def _expected_got(e: Expectation, got: float) -> str:
             f"{got / s:.10g}{unit}")
 
 
+#: why a member's quantity can be undefined
+MEMBER_UNDEFINED = {"buckling_safety": "the member is never in compression",
+                    "static_safety": "the member carries no stress",
+                    "fatigue_safety": "the member's stress neither alternates nor is tensile"}
+
+
 def cycle_value(cycle: dict[str, float] | None, quantity: str,
                 why: str = "") -> tuple[float | None, str]:
     """The value of cycle quantity ``quantity`` in ``cycle`` (a review's values; None when
     they are undefined, because ``why``), or None and the message saying why it has none."""
     got = None if cycle is None else cycle.get(quantity)
     if got is None:
-        reason = why if cycle is None else "not defined for this mechanism"
+        reason = why if cycle is None else (MEMBER_UNDEFINED.get(quantity.rpartition(".")[2],
+                                                                 "not defined for this mechanism")
+                                            if is_member(quantity)
+                                            else "not defined for this mechanism")
         return None, f"{quantity} is undefined: {reason}"
     return got, ""
 

@@ -27,7 +27,8 @@ from ..kinematics import EPS, TRUST_RTOL, Flag, Kinematics, solve_kinematics
 from ..kinematics.frames import scaled
 from ..linalg import SINGULAR_COND
 from ..model import Mechanism, build_mechanism
-from ..post import Review, Verdict, design_review, verdicts
+from ..post import Review, Verdict, design_review, reference_method, verdicts
+from ..post.strength import StrengthReview, strength_review
 from ..post.columns import Column, result_columns, scales, sweep_rows
 from ..post.transmission import instant_quantities
 from ..quantities import MECHANISM_UNITS
@@ -78,6 +79,7 @@ class Analysis(Checked):
     review: Review | None = None      # cycle quantities (whole-turn sweeps of a full-turn crank)
     review_problem: str = ""          # why there is no review
     verdicts: tuple[Verdict, ...] = ()
+    strength: StrengthReview | None = None   # the members of links with a section
     # machine dynamics (a spec with ``dynamics:``): the motion the motor gives, and the
     # steady turn's own analysis (a :class:`mechreport.pipeline.dynamics.DynamicsResult`)
     dynamics: object | None = None
@@ -119,6 +121,12 @@ class Analysis(Checked):
     def gravity_action(self, link: str) -> Action:
         """Link ``link``'s weight m g at its centre of mass."""
         return self._context.gravity_action(link)
+
+    def strength_context(self) -> ForceContext:
+        """What the members' internal forces are computed from (the loads, points and
+        actions of the force methods): for the solution sheet's cuts
+        (:mod:`mechreport.report.sheet.strength`)."""
+        return self._context
 
     def trust_inputs(self) -> Inputs:
         """The largest input of each kind at each angle (loads, m a_C, m g, I alpha) and the
@@ -246,11 +254,23 @@ def analysis_of(mech: Mechanism, kin: Kinematics, methods=None, tol: float = DEF
             rev = replace(rev, values={**rev.values, **extra})
         values = rev.values if rev is not None else (extra or None)
         res = residuals(ctx, forces)
+        strength = strength_of(ctx, forces)
+    members = strength.values if strength is not None else None
     ctx.cache.clear()   # the actions and equations the methods shared: rebuilt if asked for
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces), res,
                     check_expectations(kin, forces, kin.flags, values, why,
-                                       _instant(spec, kin)), tol, rev, why,
-                    tuple(verdicts(spec.design, values, why)), dynamics)
+                                       _instant(spec, kin), members), tol, rev, why,
+                    tuple(verdicts(spec.design, values, why, members)), strength, dynamics)
+
+
+def strength_of(ctx: ForceContext, forces: dict[str, ForceResult]) -> StrengthReview | None:
+    """The members' internal forces and safety factors (links with a ``section``), from the
+    reference method's reactions; None when no link has a section, or when no method solved
+    the reactions (the power balance alone)."""
+    res = forces[reference_method(forces)]
+    if not any(link.strength for link in ctx.spec.links) or not res.reactions:
+        return None
+    return strength_review(ctx, res)
 
 
 def _instant(spec: Spec, kin: Kinematics) -> dict[str, np.ndarray] | None:

@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..checks.trust import inputs_of, untrusted
-from .analysis import DEFAULT_TOL, Analysis, analyse, trusted
+from .analysis import DEFAULT_TOL, Analysis, analyse, strength_of, trusted
 from .streamed import STREAM_ANGLES, check_sweep
 from ..forces import METHODS, ForceContext
 from ..forces.contour import ContourPlans
@@ -48,6 +48,7 @@ class Outcome:
     batched: bool = False
     untrusted: str = ""
     streamed: dict[str, float] | None = None
+    members: dict[str, float] | None = None   # the members' quantities (links with a section)
 
     @property
     def cycle_values(self) -> dict[str, float] | None:
@@ -125,10 +126,21 @@ def _batched(stacked, mech, specs: list[Spec], method: str, plans) -> list[Outco
                  for ld in ctx.loads]
         rev, why = design_review(kin_v, forces, loads)
         values = rev.values if rev is not None else None
-        out[v] = Outcome(spec, rev, why, tuple(verdicts(spec.design, values, why)),
+        members = _members(kin_v, forces)
+        out[v] = Outcome(spec, rev, why, tuple(verdicts(spec.design, values, why, members)),
                          batched=True, untrusted=untrusted(forces[method], DEFAULT_TOL,
-                                                            spec.axis_unit, inputs.take(rows)))
+                                                            spec.axis_unit, inputs.take(rows)),
+                         members=members)
     return out
+
+
+def _members(kin, forces) -> dict[str, float] | None:
+    """A variant's members' quantities (None when no link has a section), from its own
+    kinematics and reactions."""
+    if not any(link.strength for link in kin.mechanism.spec.links):
+        return None
+    st = strength_of(ForceContext(kin), forces)
+    return st.values if st is not None else None
 
 
 def _streamed(spec: Spec, method: str) -> Outcome:
@@ -141,9 +153,10 @@ def _streamed(spec: Spec, method: str) -> Outcome:
     if isinstance(c, Analysis):  # not streamable: analysed in memory after all
         return Outcome(spec, c.review, c.review_problem, c.verdicts,
                        untrusted=untrusted(c.forces[method], c.tol, spec.axis_unit,
-                                           c.trust_inputs()))
+                                           c.trust_inputs()),
+                       members=c.strength.values if c.strength is not None else None)
     return Outcome(spec, None, c.review_problem, c.verdicts, streamed=c.values,
-                   untrusted=c.untrusted.get(method, ""))
+                   untrusted=c.untrusted.get(method, ""), members=c.members)
 
 
 def _alone(spec: Spec, method: str, plans) -> Outcome:
@@ -154,7 +167,8 @@ def _alone(spec: Spec, method: str, plans) -> Outcome:
         return Outcome(spec, exception=exc)
     return Outcome(spec, a.review, a.review_problem, a.verdicts,
                    untrusted=untrusted(a.forces[method], a.tol, spec.axis_unit,
-                                       a.trust_inputs()))
+                                       a.trust_inputs()),
+                   members=a.strength.values if a.strength is not None else None)
 
 
 __all__ = ["Outcome", "analyse_variants"]

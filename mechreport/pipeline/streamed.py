@@ -35,7 +35,9 @@ from ..kinematics.result import reversal_note
 from ..kinematics.stream import kinematic_chunks, streamable
 from ..model import build_mechanism
 from ..quantities import split as split_quantity
-from ..post import Traces, Verdict, design_review_from, traces_of, verdicts
+from ..post import Traces, Verdict, design_review_from, reference_method, traces_of, verdicts
+from ..post.strength import merge_parts, review_of_parts, strength_parts
+from ..quantities import is_member
 from ..post.transmission import instant_quantities
 from ..spec import Spec
 
@@ -62,6 +64,7 @@ class SweepCheck(Checked):
     verdicts: tuple[Verdict, ...]
     kinematic_notes: list[str] = field(default_factory=list)
     untrusted: dict[str, str] = field(default_factory=dict)   # by method: see checks.trust
+    members: dict[str, float] | None = None   # the members' quantities (links with a section)
 
     def notes(self) -> list[str]:
         return list(self.kinematic_notes)
@@ -93,6 +96,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     reversed_at: list[float] = []         # where friction alone reverses the effort
     n = 0
     timed = [(i, e) for i, e in enumerate(spec.expect) if e.angle is not None]
+    strength = None                       # the members' extremes, merged chunk by chunk
     for kin in chunks:
         if kin.n:
             kin, ctx, forces = solve_trusted(kin, names, memo)
@@ -123,6 +127,10 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
             else:
                 found[i] = at_angle(e, kin, forces, k, instant_quantities(kin)
                                     if e.quantity == "transmission_angle" else None)
+        if any(link.strength for link in spec.links) and \
+                forces[reference_method(forces)].reactions:
+            strength = merge_parts(strength, strength_parts(
+                ctx, forces[reference_method(forces)], keep=False))
         part = traces_of(kin, forces, ctx.loads)
         if traces is None:
             traces = part.allocate(len(chunks.angles))
@@ -138,9 +146,12 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     if spec.dynamics is not None:       # the steady turn's quantities, from the simulation
         values = {**(values or {}), **simulated(mech)[2]}
     del rev, traces
+    members = (review_of_parts(strength, "").values if strength else None)
     expectations: list[ExpectationResult] = []
     for i, e in enumerate(spec.expect):
-        if e.angle is None:
+        if is_member(e.quantity):
+            expectations.append(check_cycle(e, members or {}, ""))
+        elif e.angle is None:
             expectations.append(check_cycle(e, values, why))
         elif i not in found:
             expectations += left_out(e, spec, flags)
@@ -154,9 +165,9 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     untrusted = {name: judged(b, tol, name, spec.axis_unit) for name, b in found.items()}
     return SweepCheck(spec, n, tuple(flags), finish(parts),
                       [Residual(m, f, mo) for m, (f, mo) in worst.items()], expectations, tol,
-                      values, why, tuple(verdicts(spec.design, values, why)),
+                      values, why, tuple(verdicts(spec.design, values, why, members)),
                       chunks.notes() + ([reversal_note(reversed_at, spec)] if reversed_at
-                                        else []), untrusted)
+                                        else []), untrusted, members)
 
 
 def _slider_point(e) -> bool:

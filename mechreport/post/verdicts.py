@@ -26,6 +26,7 @@ class Verdict:
     at_least: bool = False
     where: str = ""
     why: str = ""
+    vacuous: bool = False     # nothing to check (no member in compression): passes, says why
 
     @property
     def margin(self) -> float | None:
@@ -36,16 +37,20 @@ class Verdict:
 
     @property
     def passed(self) -> bool:
-        return self.value is not None and (self.value >= self.limit if self.at_least
-                                           else self.value <= self.limit)
+        if self.value is None:
+            return self.vacuous
+        return self.value >= self.limit if self.at_least else self.value <= self.limit
 
     def describe(self, fmt=lambda x: f"{x:.6g}") -> str:
         """One line: ``motor.rated_torque: cycle.torque.rms = 41.2 N·m > limit 40 N·m``;
         numbers by ``fmt``."""
         if self.value is None:
+            if self.vacuous:
+                return f"{self.item}: passes: {self.why}"
             return f"{self.item}: {self.quantity} is undefined: {self.why}"
+        where = (f" (member {self.where})" if self.quantity.startswith("member.")
+                 else f" (joint {self.where})") if self.where else ""
         op = (">=" if self.passed else "<") if self.at_least else ("<=" if self.passed else ">")
-        where = f" (joint {self.where})" if self.where else ""
         unit = f" {self.unit}" if self.unit else ""
         return (f"{self.item}: {self.quantity}{where} = {fmt(self.value)}{unit} {op} "
                 f"limit {fmt(self.limit)}{unit}")
@@ -54,9 +59,15 @@ class Verdict:
 PEAK_TORQUE = "max |driver.torque|"
 
 
-def verdicts(design: Design, values: dict[str, float] | None, why: str = "") -> list[Verdict]:
+#: the design limits on the members' safety factors (lower limits, smallest over the members)
+MEMBER_LIMITS = ("static_safety", "fatigue_safety", "buckling_safety")
+
+
+def verdicts(design: Design, values: dict[str, float] | None, why: str = "",
+             members: dict[str, float] | None = None) -> list[Verdict]:
     """One verdict per design item, in the order motor, bearings, limits. ``values``: the
-    cycle quantities (None when undefined, with the reason ``why``)."""
+    cycle quantities (None when undefined, with the reason ``why``); ``members``: the
+    members' quantities (``member.L.static_safety`` ...), defined for any sweep."""
     rows: list[tuple[str, str, float, bool, str]] = []   # item, quantity, limit, at_least, where
     v = values or {}
     motor = design.motor
@@ -106,4 +117,27 @@ def verdicts(design: Design, values: dict[str, float] | None, why: str = "") -> 
         if unit is None:
             unit = "N·m" if quantity == PEAK_TORQUE else "N"
         out.append(Verdict(item, quantity, value, limit, unit, at_least, where, reason))
+    for attr in MEMBER_LIMITS:
+        if attr in limits:
+            out.append(member_verdict(attr, limits[attr], members))
     return out
+
+
+def member_verdict(attr: str, limit: float, members: dict[str, float] | None) -> Verdict:
+    """The verdict on ``limits.<attr>``: the smallest ``member.*.<attr>`` against ``limit``
+    (``where``: the member). With no member that has the value (none in compression, for
+    buckling) there is nothing to fail: it passes, and says why. ``members`` None: the
+    members were not computed (no joint reactions were solved): it fails, saying so."""
+    item = f"limits.{attr}"
+    if members is None:
+        return Verdict(item, f"member.*.{attr}", None, limit, "", True, "",
+                       "the members' internal forces need the joint reactions, which no "
+                       "method solved")
+    found = [(q[len("member."):-len(attr) - 1], v) for q, v in members.items()
+             if q.startswith("member.") and q.endswith("." + attr)]
+    if not found:
+        why = ("no member is in compression" if attr == "buckling_safety" else
+               "no member is loaded")
+        return Verdict(item, f"member.*.{attr}", None, limit, "", True, "", why, vacuous=True)
+    where, value = min(found, key=lambda wv: wv[1])
+    return Verdict(item, f"member.*.{attr}", value, limit, "", True, where)

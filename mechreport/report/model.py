@@ -33,6 +33,7 @@ from ..units import DASH, SIG_DIGITS, Display, clean, deg, fmt, kind_of
 from .check_text import failure_rows, summary_line
 from .dynamics import dynamics_json, dynamics_section
 from .scene import Scene, build_scene
+from .strength import StrengthSection, strength_json, strength_section
 from .text import kinematics_rows
 
 #: one colour per joint, in spec order, across every figure: Okabe & Ito's colour-blind-safe
@@ -314,6 +315,7 @@ class ReportModel:
     coord_unit: str = "°"
     friction: FrictionSection | None = None    # a spec with friction: its section
     dynamics: object | None = None    # a spec with dynamics: its section (.dynamics)
+    strength: StrengthSection | None = None    # links with a section: their strength
 
 # ------------------------------------------------------------------------ traceability
 
@@ -722,6 +724,8 @@ def _summary(analysis, summary: SweepSummary, sw: SweepData, status_line: str,
             "units": {"driver_torque": EU, "reactions": "N"}}
     w = analysis.worst
     cycle = analysis.review.values if analysis.review is not None else {}
+    if analysis.strength is not None:   # the members' quantities: key figures too (diff)
+        cycle = {**cycle, **analysis.strength.values}
     return {
         "mechreport_version": meta.version, "spec": analysis.spec.file,
         "axis_unit": analysis.spec.axis_unit,
@@ -944,10 +948,13 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
     record["design"] = _design_json(analysis, d.scales)
     record["friction"] = _friction_json(analysis, d.scales)
     record["dynamics"] = dynamics_json(analysis)
+    record["strength"] = strength_json(analysis)
     friction = _friction(analysis, design, sw, d)
     dynamics = dynamics_section(analysis, d)
+    strength = strength_section(analysis, d, spec.axis_unit)
     figures = (_figures(sw, refs, ref, d) | _design_figures(design)
-               | _friction_figures(friction, sw) | _dynamics_figures(dynamics))
+               | _friction_figures(friction, sw) | _dynamics_figures(dynamics)
+               | _strength_figures(strength, d))
     shaking = {"force": _peak_text(summary.shaking_force, "force", d, sw.at_unit),
                "moment": _peak_text(summary.shaking_moment, "moment", d, sw.at_unit)}
     sweep = spec.sweep
@@ -979,7 +986,7 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
         notes=analysis.kinematics.notes(), failures=failure_rows(fails), design=design,
         figures=figures, sweep=sw, scenes=scenes, csv_header=header, csv_rows=rows,
         summary=record, index_row=index_row(record, stem), meta=meta, display=d,
-        heads=heads, friction=friction, dynamics=dynamics)
+        heads=heads, friction=friction, dynamics=dynamics, strength=strength)
 
 
 def _left_out_text(analysis, summary: SweepSummary, sw: SweepData, d: Display) -> str:
@@ -1270,6 +1277,22 @@ def _friction_figures(section: FrictionSection | None, sw: SweepData) -> dict[st
                 "(dashed: the same motion and loads, the joints frictionless)"
                 + (", the curves broken at the left-out angles." if sw.flagged else "."))
     return {"friction": Figure("friction", text, "friction")}
+
+
+def _strength_figures(section: StrengthSection | None, d: Display) -> dict[str, Figure]:
+    """The Strength section's figures: N, V, M of the most loaded member, the stress over
+    the sweep (none without a section)."""
+    if section is None or section.plot is None:
+        return {}
+    sp = section.plot
+    where = (f"φ = {deg(sp.angle)}°" if sp.xlabel.startswith("crank") else
+             f"{sp.xlabel.split(' [')[0]} {deg(sp.angle)} {sp.xlabel.split('[')[-1][:-1]}")
+    return {"strength": Figure("strength", f"Internal forces along member {sp.member} at "
+                               f"{where}, where its stress is largest: axial force N "
+                               "(tension positive), shear V and bending moment M (sagging "
+                               "positive), s from its first point.", "strength"),
+            "stress": Figure("stress", "The largest stress |N|/A + |M|c/I along each member "
+                             "over the sweep.", "stress")}
 
 
 #: what each cycle quantity means, for the Design summary table

@@ -24,12 +24,13 @@ from pathlib import Path as FsPath
 from typing import Any
 
 from ..errors import Problem, SpecError
-from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, is_cycle,
-                          joint_unit, unit_of, split as split_quantity)
+from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, MEMBER_UNITS,
+                          is_cycle, is_member, joint_unit, unit_of, split as split_quantity)
 from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES
 import mechreport.spec.schema as schema   # the models (not `from . import`: spec/__init__)
 from .schema import (MAX_SEED, MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, REPORT_TEXT_MAX,
                      choices_of, keys_of, required_of)
+from .strength import strength_links
 from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Dynamics, Expectation, Friction, Joint,
                     Line, Link, Load, MotorCurve, Pin, Shape, Spec, Study, Sweep, Vary, Vec)
@@ -554,6 +555,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     link_names = {link.name for link in links}
     joints, pins = _joints(top.get("joints", _ABSENT), ck, ground, {l.name: l for l in links},
                            length_scale, units["length"])
+    links = strength_links(top.get("links"), top.get("materials"), ck, links, joints,
+                           length_scale, units["length"])
     driver = (_driver(top.get("driver"), ck, joints, length_scale, pins) if "driver" in top
               else None)
     sweep = _sweep(top.get("sweep"), ck)
@@ -593,7 +596,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
 
     if ck.problems or name is None or driver is None or joints is None:
         # what the sweep alone says is still said, so that every problem is listed at once
-        if "design" in top and (driver is None or driver.kind == "R"):
+        if "design" in top and (driver is None or driver.kind == "R") \
+                and _cycle_design(top.get("design")):
             why = sweep.cycle_problem()
             if why is not None:
                 ck.error(("design",), f"the design review is undefined: {why}")
@@ -828,11 +832,16 @@ def _cycle_requests(spec: Spec, ck: _Checker) -> None:
     """Cycle quantities asked for (``design``, angle-less ``expect``) where none is defined,
     or that need a design input the spec does not give, are errors."""
     why = spec.cycle_problem()
-    asked = [(("expect", i), e.quantity) for i, e in enumerate(spec.expect) if e.angle is None]
+    asked = [(("expect", i), e.quantity) for i, e in enumerate(spec.expect)
+             if e.angle is None and not is_member(e.quantity)]
+    strength = [k for k in STRENGTH_LIMITS if k in spec.design.limits]
+    if strength and not any(link.strength for link in spec.links):
+        ck.error(("design", "limits", strength[0]), "needs a link with a 'section' and a "
+                 "'material' (the members' safety factors it limits)")
     if why is not None:
         for path, quantity in asked:
             ck.error(path, f"'{quantity}' is undefined: {why}")
-        if not spec.design.empty:
+        if not cycle_design(spec.design).empty:
             ck.error(("design",), f"the design review is undefined: {why}")
         return
     for path, quantity in asked:
@@ -862,6 +871,25 @@ def _dynamics_need(spec: Spec, quantity: str) -> str | None:
         return (f"'{quantity}' is a quantity of the steady cycle: with dynamics.until a time "
                 "the simulation gives the transient only (write until: steady)")
     return None
+
+
+#: the design limits on the members' safety factors: defined for any sweep
+STRENGTH_LIMITS = ("static_safety", "fatigue_safety", "buckling_safety")
+
+
+def cycle_design(design: Design) -> Design:
+    """``design`` without the limits on the members' safety factors (what needs a cycle)."""
+    return replace(design, limits={k: v for k, v in design.limits.items()
+                                   if k not in STRENGTH_LIMITS})
+
+
+def _cycle_design(raw: Any) -> bool:
+    """Whether a ``design:`` as written asks for anything but the members' safety limits."""
+    if not isinstance(raw, dict):
+        return True
+    limits = raw.get("limits")
+    return any(k != "limits" for k in raw) or not isinstance(limits, dict) or any(
+        k not in STRENGTH_LIMITS for k in limits)
 
 
 def _at_rest(spec: Spec) -> str:
@@ -1079,8 +1107,9 @@ def _keep(value: Any, path: tuple, ck: _Checker) -> tuple[str, ...] | None:
             near = (difflib.get_close_matches(q, list(CYCLE_UNITS), n=1)
                     if isinstance(q, str) else [])
             hint = f"; did you mean '{near[0]}'?" if near else ""
-            ck.error(path + (i,), f"must be a cycle quantity (cycle.*, balance.*, or "
-                                  f"joint.J.{'|'.join(JOINT_CYCLE_UNITS)}), got {_show(q)}"
+            ck.error(path + (i,), f"must be a cycle quantity (cycle.*, balance.*, "
+                                  f"joint.J.{'|'.join(JOINT_CYCLE_UNITS)}) or a member's "
+                                  f"(member.L.{'|'.join(MEMBER_UNITS)}), got {_show(q)}"
                                   f"{hint}")
             ok = False
         elif q in out:
@@ -1095,13 +1124,19 @@ def _study_requests(spec: Spec, ck: _Checker) -> None:
     """A study tabulates cycle quantities: they must be defined for the spec, and each kept
     one must name a joint of the mechanism and have the design inputs it needs."""
     why = spec.cycle_problem()
-    if why is not None:
+    if why is not None and not (all(is_member(q) for q in spec.study.keep)
+                                and cycle_design(spec.design).empty):
         ck.error(("study",), f"a study tabulates cycle quantities, which are undefined here: "
                              f"{why}")
         return
     joints = set(spec.reported_reactions())
     for i, q in enumerate(spec.study.keep):
-        kind, name, _ = split_quantity(q) or ("", "", "")
+        kind, name, attr = split_quantity(q) or ("", "", "")
+        if kind == "member":
+            problem = _member_quantity_problem(q, name, attr, list(spec.links), ck)
+            if problem:
+                ck.error(("study", "keep", i), problem)
+            continue
         if kind == "joint" and name not in joints:
             ck.error(("study", "keep", i), f"'{q}': no joint named '{name}' (joints: "
                                            f"{', '.join(sorted(joints))})")
@@ -1786,6 +1821,8 @@ def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
     if parts is None:
         return f"'{q}' names nothing: {usage}"
     kind, name, attr = parts
+    if kind == "member":
+        return _member_quantity_problem(q, name, attr, links, ck)
     if kind == "joint":
         return _joint_quantity_problem(q, name, attr, joint_types, joints_known, ck, pins)
     if kind == "point":
@@ -1805,6 +1842,30 @@ def _quantity_problem(q: Any, links: list[Link], joint_types: dict[str, str],
             return f"'{q}': a link has {', '.join(LINK_QUANTITIES)}"
         return None
     return f"'{q}' names nothing: {usage}"
+
+
+def _member_quantity_problem(q: str, name: str, attr: str, links: list[Link],
+                             ck: _Checker) -> str | None:
+    """None if ``q`` (``member.<L>.<attr>`` or ``member.<L>.<P_Q>.<attr>``) names a
+    member's quantity, else what is wrong."""
+    lname, _, member = name.partition(".")
+    link = next((l for l in links if l.name == lname), None)
+    if link is None:
+        if lname in ck.invalid_links:
+            return None
+        return f"'{q}': no link named '{lname}' (links: {', '.join(l.name for l in links)})"
+    if link.strength is None:
+        return f"'{q}': link '{lname}' has no 'section' (and 'material'): it has no members"
+    names = [f"{p}_{x}" for p, x in link.strength.members]
+    several = len(names) > 1
+    if several and member not in names:
+        return (f"'{q}': link '{lname}' has several members; name one: "
+                + ", ".join(f"member.{lname}.{m}.{attr}" for m in names))
+    if not several and member:
+        return f"'{q}': link '{lname}' has one member: member.{lname}.{attr}"
+    if attr not in MEMBER_UNITS:
+        return f"'{q}': a member has {', '.join(MEMBER_UNITS)}"
+    return None
 
 
 def _joint_quantity_problem(q: str, name: str, attr: str, joint_types: dict[str, str],

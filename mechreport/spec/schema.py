@@ -109,6 +109,21 @@ def _shape_tag(value: Any) -> str | None:
     return None
 
 
+def _section_tag(value: Any) -> str | None:
+    """``{rect: ...}``, ``{round: ...}``, ``{tube: ...}`` (a mapping of exactly one of them),
+    or ``{area, inertia, c}`` (a mapping with any of those keys)."""
+    if isinstance(value, dict) and len(value) == 1 and next(iter(value)) in SECTION_KINDS:
+        return next(iter(value))
+    if isinstance(value, dict) and {"area", "inertia", "c"} & set(value):
+        return "area"
+    return None
+
+
+def _material_tag(value: Any) -> str:
+    """A link's ``material``: a name from ``materials:`` (text), or inline properties."""
+    return "name" if isinstance(value, str) else "inline"
+
+
 def _through_tag(value: Any) -> str:
     """A T joint's ``line.through``: a point's name (text), or a point."""
     return "name" if isinstance(value, str) else "point"
@@ -248,6 +263,85 @@ Shape = Annotated[Union[Annotated[BarShape, Tag("bar")], Annotated[BlockShape, T
                   Wording("{bar: {length, height, depth}} or {block: {width, height, depth}}")]
 
 
+SECTION_KINDS = ("rect", "round", "tube")
+
+
+class Rect(_Model):
+    """A solid rectangle."""
+
+    width: Positive = Field(description="Normal to the plane of motion, in the length unit.")
+    height: Positive = Field(description="In the plane of motion (the depth that resists "
+                                         "in-plane bending), in the length unit.")
+
+
+class Round(_Model):
+    """A solid round bar."""
+
+    d: Positive = Field(description="Diameter, in the length unit.")
+
+
+class Tube(_Model):
+    """A round tube."""
+
+    d: Positive = Field(description="Outer diameter, in the length unit.")
+    t: Positive = Field(description="Wall thickness, in the length unit (at most d/2).")
+
+
+class RectSection(_Model):
+    """``{rect: {width, height}}``."""
+
+    model_config = ConfigDict(title="rect section")
+    rect: Rect = Field(description="I = width height³ / 12, c = height / 2.")
+
+
+class RoundSection(_Model):
+    """``{round: {d}}``."""
+
+    model_config = ConfigDict(title="round section")
+    round: Round = Field(description="I = pi d⁴ / 64, c = d / 2.")
+
+
+class TubeSection(_Model):
+    """``{tube: {d, t}}``."""
+
+    model_config = ConfigDict(title="tube section")
+    tube: Tube = Field(description="I = pi (d⁴ - (d - 2t)⁴) / 64, c = d / 2.")
+
+
+class GivenSection(_Model):
+    """``{area, inertia, c}``: any section by its properties."""
+
+    model_config = ConfigDict(title="section properties")
+    area: Positive = Field(description="Area, length unit².")
+    inertia: Positive = Field(description="Second moment for in-plane bending, length "
+                                          "unit⁴.")
+    c: Positive = Field(description="Neutral axis to the outer fibre, in the length unit.")
+
+
+Section = Annotated[Union[Annotated[RectSection, Tag("rect")],
+                          Annotated[RoundSection, Tag("round")],
+                          Annotated[TubeSection, Tag("tube")],
+                          Annotated[GivenSection, Tag("area")]],
+                    Discriminator(_section_tag),
+                    Wording("{rect: {width, height}}, {round: {d}}, {tube: {d, t}} or "
+                            "{area, inertia, c}")]
+
+
+class Material(_Model):
+    """A material's strengths, Pa (always SI)."""
+
+    E: Positive = Field(description="Young's modulus, Pa.")
+    yield_: Positive = Field(alias="yield", description="Yield strength, Pa.")
+    endurance: Positive = Field(description="Endurance limit (fully corrected), Pa.")
+    ultimate: Positive = Field(description="Ultimate tensile strength, Pa.")
+
+
+MaterialRef = Annotated[Union[Annotated[Name, Tag("name")], Annotated[Material, Tag("inline")]],
+                        Discriminator(_material_tag),
+                        Wording("a name from 'materials:' or {E, yield, endurance, "
+                                "ultimate}")]
+
+
 class Link(_Model):
     """A moving link: its named points in its own frame and its mass properties."""
 
@@ -269,6 +363,18 @@ class Link(_Model):
     shape: Shape = Field(
         None, description="`{bar: {length, height, depth}}` or `{block: {width, height, "
                           "depth}}`, sizes in the length unit.")
+    section: Section = Field(
+        None, description="The members' cross-section (format 1.1): {rect: {width, height}}, "
+                          "{round: {d}}, {tube: {d, t}} or {area, inertia, c}, in the "
+                          "length unit.")
+    material: MaterialRef = Field(
+        None, description="With `section`: a name from `materials:`, or {E, yield, "
+                          "endurance, ultimate} in Pa.")
+    members: Annotated[list[Annotated[list[Name], Field(min_length=2, max_length=2)]],
+                       Wording("a list of point pairs [[P, Q], ...]")] = Field(
+        None, min_length=1, description="With `section`: the straight members [[P, Q], ...] "
+                                        "(points of the link). Default: the segment between "
+                                        "the link's two joints.")
 
 
 class Line(_Model):
@@ -499,6 +605,13 @@ class Limits(_Model):
     speed_fluctuation: Positive = Field(
         None, description="The largest dynamics.speed_fluctuation allowed (needs dynamics).")
 
+    static_safety: Positive = Field(None, description="The smallest member.*.static_safety "
+                                                      "allowed.")
+    fatigue_safety: Positive = Field(None, description="The smallest member.*.fatigue_safety "
+                                                       "allowed.")
+    buckling_safety: Positive = Field(None, description="The smallest "
+                                                        "member.*.buckling_safety allowed.")
+
 
 class LinearMotor(_Model):
     """A motor whose torque falls linearly from its stall torque at rest to 0 at its
@@ -645,6 +758,9 @@ class SpecFile(_Model):
                           "choose the assembly branch.")
     loads: Optional[Annotated[list[Load], Wording("a list of loads")]] = Field(
         None, description="External forces, moments, springs, dampers, torsion springs.")
+    materials: dict[str, Material] = Field(
+        None, min_length=1, description="Named materials for links' `material` (format 1.1): "
+                                        "{E, yield, endurance, ultimate} in Pa.")
     friction: dict[str, Friction] = Field(
         None, min_length=1, description="Coulomb friction by joint name: {mu, radius} (R), "
                                         "{mu, length} (T) (format 1.1).")

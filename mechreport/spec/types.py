@@ -44,8 +44,48 @@ class Shape:
 
 
 @dataclass(frozen=True)
+class Section:
+    """A member's cross-section, SI: ``area`` A [m^2], ``inertia`` I [m^4] about the axis
+    normal to the plane of motion (in-plane bending), ``c`` [m] the distance from the neutral
+    axis to the outer fibre in the plane, ``inertia_min`` [m^4] the smallest second moment of
+    the section (about either axis: what a pinned column buckles about); ``kind`` rect |
+    round | tube | area (given as {area, inertia, c}); ``sizes`` as written, SI."""
+
+    kind: str
+    area: float
+    inertia: float
+    c: float
+    inertia_min: float
+    sizes: tuple[tuple[str, float], ...] = ()
+
+
+@dataclass(frozen=True)
+class Material:
+    """A material, SI: Young's modulus ``E``, ``yield_`` and ``ultimate`` strengths and the
+    (fully corrected) ``endurance`` limit [Pa]; ``name`` as in ``materials:`` ("" inline)."""
+
+    name: str
+    E: float
+    yield_: float
+    endurance: float
+    ultimate: float
+
+
+@dataclass(frozen=True)
+class Strength:
+    """A link's strength data: its ``section`` and ``material`` and its ``members``, the
+    straight beams it is made of, each (P, Q) two of its point names."""
+
+    section: Section
+    material: Material
+    members: tuple[tuple[str, str], ...]
+    members_given: bool = False      # written as `members:` (else the segment between joints)
+
+
+@dataclass(frozen=True)
 class Link:
-    """A moving link. ``number`` is 1, 2, ... in the order written (ground is 0)."""
+    """A moving link. ``number`` is 1, 2, ... in the order written (ground is 0). ``strength``
+    its section, material and members (None without a ``section``)."""
 
     name: str
     number: int
@@ -54,6 +94,7 @@ class Link:
     com: Vec             # centre of mass in the link frame [m]
     inertia: float       # about the centre of mass [kg m^2]
     shape: Shape | None = None
+    strength: Strength | None = None
 
 
 @dataclass(frozen=True)

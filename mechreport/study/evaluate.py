@@ -76,13 +76,18 @@ def row_of(analysis, keep: Sequence[str]) -> Row:
     from ..checks.expectations import cycle_value
     if getattr(analysis, "untrusted", ""):    # the one method cannot vouch for its numbers
         return failed_row(len(keep), analysis.untrusted)
+    from ..quantities import is_member
     cycle = (analysis.cycle_values if hasattr(analysis, "cycle_values") else
              analysis.review.values if analysis.review is not None else None)
-    if cycle is None:                     # one reason, not one per kept quantity
+    strength = getattr(analysis, "members", None)
+    if strength is None and getattr(analysis, "strength", None) is not None:
+        strength = analysis.strength.values           # an Analysis
+    if cycle is None and not all(is_member(q) for q in keep):   # one reason, not one per
         return failed_row(len(keep), f"no cycle quantities: {analysis.review_problem}")
     got, why = [], []
     for q in keep:
-        value, undefined = cycle_value(cycle, q, analysis.review_problem)
+        value, undefined = (cycle_value(strength or {}, q) if is_member(q) else
+                            cycle_value(cycle, q, analysis.review_problem))
         got.append(math.nan if value is None else float(value))
         if undefined:
             why.append(undefined)

@@ -24,13 +24,15 @@ FROM_REACTIONS = ("cycle.shaking.force_max", "cycle.shaking.force_rms",
 
 
 def needs_reactions(quantity: str) -> bool:
-    return quantity.startswith("joint.") or quantity in FROM_REACTIONS
+    return quantity.startswith(("joint.", "member.")) or quantity in FROM_REACTIONS
 
 
 def design_items_needing_reactions(design: Design) -> list[str]:
     """The design items whose verdicts are judged on joint reactions."""
     items = [f"bearings.{j}.life_h" for j, b in design.bearings.items() if b.life_h is not None]
-    items += [f"limits.{k}" for k in ("joint_force", "shaking_force") if k in design.limits]
+    items += [f"limits.{k}" for k in ("joint_force", "shaking_force", "static_safety",
+                                       "fatigue_safety", "buckling_safety")
+              if k in design.limits]
     return items
 
 

@@ -111,6 +111,12 @@ def test_streamed_check_equals_the_analysis(name, tiny_chunks):
         for k, v in a.review.values.items():
             assert s.values[k] == pytest.approx(v, rel=1e-10, abs=1e-10), k
     assert [(v.item, v.passed) for v in s.verdicts] == [(v.item, v.passed) for v in a.verdicts]
+    if a.strength is None:                 # the members' quantities, merged chunk by chunk
+        assert s.members is None
+    else:
+        assert s.members.keys() == a.strength.values.keys()
+        for k, v in a.strength.values.items():
+            assert s.members[k] == pytest.approx(v, rel=1e-10), k
     assert summary_line("x", s) == summary_line("x", a) \
         or "worst disagreement" in summary_line("x", s)
 

@@ -28,6 +28,7 @@ OVERLAP_PX = 1.5            # texts may touch by this much [px at 100 dpi] (anti
 
 CYCLE = {"flywheel": plots.flywheel_figure, "breakdown": plots.breakdown_figure,
          "transmission": plots.transmission_figure, "balance": plots.balance_figure}
+STRENGTH = {"strength": plots.strength_figure, "stress": plots.stress_figure}
 SWEEP = {"torque": plots.torque_figure, "reactions": plots.reactions_figure,
          "polar": plots.polar_figure, "shaking": plots.shaking_figure}
 
@@ -64,6 +65,8 @@ def make(model, key: str):
     if key == "dynamics":
         from mechreport.report.dynamics_plots import dynamics_figure
         return dynamics_figure(model.dynamics.plot, model.display)
+    if key in STRENGTH:
+        return STRENGTH[key](model.strength.plot, model.display)
     from mechreport.report.drawing import draw_scene
     scene, title = drawings(model)[key]
     return draw_scene(scene, model.display, title)
@@ -76,6 +79,7 @@ def figure_keys(model) -> list[str]:
     if len(sw.angles):
         keys += [k for k in SWEEP if k in figs and (k != "reactions" or sw.joints)]
     keys += [k for k in ("friction", "dynamics") if k in figs]
+    keys += [k for k in STRENGTH if k in figs]
     return keys + list(drawings(model))
 
 

@@ -186,6 +186,7 @@ class AngleModel:
     shown: list = field(default_factory=list)
     friction: list = field(default_factory=list)      # rich text: how friction is found
     dynamics: list = field(default_factory=list)      # paragraphs: the equation of motion
+    cuts: list = field(default_factory=list)          # strength.Cut: members cut open
 
 
 @dataclass
@@ -581,6 +582,8 @@ def _angle_model(analysis, angle: float, names: Names, exact, methods, display,
             others[name] = float(res.driver_torque[k])
         am.methods.append(mm)
     am.answers, am.answers_note = _answers(analysis, k, names, exact, methods)
+    from .strength import cuts
+    am.cuts = cuts(analysis, k)
     if display is not None:
         from ...post import reference_method
         ref = analysis.forces[reference_method(analysis.forces)]
@@ -978,6 +981,8 @@ def _build_problem(analysis, options: SheetOptions | None = None,
         if l.shape is not None:
             shape = (f"{l.shape.kind} {fmt(l.shape.length)} × {fmt(l.shape.height)} × "
                      f"{fmt(l.shape.depth)} m")
+        if l.strength is not None:
+            shape = "; ".join(x for x in (shape, _strength_datum(l)) if x)
         links.append([str(l.number), l.name, ", ".join(f"{p} {_vec(xy)}" for p, xy in pts),
                       ", ".join(dims), shape, fmt(l.mass), fmt(l.inertia), _vec(l.com)])
     joints = [[j.name, {"R": "pin (R)", "T": "slider (T)"}[j.type],
@@ -1016,12 +1021,28 @@ def _build_problem(analysis, options: SheetOptions | None = None,
                  for fr in spec.friction]
         tasks.append(f"the friction in joint{'s' if len(named) > 1 else ''} "
                      f"{_join_and(named)}, found together with the reactions it changes;")
+    sized = [l for l in spec.links if l.strength is not None]
+    if sized:
+        tasks.append("the axial force N, shear force V and bending moment M at the middle of "
+                     "each member of " + _join_and([f"link {l.number} ({l.name})"
+                                                    for l in sized])
+                     + ", and the largest normal stress there;")
     if "power" in methods:
         tasks.append(f"check {effort} with " + ("virtual work." if spec.driver.at_rest
                                                  else "a power balance."))
     return ProblemModel(spec.name, str(spec.file), spec.description.strip(), links, joints,
                         ground, _driver_text(spec), _vec(spec.gravity) + " m/s²", loads, figs,
                         tasks)
+
+
+def _strength_datum(link) -> str:
+    """A link's section, material and members as the problem states them (SI)."""
+    st = link.strength
+    sizes = ", ".join(f"{k} = {fmt(v)}" for k, v in st.section.sizes)
+    m = st.material
+    return (f"section {st.section.kind} ({sizes}, SI), E = {fmt(m.E)} Pa, yield "
+            f"{fmt(m.yield_)} Pa, ultimate {fmt(m.ultimate)} Pa, endurance {fmt(m.endurance)} "
+            "Pa; members " + ", ".join(f"{p}{q}" for p, q in st.members))
 
 
 def _friction_datum(spec, fr, joint) -> str:

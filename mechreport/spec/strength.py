@@ -1,0 +1,226 @@
+"""The strength keys of a spec: a link's ``section``, ``material`` and ``members``, and the
+top-level ``materials:`` (format 1.1), checked and converted to SI.
+
+Called by the loader once the links and joints are read, with its checker ``ck`` (which
+records problems as ``file:line: key.path: message``). Section sizes are in the spec's length
+unit; materials are always in Pa.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Any
+
+from .types import Joint, Link, Material, Section, Strength
+
+MATERIAL_KEYS = ("E", "yield", "endurance", "ultimate")
+SECTION_SIZES = {"rect": ("width", "height"), "round": ("d",), "tube": ("d", "t"),
+                 "area": ("area", "inertia", "c")}
+
+
+def materials(value: Any, ck) -> dict[str, Material]:
+    """The top-level ``materials:`` by name (those that check out)."""
+    path = ("materials",)
+    if not isinstance(value, dict) or not value:
+        ck.error(path, "must map material names to {E, yield, endurance, ultimate} (Pa)")
+        return {}
+    out = {}
+    for name, body in value.items():
+        m = material(body, path + (name,), ck, str(name))
+        if m is not None:
+            out[name] = m
+    return out
+
+
+def material(body: Any, path: tuple, ck, name: str = "") -> Material | None:
+    """{E, yield, endurance, ultimate} [Pa] as a Material; None (reported) when wrong. The
+    yield and endurance strengths cannot exceed the ultimate strength."""
+    body = ck.mapping(body, path, MATERIAL_KEYS, required=MATERIAL_KEYS)
+    if body is None or any(k not in body for k in MATERIAL_KEYS):
+        return None
+    v = {k: ck.number(body[k], path + (k,), positive=True) for k in MATERIAL_KEYS}
+    if any(x is None for x in v.values()):
+        return None
+    bad = False
+    for key in ("yield", "endurance"):
+        if v[key] > v["ultimate"]:
+            ck.error(path + (key,), f"{v[key]:g} Pa exceeds the ultimate strength "
+                                    f"{v['ultimate']:g} Pa")
+            bad = True
+    return None if bad else Material(name, v["E"], v["yield"], v["endurance"], v["ultimate"])
+
+
+def section(value: Any, path: tuple, ck, ls: float, unit: str) -> Section | None:
+    """A section as written (sizes in the length unit, ``ls`` m each) in SI; None (reported)
+    when wrong. rect: ``height`` in the plane (I = w h^3 / 12, c = h / 2); round; tube
+    (wall ``t`` at most d / 2); or {area, inertia, c} (area in unit^2, inertia in unit^4)."""
+    kinds = "{rect: {width, height}}, {round: {d}}, {tube: {d, t}} or {area, inertia, c}"
+    if isinstance(value, dict) and len(value) == 1 and next(iter(value)) in SECTION_SIZES \
+            and next(iter(value)) != "area":
+        kind, dims = next(iter(value.items()))
+        where = path + (kind,)
+    elif isinstance(value, dict) and {"area", "inertia", "c"} & set(value):
+        kind, dims, where = "area", value, path
+    else:
+        ck.error(path, f"must be {kinds}")
+        return None
+    keys = SECTION_SIZES[kind]
+    dims = ck.mapping(dims, where, keys, required=keys)
+    if dims is None or any(k not in dims for k in keys):
+        return None
+    powers = {"area": 2, "inertia": 4}
+    sizes = {k: ck.number(dims[k], where + (k,), positive=True, scale=ls ** powers.get(k, 1),
+                          unit=unit + ("^" + str(powers[k]) if k in powers else ""))
+             for k in keys}
+    if any(x is None for x in sizes.values()):
+        return None
+    if kind == "rect":
+        w, h = sizes["width"], sizes["height"]
+        return Section(kind, w * h, w * h ** 3 / 12, h / 2, min(w * h ** 3, h * w ** 3) / 12,
+                       tuple(sizes.items()))
+    if kind == "round":
+        d = sizes["d"]
+        i = math.pi * d ** 4 / 64
+        return Section(kind, math.pi * d ** 2 / 4, i, d / 2, i, tuple(sizes.items()))
+    if kind == "tube":
+        d, t = sizes["d"], sizes["t"]
+        if t > d / 2:
+            ck.error(where + ("t",), f"a wall of {dims['t']} {unit} is thicker than the "
+                                     f"radius {d / 2 / ls:g} {unit} (at most d / 2)")
+            return None
+        di = d - 2 * t
+        i = math.pi * (d ** 4 - di ** 4) / 64
+        return Section(kind, math.pi * (d ** 2 - di ** 2) / 4, i, d / 2, i,
+                       tuple(sizes.items()))
+    return Section(kind, sizes["area"], sizes["inertia"], sizes["c"], sizes["inertia"],
+                   tuple(sizes.items()))
+
+
+def joint_points(link: Link, joints: list[Joint]) -> list[str]:
+    """The points of ``link`` where its joints act, in the order written (a T joint's only
+    when the link is the slider)."""
+    out = []
+    for j in joints:
+        if link.name not in j.links or j.point not in link.points:
+            continue
+        if j.type == "T" and j.links[1] != link.name:
+            continue
+        out.append(j.point)
+    return list(dict.fromkeys(out))
+
+
+def strength_links(raw_links: Any, raw_materials: Any, ck, links: list[Link],
+                   joints: list[Joint] | None, ls: float, unit: str) -> list[Link]:
+    """``links`` with each one's ``strength`` from its ``section``, ``material`` and
+    ``members`` (checked: a section needs a material and the other way round, members name
+    two different points of the link, at two different places, and join into one tree
+    without a closed loop; without ``members``, the link has exactly two joint points)."""
+    if not isinstance(raw_links, dict):
+        return links
+    named = materials(raw_materials, ck) if raw_materials is not None else {}
+    out = []
+    for link in links:
+        body = raw_links.get(link.name)
+        if not isinstance(body, dict) or not {"section", "material", "members"} & set(body):
+            out.append(link)
+            continue
+        strength = _link_strength(link, body, ("links", link.name), ck, joints, named,
+                                  raw_materials, ls, unit)
+        out.append(replace(link, strength=strength) if strength is not None else link)
+    return out
+
+
+def _link_strength(link: Link, body: dict, path: tuple, ck, joints, named, raw_materials,
+                   ls: float, unit: str) -> Strength | None:
+    if "section" not in body:
+        for key in ("material", "members"):
+            if key in body:
+                ck.error(path + (key,), "is for a link with a 'section' (give the section "
+                                        "too, or leave this out)")
+        return None
+    sec = section(body["section"], path + ("section",), ck, ls, unit)
+    mat = None
+    if "material" not in body:
+        ck.error(path, "a link with a 'section' needs a 'material' (a name from "
+                       "'materials:' or {E, yield, endurance, ultimate} in Pa)")
+    elif isinstance(body["material"], str):
+        mat = named.get(body["material"])
+        given = raw_materials if isinstance(raw_materials, dict) else {}
+        if mat is None and body["material"] not in given:
+            choices = ", ".join(map(str, given)) or "none"
+            ck.error(path + ("material",), f"no material named '{body['material']}' in "
+                                           f"'materials:' (materials: {choices})")
+    else:
+        mat = material(body["material"], path + ("material",), ck)
+    members = _members(link, body, path, ck, joints)
+    if sec is None or mat is None or members is None:
+        return None
+    return Strength(sec, mat, members, "members" in body)
+
+
+def _members(link: Link, body: dict, path: tuple, ck, joints) -> tuple | None:
+    if "members" not in body:
+        if joints is None:
+            return None
+        ends = joint_points(link, joints)
+        if len(ends) != 2:
+            ck.error(path + ("section",), f"link '{link.name}' has {len(ends)} joint points "
+                     f"({', '.join(ends) or 'none'}): list its straight members as "
+                     "'members: [[P, Q], ...]' (points of the link)")
+            return None
+        pairs = [tuple(ends)]
+        where = [path + ("section",)]
+    else:
+        raw = body["members"]
+        if not isinstance(raw, list) or not raw:
+            ck.error(path + ("members",), "must be a list of point pairs [[P, Q], ...]")
+            return None
+        pairs, where = [], []
+        for i, pq in enumerate(raw):
+            at = path + ("members", i)
+            if not (isinstance(pq, list) and len(pq) == 2
+                    and all(isinstance(x, str) for x in pq)):
+                ck.error(at, f"must be a pair of point names [P, Q], got {pq!r}")
+                return None
+            missing = [x for x in pq if x not in link.points]
+            if missing:
+                ck.error(at, f"link '{link.name}' has no point named '{missing[0]}' "
+                             f"(points: {', '.join(link.points)})")
+                return None
+            pairs.append(tuple(pq))
+            where.append(at)
+    for pq, at in zip(pairs, where):
+        p, q = (link.points[x] for x in pq)
+        if math.hypot(q[0] - p[0], q[1] - p[1]) == 0:
+            ck.error(at, f"member [{pq[0]}, {pq[1]}] of link '{link.name}' has zero length: "
+                         "its two points are at the same place")
+            return None
+    if len(set(frozenset(pq) for pq in pairs)) < len(pairs):
+        ck.error(path + ("members",), "lists a member twice")
+        return None
+    problem = tree_problem(pairs)
+    if problem:
+        ck.error(path + ("members",), problem)
+        return None
+    return tuple(pairs)
+
+
+def tree_problem(members) -> str | None:
+    """Why ``members`` (point-name pairs) are not one tree (a closed loop of members is
+    statically indeterminate; separate pieces carry nothing between them), or None."""
+    nodes = {x for pq in members for x in pq}
+    parent = {x: x for x in nodes}
+
+    def find(x):
+        while parent[x] != x:
+            x = parent[x]
+        return x
+    for p, q in members:
+        a, b = find(p), find(q)
+        if a == b:
+            return (f"the members close a loop (through {p} and {q}): a closed frame is "
+                    "statically indeterminate; leave one member out")
+        parent[a] = b
+    if len({find(x) for x in nodes}) > 1:
+        return "the members must join into one piece (each sharing a point with another)"
+    return None
