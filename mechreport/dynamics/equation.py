@@ -42,7 +42,7 @@ from ..spec import Spec
 from ..spec.types import MotorCurve
 from .friction import friction_scalar, friction_state, friction_terms, method_parts_of
 from .motor import RPM, motor_function, motor_torque
-from .pieces import DEGREE, GRID_STEP_DEG, periodic_pieces
+from .pieces import DEGREE, GRID_STEP_DEG, periodic_pieces, values_at
 
 #: the rate states (omega [rad/s], alpha [rad/s^2]) the reference method is solved at
 STATES = ((1.0, 0.0), (2.0, 0.0), (3.0, 0.0), (1.0, 1.0))
@@ -74,15 +74,7 @@ class EquationOfMotion:
 
     def at(self, phi: np.ndarray) -> np.ndarray:
         """(J, B, C, D) at crank angles ``phi`` (n,) [rad], (n, 4)."""
-        h = math.radians(GRID_STEP_DEG)
-        x = np.mod(np.asarray(phi, float), 2 * math.pi) / h
-        i = np.minimum(x.astype(int), len(self.grid) - 1)
-        t = ((x - i) * h)[:, None]
-        c = self.coefficients[i]                     # (n, 4 functions, powers)
-        out = c[..., 0]
-        for k in range(1, c.shape[-1]):
-            out = out * t + c[..., k]
-        return out
+        return values_at(self.coefficients, phi)
 
     def alpha(self, phi: np.ndarray, omega: np.ndarray) -> np.ndarray:
         """The crank's angular acceleration [rad/s^2] at ``phi`` [rad] and ``omega``

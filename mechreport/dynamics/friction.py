@@ -31,7 +31,7 @@ from ..forces.newton_euler import build_steps as newton_euler_steps
 from ..forces.sources import split_by_source
 from ..kinematics import Kinematics, at_unit_rate, with_rates
 from .motor import motor_function, motor_torque
-from .pieces import DEGREE, GRID_STEP_DEG, periodic_pieces
+from .pieces import DEGREE, GRID_STEP_DEG, periodic_pieces, values_at
 
 TOL = 1e-13          # Newton's convergence: the last step, relative to the friction's scale
 MAX_STEPS = 50
@@ -115,16 +115,6 @@ class _Lines:
         return self.lines[joint.name]
 
 
-def channels_at(pieces: np.ndarray, phi: np.ndarray) -> np.ndarray:
-    """Every channel of ``pieces`` at crank angles ``phi`` (n,) [rad], (n, channels)."""
-    h = math.radians(GRID_STEP_DEG)
-    x = np.mod(np.asarray(phi, float), 2 * math.pi) / h
-    i = np.minimum(x.astype(int), len(pieces) - 1)
-    t = (x - i) * h
-    powers = t[:, None] ** np.arange(DEGREE, -1, -1)[None, :]           # (n, DEGREE + 1)
-    return np.einsum("ncd,nd->nc", pieces[i], powers)
-
-
 def friction_state(eom, phi: np.ndarray, omega: np.ndarray, file: str
                    ) -> tuple[np.ndarray, np.ndarray]:
     """(alpha (n,) [rad/s^2], the frictions m (n, J)) of the equation of motion ``eom``
@@ -136,7 +126,7 @@ def friction_state(eom, phi: np.ndarray, omega: np.ndarray, file: str
     phi, omega = np.atleast_1d(np.asarray(phi, float)), np.atleast_1d(np.asarray(omega, float))
     n, J = len(phi), len(frictions)
     j, b, c, d = eom.at(phi).T
-    vals = channels_at(terms.pieces, phi)
+    vals = values_at(terms.pieces, phi)
     den = j + eom.flywheel
     free = (motor_torque(eom.motor, omega) - ((b * omega + c) * omega + d)) / den
     effort = next(span for name, span in layout.items() if name.startswith("driver."))
@@ -304,5 +294,5 @@ def _law(m, base, resp, frictions, joints, ctx):
     return mag, jac
 
 
-__all__ = ["FrictionTerms", "channels_at", "friction_scalar", "friction_state",
-           "friction_terms", "method_parts_of"]
+__all__ = ["FrictionTerms", "friction_scalar", "friction_state", "friction_terms",
+           "method_parts_of"]

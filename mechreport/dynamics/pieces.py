@@ -26,15 +26,15 @@ def periodic_pieces(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     return taylor[..., ::-1].copy()
 
 
-def pieces_at(pieces: np.ndarray, phi: float) -> np.ndarray:
+def values_at(pieces: np.ndarray, phi) -> np.ndarray:
     """Every function of ``pieces`` (:func:`periodic_pieces` on the GRID_STEP_DEG grid) at
-    one crank angle ``phi`` [rad], (F,)."""
+    crank angles ``phi`` (n,) [rad], (n, F)."""
     h = math.radians(GRID_STEP_DEG)
-    x = (phi % (2 * math.pi)) / h
-    i = min(int(x), len(pieces) - 1)
+    x = np.mod(np.atleast_1d(np.asarray(phi, float)), 2 * math.pi) / h
+    i = np.minimum(x.astype(int), len(pieces) - 1)
     t = (x - i) * h
-    return pieces[i] @ (t ** np.arange(DEGREE, -1, -1))
+    powers = t[:, None] ** np.arange(DEGREE, -1, -1)[None, :]           # (n, DEGREE + 1)
+    return np.einsum("nfd,nd->nf", pieces[i], powers)
 
 
-
-__all__ = ["DEGREE", "GRID_STEP_DEG", "periodic_pieces", "pieces_at"]
+__all__ = ["DEGREE", "GRID_STEP_DEG", "periodic_pieces", "values_at"]
