@@ -118,6 +118,10 @@ def simulate(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarray, file: str
         return y[1] - STALL_SPEED
     stall.terminal, stall.direction = True, -1
 
+    def reverse(t, y):            # started from rest, turned back before reaching STALL_SPEED
+        return y[1] + STALL_SPEED
+    reverse.terminal, reverse.direction = True, -1
+
     segments = _Segments()
     t, start_turns = 0.0, []      # (time, speed) at the start of each turn
     end = math.inf if dyn.until is None else dyn.until
@@ -131,14 +135,14 @@ def simulate(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarray, file: str
         turn.terminal, turn.direction = True, 1
         scale = max(abs(omega), 1.0)
         sol = solve_ivp(rhs, (t, end), (phi, omega), method="DOP853", rtol=RTOL,
-                        atol=(ATOL_ANGLE, RTOL * scale), events=(turn, stall),
+                        atol=(ATOL_ANGLE, RTOL * scale), events=(turn, stall, reverse),
                         dense_output=True)
         if sol.status < 0:
             raise AnalysisError(f"{file}: the integration of the equation of motion failed "
                                 f"at t = {sol.t[-1]:.6g} s: {sol.message}")
         segments.add(t, sol.sol)
         t, (phi, omega) = float(sol.t[-1]), sol.y[:, -1]
-        if sol.t_events[1].size:
+        if sol.t_events[1].size or sol.t_events[2].size:
             raise AnalysisError(_stall(file, eom, t, phi, sol.sol(t)[1]))
         if not sol.t_events[0].size:          # the end time reached within the turn
             break

@@ -392,3 +392,16 @@ def test_the_integrators_friction_path_is_the_batched_one(which):
     np.testing.assert_allclose([one(p, x) for p, x in zip(phi, w)],
                                friction_state(eom, phi, w, "dyn.yaml")[0], rtol=1e-12,
                                atol=1e-12 * np.max(np.abs(eom.D)))
+
+
+def test_a_crank_that_starts_and_swings_back_stalls_instead_of_integrating_on():
+    """Started from rest just before an angle where the weights begin to need more than the
+    motor gives: the crank moves forward a little, swings back: a stall at once, never a
+    simulation of the crank turning backwards (nor an endless pendulum)."""
+    _, _, eom = equation(four_bar("{motor: {torque: 1}}"))
+    torque = float(0.5 * max(eom.D))
+    up = np.flatnonzero((eom.D[:-1] < torque) & (eom.D[1:] >= torque))[0]   # D rises past it
+    start = float(eom.grid[up] - 2.0)
+    text = four_bar(f"{{motor: {{torque: {torque!r}}}, until: 5, start: {{angle: {start!r}}}}}")
+    with pytest.raises(AnalysisError, match="stalls at crank angle"):
+        mechreport.analyse(text)
