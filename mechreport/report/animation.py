@@ -278,7 +278,7 @@ def gif_bytes(anim, d) -> bytes:
             art.remove()
     buf = io.BytesIO()
     images[0].save(buf, format="GIF", save_all=True, append_images=images[1:], loop=0,
-                   duration=max(20, round(anim.seconds * 100) * 10), disposal=1)
+                   duration=round(anim.seconds * 1000), disposal=1)
     return buf.getvalue()
 
 

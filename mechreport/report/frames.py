@@ -42,7 +42,7 @@ class Animation:
     solved reference angles (the PDF's filmstrip; their SVGs ``strip_stems``), the drawing's
     ``extent`` [m] shared by all, ``force_ref`` [N] the largest force drawn away from
     near-singular angles (what the one arrow scale is set by), ``step`` between frames,
-    ``seconds`` per frame. For the effort gauge and the sweep strip under the drawing:
+    ``seconds`` per frame (whole hundredths). For the effort gauge and the sweep strip under the drawing:
     ``angles`` (n,) the analysed angles, ``effort`` (n,) the driver's torque [N m] or force
     [N] (``effort_kind`` moment|force, ``effort_symbol`` M|Fd), ``near`` (n,) the
     near-singular mask, ``flagged`` the left-out angles, ``xrange`` (start, stop) of the
@@ -63,6 +63,13 @@ class Animation:
     flagged: list[float]
     xrange: tuple[float, float]
     unit: str = "°"
+    caption: str = ""
+    strip_caption: str = ""
+
+    @property
+    def strip_svgs(self) -> list[str]:
+        """The filmstrip's files, relative to the report folder."""
+        return [f"figures/{stem}.svg" for stem in self.strip_stems]
 
 
 def frame_indices(sweep_angles: np.ndarray, analysed: np.ndarray,
@@ -90,12 +97,13 @@ def frame_indices(sweep_angles: np.ndarray, analysed: np.ndarray,
 
 
 def animation_data(analysis, ref: str, sweep, colors: dict[str, str],
-                   symbols: dict[str, str], effort_kind: str, coord_unit: str,
-                   strip_angles: list[float]) -> Animation | None:
+                   symbols: dict[str, str], effort_kind: str, coord: str, coord_unit: str,
+                   strip_angles: list[float], method_title: str) -> Animation | None:
     """The animation of ``analysis`` drawn from the reference method ``ref``'s reactions:
     ``sweep`` the report's :class:`~mechreport.report.model.SweepData` (near-singular mask,
-    left-out angles), ``strip_angles`` the reference angles of the filmstrip (the solved
-    ones). None when no angle was solved."""
+    left-out angles), ``coord`` and ``coord_unit`` the sweep's name and unit ("crank
+    angle", "°"), ``strip_angles`` the reference angles of the filmstrip (the solved ones),
+    ``method_title`` the reference method's name. None when no angle was solved."""
     spec, kin = analysis.spec, analysis.kinematics
     ks, step = frame_indices(spec.sweep.angles(), kin.angles)
     if not ks:
@@ -103,7 +111,7 @@ def animation_data(analysis, ref: str, sweep, colors: dict[str, str],
     strip_ks = [k for a in strip_angles if (k := kin.index_of(a)) is not None]
     extent = sweep_extent(kin, ks + strip_ks)
     res = analysis.forces[ref]
-    effort = np.asarray(res.driver_torque, float)
+    torque = np.asarray(res.driver_torque, float)
     near = np.asarray(sweep.near, bool) if len(sweep.near) == kin.n else np.zeros(kin.n, bool)
     flagged = [float(a) for a in sweep.flagged]
     unit = coord_unit
@@ -116,7 +124,7 @@ def animation_data(analysis, ref: str, sweep, colors: dict[str, str],
             fa = min(flagged, key=lambda a: abs(a - angle))
             note = f"near the left-out {deg(fa)}{unit}"
         scene = build_scene(analysis, res, k, colors, symbols, extent)
-        return Frame(scene, angle, title, bool(near[k]), note, float(effort[k]))
+        return Frame(scene, angle, title, bool(near[k]), note, float(torque[k]))
 
     frames = [frame(k) for k in ks]
     strip = [frame(k) for k in strip_ks]
@@ -124,7 +132,25 @@ def animation_data(analysis, ref: str, sweep, colors: dict[str, str],
     if not away:                           # every frame near a left-out angle
         away = [math.hypot(*a.f) for f in frames + strip for a in f.scene.arrows]
     stems = [f"frame_{deg(f.angle).replace('.', 'p').replace('-', 'm')}" for f in strip]
-    return Animation(frames, strip, stems, extent, max(away, default=0.0), step,
-                     SECONDS_PER_SWEEP / max(len(frames), 1), np.asarray(kin.angles, float),
-                     effort, effort_kind, "M" if effort_kind == "moment" else "Fd", near,
-                     flagged, (float(spec.sweep.start), float(spec.sweep.stop)), unit)
+    symbol = "M" if effort_kind == "moment" else "Fd"
+    effort = "torque M" if effort_kind == "moment" else "push Fd along its line"
+    # a GIF counts in hundredths of a second
+    seconds = max(0.02, round(SECONDS_PER_SWEEP / max(len(frames), 1), 2))
+    cut = (" Arrows marked // are longer than drawn: off the scale, near a left-out "
+           "angle." if near.any() else "")
+    caption = (f"The mechanism over the sweep, one frame every {deg(abs(step))}{unit} "
+               f"({len(frames)} frames, {seconds * len(frames):.3g} s a cycle): the joint "
+               f"reactions (first link on second, {method_title}, coloured per joint, named "
+               f"in the key), applied loads (black) and the driver's {effort} (wine red), "
+               "every arrow to one scale for the whole sweep (the arrow in the top-right "
+               f"corner).{cut} Right: the driver's {symbol} as a gauge over its range; "
+               f"bottom: {symbol} over the sweep, this frame's place on it"
+               + (" and the left-out angles (red)." if flagged else "."))
+    strip_caption = ("Frames of animation.gif at the reference "
+                     + ("angles" if len(strip) > 1 else "angle") + ": "
+                     + ", ".join(f"{coord} {deg(f.angle)}{unit}" for f in strip)
+                     + "; the same scale as the animation, symbols on the drawing.")
+    return Animation(frames, strip, stems, extent, max(away, default=0.0), step, seconds,
+                     np.asarray(kin.angles, float), torque, effort_kind, symbol,
+                     near, flagged, (float(spec.sweep.start), float(spec.sweep.stop)), unit,
+                     caption, strip_caption)

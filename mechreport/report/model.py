@@ -982,8 +982,9 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
         summary=record, index_row=index_row(record, stem), meta=meta, display=d,
         heads=heads, friction=friction,
         animation=(animation_data(analysis, ref, sw, colors, symbols, sw.effort,
-                                  effort_of(spec)[3],
-                                  [float(a) for a, r in zip(spec.at, refs) if r.flag is None])
+                                  effort_of(spec)[2], effort_of(spec)[3],
+                                  [float(a) for a, r in zip(spec.at, refs) if r.flag is None],
+                                  METHODS[ref].TITLE)
                    if animation and rs.animation else None),
         dxf=_dxf(spec, refs, scenes) if rs.dxf else None)
 
