@@ -48,7 +48,7 @@ def view_of(anim) -> View:
         los.append(lo)
         his.append(hi)
     lo, hi = np.min(los, axis=0), np.max(his, axis=0)
-    pad = 0.06 * ext
+    pad = 0.1 * ext                            # room for the names around the drawing
     lo, hi = lo - pad, hi + pad
     span = np.maximum(hi - lo, 1e-9)
     ax_w = FRAME_WIDTH - GAUGE_W - 0.08
@@ -79,6 +79,18 @@ def draw_frame(anim, frame, view: View, d):
     arrow scale, the effort gauge and the sweep strip (values in ``d``'s display units)."""
     fig = draw_scene(frame.scene, d, frame.title, view=view)
     _static_decor(fig, anim, view, d)
+    _frame_decor(fig, anim, frame, view, d)
+    return fig
+
+
+@styled
+def draw_gif_frame(anim, frame, view: View, d):
+    """One frame as the GIF shows it, as one figure: the drawing without text, the key of
+    its arrows under the title, the scale, gauge and strip (what :func:`gif_bytes` lays
+    over a shared background; for checks and contact sheets)."""
+    fig = draw_scene(frame.scene, d, frame.title, view=replace(view, labels=False))
+    _static_decor(fig, anim, view, d)
+    _key(fig, anim, view, d)
     _frame_decor(fig, anim, frame, view, d)
     return fig
 

@@ -32,8 +32,8 @@ class View:
     [in], the mechanism axes' ``rect`` (left, bottom, width, height; figure fraction), the
     arrows' ``scale`` [m per N] and ``clip`` [m], the longest arrow drawn: a longer one is cut
     to it and marked. ``labels`` False leaves out every text on the drawing (point names,
-    arrow and couple symbols, link numbers): the frames of a GIF name them once, in a key
-    (text is most of a raster frame's cost)."""
+    arrow and couple symbols): the frames of a GIF name them once, in a key (text is most of
+    a raster frame's cost). A view never numbers the links (its frames are small)."""
 
     lo: tuple
     hi: tuple
@@ -358,7 +358,7 @@ def draw_scene(scene, d=None, title: str | None = None, view: View | None = None
         fig = ax.figure
     labels = Labels(ax)
 
-    _links(ax, scene, view is None or view.labels)
+    _links(ax, scene, view is None)
     size = 0.025 * ext
     shared: dict = {}                          # elements between the same two points
     for kind, p0, p1 in scene.elements:
