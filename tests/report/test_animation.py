@@ -30,6 +30,22 @@ BOOM = ROOT / "specs" / "hydraulic_boom.yaml"        # a T driver's stroke
 _models: dict = {}
 
 
+def shifted_slider(tmp_path_factory) -> Path:
+    """The slider-crank swept from 5 deg: frames at 5, 5 + step, ... reach 89 deg, next to the
+    left-out 90 deg (with 12-degree frames)."""
+    path = tmp_path_factory.mktemp("shifted") / "slider_crank.yaml"
+    path.write_text(SLIDER.read_text(encoding="utf-8").replace(
+        "sweep: {start: 0, stop: 360, step: 1}", "sweep: {start: 5, stop: 365, step: 1}"),
+        encoding="utf-8")
+    return path
+
+
+@pytest.fixture(scope="module")
+def shifted(tmp_path_factory):
+    path = shifted_slider(tmp_path_factory)
+    return mechreport.analyse(path), model_of(path)
+
+
 def model_of(path: Path):
     if str(path) not in _models:
         _models[str(path)] = build_model(mechreport.analyse(path))
@@ -76,17 +92,19 @@ def test_no_animation_in_the_model_when_left_out():
 def test_frame_indices_every_kth_grid_angle_a_left_out_one_takes_its_neighbour():
     grid = np.arange(0.0, 360.0, 1.0)
     analysed = grid[(grid != 90) & (grid != 270)]
-    ks, step = frame_indices(grid, analysed)
-    assert step == 15.0 and len(ks) == FRAMES_PER_SWEEP
+    ks, step = frame_indices(grid, analysed, per_sweep=24)
+    assert step == 15.0 and len(ks) == 24
     angles = analysed[ks]
     assert list(angles[:6]) == [0, 15, 30, 45, 60, 75]
     assert 90 not in angles and (89 in angles or 91 in angles)
-    # 180 steps of 2 deg: every 9th (18 deg, an even split), not every 8th
-    ks, step = frame_indices(np.arange(0.0, 360.0, 2.0), np.arange(0.0, 360.0, 2.0))
+    # 180 steps of 2 deg, at most 24 frames: every 9th (18 deg, an even split), not every 8th
+    ks, step = frame_indices(np.arange(0.0, 360.0, 2.0), np.arange(0.0, 360.0, 2.0), 24)
     assert step == 18.0 and len(ks) == 20
     # nothing analysed near a grid angle: no frame there
-    ks, _ = frame_indices(grid, grid[grid < 97])      # 105 is 9 deg from 96: none
+    ks, _ = frame_indices(grid, grid[grid < 97], 24)      # 105 is 9 deg from 96: none
     assert len(ks) == 7
+    ks, step = frame_indices(grid, grid)                  # the default: at most
+    assert len(ks) <= FRAMES_PER_SWEEP and step * len(ks) == 360.0
 
 
 def test_gif_has_one_frame_per_chosen_step_all_the_same_size():
@@ -96,7 +114,7 @@ def test_gif_has_one_frame_per_chosen_step_all_the_same_size():
     data = A.gif_bytes(anim, m.display)
     assert len(data) < 2_000_000
     im = Image.open(io.BytesIO(data))
-    assert im.n_frames == len(anim.frames) == FRAMES_PER_SWEEP
+    assert im.n_frames == len(anim.frames) == round(360 / anim.step) <= FRAMES_PER_SWEEP
     sizes = set()
     for i in range(im.n_frames):
         im.seek(i)
@@ -106,7 +124,7 @@ def test_gif_has_one_frame_per_chosen_step_all_the_same_size():
     assert 2.0 <= anim.seconds * im.n_frames <= 4.0
     # the frames' angles step evenly by the chosen step (a left-out one by its neighbour)
     angles = np.array([f.angle for f in anim.frames])
-    assert np.all(np.abs(angles - 15.0 * np.arange(len(angles))) <= 1.0)
+    assert np.all(np.abs(angles - anim.step * np.arange(len(angles))) <= 1.0)
 
 
 def arrows_drawn(fig):
@@ -121,9 +139,10 @@ def arrows_drawn(fig):
     return out
 
 
-def test_one_arrow_scale_for_the_whole_sweep_cut_only_near_left_out_angles():
-    m = model_of(SLIDER)
-    anim, analysis = m.animation, mechreport.analyse(SLIDER)
+def test_one_arrow_scale_for_the_whole_sweep_cut_only_near_left_out_angles(shifted):
+    analysis, m = shifted
+    anim = m.animation
+    assert any(f.near for f in anim.frames)
     view = A.view_of(anim)
     kin = analysis.kinematics
     res = analysis.forces[analysis.sweep_summary().method]
@@ -165,12 +184,12 @@ def test_one_arrow_scale_for_the_whole_sweep_cut_only_near_left_out_angles():
                 cut_far += 1
     assert np.ptp(ratios) <= 1e-9 * np.mean(ratios)       # one scale [m per N]
     assert np.mean(ratios) == pytest.approx(view.scale)
-    assert cut_far == 0 and cut_near > 0                  # the 89/91 deg frames are cut
+    assert cut_far == 0 and cut_near > 0                  # the frame at 89 deg is cut
 
 
-def test_left_out_angles_are_marked_in_every_frame_and_named_near_them():
+def test_left_out_angles_are_marked_in_every_frame_and_named_near_them(shifted):
     from matplotlib.lines import Line2D
-    m = model_of(SLIDER)
+    _, m = shifted
     anim = m.animation
     view = A.view_of(anim)
     near = [f for f in anim.frames if f.near]
