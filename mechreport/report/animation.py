@@ -7,9 +7,10 @@ Every frame is :func:`~mechreport.report.drawing.draw_scene` of its scene in one
 (``Animation.force_ref``) is ARROW_LEN of the drawing's extent; a longer arrow (near a
 left-out angle) is cut at CLIP times that and marked. Around the drawing each frame shows
 the arrow scale (top right), the driver's effort as a bar gauge (right) and the sweep as a
-strip (bottom): the effort over the sweep, the frame's place on it, the left-out angles
-(red) and the near-singular stretches (grey). The GIF is written with Pillow (matplotlib's
-own dependency), one palette per frame, looping."""
+strip (bottom): the effort over the sweep (near-singular stretches left out of the curve),
+the frame's place on it, the left-out angles (red). The GIF is written with Pillow
+(matplotlib's own dependency), looping, with the first frame's palette for all (the same
+colours in every frame: no flicker, and quicker)."""
 from __future__ import annotations
 
 import io
@@ -32,7 +33,7 @@ STRIP_H = 0.46         # [in] the sweep strip, bottom
 TITLE_H = 0.26         # [in] the title row, top
 KEY_ROW = 0.15         # [in] a row of the arrows' key, under the title
 KEY_ENTRY = 0.62       # [in] an entry of the key
-DPI = 100              # GIF pixels per inch: 420 px wide
+DPI = 90               # GIF pixels per inch: 378 px wide
 COLORS = 96            # palette size of a GIF frame
 
 
@@ -277,13 +278,16 @@ def gif_bytes(anim, d) -> bytes:
     fig.patch.set_alpha(0.0)
     ax = view_axes(fig, view)
     bare = replace(view, labels=False)
-    images = []
+    images, palette = [], None
+    draw = draw_scene.__wrapped__            # already in the report's style: not again
     for f in anim.frames:
         kept = (set(ax.get_children()), set(fig.get_children()))
-        draw_scene(f.scene, d, f.title, view=bare, ax=ax)
+        draw(f.scene, d, f.title, view=bare, ax=ax)
         _frame_decor(fig, anim, f, view, d)
         img = Image.alpha_composite(bg, Image.fromarray(_rgba(fig).copy())).convert("RGB")
-        images.append(img.quantize(COLORS, method=Image.Quantize.FASTOCTREE, dither=0))
+        if palette is None:                  # the first frame's colours serve every frame
+            palette = img.quantize(COLORS, method=Image.Quantize.FASTOCTREE, dither=0)
+        images.append(img.quantize(palette=palette, dither=Image.Dither.NONE))
         for art in set(ax.get_children()) - kept[0]:
             art.remove()
         for art in set(fig.get_children()) - kept[1]:

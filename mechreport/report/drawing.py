@@ -58,11 +58,24 @@ def _line(ax, x, y, **kw) -> None:
 
 
 def _arrow(ax, start, tip, color: str, lw: float, head: float, zorder: float) -> None:
-    """An arrow from ``start`` to ``tip`` [m] with a filled head ``head`` points long."""
-    from matplotlib.patches import FancyArrowPatch
-    ax.add_artist(FancyArrowPatch(tuple(map(float, start)), tuple(map(float, tip)),
-                                  arrowstyle="-|>", color=color, lw=lw, mutation_scale=head,
-                                  shrinkA=0, shrinkB=0, zorder=zorder))
+    """An arrow from ``start`` to ``tip`` [m]: a shaft ``lw`` points wide and a filled head
+    0.4 ``head`` points long and as wide, as one polygon in data coordinates (the drawing's
+    units are equal in x and y and its limits are set: a point is a fixed length in them).
+    Drawn much faster than an annotation's arrow; it looks the same."""
+    from matplotlib.patches import Polygon
+    a, b = np.asarray(start, float), np.asarray(tip, float)
+    length = float(np.hypot(*(b - a)))
+    if length <= 0:
+        return
+    per_pt = ax.figure.dpi / 72.0 / abs(ax.transData.get_affine().get_matrix()[0, 0])
+    u = (b - a) / length
+    n = np.array([-u[1], u[0]])
+    hl = min(0.4 * head * per_pt, length)              # head length and half width [m]
+    hw, sw = 0.2 * head * per_pt, 0.5 * lw * per_pt
+    base = b - hl * u
+    xy = [a + sw * n, base + sw * n, base + hw * n, b, base - hw * n, base - sw * n, a - sw * n]
+    ax.add_artist(Polygon(np.array(xy), closed=True, facecolor=color, edgecolor="none",
+                          lw=0, zorder=zorder, gid="arrow"))
 
 
 def _segments(ax, segs, lw, zorder: float) -> None:

@@ -15,9 +15,9 @@ import numpy as np
 from ..units import deg
 from .scene import Scene, build_scene, sweep_extent
 
-#: frames per sweep (at most): 30 over a whole turn is one frame per 12 degrees of a 1-degree
+#: frames per sweep (at most): 24 over a whole turn is one frame per 15 degrees of a 1-degree
 #: sweep; with SECONDS_PER_SWEEP the cycle runs in about 3 s
-FRAMES_PER_SWEEP = 30
+FRAMES_PER_SWEEP = 24
 SECONDS_PER_SWEEP = 3.0
 
 

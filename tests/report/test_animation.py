@@ -31,12 +31,14 @@ _models: dict = {}
 
 
 def shifted_slider(tmp_path_factory) -> Path:
-    """The slider-crank swept from 5 deg: frames at 5, 5 + step, ... reach 89 deg, next to the
-    left-out 90 deg (with 12-degree frames)."""
+    """The slider-crank's 1-degree sweep started so that a frame falls on 89 deg, next to the
+    left-out 90 deg."""
+    every = math.ceil(360 / FRAMES_PER_SWEEP)
+    start = 89 % every
     path = tmp_path_factory.mktemp("shifted") / "slider_crank.yaml"
     path.write_text(SLIDER.read_text(encoding="utf-8").replace(
-        "sweep: {start: 0, stop: 360, step: 1}", "sweep: {start: 5, stop: 365, step: 1}"),
-        encoding="utf-8")
+        "sweep: {start: 0, stop: 360, step: 1}",
+        f"sweep: {{start: {start}, stop: {start + 360}, step: 1}}"), encoding="utf-8")
     return path
 
 
@@ -128,14 +130,14 @@ def test_gif_has_one_frame_per_chosen_step_all_the_same_size():
 
 
 def arrows_drawn(fig):
-    """(start, tip) in data coordinates of every arrow patch on the drawing's axes."""
-    from matplotlib.patches import FancyArrowPatch
+    """(start, tip) in data coordinates of every arrow on the drawing's axes: a polygon
+    whose first and last vertices flank the start and whose fourth is the tip."""
     ax = fig.axes[0]
     out = []
     for p in ax.patches:
-        if isinstance(p, FancyArrowPatch) and p._posA_posB is not None:
-            a, b = (np.asarray(q, float) for q in p._posA_posB)
-            out.append((a, b, p))
+        if p.get_gid() == "arrow":
+            xy = np.asarray(p.get_xy(), float)
+            out.append(((xy[0] + xy[6]) / 2, xy[3], p))
     return out
 
 
