@@ -220,7 +220,7 @@ def _scale_note(fig, anim, view: View, d) -> None:
     w, h = view.size
     per_m = view.rect[2] * w / (view.hi[0] - view.lo[0])        # [in per m] of the drawing
     f_shown = d.value(anim.force_ref, "force")
-    bar = _nice(f_shown / 2)
+    bar = _nice(f_shown)                   # 0.5 to 1 times the longest arrow
     length = bar / d.value(1.0, "force") * view.scale * per_m      # [in]
     x1 = 1 - 0.06 / w
     x0 = x1 - length / w

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..spec import GROUND
 from ..units import deg
 from .scene import Scene, build_scene, sweep_extent
 
@@ -40,8 +41,8 @@ class Frame:
 class Animation:
     """The animation of one spec: ``frames`` over the sweep, ``strip`` the frames at the
     solved reference angles (the PDF's filmstrip; their SVGs ``strip_stems``), the drawing's
-    ``extent`` [m] shared by all, ``force_ref`` [N] the largest force drawn away from
-    near-singular angles (what the one arrow scale is set by), ``step`` between frames,
+    ``extent`` [m] shared by all, ``force_ref`` [N] the largest force drawn at any analysed
+    angle away from near-singular ones (what the one arrow scale is set by), ``step`` between frames,
     ``seconds`` per frame (whole hundredths). For the effort gauge and the sweep strip under the drawing:
     ``angles`` (n,) the analysed angles, ``effort`` (n,) the driver's torque [N m] or force
     [N] (``effort_kind`` moment|force, ``effort_symbol`` M|Fd), ``near`` (n,) the
@@ -96,6 +97,20 @@ def frame_indices(sweep_angles: np.ndarray, analysed: np.ndarray,
     return out, step
 
 
+def _largest_force(analysis, res, near: np.ndarray) -> float:
+    """The largest force [N] drawn as an arrow at any analysed angle away from left-out ones
+    (all angles if every one is near): joint reactions, applied forces, a T driver's push."""
+    spec = analysis.spec
+    away = ~near if (~near).any() else np.ones_like(near)
+    mags = [np.hypot(r.fx, r.fy) for r in res.reactions.values()]
+    mags += [np.hypot(*np.asarray(ld.force, float).T) for ld in analysis.loads
+             if ld.force is not None and ld.link != GROUND]
+    if spec.driver.kind == "T":
+        mags.append(np.abs(np.asarray(res.driver_torque, float)))
+    top = [v[np.isfinite(v)] for v in (m[away] for m in mags)]
+    return max((float(v.max()) for v in top if v.size), default=0.0)
+
+
 def animation_data(analysis, ref: str, sweep, colors: dict[str, str],
                    symbols: dict[str, str], effort_kind: str, coord: str, coord_unit: str,
                    strip_angles: list[float], method_title: str) -> Animation | None:
@@ -128,9 +143,6 @@ def animation_data(analysis, ref: str, sweep, colors: dict[str, str],
 
     frames = [frame(k) for k in ks]
     strip = [frame(k) for k in strip_ks]
-    away = [math.hypot(*a.f) for f in frames + strip if not f.near for a in f.scene.arrows]
-    if not away:                           # every frame near a left-out angle
-        away = [math.hypot(*a.f) for f in frames + strip for a in f.scene.arrows]
     stems = [f"frame_{deg(f.angle).replace('.', 'p').replace('-', 'm')}" for f in strip]
     symbol = "M" if effort_kind == "moment" else "Fd"
     effort = "torque M" if effort_kind == "moment" else "push Fd along its line"
@@ -150,7 +162,8 @@ def animation_data(analysis, ref: str, sweep, colors: dict[str, str],
                      + ("angles" if len(strip) > 1 else "angle") + ": "
                      + ", ".join(f"{coord} {deg(f.angle)}{unit}" for f in strip)
                      + "; the same scale as the animation, symbols on the drawing.")
-    return Animation(frames, strip, stems, extent, max(away, default=0.0), step, seconds,
+    return Animation(frames, strip, stems, extent, _largest_force(analysis, res, near), step,
+                     seconds,
                      np.asarray(kin.angles, float), torque, effort_kind, symbol,
                      near, flagged, (float(spec.sweep.start), float(spec.sweep.stop)), unit,
                      caption, strip_caption)
