@@ -42,9 +42,10 @@ class Animation:
     """The animation of one spec: ``frames`` over the sweep, ``strip`` the frames at the
     solved reference angles (the PDF's filmstrip; their SVGs ``strip_stems``), the drawing's
     ``extent`` [m] shared by all, ``force_ref`` [N] the largest force drawn at any analysed
-    angle away from near-singular ones (what the one arrow scale is set by), ``step`` between frames,
-    ``seconds`` per frame (whole hundredths). For the effort gauge and the sweep strip under the drawing:
-    ``angles`` (n,) the analysed angles, ``effort`` (n,) the driver's torque [N m] or force
+    angle away from near-singular ones (what the one arrow scale is set by), ``step``
+    between frames, ``seconds`` per frame (whole hundredths); ``caption`` and
+    ``strip_caption`` as the reports print them. For the effort gauge and the sweep strip
+    under the drawing: ``angles`` (n,) the analysed angles, ``effort`` (n,) the driver's torque [N m] or force
     [N] (``effort_kind`` moment|force, ``effort_symbol`` M|Fd), ``near`` (n,) the
     near-singular mask, ``flagged`` the left-out angles, ``xrange`` (start, stop) of the
     sweep; ``unit`` what follows a sweep value ("°" or " mm")."""
