@@ -268,6 +268,16 @@ def method_row(name: str) -> MethodRow:
 
 
 @dataclass
+class DxfData:
+    """mechanism.dxf: one ``(layer, scene)`` per solved reference angle, drawn in the spec's
+    length ``unit`` (``scale`` [m] per unit)."""
+
+    unit: str
+    scale: float
+    layers: list[tuple[str, Scene]]
+
+
+@dataclass
 class ReportModel:
     """One spec's report. See the module docstring."""
 
@@ -987,16 +997,6 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
                                   METHODS[ref].TITLE)
                    if animation and rs.animation else None),
         dxf=_dxf(spec, refs, scenes) if rs.dxf else None)
-
-
-@dataclass
-class DxfData:
-    """mechanism.dxf: one ``(layer, scene)`` per solved reference angle, drawn in the spec's
-    length ``unit`` (``scale`` [m] per unit)."""
-
-    unit: str
-    scale: float
-    layers: list[tuple[str, Scene]]
 
 
 def _dxf(spec, refs: list[RefAngle], scenes: list[Scene]) -> DxfData:
