@@ -1,6 +1,7 @@
 """``mechreport build``: one report folder per spec, in parallel, and a batch index.
 
     OUT/<name>/report.md, report.pdf, results.csv, summary.json, figures/*.svg
+    OUT/<name>/animation.gif, mechanism.dxf        (report.animation, report.dxf)
     OUT/index.md, OUT/index.pdf, OUT/index.csv, OUT/index.json
 
 Folder names, the lock on ``OUT`` and the whole-folder swap are described in
@@ -30,14 +31,17 @@ from .workers import Terminated, sigterm_as_interrupt, stop_pool, worker_init
 DEFAULT_WAIT = 120.0
 
 
-def build_key(path: Path, sheet: bool, exact: bool, sheet_options=None) -> dict:
+def build_key(path: Path, sheet: bool, exact: bool, sheet_options=None,
+              animation: bool = True) -> dict:
     """What decides whether a report is up to date: the spec's bytes (SHA-256), its path, the
     mechreport version and the options that change the output (``sheet_options``: the
-    sheets' methods and angles, a :class:`~mechreport.report.sheet.SheetOptions`)."""
+    sheets' methods and angles, a :class:`~mechreport.report.sheet.SheetOptions`;
+    ``animation`` False: ``--no-animation``)."""
     from ..report.model import spec_sha256
     from ..version import __version__
     key = {"spec": str(path), "spec_sha256": spec_sha256(path),
-           "mechreport_version": __version__, "sheet": bool(sheet), "exact": bool(exact)}
+           "mechreport_version": __version__, "sheet": bool(sheet), "exact": bool(exact),
+           "animation": bool(animation)}
     if sheet_options is not None:
         key.update(sheet_options.key())
     return key
@@ -60,10 +64,12 @@ def up_to_date(out: Path, name: str, key: dict) -> dict | None:
 
 
 def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = False,
-              exact: bool = False, stage=None, sheet_options=None) -> dict:
+              exact: bool = False, stage=None, sheet_options=None,
+              animation: bool = True) -> dict:
     """Analyse ``path`` and write its report into ``folder`` (a private folder inside
     ``out``, later renamed to ``out/name``); the run's row. ``stage(i, n, what)`` is called
-    before each stage (progress for long single specs).
+    before each stage (progress for long single specs). ``animation`` False: no
+    animation.gif (``--no-animation``), whatever the spec's ``report.animation`` says.
 
     Raises whatever the analysis or rendering raises (see :func:`build_safe`)."""
     from ..pipeline import analyse
@@ -72,7 +78,7 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
 
     stage = stage or (lambda i, n, what: None)
     path, folder = Path(path), od.inside(out, folder)
-    key = build_key(path, sheet, exact, sheet_options)
+    key = build_key(path, sheet, exact, sheet_options, animation)
     spec = load_spec(path)
     do_sheet = sheet or spec.sheet
     stage(1, 4 if do_sheet else 3, "analysing")
@@ -87,7 +93,7 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
             sheet_source = analyse(wanted, tol=analysis.tol)
     row = write_report_folder(analysis, folder, path, key["spec_sha256"], name=name,
                               build_key=key, sheet=do_sheet, sheet_options=options,
-                              sheet_source=sheet_source, stage=stage)
+                              sheet_source=sheet_source, stage=stage, animation=animation)
     for written in folder.rglob("*"):                   # nothing escaped the folder
         od.inside(folder, written)
     return dict(row, folder=name)
@@ -101,7 +107,8 @@ def _stage_printer(label: str):
 
 
 def build_safe(path: str, out: str, name: str, sheet: bool, exact: bool,
-               owner: int | None = None, stages: bool = False, sheet_options=None) -> dict:
+               owner: int | None = None, stages: bool = False, sheet_options=None,
+               animation: bool = True) -> dict:
     """:func:`build_one` into ``OUT/.tmp-<name>-<owner>`` that never raises an Exception: a
     failure becomes a row with ``ok`` False and the error ``message`` (the private folder is
     then removed). Adds ``seconds`` and ``tmp``. (Top-level so worker processes can run it.)"""
@@ -111,7 +118,8 @@ def build_safe(path: str, out: str, name: str, sheet: bool, exact: bool,
     try:
         tmp = od.make_tmp_dir(Path(out), name, owner)
         row = build_one(Path(path), Path(out), name, tmp, sheet, exact,
-                        _stage_printer(str(path)) if stages else None, sheet_options)
+                        _stage_printer(str(path)) if stages else None, sheet_options,
+                        animation)
         row["tmp"] = str(tmp)
     except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the batch
         if tmp is not None:
@@ -141,7 +149,7 @@ def _failure(path, name: str, message: str) -> dict:
 
 
 def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, exact: bool,
-         finish, stages: bool = False, sheet_options=None) -> None:
+         finish, stages: bool = False, sheet_options=None, animation: bool = True) -> None:
     """Build each ``(i, path, name)`` of ``todo``; ``finish(i, row)`` is called in this
     process as each one ends (in completion order). ``stages``: print each stage of a spec
     (for a build of one spec)."""
@@ -149,7 +157,7 @@ def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, e
     if jobs <= 1 or len(todo) <= 1:
         for i, p, name in todo:
             finish(i, build_safe(str(p), str(out), name, sheet, exact, owner, stages,
-                                 sheet_options))
+                                 sheet_options, animation))
         return
     # fresh interpreters: forking a process whose Typst/BLAS threads are running can
     # deadlock the child (seen under pytest, after a report was typeset in-process)
@@ -158,7 +166,7 @@ def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, e
                                initargs=(owner,))
     try:
         futs = {pool.submit(build_safe, str(p), str(out), name, sheet, exact, owner,
-                            sheet_options=sheet_options): (i, p, name)
+                            sheet_options=sheet_options, animation=animation): (i, p, name)
                 for i, p, name in todo}
         for fut in as_completed(futs):
             i, p, name = futs[fut]
@@ -204,6 +212,8 @@ def index_rows(out: Path, failures: dict[str, dict] | None = None) -> list[dict]
                          for label, f in (("sheet", "solution.md"), ("sheet", "solution.pdf"),
                                           ("problem", "problem.md"), ("problem", "problem.pdf"))
                          if (Path(out) / name / f).is_file()]
+        if (Path(out) / name / "animation.gif").is_file():
+            row["animation"] = f"{name}/animation.gif"
         rows.append(row)
     return rows
 
@@ -217,7 +227,7 @@ def _write_index(out: Path, failures: dict[str, dict]) -> None:
 
 def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bool = False,
                 exact: bool = False, wait: float = DEFAULT_WAIT, force: bool = False,
-                quiet: bool = False, sheet_options=None) -> int:
+                quiet: bool = False, sheet_options=None, animation: bool = True) -> int:
     """Build every spec in ``paths`` into ``out`` and rewrite the index; exit code 0 if all
     built and passed their checks, 1 otherwise. ``jobs``: parallel processes (default: the
     number of cores); ``wait``: seconds to wait for another build writing to ``out``. A spec
@@ -225,6 +235,7 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
     version is not built again unless ``force``. ``quiet``: no progress, only failures.
     ``sheet_options``: the methods and angles of the solution sheets (a
     :class:`~mechreport.report.sheet.SheetOptions`; None: all methods, the spec's ``at``).
+    ``animation`` False: no animation.gif in any report (``--no-animation``).
 
     Raises :class:`~mechreport.app.outdir.OutputError` if ``out`` cannot be used, and
     KeyboardInterrupt (or :class:`Terminated`) if interrupted: then the workers are stopped,
@@ -263,8 +274,8 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
             if why:
                 finish(i, dict(_failure(path, name, why), seconds=0.0))
                 continue
-            same = None if force else up_to_date(out, name, build_key(path, sheet, exact,
-                                                                      sheet_options))
+            same = None if force else up_to_date(out, name, build_key(
+                path, sheet, exact, sheet_options, animation))
             if same is not None:
                 from ..report.model import index_row
                 try:
@@ -279,7 +290,8 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
                 todo.append((i, path, name))
         try:
             _run(todo, out, min(jobs, max(len(todo), 1)), sheet, exact, finish,
-                 stages=len(paths) == 1 and not quiet, sheet_options=sheet_options)
+                 stages=len(paths) == 1 and not quiet, sheet_options=sheet_options,
+                 animation=animation)
         except KeyboardInterrupt as exc:
             progress.close()
             for name in names:
@@ -331,4 +343,4 @@ def build_command(ns) -> int:
         options = SheetOptions(ns.sheet_methods, ns.sheet_angles, ns.exact)
     return build_files(spec_files(ns.specs), Path(ns.out), jobs=ns.jobs, sheet=ns.sheet,
                        exact=ns.exact, wait=ns.wait, force=ns.force, quiet=ns.quiet,
-                       sheet_options=options)
+                       sheet_options=options, animation=not ns.no_animation)

@@ -229,6 +229,10 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--exact", action="store_true",
                    help="solution sheets also show exact closed forms in the spec's square "
                    "roots (needs sympy: pip install 'mechreport[exact]'); needs --sheet")
+    p.add_argument("--no-animation", action="store_true",
+                   help="leave out animation.gif (the mechanism moving with its forces), "
+                   "which every spec with a whole-turn sweep gets unless its report says "
+                   "animation: false; builds faster")
     p.add_argument("--wait", type=_seconds, default=120.0, metavar="SECONDS",
                    help="how long to wait for another build writing to the same output "
                    "folder (default 120)")

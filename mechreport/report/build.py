@@ -2,6 +2,8 @@
 
     folder/report.md, report.pdf, results.csv, summary.json, figures/*.svg
     folder/dynamics.csv, dynamics.parquet           (with dynamics:)
+    folder/animation.gif                            (report.animation, unless left out)
+    folder/mechanism.dxf                            (report.dxf)
     folder/solution.md, .pdf, problem.md, .pdf      (with sheets)
 
 ``mechreport build`` (:mod:`mechreport.app.build`) and a study's best-variant reports both
@@ -15,7 +17,7 @@ from pathlib import Path
 def write_report_folder(analysis, folder: Path, source: str | Path, sha256: str, *,
                         name: str | None = None, build_key: dict | None = None,
                         sheet: bool = False, sheet_options=None, sheet_source=None,
-                        stage=None) -> dict:
+                        stage=None, animation: bool = True) -> dict:
     """Write the report of ``analysis`` (an :class:`~mechreport.pipeline.Analysis`) into
     ``folder``; its index row. ``source`` is the spec's path as shown in the report,
     ``sha256`` its bytes' hash; ``name`` the report folder's name in the index (default: the
@@ -24,10 +26,13 @@ def write_report_folder(analysis, folder: Path, source: str | Path, sha256: str,
     :class:`~mechreport.report.sheet.SheetOptions`), worked from ``sheet_source`` (default:
     ``analysis``; the analysis of :func:`~mechreport.report.sheet.sheet_spec` where the sheet
     asks for angles the sweep does not have). ``stage(i, n, what)`` is called before
-    each stage after the analysis (stage 1)."""
+    each stage after the analysis (stage 1). ``animation`` False: no animation.gif even where
+    the spec's ``report.animation`` asks for one."""
+    from .animation import write_animation
     from .drawing import write_drawings
     from .dynamics import write_histories
     from .dynamics_plots import write_dynamics_plot
+    from .dxf import write_dxf
     from .model import build_model, index_row
     from .plots import write_plots
     from .render import write_report
@@ -35,15 +40,17 @@ def write_report_folder(analysis, folder: Path, source: str | Path, sha256: str,
     stage = stage or (lambda i, n, what: None)
     folder = Path(folder)
     n = 4 if sheet else 3
-    model = build_model(analysis, source, sha256=sha256)
+    model = build_model(analysis, source, sha256=sha256, animation=animation)
     if build_key is not None:
         model.summary["build"] = build_key
     if name is not None:
         model.stem, model.index_row = name, index_row(model.summary, name)
-    stage(2, n, "figures")
+    stage(2, n, "figures" + (" and animation" if model.animation is not None else ""))
     write_plots(model, folder / "figures")
     write_drawings(model, folder / "figures")
     write_dynamics_plot(model, folder / "figures")
+    write_animation(model, folder)
+    write_dxf(model, folder)
     stage(3, n, "report (Markdown, PDF, CSV, JSON)")
     write_report(model, folder)
     if model.dynamics is not None:

@@ -32,6 +32,7 @@ from ..checks.failures import failed_expectations
 from ..units import DASH, SIG_DIGITS, Display, clean, deg, fmt, kind_of
 from .check_text import failure_rows, summary_line
 from .dynamics import dynamics_json, dynamics_section
+from .frames import Animation, animation_data
 from .scene import Scene, build_scene
 from .strength import StrengthSection, strength_json, strength_section
 from .text import kinematics_rows
@@ -269,6 +270,16 @@ def method_row(name: str) -> MethodRow:
 
 
 @dataclass
+class DxfData:
+    """mechanism.dxf: one ``(layer, scene)`` per solved reference angle, drawn in the spec's
+    length ``unit`` (``scale`` [m] per unit)."""
+
+    unit: str
+    scale: float
+    layers: list[tuple[str, Scene]]
+
+
+@dataclass
 class ReportModel:
     """One spec's report. See the module docstring."""
 
@@ -316,6 +327,8 @@ class ReportModel:
     friction: FrictionSection | None = None    # a spec with friction: its section
     dynamics: object | None = None    # a spec with dynamics: its section (.dynamics)
     strength: StrengthSection | None = None    # links with a section: their strength
+    animation: Animation | None = None        # animation.gif's frames (report.animation)
+    dxf: DxfData | None = None                # mechanism.dxf's layers (report.dxf)
 
 # ------------------------------------------------------------------------ traceability
 
@@ -919,8 +932,10 @@ def index_row(model_summary: dict, stem: str) -> dict:
 # ------------------------------------------------------------------------------ entry
 
 def build_model(analysis, source: str | Path | None = None, sha256: str | None = None,
-                when: _dt.datetime | None = None) -> ReportModel:
-    """The report model of ``analysis``; ``source`` is the spec path shown in the report."""
+                when: _dt.datetime | None = None, animation: bool = True) -> ReportModel:
+    """The report model of ``analysis``; ``source`` is the spec path shown in the report.
+    ``animation`` False leaves the animation out even where the spec's
+    ``report.animation`` asks for it (``build --no-animation``)."""
 
     spec = analysis.spec
     source = str(source if source is not None else spec.file)
@@ -986,7 +1001,24 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
         notes=analysis.kinematics.notes(), failures=failure_rows(fails), design=design,
         figures=figures, sweep=sw, scenes=scenes, csv_header=header, csv_rows=rows,
         summary=record, index_row=index_row(record, stem), meta=meta, display=d,
-        heads=heads, friction=friction, dynamics=dynamics, strength=strength)
+        heads=heads, friction=friction, dynamics=dynamics, strength=strength,
+        animation=(animation_data(analysis, ref, sw, colors, symbols, sw.effort,
+                                  effort_of(spec)[2], effort_of(spec)[3],
+                                  [float(a) for a, r in zip(spec.at, refs) if r.flag is None],
+                                  METHODS[ref].TITLE)
+                   if animation and rs.animation else None),
+        dxf=_dxf(spec, refs, scenes) if rs.dxf else None)
+
+
+def _dxf(spec, refs: list[RefAngle], scenes: list[Scene]) -> DxfData:
+    """The DXF's layers: ``crank_angle_45`` (``stroke_300`` for a T driver) per solved
+    reference angle."""
+    from ..units import LENGTH_UNITS
+    unit = spec.units.get("length", "m")
+    coord = effort_of(spec)[2].replace(" ", "_")
+    solved = [r for r in refs if r.drawing is not None]
+    return DxfData(unit, LENGTH_UNITS[unit],
+                   [(f"{coord}_{r.angle}", sc) for r, sc in zip(solved, scenes)])
 
 
 def _left_out_text(analysis, summary: SweepSummary, sw: SweepData, d: Display) -> str:

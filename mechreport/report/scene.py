@@ -62,6 +62,9 @@ class Scene:
     driver: str = ""                                  # the driver link, drawn on top
     elements: list = field(default_factory=list)      # (kind, p0, p1): spring, damper ends;
                                                       # a torsion spring at its joint (p0 = p1)
+    links: list = field(default_factory=list)    # (name, [(x, y), ...]): each link's points
+                                                 # in the order the spec writes them
+    joints: list = field(default_factory=list)   # (name, type R|T, (x, y)): each joint's point
 
 
 def _point_positions(kin, k: int) -> dict[str, tuple]:
@@ -153,19 +156,30 @@ def _guides(kin, k: int, pts: dict, extent: float) -> list:
     return out
 
 
+def sweep_extent(kin, ks) -> float:
+    """The size [m] of a drawing that holds the mechanism at every analysed index of ``ks``:
+    the largest span of its named points (frames of one animation share it, so that pins,
+    blocks and arrows keep their size from frame to frame)."""
+    return max(_extent(_point_positions(kin, k)) for k in ks)
+
+
 def build_scene(analysis, res: ForceResult, k: int, colors: dict[str, str],
-                symbols: dict[str, str]) -> Scene:
+                symbols: dict[str, str], extent: float | None = None) -> Scene:
     """The drawing at analysed index ``k``: links, pins, guides, labels, the reactions of
-    ``res`` (first link on second, at the joint point) and the applied loads."""
+    ``res`` (first link on second, at the joint point) and the applied loads. ``extent``
+    [m]: the drawing's size (default: the span of the mechanism's points at ``k``)."""
     kin, spec = analysis.kinematics, analysis.spec
     points = analysis.joint_points()
     pts = _point_positions(kin, k)
-    extent = _extent(pts)
+    extent = extent if extent is not None else _extent(pts)
     sc = Scene(float(kin.angles[k]), extent, _link_shapes(kin, k, extent))
     for j in spec.joints:
         if j.type == "R":
             sc.pins.append((*pts[j.point], GROUND in j.links))
     sc.guides = _guides(kin, k, pts, extent)
+    sc.links = [(link.name, [tuple(map(float, kin.named_point(name, link.name).r[k]))
+                             for name in link.points]) for link in spec.links]
+    sc.joints = [(j.name, j.type, pts[j.point]) for j in spec.joints]
     sc.labels = [(x, y, name) for name, (x, y) in pts.items()]
     for ld in spec.loads:
         if ld.kind in ("spring", "damper"):

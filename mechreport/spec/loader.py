@@ -82,6 +82,8 @@ LIMIT_KEYS = keys_of(schema.Limits)
 BEARING_KEYS, BEARING_REQUIRED = keys_of(schema.Bearing), required_of(schema.Bearing)
 REPORT_KEYS = keys_of(schema.Report)
 REPORT_UNIT_KEYS = keys_of(schema.ReportUnits)
+REPORT_SWITCH_KEYS = ("animation", "dxf")
+REPORT_TEXT_KEYS = tuple(k for k in REPORT_KEYS if k != "units" and k not in REPORT_SWITCH_KEYS)
 STUDY_KEYS, STUDY_REQUIRED = keys_of(schema.Study), required_of(schema.Study)
 VARY_KEYS, VARY_REQUIRED = keys_of(schema.Vary), required_of(schema.Vary)
 SAMPLES = choices_of(schema.Study, "sample")
@@ -580,7 +582,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src, driver=driver,
                      pins=pins)
     design = _design(top.get("design"), ck, joints, pins) if "design" in top else Design()
-    report = _report(top.get("report"), ck, units) if "report" in top else ReportSettings()
+    report = (_report(top.get("report"), ck, units, sweep.whole_turn) if "report" in top
+              else ReportSettings(animation=sweep.whole_turn))
     study = _study(top["study"], ck, top) if "study" in top else None
     sheet = top.get("sheet", False)
     if not isinstance(sheet, bool):
@@ -1943,12 +1946,14 @@ def _structure(ck: _Checker, links: list[Link], joints: list[Joint]) -> None:
                                       f"{', '.join(loose)}")
 
 
-def _report(value: Any, ck: _Checker, units: dict[str, str]) -> ReportSettings:
+def _report(value: Any, ck: _Checker, units: dict[str, str],
+            whole_turn: bool) -> ReportSettings:
     """The ``report`` section: display units (lengths default to the spec's ``units.length``,
-    the rest to SI) and first-page metadata (docs/spec.md, section 16)."""
+    the rest to SI), first-page metadata, ``animation`` (default: ``whole_turn``, the sweep is
+    one whole turn of a crank) and ``dxf`` (docs/spec.md, section 16)."""
     body = ck.mapping(value, ("report",), REPORT_KEYS) if value is not None else {}
     if body is None:
-        return ReportSettings()
+        return ReportSettings(animation=whole_turn)
     shown = {"length": units.get("length", "m"), "force": "N", "moment": "N*m", "mass": "kg"}
     if "units" in body:
         given = ck.mapping(body["units"], ("report", "units"), REPORT_UNIT_KEYS) or {}
@@ -1957,7 +1962,7 @@ def _report(value: Any, ck: _Checker, units: dict[str, str]) -> ReportSettings:
                 shown[key] = ck.choice(given[key], ("report", "units", key),
                                        choices_of(schema.ReportUnits, key)) or shown[key]
     meta = {}
-    for key in REPORT_KEYS[1:]:
+    for key in REPORT_TEXT_KEYS:
         text = body.get(key, "")
         if isinstance(text, int) and not isinstance(text, bool):
             text = str(text)                     # revision: 2
@@ -1971,4 +1976,12 @@ def _report(value: Any, ck: _Checker, units: dict[str, str]) -> ReportSettings:
                                       "characters")
             text = ""
         meta[key] = " ".join(text.split())
-    return ReportSettings(units=shown, **meta)
+    switches = {"animation": whole_turn, "dxf": False}
+    for key, default in switches.items():
+        given = body.get(key, default)
+        if not isinstance(given, bool):
+            ck.error(("report", key), f"must be true or false, got {_show(given)}"
+                                      f"{_text_hint(given, boolean=True)}")
+            given = default
+        switches[key] = given
+    return ReportSettings(units=shown, **meta, **switches)

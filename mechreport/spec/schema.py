@@ -686,7 +686,7 @@ ReportText = Optional[Annotated[
 
 
 class Report(_Model):
-    """Display units and first-page metadata of the reports."""
+    """Display units, first-page metadata, animation and DXF export of the reports."""
 
     units: ReportUnits = Field(None, description="{length, force, moment, mass}.")
     title: ReportText = Field(None, description="First page and page header; default: the "
@@ -696,6 +696,14 @@ class Report(_Model):
     author: ReportText = Field(None, description="First page and page header; one line.")
     revision: ReportText = Field(None, description="First page and page header; one line (a "
                                                    "number is read as its text).")
+    animation: bool = Field(None, strict=True, description="animation.gif: the mechanism "
+                                                          "moving over the sweep with its "
+                                                          "joint reactions; default true for a "
+                                                          "whole-turn sweep, else false.")
+    dxf: bool = Field(False, strict=True, description="true writes mechanism.dxf: the "
+                                                      "mechanism at each reference angle on "
+                                                      "its own layer, in the spec's length "
+                                                      "unit.")
 
 
 class Vary(_Model):
@@ -774,8 +782,9 @@ class SpecFile(_Model):
                                                         "mechreport build.")
     design: Design = Field(None, description="The design review: speed_fluctuation, motor, "
                                              "bearings, limits (docs/spec.md, section 15).")
-    report: Optional[Report] = Field(None, description="Display units and first-page "
-                                                       "metadata of the reports.")
+    report: Optional[Report] = Field(None, description="Display units, first-page "
+                                                       "metadata, animation and DXF of the "
+                                                       "reports.")
     study: Study = Field(None, description="The variants mechreport study runs.")
 
 

@@ -413,13 +413,17 @@ class Study:
 class ReportSettings:
     """The spec's ``report`` section: display ``units`` (``length`` m|cm|mm|in, ``force``
     N|kN|lbf, ``moment`` N*m|N*mm|kN*m|lbf*in, ``mass`` kg|g|lb; lengths default to the spec's
-    ``units.length``, the rest to SI) and the first page's metadata ("" when not given)."""
+    ``units.length``, the rest to SI) and the first page's metadata ("" when not given);
+    ``animation``: write animation.gif (the loader sets it: default true for a whole-turn
+    sweep); ``dxf``: write mechanism.dxf."""
 
     units: dict[str, str] = field(default_factory=dict)
     title: str = ""
     project: str = ""
     author: str = ""
     revision: str = ""
+    animation: bool = False
+    dxf: bool = False
 
 
 @dataclass(frozen=True)

@@ -242,7 +242,8 @@ def test_swap_leaves_only_this_runs_files(batch):
     out = batch["out"]
     assert not (out / "x" / "figures" / "stale.png").exists()
     assert {p.name for p in (out / "x").iterdir()} == {"figures", "report.md", "report.pdf",
-                                                       "results.csv", "summary.json"}
+                                                       "results.csv", "summary.json",
+                                                       "animation.gif"}
     assert sorted(p.name for p in out.iterdir() if p.name.startswith(".")) == \
         [".mechreport.lock"]                                  # no .tmp-* / .old-* left
 

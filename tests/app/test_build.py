@@ -69,3 +69,29 @@ def test_progress_plain_lines_off_a_terminal(capsys):
 
 def test_no_specs_is_an_error(tmp_path):
     assert build_files([], tmp_path) == 1
+
+
+def test_the_report_embeds_its_animation_and_the_index_links_it(batch):
+    _, out, _ = batch
+    folder = out / "slider_crank"
+    assert (folder / "animation.gif").read_bytes()[:6] == b"GIF89a"
+    assert "![The mechanism moving over the sweep with its forces](animation.gif)" in \
+        (folder / "report.md").read_text(encoding="utf-8")
+    assert "[animation](slider_crank/animation.gif)" in \
+        (out / "index.md").read_text(encoding="utf-8")
+    assert list((folder / "figures").glob("frame_*.svg"))       # the PDF's filmstrip
+
+
+def test_no_animation_leaves_it_out_and_rebuilds_what_had_one(tmp_path):
+    from helpers import tiny_spec
+    spec = tiny_spec(tmp_path / "tiny.yaml")
+    out = tmp_path / "out"
+    assert build_files([spec], out, jobs=1, quiet=True) == 0
+    assert (out / "tiny" / "animation.gif").is_file()
+    assert build_files([spec], out, jobs=1, quiet=True, animation=False) == 0
+    folder = out / "tiny"
+    assert not (folder / "animation.gif").exists()
+    assert not list((folder / "figures").glob("frame_*.svg"))
+    assert "animation.gif" not in (folder / "report.md").read_text(encoding="utf-8")
+    assert json.loads((folder / "summary.json").read_text())["build"]["animation"] is False
+    assert "[animation]" not in (out / "index.md").read_text(encoding="utf-8")

@@ -27,6 +27,7 @@ def report(tmp_path_factory):
     textbook's, with *Dynamic Force Analysis* in it) and a folder holding its figures, so
     that report.typ compiles there."""
     from mechreport.pipeline.analysis import analyse
+    from mechreport.report.animation import write_animation
     from mechreport.report.drawing import write_drawings
     from mechreport.report.model import build_model
     from mechreport.report.plots import write_plots
@@ -36,6 +37,7 @@ def report(tmp_path_factory):
     model = build_model(analyse(spec), spec)
     write_plots(model, folder / "figures")
     write_drawings(model, folder / "figures")
+    write_animation(model, folder)
     return model, folder
 
 

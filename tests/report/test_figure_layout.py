@@ -67,9 +67,29 @@ def make(model, key: str):
         return dynamics_figure(model.dynamics.plot, model.display)
     if key in STRENGTH:
         return STRENGTH[key](model.strength.plot, model.display)
+    if key in frames(model):
+        from mechreport.report import animation
+        anim = model.animation
+        frame, draw = frames(model)[key]
+        return draw(anim, frame, animation.view_of(anim), model.display)
     from mechreport.report.drawing import draw_scene
     scene, title = drawings(model)[key]
     return draw_scene(scene, model.display, title)
+
+
+def frames(model) -> dict:
+    """The animation's frames to check: stem -> (frame, how it is drawn): the filmstrip's
+    (as write_animation saves them) and, as the GIF shows them, the first frame, one at a
+    reference angle and the frame with the largest effort."""
+    from mechreport.report import animation
+    anim = model.animation
+    if anim is None:
+        return {}
+    out = {stem: (f, animation.draw_frame) for f, stem in zip(anim.strip, anim.strip_stems)}
+    peak = max(anim.frames, key=lambda f: abs(f.effort))
+    for f in [anim.frames[0], peak] + anim.strip[:1]:
+        out[f"gif_{f.angle:g}"] = (f, animation.draw_gif_frame)
+    return out
 
 
 def figure_keys(model) -> list[str]:
@@ -80,7 +100,7 @@ def figure_keys(model) -> list[str]:
         keys += [k for k in SWEEP if k in figs and (k != "reactions" or sw.joints)]
     keys += [k for k in ("friction", "dynamics") if k in figs]
     keys += [k for k in STRENGTH if k in figs]
-    return keys + list(drawings(model))
+    return keys + list(drawings(model)) + list(frames(model))
 
 
 def drawn_tick_labels(axis):

@@ -156,9 +156,15 @@ def test_every_key_has_a_description_for_the_editor():
     assert missing == []
 
 
-def test_keys_that_are_not_in_the_format_yet_are_unknown():
-    report = json_schema()["$defs"]["Report"]["properties"]
-    assert "animation" not in report and "dxf" not in report
+def test_every_key_of_format_1_1_is_in_the_schema():
+    """The version 1.1 additions, each where the format puts it."""
+    schema = json_schema()
+    props, defs = schema["properties"], schema["$defs"]
+    assert {"friction", "dynamics", "materials"} <= set(props)
+    assert {"section", "material", "members"} <= set(defs["Link"]["properties"])
+    assert {"animation", "dxf"} <= set(defs["Report"]["properties"])
+    assert {"motor", "flywheel", "start", "until", "output_step"} == set(
+        defs["Dynamics"]["properties"])
 
 
 # -- it accepts every spec the loader accepts ----------------------------------------------
@@ -198,7 +204,7 @@ SHAPE_MISTAKES = [
     ("B: [1, 0]}", "B: {r: 1, angle: 0, radius: 1}}", "links.crank.points.B.radius",
      "radius: 1"),
     ("at: [45]", "at: [45]\ndynamics: {}", "dynamics", "dynamics"),
-    ("at: [45]", "at: [45]\nreport: {animation: true}", "report.animation", "animation"),
+    ("at: [45]", "at: [45]\nreport: {animaton: true}", "report.animaton", "animaton"),
     ("at: [45]", "at: [45]\ndesign: {motor: {rated_torqe: 3}}", "design.motor.rated_torqe",
      "design:"),
     ("at: [45]", "at: [45]\nstudy: {vary: [{key: driver.rpm, value: [1]}], "
@@ -210,6 +216,8 @@ SHAPE_MISTAKES = [
     ("at: [45]", "at: 45", "at", "at:"),
     ("name: slider-crank", "name: 2024", "name", "name:"),
     ("at: [45]", "at: [45]\nsheet: yes", "sheet", "sheet:"),
+    ("at: [45]", "at: [45]\nreport: {animation: yes}", "report.animation", "animation"),
+    ("at: [45]", "at: [45]\nreport: {dxf: 1}", "report.dxf", "dxf"),
     ("links: [crank, rod]", "links: [crank, 5]", "joints.B.links", "links: [crank, 5]"),
     ("points: {C: [0, 0]}", "points: [C]", "links.slider.points", "points: [C]"),
     ("B: [1, 0]}", "B: [1, 0, 0]}", "links.crank.points.B", "[1, 0, 0]"),
