@@ -17,7 +17,7 @@ report: $(STAMP)
 
 test: $(STAMP)
 	$(BIN)/lint-imports
-	OPENBLAS_NUM_THREADS=1 $(BIN)/python -m pytest
+	OPENBLAS_NUM_THREADS=1 $(BIN)/python -m pytest -n 2
 	$(BIN)/mechreport check specs
 
 check: $(STAMP)

@@ -43,7 +43,7 @@ def test_the_time_histories_are_the_simulation_sampled_per_output_step(built):
     assert rows[0, 0] == 0 and rows[-1, 0] <= sim.steady.t0 + sim.steady.period
     assert np.array_equal(rows[:, 2], sim.omega) and np.array_equal(rows[:, 1],
                                                                     np.degrees(sim.angle))
-    assert rows[-1, 1] > 360 * 30                        # unwrapped: past the 30th turn
+    assert rows[-1, 1] > 360 * 15                        # unwrapped: past the 15th turn
     import pyarrow.parquet as pq
     table = pq.read_table(folder / "dynamics.parquet")
     assert tuple(table.column_names) == HISTORY_COLUMNS
@@ -82,7 +82,7 @@ def test_until_a_time_gives_the_transient_with_its_last_row_at_that_time(tmp_pat
     assert rows[-1, 0] == 0.25 and len(rows) == 26
     assert np.allclose(rows[:, 0], np.arange(26) * 0.01, rtol=0, atol=1e-12)
     assert rows[0, 2] == 0 and np.all(np.diff(rows[:, 2]) > 0)      # from rest, speeding up
-    assert np.allclose(rows[:, 4], 6 * (1 - rows[:, 2] / (320 * math.pi / 30)))
+    assert np.allclose(rows[:, 4], 15 * (1 - rows[:, 2] / (310 * math.pi / 30)))
 
 
 def test_the_dynamics_command_refuses_a_spec_without_dynamics(tmp_path, capsys):
