@@ -151,7 +151,13 @@ def simulate(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarray, file: str
         turn_start = target
         if dyn.until is None and len(start_turns) >= 3:
             (t0, w0), (t1, w1), (t2, w2) = start_turns[-3:]
-            if abs(w2 - w1) <= STEADY_RTOL * abs(w2) and \
+            # what is left to the limit of a geometric approach, d1 r / (1 - r): two turns
+            # that agree are not enough where each turn changes the speed only a little less
+            # than the one before (a large flywheel)
+            d0, d1 = w1 - w0, w2 - w1
+            r = abs(d1 / d0) if d0 else 0.0
+            left = abs(d1) * r / (1 - r) if r < 1 else math.inf
+            if abs(d1) <= STEADY_RTOL * abs(w2) and left <= STEADY_RTOL * abs(w2) and \
                     abs((t2 - t1) - (t1 - t0)) <= STEADY_RTOL * (t2 - t1):
                 steady = True
                 break
@@ -276,8 +282,11 @@ def _output_times(t_end: float, dyn: Dynamics, cycle: SteadyCycle | None, file: 
                             "write a larger output_step")
     n = int(math.floor(rows + 1e-9)) + 1
     times = np.arange(n) * step
-    if dyn.until is not None and times[-1] < t_end - 1e-12 * max(t_end, 1.0):
-        times = np.append(times, t_end)
+    if dyn.until is not None:               # the last row exactly at `until`
+        if times[-1] >= t_end - 1e-9 * step:
+            times[-1] = t_end
+        else:
+            times = np.append(times, t_end)
     return times
 
 

@@ -76,7 +76,9 @@ def dynamics_section(analysis, d: Display) -> DynamicsSection | None:
     intro = (f"The crank is driven by {_motor_text(sd.motor)}, with a flywheel of "
              f"{fmt(sd.flywheel)} kg·m² on its shaft, {start}. Its equation of motion, "
              "(J(φ) + I_f) α = M_m(ω) − B(φ) ω² − C(φ) ω − D(φ), has the mechanism's reduced "
-             "inertia J on the crank (from its velocity coefficients), B = J′/2, C its viscous "
+             "inertia J on the crank (found from the reference method's driver torque; the "
+             "kinetic energy of the velocity coefficients, Σ m v² + I ω², gives the same), "
+             "B = J′/2, C its viscous "
              "loads and D its other loads and weights, all from the same kinematics and loads "
              "as the sweep; it is integrated in time (scipy solve_ivp, DOP853, relative "
              "tolerance 1e-10).")
@@ -89,7 +91,8 @@ def dynamics_section(analysis, d: Display) -> DynamicsSection | None:
         v = dyn.values
         swing, inertia, estimate = dyn.estimate
         outcome = (f"Steady state after {sim.turns} turns (t = {fmt(cycle.t0 + cycle.period)} "
-                   f"s): two successive turns agree in speed and period to 1e-6. Over the "
+                   f"s): two successive turns agree in speed and period to 1e-6, the speed "
+                   "within 1e-6 of its extrapolated limit. Over the "
                    f"steady turn the crank runs at {fmt(v['dynamics.mean_rpm'])} rpm on "
                    f"average, between {fmt(cycle.omega_min / RPM)} and "
                    f"{fmt(cycle.omega_max / RPM)} rpm; one turn takes "
