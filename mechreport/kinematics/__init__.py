@@ -101,16 +101,8 @@ def at_unit_rate(kin: Kinematics) -> Kinematics:
     acceleration: its velocities are the velocity coefficients d(x)/d(driven coordinate),
     the same at any speed (the virtual-work check at zero speed uses them; a driver at rest
     gives zero velocities). Positions and flags as ``kin``'s; accelerations zero."""
-    mech = kin.mechanism
-    spec = mech.spec
-    unit = mech.with_spec(replace(spec, driver=replace(spec.driver, omega=1.0, alpha=0.0)))
-    order = [GROUND] + [link.name for link in spec.links]
-    r = {name: kin.r[:, i] for i, name in enumerate(order)}
-    th = {name: kin.theta[:, i] for i, name in enumerate(order)}
-    v, w, _, _, _ = _rates_chunked(unit, kin.angles * spec.driver.unit, r, th, {})
-    return replace(kin, v=np.stack([v[k] for k in order], axis=1),
-                   omega=np.stack([w[k] for k in order], axis=1),
-                   a=np.zeros_like(kin.a), alpha=np.zeros_like(kin.alpha))
+    v, w, _, _ = _unit_rates(kin)
+    return replace(kin, v=v, omega=w, a=np.zeros_like(kin.a), alpha=np.zeros_like(kin.alpha))
 
 
 def with_rates(kin: Kinematics, omega: np.ndarray, alpha: np.ndarray) -> Kinematics:
@@ -119,23 +111,27 @@ def with_rates(kin: Kinematics, omega: np.ndarray, alpha: np.ndarray) -> Kinemat
     freedom mechanism's velocities are its velocity coefficients k times omega, and its
     accelerations k alpha + k' omega^2 (k' the accelerations at unit rate and no angular
     acceleration): both from one solve at unit rate. Positions and flags as ``kin``'s."""
+    k, kw, ka, kal = _unit_rates(kin)
+    omega = np.asarray(omega, float)
+    alpha = np.asarray(alpha, float)
+    return replace(kin, v=k * omega[:, None, None], omega=kw * omega[:, None],
+                   a=k * alpha[:, None, None] + ka * (omega ** 2)[:, None, None],
+                   alpha=kw * alpha[:, None] + kal * (omega ** 2)[:, None],
+                   rates=omega.copy())
+
+
+def _unit_rates(kin: Kinematics) -> tuple[np.ndarray, ...]:
+    """The velocities (n, L+1, 2), angular velocities (n, L+1), accelerations and angular
+    accelerations of ``kin``'s poses with the driver at unit rate and no acceleration (the
+    velocity coefficients and their derivatives), by link number."""
     mech = kin.mechanism
     spec = mech.spec
     unit = mech.with_spec(replace(spec, driver=replace(spec.driver, omega=1.0, alpha=0.0)))
     order = [GROUND] + [link.name for link in spec.links]
     r = {name: kin.r[:, i] for i, name in enumerate(order)}
     th = {name: kin.theta[:, i] for i, name in enumerate(order)}
-    v, w, a, al, _ = _rates_chunked(unit, kin.angles * spec.driver.unit, r, th, {})
-    omega = np.asarray(omega, float)
-    alpha = np.asarray(alpha, float)
-    k = np.stack([v[name] for name in order], axis=1)           # (n, L+1, 2)
-    kw = np.stack([w[name] for name in order], axis=1)          # (n, L+1)
-    ka = np.stack([a[name] for name in order], axis=1)
-    kal = np.stack([al[name] for name in order], axis=1)
-    return replace(kin, v=k * omega[:, None, None], omega=kw * omega[:, None],
-                   a=k * alpha[:, None, None] + ka * (omega ** 2)[:, None, None],
-                   alpha=kw * alpha[:, None] + kal * (omega ** 2)[:, None],
-                   rates=omega.copy())
+    rates = _rates_chunked(unit, kin.angles * spec.driver.unit, r, th, {})[:4]
+    return tuple(np.stack([d[name] for name in order], axis=1) for d in rates)
 
 
 def kinematic_error(conds: list[np.ndarray], n: int) -> np.ndarray:
