@@ -2,9 +2,14 @@
 methods over the sweep, relative to that quantity's largest magnitude.
 
 A component that is zero by construction (a slider's reaction along a fixed x guide, the couple
-of a block whose centre of mass is its slider point) would otherwise compare rounding noise
-with rounding noise; so the scale is never below ``SCALE_FLOOR`` times the largest quantity of
-the same kind in the result (forces [N] or moments [N m]).
+of a block whose centre of mass is its slider point, the torque that keeps a balanced rotor
+turning at constant speed) would otherwise compare rounding noise with rounding noise; so the
+scale is never below ``SCALE_FLOOR`` times the analysis's load scale in that quantity's unit.
+The load scale is dimensionally consistent: for a moment [N m] the largest moment or the
+largest force times the mechanism's size (:attr:`Spec.size`), whichever is larger; for a
+force [N] the largest force or the largest moment over the size. A quantity that is round-off
+next to the real loads (every moment of a mechanism whose forces all pass through its pins)
+is then judged as zero, never as a disagreement.
 """
 from __future__ import annotations
 
@@ -37,9 +42,10 @@ class Agreement:
     n_methods: int
 
 
-def agreement(results: dict[str, ForceResult]) -> list[Agreement]:
-    """One entry per quantity computed by at least two methods, worst first."""
-    return finish(spreads(results))
+def agreement(results: dict[str, ForceResult], size: float = 0.0) -> list[Agreement]:
+    """One entry per quantity computed by at least two methods, worst first; ``size`` [m]
+    the mechanism's characteristic length (0: forces and moments are scaled apart)."""
+    return finish(spreads(results), size)
 
 
 @dataclass(frozen=True)
@@ -124,12 +130,23 @@ def merge(a: Spreads, b: Spreads) -> Spreads:
     return out
 
 
-def finish(parts: Spreads) -> list[Agreement]:
-    """The agreement table from the spreads over the whole sweep, worst first."""
+def load_scales(tops: dict[str, float], size: float) -> dict[str, float]:
+    """The load scale of each kind (``force`` [N], ``moment`` [N m]) from the largest
+    magnitude of each kind ``tops`` and the mechanism's size [m] (see the module docstring)."""
+    force, moment = tops.get("force", 0.0), tops.get("moment", 0.0)
+    if not (size > 0 and math.isfinite(size)):
+        return {"force": force, "moment": moment}
+    return {"force": max(force, moment / size), "moment": max(moment, force * size)}
+
+
+def finish(parts: Spreads, size: float = 0.0) -> list[Agreement]:
+    """The agreement table from the spreads over the whole sweep, worst first; ``size`` [m]
+    as for :func:`agreement`."""
     kinds = {q: _kind(q) for q in parts}
-    kind_scale: dict[str, float] = {}
+    tops: dict[str, float] = {}
     for q, s in parts.items():
-        kind_scale[kinds[q]] = max(kind_scale.get(kinds[q], 0.0), s.top)
+        tops[kinds[q]] = max(tops.get(kinds[q], 0.0), s.top)
+    kind_scale = load_scales(tops, size)
     out = []
     for q, s in parts.items():
         if s.n_methods < 2:

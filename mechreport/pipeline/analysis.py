@@ -257,7 +257,7 @@ def analysis_of(mech: Mechanism, kin: Kinematics, methods=None, tol: float = DEF
         strength = strength_of(ctx, forces)
     members = strength.values if strength is not None else None
     ctx.cache.clear()   # the actions and equations the methods shared: rebuilt if asked for
-    return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces), res,
+    return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces, spec.size), res,
                     check_expectations(kin, forces, kin.flags, values, why,
                                        _instant(spec, kin), members), tol, rev, why,
                     tuple(verdicts(spec.design, values, why, members)), strength, dynamics)

@@ -163,7 +163,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     for (name, kind), b in trust.items():
         found.setdefault(name, {})[kind] = b
     untrusted = {name: judged(b, tol, name, spec.axis_unit) for name, b in found.items()}
-    return SweepCheck(spec, n, tuple(flags), finish(parts),
+    return SweepCheck(spec, n, tuple(flags), finish(parts, spec.size),
                       [Residual(m, f, mo) for m, (f, mo) in worst.items()], expectations, tol,
                       values, why, tuple(verdicts(spec.design, values, why, members)),
                       chunks.notes() + ([reversal_note(reversed_at, spec)] if reversed_at

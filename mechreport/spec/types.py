@@ -457,6 +457,24 @@ class Spec:
         """The sweep coordinate's unit as written: ``deg``, or the length unit of a stroke."""
         return "deg" if self.driver.kind == "R" else self.units["length"]
 
+    @property
+    def size(self) -> float:
+        """The mechanism's characteristic length [m]: the largest distance between two points
+        of one body (the ground's points, or one link's points, centre of mass and shape
+        included). It turns forces into moments of the same order (the agreement check)."""
+        def spread(points) -> float:
+            pts = list(points)
+            return max((math.dist(a, b) for a in pts for b in pts), default=0.0)
+        bodies = [self.ground.values()]
+        for link in self.links:
+            extra = [link.com]
+            if link.shape is not None:     # the ends of a bar, two corners of a block
+                a, h = link.shape.length, link.shape.height
+                extra += [(0.0, 0.0), (a, 0.0)] if link.shape.kind == "bar" else \
+                    [(-a / 2, -h / 2), (a / 2, h / 2)]
+            bodies.append([*link.points.values(), *extra])
+        return max(spread(b) for b in bodies)
+
     def cycle_problem(self) -> str | None:
         """Why cycle quantities are undefined for this spec (None when the sweep is one whole
         turn of a crank: an R driver with ground)."""
