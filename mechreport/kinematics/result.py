@@ -111,18 +111,35 @@ class PointState:
     a: np.ndarray
 
 
-def reversal_note(angles, spec) -> str:
-    """The note on the angles [deg] where friction alone reverses the driver's effort."""
+def angle_ranges(angles, step: float) -> str:
+    """Sorted ``angles`` as runs of neighbours ``step`` apart: ``91–110, 236`` (an en dash,
+    so that a range of strokes reads ``-10–10``)."""
     runs: list[list[float]] = []
     for a in sorted(map(float, angles)):
-        if runs and a - runs[-1][-1] <= spec.sweep.step * 1.000001:
+        if runs and a - runs[-1][-1] <= step * 1.000001:
             runs[-1].append(a)
         else:
             runs.append([a])
-    where = ", ".join(f"{r[0]:g}" if len(r) == 1 else f"{r[0]:g}-{r[-1]:g}" for r in runs)
-    return (f"self-locking at {where} {spec.axis_unit}: friction alone reverses the sign of "
-            f"{spec.driver.quantity} (without friction the loads would drive the mechanism "
-            "there; with it they cannot)")
+    return ", ".join(f"{r[0]:g}" if len(r) == 1 else f"{r[0]:g}–{r[-1]:g}" for r in runs)
+
+
+def reversal_note(angles, spec) -> str:
+    """The note on the angles [deg] where friction alone reverses the driver's effort."""
+    return (f"self-locking at {angle_ranges(angles, spec.sweep.step)} {spec.axis_unit}: "
+            f"friction alone reverses the sign of {spec.driver.quantity} (without friction "
+            "the loads would drive the mechanism there; with it they cannot)")
+
+
+def jam_note(flags, spec) -> str:
+    """The note on every range of the sweep where friction self-locks (the mechanism jams:
+    no finite driver effort moves it), "" when there is none."""
+    jammed = [f.angle for f in flags if f.kind == "friction"]
+    if not jammed:
+        return ""
+    return (f"the mechanism jams at {angle_ranges(jammed, spec.sweep.step)} {spec.axis_unit} "
+            f"({len(jammed)} of the sweep's angles): friction self-locks there (its loop gain "
+            "is 1 or more), no finite driver effort moves it, and it cannot be driven through "
+            "its cycle")
 
 
 @dataclass(frozen=True)
@@ -302,6 +319,8 @@ class Kinematics:
             out.append(self.turn_problem)
         if self.reversed_by_friction:
             out.append(reversal_note(self.reversed_by_friction, self.mechanism.spec))
+        spec = self.mechanism.spec
+        out += [n for n in (jam_note(self.flags, spec), spec.idle_friction_note()) if n]
         return out
 
     @property

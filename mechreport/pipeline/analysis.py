@@ -28,6 +28,7 @@ from ..kinematics.frames import scaled
 from ..linalg import SINGULAR_COND
 from ..model import Mechanism, build_mechanism
 from ..post import Review, Verdict, design_review, reference_method, verdicts
+from ..post.verdicts import undefined_reasons
 from ..post.strength import StrengthReview, strength_review
 from ..post.columns import Column, result_columns, scales, sweep_rows
 from ..post.transmission import instant_quantities
@@ -260,7 +261,8 @@ def analysis_of(mech: Mechanism, kin: Kinematics, methods=None, tol: float = DEF
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces, spec.size), res,
                     check_expectations(kin, forces, kin.flags, values, why,
                                        _instant(spec, kin), members), tol, rev, why,
-                    tuple(verdicts(spec.design, values, why, members)), strength, dynamics)
+                    tuple(verdicts(spec.design, values, why, members,
+                                         undefined_reasons(spec))), strength, dynamics)
 
 
 def strength_of(ctx: ForceContext, forces: dict[str, ForceResult]) -> StrengthReview | None:
@@ -286,9 +288,14 @@ def solve_trusted(kin: Kinematics, methods=None, memo: dict | None = None, plans
     flagged and left out of the kinematics and of every result (see :func:`_force_flags`).
     Raises ``AnalysisError`` where an input or a result is not a finite number. ``memo``:
     choices shared with other parts of the same sweep (the contour method's plan); ``plans``:
-    contour plans shared with other specs (see :func:`analyse`)."""
+    contour plans shared with other specs (see :func:`analyse`). Where friction leaves no
+    angle (it self-locks at every one), the kinematics come back empty with their flags,
+    no context and no result: the caller says so (no angle at all, or one chunk of a long
+    sweep)."""
     if kin.mechanism.spec.friction:         # the friction every method then includes
-        kin = _require_angles(with_friction(kin)[0])
+        kin = with_friction(kin)[0]
+        if not kin.n:
+            return kin, None, {}
     ctx = ForceContext(kin)                 # one per kinematics: its loads evaluated once
     ctx.plans = plans
     if memo is not None:

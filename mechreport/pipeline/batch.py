@@ -27,6 +27,7 @@ from ..forces.loads import undefined_directions
 from ..kinematics.stacked import solve_stacked, variant_kinematics
 from ..model import build_mechanism
 from ..post import Review, Verdict, design_review, verdicts
+from ..post.verdicts import undefined_reasons
 from ..spec import Spec
 
 
@@ -127,7 +128,8 @@ def _batched(stacked, mech, specs: list[Spec], method: str, plans) -> list[Outco
         rev, why = design_review(kin_v, forces, loads)
         values = rev.values if rev is not None else None
         members = _members(kin_v, forces)
-        out[v] = Outcome(spec, rev, why, tuple(verdicts(spec.design, values, why, members)),
+        out[v] = Outcome(spec, rev, why, tuple(verdicts(spec.design, values, why, members,
+                                         undefined_reasons(spec))),
                          batched=True, untrusted=untrusted(forces[method], DEFAULT_TOL,
                                                             spec.axis_unit, inputs.take(rows)),
                          members=members)

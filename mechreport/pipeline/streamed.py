@@ -31,11 +31,12 @@ from ..checks.expectations import at_angle, check_cycle, judge, left_out
 from ..forces import METHODS, PROBES, ForceContext, sweep_choices
 from ..forces.result import slider_point
 from ..kinematics import Flag
-from ..kinematics.result import reversal_note
+from ..kinematics.result import jam_note, reversal_note
 from ..kinematics.stream import kinematic_chunks, streamable
 from ..model import build_mechanism
 from ..quantities import split as split_quantity
 from ..post import Traces, Verdict, design_review_from, reference_method, traces_of, verdicts
+from ..post.verdicts import undefined_reasons
 from ..post.strength import merge_parts, review_of_parts, strength_parts
 from ..quantities import is_member
 from ..post.transmission import instant_quantities
@@ -141,7 +142,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
         raise no_angle_error(spec, flags)
     between_phases()              # the last chunks' working set, before the review's own
     rev, why = design_review_from(traces.head(n), spec, chunks.motion.full,
-                                  chunks.turn_problem)
+                                  chunks.turn_problem, jam_note(flags, spec))
     values = rev.values if rev is not None else None
     if spec.dynamics is not None:       # the steady turn's quantities, from the simulation
         values = {**(values or {}), **simulated(mech)[2]}
@@ -165,9 +166,11 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     untrusted = {name: judged(b, tol, name, spec.axis_unit) for name, b in found.items()}
     return SweepCheck(spec, n, tuple(flags), finish(parts, spec.size),
                       [Residual(m, f, mo) for m, (f, mo) in worst.items()], expectations, tol,
-                      values, why, tuple(verdicts(spec.design, values, why, members)),
+                      values, why, tuple(verdicts(spec.design, values, why, members,
+                                         undefined_reasons(spec))),
                       chunks.notes() + ([reversal_note(reversed_at, spec)] if reversed_at
-                                        else []), untrusted, members)
+                                        else []) + [n for n in (jam_note(flags, spec), spec.idle_friction_note()) if n],
+                      untrusted, members)
 
 
 def _slider_point(e) -> bool:

@@ -73,16 +73,20 @@ class Cycle:
 
 
 def cycle_of(spec: Spec, analysed_angles: np.ndarray, reachable: bool = True,
-             turn_problem: str = "") -> Cycle:
+             turn_problem: str = "", jam: str = "") -> Cycle:
     """The cycle grid of ``spec`` and where each of its angles sits among ``analysed_angles``.
     Raises ``CycleUndefined`` when the sweep is not one whole turn of a crank, when the
-    crank cannot make a full turn (``reachable`` False), or when the motion does not repeat
-    every turn (``turn_problem`` says why)."""
+    crank cannot make a full turn (``reachable`` False), when the motion does not repeat
+    every turn (``turn_problem`` says why), or when friction jams the mechanism over part of
+    the turn (``jam`` says where: a cycle it cannot complete has no cycle quantities, and
+    values interpolated across the jam would be invented)."""
     why = spec.cycle_problem()
     if why is None and not reachable:
         why = "cycle quantities need a crank that makes a full turn; this one locks"
     if why is None and turn_problem:
         why = f"cycle quantities need a motion that repeats every turn; {turn_problem}"
+    if why is None and jam:
+        why = f"cycle quantities need a mechanism that can be driven through its cycle; {jam}"
     if why is not None:
         raise CycleUndefined(f"{spec.file}: {why}")
     grid = np.round(spec.sweep.angles(), 9)

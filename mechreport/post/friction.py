@@ -22,15 +22,26 @@ def friction_losses(kin: Kinematics) -> dict[str, np.ndarray]:
             for name, m in kin.friction.items()}
 
 
+NO_WORK = "the driver does no positive work over the cycle"
+
+
+def efficiency_undefined(spec) -> str:
+    """Why ``cycle.efficiency`` is undefined when it is missing from the cycle quantities:
+    friction entries that act nowhere (at rest without ``friction_sense``), or no positive
+    work of the driver."""
+    return spec.idle_friction_note() or NO_WORK
+
+
 def friction_values(losses: dict[str, float], torque: np.ndarray, cyc,
-                    direction: float) -> dict[str, float]:
+                    direction: float, efficiency: bool = True) -> dict[str, float]:
     """``cycle.friction.energy`` [J per cycle] from each joint's loss over the cycle
     ``losses`` [J], and ``cycle.efficiency`` = 1 - that / the driver's positive work over
     the cycle (``torque`` (N,) [N m] over the cycle grid ``cyc``; ``direction`` the sign of
-    the driver's rotation), left out when the driver does no positive work."""
+    the driver's rotation), left out when the driver does no positive work, or when not
+    every friction entry acts (``efficiency`` False: the efficiency would be overstated)."""
     lost = float(sum(losses.values()))
     work_in = 2 * np.pi * cyc.mean(np.maximum(torque * direction, 0.0))
     out = {"cycle.friction.energy": lost}
-    if work_in > 0:
+    if work_in > 0 and efficiency:
         out["cycle.efficiency"] = 1.0 - lost / work_in
     return out

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..kinematics.result import jam_note
 from .balance import Counterweight, counterweight
 from .bearings import BearingLoad, bearing_load
 from .cycle import Cycle, CycleUndefined, cycle_of
@@ -117,17 +118,19 @@ def review_of(kin, forces, loads, speed_fluctuation: float | None = None,
     """:func:`review` from its parts: the kinematics, the force results by method and the
     evaluated loads."""
     motion = kin.motion
-    return review_from(traces_of(kin, forces, loads), kin.mechanism.spec,
+    spec = kin.mechanism.spec
+    return review_from(traces_of(kin, forces, loads), spec,
                        motion is None or motion.full, kin.turn_problem, speed_fluctuation,
-                       ratings)
+                       ratings, jam_note(kin.flags, spec))
 
 
 def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = "",
                 speed_fluctuation: float | None = None,
-                ratings: dict[str, float] | None = None) -> Review:
+                ratings: dict[str, float] | None = None, jam: str = "") -> Review:
     """The cycle quantities from a sweep's traces (``reachable``: the crank turns fully;
-    ``turn_problem``: why the motion does not repeat every turn, or "")."""
-    cyc = cycle_of(spec, tr.angles, reachable, turn_problem)
+    ``turn_problem``: why the motion does not repeat every turn, or ""; ``jam``: where
+    friction jams the mechanism, or "")."""
+    cyc = cycle_of(spec, tr.angles, reachable, turn_problem, jam)
     omega = spec.driver.omega
     sample = lambda v: cyc.sample(v, tr.angles)   # noqa: E731 - one-line adapter
     torque = sample(tr.torque)
@@ -148,7 +151,8 @@ def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = ""
                                             / (speed_fluctuation * omega ** 2))
     losses = {joint: 2 * np.pi * cyc.mean(sample(loss)) for joint, loss in tr.friction.items()}
     if losses:
-        values.update(friction_values(losses, torque, cyc, np.sign(omega) or 1.0))
+        values.update(friction_values(losses, torque, cyc, np.sign(omega) or 1.0,
+                                      efficiency=not spec.idle_friction))
     shaking = sample(tr.frame[:, :2])
     f = np.hypot(shaking[:, 0], shaking[:, 1])
     if tr.reactions:     # the shaking force is the ground joints' reactions: none, no value
@@ -191,17 +195,18 @@ def design_review(kin, forces, loads) -> tuple[Review | None, str]:
         return None, spec.cycle_problem()
     motion = kin.motion
     return design_review_from(traces_of(kin, forces, loads), spec,
-                              motion is None or motion.full, kin.turn_problem)
+                              motion is None or motion.full, kin.turn_problem,
+                              jam_note(kin.flags, spec))
 
 
 def design_review_from(tr: Traces, spec, reachable: bool = True,
-                       turn_problem: str = "") -> tuple[Review | None, str]:
+                       turn_problem: str = "", jam: str = "") -> tuple[Review | None, str]:
     """:func:`design_review` from a sweep's traces (a long sweep's, joined chunk by chunk)."""
     if spec.cycle_problem() is not None:
         return None, spec.cycle_problem()
     ratings = {j: b.rating for j, b in spec.design.bearings.items()}
     try:
         return review_from(tr, spec, reachable, turn_problem, spec.design.speed_fluctuation,
-                           ratings), ""
+                           ratings, jam), ""
     except CycleUndefined as exc:
         return None, str(exc).split(": ", 1)[-1]

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 from ..quantities import unit_of
 from ..spec import Design
+from .friction import NO_WORK, efficiency_undefined
 
 
 @dataclass(frozen=True)
@@ -63,11 +64,20 @@ PEAK_TORQUE = "max |driver.torque|"
 MEMBER_LIMITS = ("static_safety", "fatigue_safety", "buckling_safety")
 
 
+def undefined_reasons(spec) -> dict[str, str]:
+    """Why a cycle quantity is missing from the cycle quantities, by quantity, where the
+    spec's own data say (the efficiency: see :func:`~.friction.efficiency_undefined`)."""
+    return {"cycle.efficiency": efficiency_undefined(spec)} if spec.friction else {}
+
+
 def verdicts(design: Design, values: dict[str, float] | None, why: str = "",
-             members: dict[str, float] | None = None) -> list[Verdict]:
+             members: dict[str, float] | None = None,
+             reasons: dict[str, str] | None = None) -> list[Verdict]:
     """One verdict per design item, in the order motor, bearings, limits. ``values``: the
     cycle quantities (None when undefined, with the reason ``why``); ``members``: the
-    members' quantities (``member.L.static_safety`` ...), defined for any sweep."""
+    members' quantities (``member.L.static_safety`` ...), defined for any sweep;
+    ``reasons``: why a quantity missing from ``values`` is undefined (see
+    :func:`undefined_reasons`), where the default reason would not say."""
     rows: list[tuple[str, str, float, bool, str]] = []   # item, quantity, limit, at_least, where
     v = values or {}
     motor = design.motor
@@ -108,11 +118,10 @@ def verdicts(design: Design, values: dict[str, float] | None, why: str = "",
             value, reason = worst[1], "" if worst[1] is not None else "no joint reaction"
         else:
             value = v.get(quantity)
-            reason = "" if value is not None else (
+            reason = "" if value is not None else (reasons or {}).get(quantity) or (
                 "the mechanism has no RRR group and no slider fed by a rod"
                 if "transmission" in quantity else
-                "the driver does no positive work over the cycle"
-                if quantity == "cycle.efficiency" else "not computed")
+                NO_WORK if quantity == "cycle.efficiency" else "not computed")
         unit = unit_of(quantity)
         if unit is None:
             unit = "N·m" if quantity == PEAK_TORQUE else "N"

@@ -23,6 +23,7 @@ from ..version import __version__
 from .. import post as q
 from ..post.balance import NOTICEABLE
 from ..post.bearings import bearing_carrier
+from ..post.friction import efficiency_undefined
 from ..post.columns import sweep_rows
 from ..post.sweep import PowerCheck, SweepSummary
 from ..forces import METHODS
@@ -1142,7 +1143,7 @@ def _friction(analysis, design: DesignSummary, sw: SweepData, d: Display
         energy = d.q(total, "energy")
         eff = rev.values.get("cycle.efficiency")
         efficiency = (f"{fmt(100 * eff)} %" if eff is not None else
-                      "undefined: the driver does no positive work over the cycle")
+                      f"undefined: {efficiency_undefined(spec)}")
     L = d.unit("length")
     size_head = (f"r or L [{L}]" if len(types) > 1 else
                  f"journal radius r [{L}]" if types == {"R"} else f"slider length L [{L}]")
@@ -1168,10 +1169,12 @@ def _friction_intro(spec) -> str:
                     "μ (|N1| + |N2|), where N1 and N2 are the normal forces at its two ends "
                     "that carry the slider's normal force and couple")
     n = len(joints)
+    idle = spec.idle_friction_note()
     return (f"Coulomb friction in {n} joint{'s' if n > 1 else ''}, solved with the forces "
             "(every table and plot of this report includes it): " + "; ".join(laws)
             + (". Each opposes its joint's relative motion." if n > 1 else
-               ". It opposes the joint's relative motion."))
+               ". It opposes the joint's relative motion.")
+            + (f" But {idle}." if idle else ""))
 
 
 def friction_symbol(spec, joint) -> str:
@@ -1273,7 +1276,7 @@ def _friction_json(analysis, sc: dict) -> dict | None:
     if rev is None:
         why = f"no cycle quantities: {analysis.review_problem}"
     else:
-        why = None if eff is not None else "the driver does no positive work over the cycle"
+        why = None if eff is not None else efficiency_undefined(analysis.spec)
     return {"joints": joints,
             "energy_per_cycle": None if total is None else {"value": jnum(total), "unit": "J"},
             "efficiency": None if eff is None else {"value": jnum(eff), "unit": ""},

@@ -458,6 +458,25 @@ class Spec:
         return "deg" if self.driver.kind == "R" else self.units["length"]
 
     @property
+    def idle_friction(self) -> tuple[str, ...]:
+        """The joints (as written) whose friction entry acts nowhere: at rest (the driver's
+        speed 0) no joint moves, and friction acts only where ``friction_sense`` says which
+        way the joint is about to move."""
+        if not self.driver.at_rest:
+            return ()
+        return tuple(self.joint(f.joint).written for f in self.friction if f.sense is None)
+
+    def idle_friction_note(self) -> str:
+        """The sentence on :attr:`idle_friction` ("" when every entry acts)."""
+        idle = self.idle_friction
+        if not idle:
+            return ""
+        names = ", ".join(idle[:-1]) + " and " + idle[-1] if len(idle) > 1 else idle[0]
+        return (f"the friction in joint{'s' if len(idle) > 1 else ''} {names} adds nothing: at "
+                "rest no joint moves, and friction acts only where friction_sense (1 or -1) "
+                "says which way the joint is about to move")
+
+    @property
     def size(self) -> float:
         """The mechanism's characteristic length [m]: the largest distance between two points
         of one body (the ground's points, or one link's points, centre of mass and shape
