@@ -74,6 +74,24 @@ def section(value: Any, path: tuple, ck, ls: float, unit: str) -> Section | None
              for k in keys}
     if any(x is None for x in sizes.values()):
         return None
+    if kind == "tube" and sizes["t"] > sizes["d"] / 2:
+        ck.error(where + ("t",), f"a wall of {dims['t']} {unit} is thicker than the "
+                                 f"radius {sizes['d'] / 2 / ls:g} {unit} (at most d / 2)")
+        return None
+    made = _section(kind, sizes)
+    if not all(math.isfinite(x) and x > 0 for x in (made.area, made.inertia, made.c,
+                                                    made.inertia_min)):
+        ck.error(where, f"gives an area of {made.area:.6g} m^2 and a second moment of area of "
+                        f"{made.inertia:.6g} m^4: sizes this far apart are beyond double "
+                        "precision (both must be positive finite numbers)")
+        return None
+    return made
+
+
+def _section(kind: str, sizes: dict[str, float]) -> Section:
+    """The section of ``kind`` from its sizes [m]. A tube's area pi t (d - t) and inertia
+    pi t (d - t) (d^2 + di^2) / 16 are the factored differences of the outer and inner
+    circles' (d^2 - di^2 = 4 t (d - t)): no cancellation for a thin wall on a large tube."""
     if kind == "rect":
         w, h = sizes["width"], sizes["height"]
         return Section(kind, w * h, w * h ** 3 / 12, h / 2, min(w * h ** 3, h * w ** 3) / 12,
@@ -84,14 +102,9 @@ def section(value: Any, path: tuple, ck, ls: float, unit: str) -> Section | None
         return Section(kind, math.pi * d ** 2 / 4, i, d / 2, i, tuple(sizes.items()))
     if kind == "tube":
         d, t = sizes["d"], sizes["t"]
-        if t > d / 2:
-            ck.error(where + ("t",), f"a wall of {dims['t']} {unit} is thicker than the "
-                                     f"radius {d / 2 / ls:g} {unit} (at most d / 2)")
-            return None
         di = d - 2 * t
-        i = math.pi * (d ** 4 - di ** 4) / 64
-        return Section(kind, math.pi * (d ** 2 - di ** 2) / 4, i, d / 2, i,
-                       tuple(sizes.items()))
+        i = math.pi * t * (d - t) * (d ** 2 + di ** 2) / 16
+        return Section(kind, math.pi * t * (d - t), i, d / 2, i, tuple(sizes.items()))
     return Section(kind, sizes["area"], sizes["inertia"], sizes["c"], sizes["inertia"],
                    tuple(sizes.items()))
 
