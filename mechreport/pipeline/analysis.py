@@ -369,10 +369,19 @@ def trusted(kin: Kinematics, res: ForceResult) -> np.ndarray:
 
 
 def _require_angles(kin: Kinematics) -> Kinematics:
-    """``kin`` if it has at least one angle; else an error saying why every angle was lost."""
-    if kin.n:
+    """``kin`` if it has at least one angle of the sweep; else an error saying why every
+    angle of the sweep was lost (a reference angle outside the sweep does not stand in for
+    a sweep with nothing trustworthy left)."""
+    spec = kin.mechanism.spec
+    if sweep_angles_left(kin.angles, spec.off_sweep_angles()):
         return kin
-    raise no_angle_error(kin.mechanism.spec, kin.flags)
+    raise no_angle_error(spec, kin.flags)
+
+
+def sweep_angles_left(angles: np.ndarray, off_sweep: np.ndarray) -> bool:
+    """Whether any of the analysed ``angles`` [deg] is an angle of the sweep, not one of the
+    reference or expectation angles outside it, ``off_sweep`` (``Spec.off_sweep_angles``)."""
+    return bool(np.any(~np.isin(np.round(angles, 9), off_sweep)))
 
 
 def no_angle_error(spec: Spec, flags) -> AnalysisError:

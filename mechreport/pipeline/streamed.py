@@ -23,7 +23,7 @@ import numpy as np
 
 from .dynamics import simulated
 from .analysis import (DEFAULT_TOL, Analysis, Checked, analyse, no_angle_error,
-                       solve_trusted)
+                       solve_trusted, sweep_angles_left)
 from ..checks import Agreement, ExpectationResult, Residual, residuals
 from ..checks.agreement import finish, merge, spreads
 from ..checks.trust import bounds, inputs_of, judged
@@ -98,6 +98,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     n = 0
     timed = [(i, e) for i, e in enumerate(spec.expect) if e.angle is not None]
     strength = None                       # the members' extremes, merged chunk by chunk
+    off_sweep, swept = spec.off_sweep_angles(), False    # a sweep angle is left (not only `at`)
     for kin in chunks:
         if kin.n:
             kin, ctx, forces = solve_trusted(kin, names, memo)
@@ -105,6 +106,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
         if not kin.n:
             continue
         n += kin.n
+        swept = swept or sweep_angles_left(kin.angles, off_sweep)
         reversed_at += kin.reversed_by_friction
         parts = merge(parts, spreads(forces))
         for r in residuals(ctx, forces):
@@ -138,7 +140,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
         traces.write(part, n - kin.n)
         del kin, ctx, forces, part     # nothing of a chunk outlives it
     flags = sorted(flags, key=lambda f: f.angle)
-    if n == 0:
+    if n == 0 or not swept:
         raise no_angle_error(spec, flags)
     between_phases()              # the last chunks' working set, before the review's own
     rev, why = design_review_from(traces.head(n), spec, chunks.motion.full,

@@ -587,6 +587,13 @@ class Spec:
                 out.setdefault(name, link.name)
         return list(out.items())
 
+    def off_sweep_angles(self) -> np.ndarray:
+        """The reference and expectation angles that are not angles of the sweep [deg],
+        sorted, unique, rounded as :meth:`analysed_angles` rounds them."""
+        extra = list(self.at) + [e.angle for e in self.expect if e.angle is not None]
+        extra = np.unique(np.round(np.asarray(extra, float), 9))
+        return extra[~np.isin(extra, np.round(self.sweep.angles(), 9))]
+
     def analysed_angles(self) -> np.ndarray:
         """Sweep angles plus the reference and expectation angles, sorted, unique [deg]."""
         extra = list(self.at) + [e.angle for e in self.expect if e.angle is not None]

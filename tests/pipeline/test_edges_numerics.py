@@ -234,3 +234,22 @@ def test_assembly_error_still_raised_when_the_reference_angle_cannot_close():
     text = text.replace("points: {B: [0, 0], C: [1, 0]}", "points: {B: [0, 0], C: [0.5, 0]}")
     with pytest.raises(AssemblyError, match="cannot close at the first reference angle 45"):
         analyse(parse_spec(text, "x.yaml"))
+
+
+def test_a_sweep_with_nothing_trustworthy_left_fails_although_an_at_angle_survives():
+    """At rest, 200 angles within 0.05 deg of the textbook slider-crank's singular 90 deg are
+    all near-singular; the reference angle 45 deg, outside the sweep, once survived alone and
+    the spec passed. A sweep with nothing trustworthy left is an error, by either check."""
+    from mechreport.pipeline.streamed import check_sweep
+    text = SLIDER_CRANK.split("expect:")[0]
+    text = text.replace("sweep: {start: 0, stop: 360, step: 1}",
+                        "sweep: {start: 89.95, stop: 90.05, step: 0.0005}")
+    text = text.replace("rpm: 9.549296585513721", "rpm: 0")
+    assert "89.95" in text and "rpm: 0" in text
+    spec = parse_spec(text, "slider_crank.yaml")
+    with pytest.raises(AnalysisError, match="no angle of the sweep can be analysed: near-sing"):
+        analyse(spec)
+    with pytest.raises(AnalysisError, match="no angle of the sweep can be analysed"):
+        check_sweep(spec, chunk=40)
+    wider = parse_spec(text.replace("stop: 90.05", "stop: 90.5"), "slider_crank.yaml")
+    assert len(analyse(wider).angles) > 1        # angles beyond 0.1 deg are trustworthy
