@@ -93,9 +93,10 @@ def _names(root) -> set[str]:
     return {p[-1] for p in _paths(root) if isinstance(p[-1], str)}
 
 
-def _mutate(data, draw) -> list[str]:
-    """Apply one random mutation to ``data`` in place; returns a description."""
-    paths = list(_paths(data))
+def _mutate(data, draw, within=lambda path: True) -> list[str]:
+    """Apply one random mutation to ``data`` in place; returns a description. ``within``:
+    which paths may be mutated (default every one)."""
+    paths = [p for p in _paths(data) if within(p)]
     if not paths:
         return ["nothing to mutate"]
     op = draw(st.sampled_from(["delete", "replace", "replace", "extreme", "rename-ref",
@@ -187,6 +188,32 @@ def tweaked_specs(draw):
     return name, done, text
 
 
+def _under_format_1_1_keys(path) -> bool:
+    """Paths below the format 1.1 keys: friction, dynamics, a link's strength data, the
+    materials, and polar points ({r, angle})."""
+    if path[0] in ("friction", "dynamics", "materials"):
+        return True
+    if path[0] == "links" and len(path) > 2 and path[2] in ("section", "material", "members"):
+        return True
+    return any(part in ("r", "angle") for part in path[1:]) and path[0] in ("links", "ground")
+
+
+NEW_KEY_BASES = sorted(n for n, d in BASES.items()
+                       if any(_under_format_1_1_keys(p) for p in _paths(d)))
+
+
+@st.composite
+def new_key_specs(draw):
+    """Mutants of the specs that use the format 1.1 keys, mutated below those keys only."""
+    name = draw(st.sampled_from(NEW_KEY_BASES))
+    data = copy.deepcopy(BASES[name])
+    done = []
+    for _ in range(draw(st.integers(min_value=1, max_value=3))):
+        done += _mutate(data, draw, _under_format_1_1_keys)
+    text = yaml.safe_dump(data, sort_keys=False, allow_unicode=True, width=4096)
+    return name, done, text
+
+
 # -- the properties ------------------------------------------------------------------------
 
 def _load(text: str):
@@ -255,6 +282,38 @@ def _coarse(spec):
 @settings(max_examples=200, **COMMON)
 @given(st.one_of(tweaked_specs(), mutated_specs()))
 def test_analyse_of_what_loads_is_finite_or_a_project_error(case):
+    from mechreport.pipeline.analysis import analyse
+    name, done, text = case
+    spec = _load(text)
+    if spec is None:
+        return
+    try:
+        result = analyse(_coarse(spec))
+    except MechreportError:
+        return
+    _finite_results(result)
+
+
+def test_the_format_1_1_keys_have_specs_to_fuzz():
+    for key in ("friction", "dynamics", "materials"):
+        assert any(key in BASES[n] for n in NEW_KEY_BASES), key
+    assert any(_under_format_1_1_keys(p) and p[-1] == "r" for n in NEW_KEY_BASES
+               for p in _paths(BASES[n])), "no spec with polar points"
+
+
+@settings(max_examples=150, **COMMON)
+@given(new_key_specs())
+def test_format_1_1_keys_load_or_raise_only_spec_errors_naming_the_file(case):
+    name, done, text = case
+    _load(text)
+
+
+@settings(max_examples=150, **COMMON)
+@given(new_key_specs())
+def test_format_1_1_keys_analyse_finite_or_a_project_error(case):
+    """What loads after a mutation below friction, dynamics, strength or polar points
+    analyses to finite numbers or raises a project error (a dynamics spec's simulation is
+    bounded in its work, never endless)."""
     from mechreport.pipeline.analysis import analyse
     name, done, text = case
     spec = _load(text)
