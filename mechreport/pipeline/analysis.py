@@ -172,7 +172,8 @@ class Analysis(Checked):
         """What the sweep's results come to (effort statistics, each joint's peak and RMS
         load, the frame load, bearing traces, the power balance's agreement): see
         :mod:`mechreport.post.sweep`."""
-        return sweep_summary(self.kinematics, self.forces, self.loads, self.flags)
+        return sweep_summary(self.kinematics, self.forces, self.loads, self.flags,
+                             self.review.values if self.review is not None else None)
 
     def scales(self) -> dict[str, float]:
         """The largest magnitude [SI] of each kind of quantity (length, force, moment ...):

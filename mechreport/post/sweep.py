@@ -8,7 +8,7 @@ Over the analysed angles (n,) [deg, or a stroke's length unit], from the referen
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -111,9 +111,24 @@ def power_check(torque: np.ndarray, check: np.ndarray, angles: np.ndarray
     return PowerCheck(float(diff[k]), float(diff[k] / scale), float(angles[k]))
 
 
-def sweep_summary(kin, forces: dict, loads, flags) -> SweepSummary:
+def over_cycle(stats: TorqueStats | None, cycle: dict[str, float] | None
+               ) -> TorqueStats | None:
+    """The effort's statistics with one definition of its mean, RMS and mean power: over a
+    whole turn (``cycle``, the review's cycle quantities) those of the cycle, where a
+    left-out angle counts with the value interpolated between its neighbours (the cycle
+    grid: :mod:`mechreport.post.cycle`); otherwise over the analysed angles. The peaks are
+    the analysed angles' (an interpolated value never exceeds its neighbours)."""
+    if stats is None or not cycle or "cycle.torque.rms" not in cycle:
+        return stats
+    return replace(stats, mean=cycle["cycle.torque.mean"], rms=cycle["cycle.torque.rms"],
+                   power=cycle["cycle.power.mean"])
+
+
+def sweep_summary(kin, forces: dict, loads, flags, cycle: dict[str, float] | None = None
+                  ) -> SweepSummary:
     """The :class:`SweepSummary` of kinematics ``kin``, the methods' ``forces``, the applied
-    ``loads`` and the left-out angles ``flags``."""
+    ``loads`` and the left-out angles ``flags``; ``cycle`` the review's cycle quantities,
+    when defined (see :func:`over_cycle`)."""
     spec = kin.mechanism.spec
     ref = reference_method(forces)
     res = forces[ref]
@@ -135,7 +150,7 @@ def sweep_summary(kin, forces: dict, loads, flags) -> SweepSummary:
     frame = frame_load(kin, res, loads)
     check = forces.get("power")
     return SweepSummary(
-        ref, near, width, torque_stats(res, kin.driver_rate), frame,
+        ref, near, width, over_cycle(torque_stats(res, kin.driver_rate), cycle), frame,
         peak(angles, frame.f), peak(angles, frame.m), joints, largest, traces,
         None if check is None or check is res else power_check(res.driver_torque,
                                                                check.driver_torque, angles))

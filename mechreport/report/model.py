@@ -798,8 +798,10 @@ def _quantities(summary: SweepSummary, cycle: dict, sc: dict, effort_unit: str =
     """Every key figure by name -> {value [SI], unit}: what ``mechreport diff`` compares and
     the index lists, each once: where the cycle quantities are defined, a sweep peak that
     one of them states (a joint's peak load is ``joint.J.f_max``, the shaking force's and
-    moment's ``cycle.shaking.*_max``) is not listed again under another name. The driver's
-    signed peak and its angle stay: no cycle quantity says where it is."""
+    moment's ``cycle.shaking.*_max``, the effort's mean and RMS and the mean power are
+    ``cycle.torque.mean``, ``cycle.torque.rms`` and ``cycle.power.mean``) is not listed again
+    under another name. The driver's signed peak and its angle stay: no cycle quantity says
+    where it is."""
     out: dict[str, dict] = {}
     cyclic = bool(cycle)
 
@@ -815,10 +817,11 @@ def _quantities(summary: SweepSummary, cycle: dict, sc: dict, effort_unit: str =
     if st is not None:
         name, kind = (("driver.force", "force") if effort_unit == "N"
                       else ("driver.torque", "moment"))
-        put(f"{name}.mean", st.mean, effort_unit, kind)
-        put(f"{name}.rms", st.rms, effort_unit, kind)
+        if "cycle.torque.rms" not in cycle:   # over a whole turn the cycle's names say them
+            put(f"{name}.mean", st.mean, effort_unit, kind)
+            put(f"{name}.rms", st.rms, effort_unit, kind)
+            put("driver.power.mean", st.power, "W")
         put(f"{name}.peak", st.peak.value, effort_unit, kind, st.peak.angle)   # signed, where
-        put("driver.power.mean", st.power, "W")
     for name, jl in summary.joints.items():
         pk = jl.peak
         if pk is not None:

@@ -21,7 +21,7 @@ from mechreport.app.cli import main
 from helpers import tiny_spec
 
 ROOT = Path(__file__).resolve().parents[2]
-RMS = "driver.torque.rms"           # a quantity with a value and a unit
+RMS = "cycle.torque.rms"            # a quantity with a value and a unit
 PEAK = "driver.torque.peak"         # ... and the angle of its peak
 
 

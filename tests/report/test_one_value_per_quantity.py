@@ -62,3 +62,44 @@ def test_a_joint_peak_is_one_value_in_every_output(path):
         if far and far["angle_deg"] != big["angle_deg"]:
             assert data["largest_bearing_load_away_N"] == far["value"]
             assert "away from left-out angles" in index_row(s, "x")["bearing"]
+
+
+@pytest.mark.parametrize("path", SPECS, ids=lambda p: p.stem)
+def test_the_mean_and_rms_effort_are_one_value_in_every_output(path):
+    """Over a whole turn with angles left out (slider_crank's dead centres), the design
+    summary once showed an RMS torque of 141.6 N·m and the "Over the sweep" table, the plot
+    legends and the index 141.2 N·m. One definition (the cycle's: a left-out angle counts
+    with its interpolated value), one value, one name in summary.json."""
+    from mechreport.report.model import index_row
+    a = mechreport.analyse(path)
+    m = build_model(a)
+    s = m.summary
+    q = s["quantities"]
+    t = s["driver_torque"]
+    if a.review is None:
+        return
+    effort = "driver.force" if t["unit"] == "N" else "driver.torque"
+    for stat in ("mean", "rms"):
+        assert t[stat] == q[f"cycle.torque.{stat}"]["value"], stat
+        assert f"{effort}.{stat}" not in q            # one name per quantity
+    assert s["mean_power"]["value"] == pytest.approx(q["cycle.power.mean"]["value"],
+                                                     rel=1e-12, abs=1e-9)
+    assert "driver.power.mean" not in q
+    data = index_row(s, "x")["data"]
+    rms = data["rms_torque_N_m"] if t["unit"] != "N" else data["rms_driver_force_N"]
+    assert rms == t["rms"]
+    st = a.sweep_summary().torque
+    assert st.rms == a.review.values["cycle.torque.rms"]
+    assert st.mean == a.review.values["cycle.torque.mean"]
+
+
+def test_slider_crank_left_out_dead_centres_give_one_rms_torque_in_the_report():
+    from mechreport.report.render import render
+    a = mechreport.analyse(ROOT / "specs" / "slider_crank.yaml")
+    assert a.flags                                   # the dead centres are left out
+    text = render("report.md.j2", m=build_model(a))
+    design = [l for l in text.splitlines() if "`cycle.torque.rms`" in l]
+    sweep = [l for l in text.splitlines() if l.startswith("| RMS |")]
+    assert design and sweep
+    value = design[0].rsplit("|", 2)[1].strip()
+    assert sweep[0] == f"| RMS | {value} |"

@@ -397,7 +397,7 @@ def test_diff_prints_changed_quantities_as_markdown(two_builds):
     assert "| spec | quantity | old | new | change |" in lines
     changed = [l for l in lines if l.startswith("| b |")]
     assert changed and not [l for l in lines if l.startswith("| a |")]
-    assert any("driver.torque.rms" in l for l in changed)
+    assert any("cycle.torque.rms" in l for l in changed)
     loose = run("diff", two_builds["out1"], two_builds["out2"], "--rtol", "10")
     assert loose.returncode == 0
     bad = run("diff", two_builds["d"] / "nowhere", two_builds["out2"])
