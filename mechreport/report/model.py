@@ -1071,8 +1071,8 @@ def _design(analysis, d: Display) -> DesignSummary:
     bearings: dict[str, list[str]] = {}
     attrs = ["f_max", "f_mean", "f_equivalent", "life_h"]
     for name, value in rev.values.items():       # per joint: bearing loads and lives
-        if name.startswith("joint."):
-            _, joint, attr = name.split(".", 2)
+        if name.startswith("joint."):     # joint.C.on.upper.f_max: a pin's force on a link
+            joint, attr = name[len("joint."):].rsplit(".", 1)
             row = bearings.setdefault(joint, [joint] + [DASH] * len(attrs))
             if attr in attrs:
                 row[1 + attrs.index(attr)] = d.num(value, kind_of(unit_of(name)))

@@ -103,3 +103,17 @@ def test_slider_crank_left_out_dead_centres_give_one_rms_torque_in_the_report():
     assert design and sweep
     value = design[0].rsplit("|", 2)[1].strip()
     assert sweep[0] == f"| RMS | {value} |"
+
+
+def test_a_pin_joining_three_links_has_its_loads_in_the_design_summary():
+    """toggle_press's pin C joins three links: its row was empty (`C — — — —`) although
+    summary.json has joint.C.on.<link>.f_max; each of its links' loads is a row."""
+    m = build_model(mechreport.analyse(ROOT / "specs" / "toggle_press.yaml"))
+    rows = {r[0]: r for r in m.design.bearings}
+    assert "C" not in rows
+    cycle = m.summary["design"]["cycle"]
+    for link in ("pullrod", "upper", "lower"):
+        row = rows[f"C.on.{link}"]
+        assert all(cell != "—" for cell in row[1:4]), row
+        assert f"joint.C.on.{link}.f_max" in cycle
+    assert not [r for r in m.design.bearings if all(c == "—" for c in r[1:])]
