@@ -10,6 +10,12 @@ largest force times the mechanism's size (:attr:`Spec.size`), whichever is large
 force [N] the largest force or the largest moment over the size. A quantity that is round-off
 next to the real loads (every moment of a mechanism whose forces all pass through its pins)
 is then judged as zero, never as a disagreement.
+
+The driver's effort is the exception where its value is not zero by construction: where any
+known action requires a resolvable share of it (``resolvable`` [N m or N], from
+:func:`mechreport.forces.power.resolvable_effort`), that share sets its floor instead. A
+torque of 13 N m from a piston's load, lost in the rounding of a 1e20 kg crank's 1e19 N
+inertia forces, is then a disagreement (its value cannot be trusted), not round-off.
 """
 from __future__ import annotations
 
@@ -42,10 +48,12 @@ class Agreement:
     n_methods: int
 
 
-def agreement(results: dict[str, ForceResult], size: float = 0.0) -> list[Agreement]:
+def agreement(results: dict[str, ForceResult], size: float = 0.0,
+              resolvable: float = 0.0) -> list[Agreement]:
     """One entry per quantity computed by at least two methods, worst first; ``size`` [m]
-    the mechanism's characteristic length (0: forces and moments are scaled apart)."""
-    return finish(spreads(results), size)
+    the mechanism's characteristic length (0: forces and moments are scaled apart);
+    ``resolvable`` the driver effort's resolvable scale (see the module docstring)."""
+    return finish(spreads(results), size, resolvable)
 
 
 @dataclass(frozen=True)
@@ -139,9 +147,12 @@ def load_scales(tops: dict[str, float], size: float) -> dict[str, float]:
     return {"force": max(force, moment / size), "moment": max(moment, force * size)}
 
 
-def finish(parts: Spreads, size: float = 0.0) -> list[Agreement]:
+DRIVER_QUANTITIES = ("driver.torque", "driver.force")
+
+
+def finish(parts: Spreads, size: float = 0.0, resolvable: float = 0.0) -> list[Agreement]:
     """The agreement table from the spreads over the whole sweep, worst first; ``size`` [m]
-    as for :func:`agreement`."""
+    and ``resolvable`` as for :func:`agreement`."""
     kinds = {q: _kind(q) for q in parts}
     tops: dict[str, float] = {}
     for q, s in parts.items():
@@ -151,7 +162,8 @@ def finish(parts: Spreads, size: float = 0.0) -> list[Agreement]:
     for q, s in parts.items():
         if s.n_methods < 2:
             continue
-        scale = max(s.top, SCALE_FLOOR * kind_scale[kinds[q]])
+        load = resolvable if q in DRIVER_QUANTITIES and resolvable > 0 else kind_scale[kinds[q]]
+        scale = max(s.top, SCALE_FLOOR * load)
         if not (math.isfinite(s.spread) and math.isfinite(scale)):   # Python floats
             rel = float("inf")
         else:

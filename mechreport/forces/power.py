@@ -58,6 +58,37 @@ def power_equation(ctx: ForceContext) -> Equation:
     return Equation(label, "power", tuple(l.name for l in ctx.spec.links), terms)
 
 
+#: a known action's power below this share of |its value| x |the rate it works on| is a
+#: cancellation (an inertia force normal to its point's velocity): rounding, not a share
+RESOLVED = 1e-9
+
+
+def resolvable_effort(ctx: ForceContext) -> float:
+    """The largest driver effort [N m, or N for a T driver] that any one known action
+    (a load, a weight, an inertia force or couple, a friction) requires at any angle, counting
+    an action only where its power is resolvable (see ``RESOLVED``). 0 when no action's is:
+    the effort is then zero by construction (a balanced rotor at constant speed: its inertia
+    force is normal to its centre's velocity), whatever rounding its computed value carries.
+    The agreement check reads it (:mod:`mechreport.checks.agreement`)."""
+    eq = power_equation(ctx)
+    driver, known = eq.terms[0], eq.terms[1:]
+    rate = np.abs(np.asarray(driver.rate, float))
+    best = 0.0
+    with np.errstate(all="ignore"):
+        for term in known:
+            value, along = term.action.value, term.rate
+            if value is None or along is None:
+                continue
+            size = (np.hypot(value[:, 0], value[:, 1]) if np.ndim(value) == 2 else
+                    np.abs(value)) * (np.hypot(along[:, 0], along[:, 1]) if np.ndim(along) == 2
+                                      else np.abs(along))
+            power = np.abs(term.const)
+            ok = (power > RESOLVED * size) & (rate > 0) & np.isfinite(power)
+            if ok.any():
+                best = max(best, float(np.max(power[ok] / rate[ok])))
+    return best
+
+
 def _friction_terms(ctx: ForceContext, rates) -> list[Term]:
     """The power each joint's friction dissipates: its value on the second link times the
     second link's rate relative to the first (omega_rel for a couple, v_rel for a force)."""

@@ -23,6 +23,7 @@ from ..forces.friction import with_friction
 from ..forces.context import LinkState
 from ..forces.equations import Action
 from ..forces.loads import undefined_directions
+from ..forces.power import resolvable_effort
 from ..kinematics import EPS, TRUST_RTOL, Flag, Kinematics, solve_kinematics
 from ..kinematics.frames import scaled
 from ..linalg import SINGULAR_COND
@@ -188,10 +189,10 @@ class Analysis(Checked):
     def to_dataframe(self):
         """Every result as a pandas DataFrame (``pip install 'mechreport[pandas]'``): one
         row per angle of the sweep, indexed by the sweep coordinate
-        (``crank_angle [deg]``), a ``flag`` column giving why an angle was left out (its
+        (``crank_angle [deg]``, or a T driver's ``stroke [mm]``), a ``flag`` column giving why an angle was left out (its
         row is NaN then), and one column per quantity named with its SI unit, as in
         results.csv: ``crank.omega [rad/s]``, ``dyad.joint.B.fx [N]``,
-        ``newton_euler.driver.torque [N m]`` ..."""
+        ``newton_euler.driver.torque [N·m]`` ..."""
         try:
             import pandas as pd
         except ImportError:
@@ -205,7 +206,7 @@ class Analysis(Checked):
             values = np.full(len(angles), np.nan)
             values[rows >= 0] = c.values[rows[rows >= 0]]
             data[c.name] = values
-        index = pd.Index(np.array(angles, float), name="crank_angle [deg]")
+        index = pd.Index(np.array(angles, float), name=self.spec.axis_column)
         return pd.DataFrame(data, index=index)
 
     def notes(self) -> list[str]:
@@ -256,10 +257,11 @@ def analysis_of(mech: Mechanism, kin: Kinematics, methods=None, tol: float = DEF
             rev = replace(rev, values={**rev.values, **extra})
         values = rev.values if rev is not None else (extra or None)
         res = residuals(ctx, forces)
+        effort = resolvable_effort(ctx)
         strength = strength_of(ctx, forces)
     members = strength.values if strength is not None else None
     ctx.cache.clear()   # the actions and equations the methods shared: rebuilt if asked for
-    return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces, spec.size), res,
+    return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces, spec.size, effort), res,
                     check_expectations(kin, forces, kin.flags, values, why,
                                        _instant(spec, kin), members), tol, rev, why,
                     tuple(verdicts(spec.design, values, why, members,

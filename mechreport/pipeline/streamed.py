@@ -29,6 +29,7 @@ from ..checks.agreement import finish, merge, spreads
 from ..checks.trust import bounds, inputs_of, judged
 from ..checks.expectations import at_angle, check_cycle, judge, left_out
 from ..forces import METHODS, PROBES, ForceContext, sweep_choices
+from ..forces.power import resolvable_effort
 from ..forces.result import slider_point
 from ..kinematics import Flag
 from ..kinematics.result import jam_note, reversal_note
@@ -99,6 +100,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     timed = [(i, e) for i, e in enumerate(spec.expect) if e.angle is not None]
     strength = None                       # the members' extremes, merged chunk by chunk
     off_sweep, swept = spec.off_sweep_angles(), False    # a sweep angle is left (not only `at`)
+    effort = 0.0                          # the driver effort's resolvable scale (agreement)
     for kin in chunks:
         if kin.n:
             kin, ctx, forces = solve_trusted(kin, names, memo)
@@ -109,6 +111,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
         swept = swept or sweep_angles_left(kin.angles, off_sweep)
         reversed_at += kin.reversed_by_friction
         parts = merge(parts, spreads(forces))
+        effort = max(effort, resolvable_effort(ctx))
         for r in residuals(ctx, forces):
             w = worst.setdefault(r.method, [0.0, 0.0])
             w[0], w[1] = max(w[0], r.force), max(w[1], r.moment)
@@ -166,7 +169,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     for (name, kind), b in trust.items():
         found.setdefault(name, {})[kind] = b
     untrusted = {name: judged(b, tol, name, spec.axis_unit) for name, b in found.items()}
-    return SweepCheck(spec, n, tuple(flags), finish(parts, spec.size),
+    return SweepCheck(spec, n, tuple(flags), finish(parts, spec.size, effort),
                       [Residual(m, f, mo) for m, (f, mo) in worst.items()], expectations, tol,
                       values, why, tuple(verdicts(spec.design, values, why, members,
                                          undefined_reasons(spec))),

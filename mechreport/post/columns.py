@@ -106,18 +106,20 @@ def result_columns(kin, forces: dict, scale: dict[str, float]) -> list[Column]:
     if np.isfinite(transmission).any():
         add("transmission_angle [deg]", transmission, "angle")
     for m, res in forces.items():
-        add(f"{m}.driver.torque [N m]", res.driver_torque, "moment")
+        effort = ("driver.torque [N·m]", "moment") if spec.driver.kind == "R" else \
+            ("driver.force [N]", "force")
+        add(f"{m}.{effort[0]}", res.driver_torque, effort[1])
         for name in spec.reported_reactions():
             r = res.reactions.get(name)
             if r is None:
                 continue
             for attr, unit, kind in (("fx", "N", "force"), ("fy", "N", "force"),
-                                     ("moment", "N m", "moment"), ("px", "m", "length"),
+                                     ("moment", "N·m", "moment"), ("px", "m", "length"),
                                      ("py", "m", "length")):
                 v = getattr(r, attr)
                 if v is not None:
                     add(f"{m}.joint.{name}.{attr} [{unit}]", v, kind)
             if r.friction is not None:     # a couple in an R joint, a force in a T joint
-                add(f"{m}.joint.{name}.friction [{'N m' if r.type == 'R' else 'N'}]",
+                add(f"{m}.joint.{name}.friction [{'N·m' if r.type == 'R' else 'N'}]",
                     r.friction, "moment" if r.type == "R" else "force")
     return out

@@ -708,7 +708,7 @@ def _csv(analysis) -> tuple[list[str], list[list[str]]]:
         cells = ([""] * len(names) if k is None else
                  [f"{v:.10g}" if math.isfinite(v) else "" for v in data[k].tolist()])
         rows.append([deg(a), why, *cells])
-    return ["crank_angle [deg]", "flag", *names], rows
+    return [analysis.spec.axis_column, "flag", *names], rows
 
 
 def _peak_json(p: q.Peak | None, unit: str, scale: float | None = None) -> dict | None:
@@ -722,6 +722,7 @@ def _summary(analysis, summary: SweepSummary, sw: SweepData, status_line: str,
     ref = summary.method
     F, M = sc["force"], sc["moment"]
     EU, ES = ("N", F) if sw.effort == "force" else ("N·m", M)   # a T driver pushes
+    effort_key = "driver_force" if sw.effort == "force" else "driver_torque"
     largest = summary.largest
     refs = {}
     for angle in analysis.spec.at:
@@ -729,13 +730,12 @@ def _summary(analysis, summary: SweepSummary, sw: SweepData, status_line: str,
         if k is None:
             continue
         refs[deg(angle)] = {
-            "driver_torque": {m: jnum(r.driver_torque[k], ES)
-                              for m, r in analysis.forces.items()},
+            effort_key: {m: jnum(r.driver_torque[k], ES) for m, r in analysis.forces.items()},
             "reactions": {j: {m: {"fx": jnum(r.reactions[j].fx[k], F),
                                   "fy": jnum(r.reactions[j].fy[k], F)}
                               for m, r in analysis.forces.items() if j in r.reactions}
                           for j in symbols},
-            "units": {"driver_torque": EU, "reactions": "N"}}
+            "units": {effort_key: EU, "reactions": "N"}}
     w = analysis.worst
     cycle = analysis.review.values if analysis.review is not None else {}
     if analysis.strength is not None:   # the members' quantities: key figures too (diff)
@@ -752,7 +752,7 @@ def _summary(analysis, summary: SweepSummary, sw: SweepData, status_line: str,
         "reference_method": ref, "n_angles": int(analysis.kinematics.n),
         "units": {"force": "N", "torque": "N·m", "moment": "N·m", "power": "W",
                   "length": "m", "angle": "deg", "note": "summary.json and results.csv are SI"},
-        "driver_torque": None if st is None else {
+        effort_key: None if st is None else {
             "unit": EU, "mean": jnum(st.mean, ES), "rms": jnum(st.rms, ES),
             "peak": _peak_json(st.peak, EU, ES), "min": _peak_json(st.low, EU, ES),
             "max": _peak_json(st.high, EU, ES)},
@@ -885,7 +885,7 @@ def check_failure_reason(s: dict) -> str:
 def index_row(model_summary: dict, stem: str) -> dict:
     """One index row (index.md/pdf/csv/json) from a report's summary.json."""
     s = model_summary
-    t = s.get("driver_torque") or {}
+    t = s.get("driver_torque") or s.get("driver_force") or {}
     big = s.get("largest_bearing_load")
     w = (s.get("agreement") or {}).get("worst")
     verdicts = ((s.get("design") or {}).get("verdicts")) or []

@@ -458,6 +458,13 @@ class Spec:
         return "deg" if self.driver.kind == "R" else self.units["length"]
 
     @property
+    def axis_column(self) -> str:
+        """The sweep coordinate's column name in results.csv and ``to_dataframe()``:
+        ``crank_angle [deg]``, ``relative_angle [deg]`` (an R driver between two moving
+        links) or ``stroke [mm]`` (a T driver's, in the spec's length unit)."""
+        return f"{self.driver.coordinate.replace(' ', '_')} [{self.axis_unit}]"
+
+    @property
     def idle_friction(self) -> tuple[str, ...]:
         """The joints (as written) whose friction entry acts nowhere: at rest (the driver's
         speed 0) no joint moves, and friction acts only where ``friction_sense`` says which

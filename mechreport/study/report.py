@@ -65,7 +65,7 @@ def key_unit(path: tuple, units: dict[str, str], loads: list | None = None) -> s
             return length
         if "shape" in names:
             return length
-        return {"mass": mass, "density": "kg/m^3", "inertia": "kg m^2"}.get(last, "")
+        return {"mass": mass, "density": "kg/m^3", "inertia": "kg·m^2"}.get(last, "")
     if head == "joints":
         return length if "through" in names else ""
     if head == "driver":

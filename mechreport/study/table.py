@@ -7,7 +7,7 @@ Columns (study.parquet and study.csv):
 - ``variant``: 1, 2, ... in plan order;
 - one per varied key, named by the key as written (``links.coupler.points.C.0``), in the
   spec's own units;
-- one per kept quantity, ``<quantity> [<SI unit>]`` (``cycle.torque.rms [N m]``);
+- one per kept quantity, ``<quantity> [<SI unit>]`` (``cycle.torque.rms [N·m]``);
 - ``design_pass``: every item of the spec's ``design`` passed (true when it has none; empty
   when the variant failed), ``design_failed``: the items that did not (``; ``-separated);
 - ``status``: ``ok`` or ``failed``; ``reason``: why it failed, or why a kept quantity is
@@ -37,8 +37,8 @@ def larger_is_better(quantity: str) -> bool:
 
 
 def quantity_unit(quantity: str) -> str:
-    """The quantity's SI unit, ASCII as in results.csv (``N m``); "" when it has none."""
-    return (unit_of(quantity) or "").replace("·", " ")
+    """The quantity's SI unit as every output spells it (``N·m``); "" when it has none."""
+    return unit_of(quantity) or ""
 
 
 def with_unit(label: str, unit: str) -> str:
@@ -46,7 +46,7 @@ def with_unit(label: str, unit: str) -> str:
 
 
 def column_name(quantity: str) -> str:
-    """``cycle.torque.rms [N m]``: the quantity and its SI unit (ASCII, as results.csv)."""
+    """``cycle.torque.rms [N·m]``: the quantity and its SI unit (as results.csv)."""
     return with_unit(quantity, quantity_unit(quantity))
 
 

@@ -249,7 +249,7 @@ def test_study_keys_and_quantities_with_a_dollar_are_drawn_literally(tmp_path):
     first = (tmp_path / "quantity-1.svg").read_text(encoding="utf-8")
     assert literally(key) in first and literally(quantity) in first
     pareto = (tmp_path / "pareto.svg").read_text(encoding="utf-8")
-    assert literally(quantity) in pareto and literally("cycle.torque.rms [N m]") in pareto
+    assert literally(quantity) in pareto and literally("cycle.torque.rms [N·m]") in pareto
     assert set(figures) == {"quantity-1", "quantity-2", "pareto"}
     for name in figures:
         assert maths((tmp_path / f"{name}.svg").read_text(encoding="utf-8")) == []

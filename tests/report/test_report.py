@@ -126,8 +126,8 @@ def test_csv_has_a_row_per_angle_and_empty_cells_for_left_out_angles(built, anal
     rows = list(csv.DictReader(read(built, "4.6", "results.csv").splitlines()))
     assert len(rows) == 360                                 # 358 solved + 90 and 270
     by_angle = {float(r["crank_angle [deg]"]): r for r in rows}
-    assert by_angle[90.0]["flag"] and by_angle[90.0]["dyad.driver.torque [N m]"] == ""
-    assert float(by_angle[45.0]["dyad.driver.torque [N m]"]) == pytest.approx(
+    assert by_angle[90.0]["flag"] and by_angle[90.0]["dyad.driver.torque [N·m]"] == ""
+    assert float(by_angle[45.0]["dyad.driver.torque [N·m]"]) == pytest.approx(
         3 + 105 * math.sqrt(2), abs=1e-7)
     assert float(by_angle[45.0]["newton_euler.joint.A.fx [N]"]) == pytest.approx(
         -2 * (50 + math.sqrt(2)), abs=1e-7)

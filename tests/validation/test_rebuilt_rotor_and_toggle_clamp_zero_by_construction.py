@@ -175,3 +175,29 @@ def test_a_real_disagreement_in_a_small_moment_still_fails():
     assert worst.relative == pytest.approx(0.1 / 5.0)
     tiny = {**parts, "driver.torque": Spread(1e-13, ("a", "b"), 10.0, 1e-13, 2)}
     assert finish(tiny, size=0.5)[0].relative < 1e-12
+
+
+def test_a_real_torque_lost_in_huge_inertia_forces_is_still_a_disagreement():
+    """The other side of the load scale: a 1e20 kg crank under 1e-20 gravity turns a piston
+    whose load needs about 13 N·m; the crank's 1e19 N inertia forces swamp that torque in
+    rounding (the methods give 5 to 95 N·m). The piston's load requires a resolvable share
+    of the torque, so the torque is no round-off: the check fails, in memory and streamed."""
+    from mechreport.forces.power import resolvable_effort
+    from mechreport.pipeline.streamed import check_sweep
+    from mechreport.spec import parse_spec
+    root = Path(__file__).resolve().parents[2]
+    text = (root / "specs" / "offset_slider_crank.yaml").read_text(encoding="utf-8")
+    text = text[:text.index("study:")]
+    heavy = text.replace("    mass: 600                     # g, web and counterweight",
+                         "    mass: 1e20").replace("gravity: [0, -9.81]", "gravity: [0, -1e-20]")
+    assert heavy.count("1e20") == 1 and "-1e-20" in heavy
+    a = mechreport.analyse(heavy)
+    assert not a.passed and a.worst.quantity == "driver.torque"
+    assert not check_sweep(parse_spec(heavy, "heavy.yaml"), chunk=100).passed
+    assert resolvable_effort(a._context) > 1.0
+
+
+def test_a_balanced_rotor_has_no_resolvable_effort(tmp_path):
+    from mechreport.forces.power import resolvable_effort
+    _, a = _analysed(tmp_path, ROTOR, "rotor")
+    assert resolvable_effort(a._context) == 0.0
