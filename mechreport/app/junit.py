@@ -9,13 +9,13 @@ from ..report.files import atomic_write_bytes
 
 
 def junit_cases(path, result, tol: float) -> tuple[str, list[tuple[str, str | None]]]:
-    """(spec, [(test case name, failure message or None)]): the spec's overall check, each
-    expectation (once, however many methods computed it) and each design verdict."""
+    """(spec, [(test case name, failure message or None)]): each expectation (once, however
+    many methods computed it), each design verdict, the methods' agreement (over a machine-
+    dynamics steady turn too), and the spec's overall ``check``, which fails only for a
+    reason no other case states: every failure is counted once."""
     bad = {(f["angle_deg"], f["quantity"], f["expected"]): f
            for f in failed_expectations(result)}
     cases: list[tuple[str, str | None]] = []
-    lines = problems(result, tol)
-    cases.append(("check", None if result.passed else "; ".join(lines) or "failed"))
     seen = set()
     for e in result.expectations:
         key = (e.expect.angle, e.expect.quantity, e.expect.value)
@@ -32,6 +32,14 @@ def junit_cases(path, result, tol: float) -> tuple[str, list[tuple[str, str | No
         w = result.worst
         cases.append(("methods agree",
                       None if w.relative <= tol else f"{w.quantity}: {w.relative:.1e} > {tol:g}"))
+    steady = getattr(getattr(result, "dynamics", None), "steady", None)
+    if steady is not None and steady.worst is not None:
+        w = steady.worst
+        cases.append(("methods agree over the steady turn",
+                      None if w.relative <= tol else f"{w.quantity}: {w.relative:.1e} > {tol:g}"))
+    stated = any(message is not None for _, message in cases)
+    unstated = not result.passed and not stated
+    cases.insert(0, ("check", "; ".join(problems(result, tol)) or "failed" if unstated else None))
     return str(path), cases
 
 

@@ -243,13 +243,13 @@ def test_check_junit_has_a_case_per_spec_expectation_and_verdict(tmp_path):
     suites = {s.get("name"): s for s in root.iter("testsuite")}
     assert set(suites) == {str(bad), "specs/four_bar.yaml"}
     cases = {c.get("name"): c for c in suites[str(bad)].iter("testcase")}
-    assert cases["check"].find("failure") is not None
+    assert cases["check"].find("failure") is None    # the expectation's case states it
     fail = cases["expect driver.torque at 45 deg"].find("failure")
     assert "expected 150 N·m, computed 151.49 N·m" in fail.get("message")
     good = {c.get("name"): c for c in suites["specs/four_bar.yaml"].iter("testcase")}
     assert "design motor.rated_torque" in good and "expect point.C.x at 30 deg" in good
     assert all(c.find("failure") is None for c in good.values())
-    assert int(root.get("failures")) == 2
+    assert int(root.get("failures")) == 1              # one failed expectation, counted once
 
 
 # ------------------------------------------------------------------------------ drawing
@@ -426,3 +426,20 @@ def test_solution_sheet_shows_results_in_the_report_units():
     assert "| M (driver) |  |  |  | 151500 N·mm |" in md
     si = render_markdown(build_sheet(analyse(SLIDER)))
     assert "Results in the report's units" not in si          # SI: nothing to repeat
+
+
+def test_junit_counts_each_failure_once(tmp_path):
+    """Three failed expectations and a missed verdict were counted as five failures (the
+    spec's summary case as well as each of its own)."""
+    from mechreport.app.junit import junit_cases
+    text = Path("specs/four_bar.yaml").read_text(encoding="utf-8")
+    text = text.replace("{rated_torque: 3,", "{rated_torque: 0.001,", 1)
+    assert "rated_torque: 0.001" in text
+    a = analyse(parse_spec(text, "x.yaml"))
+    assert not a.passed
+    _, cases = junit_cases("x.yaml", a, 1e-6)
+    failed = [name for name, message in cases if message is not None]
+    missed = [v for v in a.verdicts if not v.passed]
+    assert len(failed) == len(missed) + len({(e.expect.angle, e.expect.quantity)
+                                             for e in a.expectations if not e.ok})
+    assert "check" not in failed
