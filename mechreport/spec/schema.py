@@ -155,8 +155,9 @@ def _magnitude(x: float) -> float:
     return x
 
 
-# in JSON Schema: not (a nonzero number of magnitude below NUMBER_MIN)
-_NOT_TINY = _JsonExtra((("not", {"exclusiveMinimum": -NUMBER_MIN,
+# in JSON Schema: not (a nonzero number of magnitude below NUMBER_MIN); "type" inside, so
+# that a value of another type (text) is refused by its type alone, not a second time here
+_NOT_TINY = _JsonExtra((("not", {"type": "number", "exclusiveMinimum": -NUMBER_MIN,
                                  "exclusiveMaximum": NUMBER_MIN, "not": {"const": 0}}),))
 _RANGE = (f"between {-NUMBER_MAX:g} and {NUMBER_MAX:g}, zero or at least {NUMBER_MIN:g} in "
           "magnitude")

@@ -425,3 +425,16 @@ def test_the_models_and_the_json_schema_agree_with_the_loader_on_mutated_specs(v
                 parse_spec(text, FILE)
 
     agree()
+
+
+def test_a_value_of_the_wrong_type_gets_one_message_not_two():
+    """'heavy' for a mass was refused twice: by its type, and by the range check's `not`
+    ("'heavy' should not be valid under {'exclusiveMaximum': 1e-20, ...}")."""
+    import jsonschema
+    from mechreport.spec.yaml_source import Source
+    schema = json.loads(PUBLISHED.read_text(encoding="utf-8"))
+    text = (ROOT / "specs" / "four_bar.yaml").read_text(encoding="utf-8")
+    text = text.replace("mass: 220", "mass: heavy", 1)
+    assert "mass: heavy" in text
+    errors = list(jsonschema.Draft202012Validator(schema).iter_errors(Source("x", text).data))
+    assert [e.message for e in errors] == ["'heavy' is not of type 'number'"]
