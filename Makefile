@@ -3,19 +3,25 @@ PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+TEST_STAMP := $(VENV)/.installed-test
 
 .PHONY: report test check bench bench-build clean
 
+# `make report` installs mechreport alone; `make test` adds the test tools (pytest, dask ...)
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test]'
+	$(BIN)/python -m pip install --quiet -e .
 	touch $(STAMP)
+
+$(TEST_STAMP): $(STAMP)
+	$(BIN)/python -m pip install --quiet -e '.[test]'
+	touch $(TEST_STAMP)
 
 report: $(STAMP)
 	$(BIN)/mechreport build specs -o out
 
-test: $(STAMP)
+test: $(TEST_STAMP)
 	$(BIN)/lint-imports
 	OPENBLAS_NUM_THREADS=1 $(BIN)/python -m pytest -n 2
 	$(BIN)/mechreport check specs
@@ -23,10 +29,10 @@ test: $(STAMP)
 check: $(STAMP)
 	$(BIN)/mechreport check specs
 
-bench: $(STAMP)
+bench: $(TEST_STAMP)
 	$(BIN)/python bench/bench_methods.py
 
-bench-build: $(STAMP)
+bench-build: $(TEST_STAMP)
 	$(BIN)/python bench/bench_build.py
 
 clean:
