@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+import textwrap
 
 from ..errors import MechreportError, SpecError, internal_error
 from .console import print_traceback_if_debug
@@ -114,6 +115,13 @@ _number_above_0 = _checked(float, lambda v: math.isfinite(v) and v > 0, "a finit
 _seconds = _checked(float, lambda v: math.isfinite(v) and v >= 0, "a number of seconds >= 0")
 
 
+def _filled(text: str, width: int = 79) -> str:
+    """``text``'s paragraphs (separated by blank lines) filled to ``width`` columns: a
+    terminal of 80 columns shows help text without wrapping it again."""
+    return "\n\n".join(textwrap.fill(" ".join(par.split()), width)
+                       for par in text.split("\n\n"))
+
+
 BUILD_EPILOG = """\
 exit status: 0 if every spec was built and passed its check; 1 if any spec failed to build,
 or was built but failed its check (expectations or method agreement: the report and the
@@ -148,10 +156,11 @@ Writes OUT/<name>/study.parquet, study.csv (one row per variant), study.md and s
 def _add_study_parser(sub) -> None:
     from ..forces import METHODS
     p = sub.add_parser("study", help="run many variants of a spec (its study: section)",
-                       description="Run the variants that the spec's study: section describes "
-                       "(one force method each), tabulate their cycle quantities and design "
-                       "verdicts, and write the table and a study report.",
-                       epilog=STUDY_EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+                       description=textwrap.fill(
+                           "Run the variants that the spec's study: section describes (one "
+                           "force method each), tabulate their cycle quantities and design "
+                           "verdicts, and write the table and a study report.", 79),
+                       epilog=_filled(STUDY_EPILOG), formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--out", default="out", help="output folder (default: out)")
     p.add_argument("--method", choices=list(METHODS), default=None,
@@ -192,7 +201,11 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("specs", nargs="+", metavar="SPEC|DIR")
     p.set_defaults(func=_cmd_validate)
 
-    p = sub.add_parser("kin", help="print positions, velocities, accelerations")
+    p = sub.add_parser("kin", help="print positions, velocities, accelerations",
+                       description="Print the positions, velocities and accelerations of every "
+                       "named point and every link at the given crank angles, each dyad's "
+                       "branch, and any angle left out with its reason. Exit status 1 if the "
+                       "spec cannot be read or assembled.")
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("--angle", type=_finite_number, action="append",
                    help="crank angle in degrees (repeatable; default: the spec's `at`)")
@@ -212,7 +225,7 @@ def main(argv: list[str] | None = None) -> int:
 
     p = sub.add_parser("build", help="write Markdown and PDF reports",
                        description="Write a Markdown and PDF report per spec, and an index.",
-                       epilog=BUILD_EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+                       epilog=_filled(BUILD_EPILOG), formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("specs", nargs="+", metavar="SPEC|DIR")
     p.add_argument("-o", "--out", default="out", help="output folder (default: out)")
     p.add_argument("--jobs", type=_int_at_least_1, default=None,

@@ -1,0 +1,25 @@
+"""Every command describes itself in `--help`, wrapped for a terminal (issue 41, point 10:
+`kin` had no description; `study`'s ran on one 200-character line)."""
+from __future__ import annotations
+
+import pytest
+
+from mechreport.app.cli import main
+
+COMMANDS = ["validate", "kin", "check", "build", "diff", "dynamics", "study", "schema"]
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+def test_every_command_describes_itself_in_lines_a_terminal_shows(command, capsys,
+                                                                  monkeypatch):
+    monkeypatch.setenv("COLUMNS", "80")
+    with pytest.raises(SystemExit) as done:
+        main([command, "--help"])
+    assert done.value.code == 0
+    text = capsys.readouterr().out
+    blocks = text.split("\n\n")
+    assert blocks[0].startswith(f"usage: mechreport {command}")
+    description = blocks[1]
+    assert not description.startswith(("positional arguments", "options")), command
+    assert len(description.split()) >= 5, command
+    assert max(len(line) for line in text.splitlines()) <= 80, command
