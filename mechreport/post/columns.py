@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..checks.agreement import load_scales
 from ..units import ZERO_RTOL
 from .transmission import smallest_transmission_angle
 
@@ -46,7 +47,14 @@ def scales(kin, forces: dict, loads) -> dict[str, float]:
     """Largest magnitude [SI] of each kind of quantity of an analysis (kinematics ``kin``,
     ``forces`` by method, the applied ``loads``): a value below ``ZERO_RTOL`` of it is
     round-off. Kinds: length, velocity, acceleration, force, moment, omega, alpha, angle,
-    mass, inertia."""
+    mass, inertia.
+
+    Forces and moments share one load scale through the mechanism's size (``Spec.size``,
+    the agreement check's :func:`~mechreport.checks.agreement.load_scales`): a moment is
+    measured against the largest moment and the largest force times the size, a force
+    against the largest force and the largest moment over the size; so that a moment that
+    is round-off next to the forces (a static press's shaking moment, 1e-13 N m beside
+    20 kN) is 0."""
     spec = kin.mechanism.spec
     pts = [kin.named_point(p, o) for p, o in spec.named_points()]
     coms = [kin.com(l.name) for l in spec.links]
@@ -61,10 +69,11 @@ def scales(kin, forces: dict, loads) -> dict[str, float]:
         (fs if ld.force is not None else moments).append(
             ld.force if ld.force is not None else ld.moment)
     ground = [np.asarray(list(spec.ground.values()), float)] if spec.ground else []
+    loads = load_scales({"force": _top(*fs), "moment": _top(*moments)}, spec.size)
     return {"length": _top(*[p.r for p in pts], *ground),
             "velocity": _top(*[p.v for p in pts], *[c.v for c in coms]),
             "acceleration": _top(*[p.a for p in pts], *[c.a for c in coms]),
-            "force": _top(*fs), "moment": _top(*moments),
+            "force": loads["force"], "moment": loads["moment"],
             "omega": _top(kin.omega), "alpha": _top(kin.alpha), "angle": 360.0,
             "mass": _top(np.array([l.mass for l in spec.links])),
             "inertia": _top(np.array([l.inertia for l in spec.links]))}
