@@ -17,6 +17,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
 #: significant digits of every number a person reads (reports, plots, index, terminal)
 SIG_DIGITS = 4
 #: solution sheets are worked equations checked by hand against the textbook: more digits,
@@ -102,6 +104,17 @@ def clean(x: float, scale: float | None = None) -> float:
     return x
 
 
+def all_round_off(values, scale: float | None) -> bool:
+    """Every finite value of ``values`` (a number or an array) is 0 or round-off of its
+    quantity (``|x| <= ZERO_RTOL * scale``): what :func:`fmt` prints as ``0`` everywhere
+    (a figure of such values has nothing to show). Undefined values (NaN) are skipped."""
+    v = np.abs(np.asarray(values, float)).ravel()
+    v = v[np.isfinite(v)]
+    if not v.size:
+        return True
+    return bool(v.max() <= (ZERO_RTOL * abs(scale) if scale is not None else 0.0))
+
+
 @dataclass(frozen=True)
 class Display:
     """How values are shown: the unit of each base kind (keys of ``report.units``), and the
@@ -143,6 +156,11 @@ class Display:
         scale = self.scales.get(kind)
         f = self.factor(kind)
         return fmt(float(x) * f, digits, None if scale is None else scale * f)
+
+    def zero(self, values, kind: str) -> bool:
+        """Every value of ``values`` [SI] prints as 0: round-off of ``kind`` in this analysis
+        (:func:`all_round_off`)."""
+        return all_round_off(values, self.scales.get(kind))
 
     def q(self, x, kind: str, digits: int = SIG_DIGITS) -> str:
         """``x`` [SI] converted, formatted, with its unit: ``155.3 N``, ``0.0433 m``."""

@@ -363,3 +363,98 @@ def test_reference_lines_of_a_stroke_sweep_name_the_stroke():
     with plots.style():
         fig = plots.torque_figure(m.sweep, m.display)
     assert "stroke 300 mm" in texts_of(fig)
+
+
+# ------------------------------------------------- at rest: figures with nothing to show
+
+STATIC = [ROOT / "specs" / "static_press.yaml", ROOT / "specs" / "toggle_press.yaml"]
+
+
+def legend_texts(fig) -> list[str]:
+    return [t.get_text() for ax in fig.axes if ax.get_legend() is not None
+            for t in ax.get_legend().get_texts()]
+
+
+@pytest.mark.parametrize("spec", STATIC, ids=[p.stem for p in STATIC])
+def test_at_rest_specs_leave_out_the_flywheel_and_balance_figures_and_say_why(spec):
+    """A driver at rest (rpm: 0): the driver's torque does no work over a turn and no link
+    accelerates, so there is no flywheel diagram (it spoke of "energy the flywheel absorbs")
+    nor an empty counterweight polar; one line of the report says why, in Markdown and
+    Typst."""
+    from mechreport.report.render import render
+    m = model_of(spec)
+    assert "flywheel" not in m.figures and "balance" not in m.figures
+    assert m.design.absent["flywheel"] == ("No flywheel diagram: at rest the driver's torque "
+                                           "does no work over a turn.")
+    assert m.design.absent["balance"].startswith("No balancing diagram: at rest no link "
+                                                 "accelerates")
+    md = render("report.md.j2", m=m)
+    typ = render("report.typ.j2", m=m, title=m.name)
+    for text in m.design.absent.values():
+        assert text in md and text in typ
+    assert "flywheel.svg" not in md and "balance.svg" not in md
+
+
+@pytest.mark.parametrize("spec", STATIC, ids=[p.stem for p in STATIC])
+def test_torque_by_source_leaves_out_a_source_that_is_zero_at_every_angle(spec):
+    """At rest the inertia's share of the torque is 0 at every angle: no legend entry with
+    nothing drawn for it; the caption names it."""
+    m = model_of(spec)
+    assert m.design.data.silent == ["inertia"]
+    with plots.style():
+        fig = plots.breakdown_figure(m.design.data, m.display)
+    assert "inertia" not in legend_texts(fig) and "total" in legend_texts(fig)
+    assert "Not drawn: inertia (its torque is 0 N·m at every angle)" in \
+        m.figures["breakdown"].caption
+
+
+def test_a_static_press_shaking_moment_is_zero_and_not_drawn():
+    """static_press: the shaking moment is round-off (1e-13 N·m beside 20 kN forces): it
+    was drawn on a 1e-13 axis whose offset label ran into the legend while the text said 0.
+    Now the figure is the force panel alone, and the caption and text say the moment is 0
+    at every angle."""
+    m = model_of(STATIC[0])
+    assert m.sweep.shaking_zero == ("moment",)
+    with plots.style():
+        fig = plots.shaking_figure(m.sweep, m.display)
+    assert len(fig.axes) == 1 and fig.axes[0].get_ylabel() == "force on frame [kN]"
+    assert fig.axes[0].get_xlabel() == "crank angle [deg]"
+    assert "is 0 N·m at every angle (not drawn)" in m.figures["shaking"].caption
+    assert m.shaking["moment"] == "0 N·m at every angle"
+    assert layout_problems(fig) == []
+
+
+def test_toggle_press_shaking_moment_is_drawn_it_is_not_round_off():
+    """toggle_press at rest: its shaking moment (the brake's reaction, -19690 N·m) is a real
+    value: both panels stay."""
+    m = model_of(STATIC[1])
+    assert m.sweep.shaking_zero == ()
+    with plots.style():
+        assert len(plots.shaking_figure(m.sweep, m.display).axes) == 2
+
+
+@pytest.mark.parametrize("spec", STATIC, ids=[p.stem for p in STATIC])
+def test_plot_legends_print_round_off_as_zero(spec):
+    """The torque figure's legend printed the mean as "6e-14 N·m" (and the flywheel's as
+    "-1.737e-14 N·m") while the tables said 0: legends use the tables' round-off rule."""
+    m = model_of(spec)
+    with plots.style():
+        fig = plots.torque_figure(m.sweep, m.display)
+    legend = legend_texts(fig)
+    assert any(t.startswith("mean 0 N·m (RMS ") for t in legend), legend
+    for key in figure_keys(m):
+        with plots.style():
+            texts = [t.get_text() for t in drawn_texts(make(m, key))]
+        assert not [t for t in texts if re.search(r"\de-\d", t)], (key, texts)
+
+
+def test_a_flywheel_mean_that_is_round_off_prints_zero(tmp_path):
+    """The flywheel legend's mean goes through the one round-off rule too (a moving
+    mechanism whose mean torque is round-off of its loads)."""
+    m = model_of(SLIDER)
+    cd = m.design.data
+    from dataclasses import replace
+    zero_mean = replace(cd, mean=1e-14)
+    with plots.style():
+        fig = plots.flywheel_figure(zero_mean, m.display)
+    assert "mean 0 N·m" in legend_texts(fig)
