@@ -120,7 +120,11 @@ def draw_guide(ax, p0, p1, on_ground: bool, normal, offset: float) -> None:
 
 class Labels:
     """Greedy label placement in display space: each label takes the first candidate offset
-    whose box overlaps no obstacle (pins, arrow shafts, earlier labels), else the least bad."""
+    whose box overlaps no obstacle (pins, arrow shafts, earlier labels) and stays inside the
+    axes (beyond them lie the title, the key and the legend), else the least bad: a box's
+    area outside the axes counts OUTSIDE times an overlap."""
+
+    OUTSIDE = 4.0
 
     def __init__(self, ax, fontsize: float = 7.5):
         self.ax, self.fs = ax, fontsize
@@ -128,6 +132,7 @@ class Labels:
         fig = ax.figure
         self.pt = fig.dpi / 72.0              # display units per point
         self._m = ax.transData.get_affine().get_matrix()   # data -> display (linear axes)
+        self.frame = tuple(ax.bbox.extents)
 
     def _px(self, x: float, y: float) -> tuple[float, float]:
         m = self._m
@@ -173,7 +178,9 @@ class Labels:
         best, best_score = None, math.inf
         for dx, dy, ha, va in cands:
             box = self._box(px + dx * self.pt, py + dy * self.pt, w, h, ha, va)
-            score = sum(self._overlap(box, b) for b in self.boxes)
+            area = (box[2] - box[0]) * (box[3] - box[1])
+            score = (sum(self._overlap(box, b) for b in self.boxes)
+                     + self.OUTSIDE * (area - self._overlap(box, self.frame)))
             if score < best_score:
                 best, best_score = (dx, dy, ha, va, box), score
             if score == 0:
@@ -426,13 +433,17 @@ def draw_scene(scene, d=None, title: str | None = None, view: View | None = None
         for t in th[::5]:
             labels.block(x + r * math.cos(t), y + r * math.sin(t), 2.5)
         couple_spots.append((c, x + r * 0.8, y - r * 0.8))
-    # point labels first (they name the drawing), then arrows, then couples
+    # point labels first (they name the drawing), then arrows, then couples; an arrow cut
+    # to the view's longest is labelled with its value, named or not
     named = view is None or view.labels
     labels.place_points(scene.labels if named else [], ext)
-    for a, mag, start, tip, _ in arrows:
-        if tip is not None and named:
+    for a, mag, start, tip, cut in arrows:
+        if tip is not None and (named or cut):
             u = (tip - start) / max(np.linalg.norm(tip - start), 1e-300)
-            labels.place(a.label, tip[0], tip[1], color=a.color, prefer=(u[0], u[1]))
+            text = a.label if named else ""
+            if cut:
+                text = f"{text} = {fv(mag)} {F}" if named else f"{fv(mag)} {F}"
+            labels.place(text, tip[0], tip[1], color=a.color, prefer=(u[0], u[1]))
     for c, x, y in couple_spots if named else ():
         labels.place(c.label, x, y, color=c.color, prefer=(1, -1))
     if view is not None:                       # a frame: cheaper than an axes title
