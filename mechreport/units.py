@@ -10,7 +10,8 @@ the analysis) prints as ``0``.
 Kinds of quantity (the ``kind`` argument): ``length``, ``velocity``, ``acceleration``,
 ``force``, ``moment``, ``mass``, ``mass_length`` (a counterweight's m r), ``inertia`` (kg·m²,
 always SI, as written in a spec), ``energy`` (J), ``power`` (W), ``angle`` (deg), ``omega``
-(rad/s), ``alpha`` (rad/s²), ``time`` (h), ``ratio`` (no unit).
+(rad/s), ``alpha`` (rad/s²), ``time`` (h: a bearing's life), ``duration`` (s), ``speed``
+(rpm: a crank's speed in machine dynamics), ``ratio`` (no unit).
 """
 from __future__ import annotations
 
@@ -142,7 +143,8 @@ class Display:
                 "force": self.force, "moment": pretty(self.moment), "mass": self.mass,
                 "mass_length": f"{self.mass}·{L}", "inertia": "kg·m²", "energy": "J",
                 "power": "W", "angle": "deg", "omega": "rad/s", "alpha": "rad/s²",
-                "time": "h", "ratio": "", "stress": "MPa"}[kind]
+                "time": "h", "duration": "s", "speed": "rpm", "ratio": "",
+                "stress": "MPa"}[kind]
 
     def value(self, x, kind: str):
         """``x`` [SI] (a number or an array) in display units."""
@@ -183,7 +185,8 @@ class Display:
 KIND_OF_UNIT = {"m": "length", "m/s": "velocity", "m/s^2": "acceleration", "N": "force",
                 "N·m": "moment", "kg": "mass", "kg·m": "mass_length", "kg·m^2": "inertia",
                 "J": "energy", "W": "power", "deg": "angle", "rad/s": "omega",
-                "rad/s^2": "alpha", "h": "time", "Pa": "stress"}
+                "rad/s^2": "alpha", "h": "time", "s": "duration", "rpm": "speed",
+                "Pa": "stress"}
 
 
 def kind_of(si_unit: str | None) -> str:

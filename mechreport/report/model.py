@@ -1388,6 +1388,10 @@ MEANING = {
     "balance.counterweight.mr": "best counterweight m·r",
     "balance.counterweight.angle": "its angle from the crank",
     "balance.inertia_shaking.force_rms": "RMS inertial shaking, balanced",
+    "dynamics.speed_fluctuation": "speed fluctuation (max − min) / mean",
+    "dynamics.mean_rpm": "mean crank speed, steady turn",
+    "dynamics.startup_time": "start-up time to 95 % of the mean speed",
+    "dynamics.motor_rms_torque": "motor's RMS torque, steady turn",
     "f_max": "peak bearing load", "f_mean": "mean bearing load",
     "f_equivalent": "equivalent (cube-mean) load", "life_h": "L10 rating life",
 }

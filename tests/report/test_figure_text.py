@@ -271,3 +271,13 @@ def test_moment_and_force_scales_share_the_load_scale_through_the_mechanism_size
     top = max(forces)
     assert sc["force"] >= top and sc["moment"] >= top * size * (1 - 1e-12)
     assert sc["moment"] == pytest.approx(sc["force"] * size)      # one load scale
+
+
+@pytest.mark.parametrize("spec, limit", [("static_press", False), ("four_bar_motor", True)])
+def test_transmission_caption_names_the_design_limit_only_where_one_is_set(spec, limit):
+    """The caption said "with the design limit" where the spec sets none."""
+    import mechreport
+    from mechreport.report.model import build_model
+    m = build_model(mechreport.analyse(ROOT / "specs" / f"{spec}.yaml"))
+    assert (m.design.data.transmission_limit is not None) == limit
+    assert ("with the design limit" in m.figures["transmission"].caption) == limit
