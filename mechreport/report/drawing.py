@@ -98,11 +98,13 @@ def draw_ground_symbol(ax, x: float, y: float, size: float) -> None:
               [1.2] + [0.7] * len(ticks), 3.5)
 
 
-def draw_guide(ax, p0, p1, on_ground: bool, normal, offset: float) -> None:
-    p0, p1, nrm = np.asarray(p0), np.asarray(p1), np.asarray(normal)
+def guide_strokes(p0, p1, on_ground: bool, normal, offset: float):
+    """The lines of a T joint's guide [m]: (walls, ticks), each a list of segments ((x, y),
+    (x, y)). On ground: a wall either side of the line at ``offset`` along ``normal``, hatched
+    outward; on a moving link: the line itself (drawn dashed), no ticks."""
+    p0, p1, nrm = np.asarray(p0, float), np.asarray(p1, float), np.asarray(normal, float)
     if not on_ground:
-        _line(ax, *np.stack([p0, p1]).T, color="0.35", lw=0.8, ls=(0, (6, 3)), zorder=1)
-        return
+        return [[tuple(p0), tuple(p1)]], []
     length = np.linalg.norm(p1 - p0)
     hatch = min(0.35 * offset, 0.03 * length) if offset > 0 else 0.03 * length
     u = (p1 - p0) / length
@@ -115,6 +117,14 @@ def draw_guide(ax, p0, p1, on_ground: bool, normal, offset: float) -> None:
             q = a + t * (b - a)
             tip = q + side * nrm * hatch - u * hatch * 0.7
             ticks.append([tuple(q), tuple(tip)])
+    return walls, ticks
+
+
+def draw_guide(ax, p0, p1, on_ground: bool, normal, offset: float) -> None:
+    walls, ticks = guide_strokes(p0, p1, on_ground, normal, offset)
+    if not on_ground:
+        _line(ax, *np.asarray(walls[0]).T, color="0.35", lw=0.8, ls=(0, (6, 3)), zorder=1)
+        return
     _segments(ax, walls + ticks, [1.0] * len(walls) + [0.6] * len(ticks), 1)
 
 
@@ -148,6 +158,15 @@ class Labels:
         for t in np.linspace(0.0, 1.0, 8):
             self.block(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), r_pt)
 
+    def block_line(self, a, b, r_pt: float = 2.0) -> None:
+        """An obstacle along the whole segment ``a``-``b`` (data): squares of half-size
+        ``r_pt`` points, one every ``r_pt`` points (a long line, such as a guide's wall,
+        with no gap a label could sit in)."""
+        (ax_, ay_), (bx_, by_) = self._px(*a), self._px(*b)
+        n = max(2, int(math.hypot(bx_ - ax_, by_ - ay_) / (r_pt * self.pt)) + 2)
+        for t in np.linspace(0.0, 1.0, n):
+            self.block(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), r_pt)
+
     def _box(self, px, py, w, h, ha, va):
         x0 = px if ha == "left" else (px - w if ha == "right" else px - w / 2)
         y0 = py if va == "bottom" else (py - h if va == "top" else py - h / 2)
@@ -175,6 +194,11 @@ class Labels:
                  (-2.6 * d, -2.6 * d, "right", "top")]
         if prefer is not None:
             cands.sort(key=lambda c: -(c[0] * prefer[0] + c[1] * prefer[1]))
+        # last resorts, further out: where a crowded spot (a pin between a guide's walls)
+        # leaves no room near the point
+        cands += [(sx * 4.5 * d, sy * 4.5 * d, "left" if sx > 0 else "right",
+                   "bottom" if sy > 0 else "top") for sx, sy in ((1, 1), (-1, 1), (1, -1),
+                                                                 (-1, -1))]
         best, best_score = None, math.inf
         for dx, dy, ha, va in cands:
             box = self._box(px + dx * self.pt, py + dy * self.pt, w, h, ha, va)
@@ -394,6 +418,11 @@ def draw_scene(scene, d=None, title: str | None = None, view: View | None = None
         draw_element(ax, kind, p0, p1, size)
     for p0, p1, on_ground, normal, offset in scene.guides:
         draw_guide(ax, p0, p1, on_ground, normal, offset)
+        walls, ticks = guide_strokes(p0, p1, on_ground, normal, offset)
+        for a, b in walls:                 # no label on a wall or in its hatching
+            labels.block_line(a, b)
+        for a, b in ticks:
+            labels.block_segment(a, b, 2.0)
     for x, y, on_ground in scene.pins:
         if on_ground:
             draw_ground_symbol(ax, x, y, 0.04 * ext)

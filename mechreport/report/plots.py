@@ -750,23 +750,28 @@ def flywheel_figure(cd, d):
     ax2.set_ylabel("∫(M − mean) dφ [J]")
     _cycle_axis(ax2, cd)
     r = _renderer(fig)
-    _place_delta_e(ax2, delta, a, e, i_hi, i_lo, right, r)
+    _place_delta_e(ax2, delta, a, e, i_hi, i_lo, right, r, cd.interpolated)
     for side, names in off.items():
         if names:
             _limit_arrow(ax, side, "\n".join(names), [(a, t)], drawn, r)
     return fig
 
 
-def _place_delta_e(ax, text, a, e, i_hi, i_lo, right: bool, renderer) -> None:
-    """Put the ΔE label beside its arrow where the energy curve does not cross it: halfway
-    up the arrow on the side with more room first, then higher and lower, then the other
-    side."""
+def _place_delta_e(ax, text, a, e, i_hi, i_lo, right: bool, renderer, shaded=()) -> None:
+    """Put the ΔE label beside its arrow where neither the energy curve nor a line across
+    the panel (the zero line, the horizontal grid lines, the grey bands of the ``shaded``
+    angles) crosses it: halfway up the arrow on the side with more room first, then higher
+    and lower, then the other side."""
     x, top, bottom = a[i_lo], e[i_hi], e[i_lo]
     sides = [(-6, "right"), (6, "left")] if right else [(6, "left"), (-6, "right")]
     cands = [((x, bottom + f * (top - bottom)), (dx, 0), ha, "center")
-             for dx, ha in sides for f in (0.5, 0.3, 0.7, 0.15, 0.85)]
+             for dx, ha in sides for f in (0.5, 0.3, 0.7, 0.15, 0.85, 0.4, 0.6)]
     dots = _data_lines(ax, ([a[i_hi]], [e[i_hi]]), ([a[i_lo]], [e[i_lo]]))
-    _place(ax, text, cands, _data_lines(ax, (a, e)) + dots, (), renderer)
+    lo, hi = ax.get_ylim()
+    levels = {0.0} | {float(y) for y in ax.get_yticks() if lo <= y <= hi}
+    across = [_hline(ax, y) for y in sorted(levels)]
+    across += _data_lines(ax, *(([s, s], [lo, hi]) for s in shaded))
+    _place(ax, text, cands, _data_lines(ax, (a, e)) + dots + across, (), renderer)
 
 
 def _limit_arrow(ax, side: str, label: str, curves, levels, renderer) -> None:

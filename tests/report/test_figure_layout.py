@@ -458,3 +458,85 @@ def test_a_flywheel_mean_that_is_round_off_prints_zero(tmp_path):
     with plots.style():
         fig = plots.flywheel_figure(zero_mean, m.display)
     assert "mean 0 N·m" in legend_texts(fig)
+
+
+# ------------------------------------------------- labels clear of the gauge and the guides
+
+FRICTION_PRESS = ROOT / "specs" / "crank_press_friction.yaml"
+
+
+def drawing_labels(fig, renderer):
+    """(text, window box) of the labels on a drawing's axes (point names, symbols, values)."""
+    ax = fig.axes[0]
+    return [(t.get_text(), t.get_window_extent(renderer)) for t in ax.texts
+            if t.get_visible() and t.get_text().strip()]
+
+
+def test_frame_labels_stay_inside_the_drawing_clear_of_the_gauge():
+    """four_bar's filmstrip: "M3ext" at 30° ran under the torque gauge, F03 at 210° beside
+    it: a label stays inside the drawing's axes (the gauge, the key and the title lie
+    outside them)."""
+    from mechreport.report import animation
+    m = model_of(FOUR_BAR)
+    anim = m.animation
+    view = animation.view_of(anim)
+    for f in anim.strip:
+        with plots.style():
+            fig = animation.draw_frame(anim, f, view, m.display)
+            r = draw(fig)
+        frame = fig.axes[0].bbox
+        for text, box in drawing_labels(fig, r):
+            assert (box.x0 >= frame.x0 - 1 and box.x1 <= frame.x1 + 1
+                    and box.y0 >= frame.y0 - 1 and box.y1 <= frame.y1 + 1), (f.angle, text)
+
+
+def test_no_label_crosses_a_guide_wall_or_its_hatching():
+    """crank_press_friction at 260°: F03 and F3ext were crossed by the ram guide's wall and
+    hatching, in the drawing and in the filmstrip's frame."""
+    from mechreport.report import animation
+    from mechreport.report.drawing import draw_scene, guide_strokes
+    m = model_of(FRICTION_PRESS)
+    scene, title = drawings(m)["drawing_260"]
+    anim = m.animation
+    (frame,) = [f for f in anim.strip if f.angle == 260.0]
+    for make_fig in (lambda: draw_scene(scene, m.display, title),
+                     lambda: animation.draw_frame(anim, frame, animation.view_of(anim),
+                                                  m.display)):
+        with plots.style():
+            fig = make_fig()
+            r = draw(fig)
+        ax = fig.axes[0]
+        walls = []
+        for g in scene.guides:
+            w, ticks = guide_strokes(*g)
+            walls += w + ticks
+        assert walls
+        for text, box in drawing_labels(fig, r):
+            for a, b in walls:
+                pa, pb = ax.transData.transform([a, b])
+                ts = np.linspace(0, 1, 200)[:, None]
+                pts = pa + ts * (pb - pa)
+                inside = ((pts[:, 0] > box.x0 + 0.5) & (pts[:, 0] < box.x1 - 0.5)
+                          & (pts[:, 1] > box.y0 + 0.5) & (pts[:, 1] < box.y1 - 0.5))
+                assert not inside.any(), (text, a, b)
+
+
+def test_delta_e_label_is_clear_of_the_zero_line_the_grid_and_the_left_out_bands():
+    """crank_press_friction: "ΔE = 126.1 J" sat on the energy panel's zero line and across
+    the grey band of the left-out 270°."""
+    m = model_of(FRICTION_PRESS)
+    cd = m.design.data
+    with plots.style():
+        fig = plots.flywheel_figure(cd, m.display)
+        ax2 = fig.axes[1]
+        r = draw(fig)
+    (label,) = [t for t in ax2.texts if t.get_text().startswith("ΔE = ")]
+    box = label.get_window_extent(r)
+    lo, hi = ax2.get_ylim()
+    for y in {0.0} | {float(t) for t in ax2.get_yticks() if lo <= t <= hi}:
+        py = ax2.transData.transform((0.0, y))[1]
+        assert not box.y0 <= py <= box.y1, y
+    for a in cd.interpolated:
+        px = ax2.transData.transform((a, 0.0))[0]
+        assert not box.x0 - 2 <= px <= box.x1 + 2, a
+    assert not curve_crosses(ax2, cd.angles, cd.energy, box)
