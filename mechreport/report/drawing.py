@@ -403,6 +403,11 @@ def draw_scene(scene, d=None, title: str | None = None, view: View | None = None
     labels = Labels(ax)
 
     _links(ax, scene, view is None)
+    if view is None:                           # the links' numbers: no label on them
+        for sh in scene.shapes:
+            if sh.kind in ("block", "bar"):
+                c = np.asarray(sh.xy, float).mean(axis=0)
+                labels.block(c[0], c[1], 4.0)
     size = 0.025 * ext
     shared: dict = {}                          # elements between the same two points
     for kind, p0, p1 in scene.elements:
