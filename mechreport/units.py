@@ -10,12 +10,15 @@ the analysis) prints as ``0``.
 Kinds of quantity (the ``kind`` argument): ``length``, ``velocity``, ``acceleration``,
 ``force``, ``moment``, ``mass``, ``mass_length`` (a counterweight's m r), ``inertia`` (kg·m²,
 always SI, as written in a spec), ``energy`` (J), ``power`` (W), ``angle`` (deg), ``omega``
-(rad/s), ``alpha`` (rad/s²), ``time`` (h), ``ratio`` (no unit).
+(rad/s), ``alpha`` (rad/s²), ``time`` (h: a bearing's life), ``duration`` (s), ``speed``
+(rpm: a crank's speed in machine dynamics), ``ratio`` (no unit).
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+
+import numpy as np
 
 #: significant digits of every number a person reads (reports, plots, index, terminal)
 SIG_DIGITS = 4
@@ -102,6 +105,17 @@ def clean(x: float, scale: float | None = None) -> float:
     return x
 
 
+def all_round_off(values, scale: float | None) -> bool:
+    """Every finite value of ``values`` (a number or an array) is 0 or round-off of its
+    quantity (``|x| <= ZERO_RTOL * scale``): what :func:`fmt` prints as ``0`` everywhere
+    (a figure of such values has nothing to show). Undefined values (NaN) are skipped."""
+    v = np.abs(np.asarray(values, float)).ravel()
+    v = v[np.isfinite(v)]
+    if not v.size:
+        return True
+    return bool(v.max() <= (ZERO_RTOL * abs(scale) if scale is not None else 0.0))
+
+
 @dataclass(frozen=True)
 class Display:
     """How values are shown: the unit of each base kind (keys of ``report.units``), and the
@@ -129,7 +143,8 @@ class Display:
                 "force": self.force, "moment": pretty(self.moment), "mass": self.mass,
                 "mass_length": f"{self.mass}·{L}", "inertia": "kg·m²", "energy": "J",
                 "power": "W", "angle": "deg", "omega": "rad/s", "alpha": "rad/s²",
-                "time": "h", "ratio": "", "stress": "MPa"}[kind]
+                "time": "h", "duration": "s", "speed": "rpm", "ratio": "",
+                "stress": "MPa"}[kind]
 
     def value(self, x, kind: str):
         """``x`` [SI] (a number or an array) in display units."""
@@ -143,6 +158,11 @@ class Display:
         scale = self.scales.get(kind)
         f = self.factor(kind)
         return fmt(float(x) * f, digits, None if scale is None else scale * f)
+
+    def zero(self, values, kind: str) -> bool:
+        """Every value of ``values`` [SI] prints as 0: round-off of ``kind`` in this analysis
+        (:func:`all_round_off`)."""
+        return all_round_off(values, self.scales.get(kind))
 
     def q(self, x, kind: str, digits: int = SIG_DIGITS) -> str:
         """``x`` [SI] converted, formatted, with its unit: ``155.3 N``, ``0.0433 m``."""
@@ -165,7 +185,8 @@ class Display:
 KIND_OF_UNIT = {"m": "length", "m/s": "velocity", "m/s^2": "acceleration", "N": "force",
                 "N·m": "moment", "kg": "mass", "kg·m": "mass_length", "kg·m^2": "inertia",
                 "J": "energy", "W": "power", "deg": "angle", "rad/s": "omega",
-                "rad/s^2": "alpha", "h": "time", "Pa": "stress"}
+                "rad/s^2": "alpha", "h": "time", "s": "duration", "rpm": "speed",
+                "Pa": "stress"}
 
 
 def kind_of(si_unit: str | None) -> str:

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..checks.agreement import load_scales
 from ..units import ZERO_RTOL
 from .transmission import smallest_transmission_angle
 
@@ -42,14 +43,42 @@ def _top(*arrays) -> float:
     return max(vals, default=0.0) or 1.0
 
 
+def kinematic_scales(kin) -> dict[str, float]:
+    """Largest magnitude [SI] of each kinematic kind of quantity of ``kin`` (its named points
+    and centres of mass, its links): length, velocity, acceleration, omega, alpha, angle.
+
+    Rates share their scale across kinds the way they grow together: a velocity is measured
+    against the largest too and the largest omega times the largest length, an acceleration
+    against the largest velocity squared over the largest length, an angular acceleration
+    against the largest omega squared; so that a value that is round-off of the motion prints
+    0 even where it is the largest of its kind (a rod's alpha of 3e-16 rad/s² at one angle
+    of a crank turning at 1 rad/s)."""
+    spec = kin.mechanism.spec
+    pts = [kin.named_point(p, o) for p, o in spec.named_points()]
+    coms = [kin.com(l.name) for l in spec.links]
+    ground = [np.asarray(list(spec.ground.values()), float)] if spec.ground else []
+    length = _top(*[p.r for p in pts], *ground)
+    omega = _top(kin.omega)
+    velocity = max(_top(*[p.v for p in pts], *[c.v for c in coms]), omega * length)
+    return {"length": length, "velocity": velocity,
+            "acceleration": max(_top(*[p.a for p in pts], *[c.a for c in coms]),
+                                velocity ** 2 / length),
+            "omega": omega, "alpha": max(_top(kin.alpha), omega ** 2), "angle": 360.0}
+
+
 def scales(kin, forces: dict, loads) -> dict[str, float]:
     """Largest magnitude [SI] of each kind of quantity of an analysis (kinematics ``kin``,
     ``forces`` by method, the applied ``loads``): a value below ``ZERO_RTOL`` of it is
     round-off. Kinds: length, velocity, acceleration, force, moment, omega, alpha, angle,
-    mass, inertia."""
+    mass, inertia. The kinematic kinds are :func:`kinematic_scales`.
+
+    Forces and moments share one load scale through the mechanism's size (``Spec.size``,
+    the agreement check's :func:`~mechreport.checks.agreement.load_scales`): a moment is
+    measured against the largest moment and the largest force times the size, a force
+    against the largest force and the largest moment over the size; so that a moment that
+    is round-off next to the forces (a static press's shaking moment, 1e-13 N m beside
+    20 kN) is 0."""
     spec = kin.mechanism.spec
-    pts = [kin.named_point(p, o) for p, o in spec.named_points()]
-    coms = [kin.com(l.name) for l in spec.links]
     fs, moments = [], []
     for res in forces.values():
         moments.append(res.driver_torque)
@@ -60,12 +89,8 @@ def scales(kin, forces: dict, loads) -> dict[str, float]:
     for ld in loads:
         (fs if ld.force is not None else moments).append(
             ld.force if ld.force is not None else ld.moment)
-    ground = [np.asarray(list(spec.ground.values()), float)] if spec.ground else []
-    return {"length": _top(*[p.r for p in pts], *ground),
-            "velocity": _top(*[p.v for p in pts], *[c.v for c in coms]),
-            "acceleration": _top(*[p.a for p in pts], *[c.a for c in coms]),
-            "force": _top(*fs), "moment": _top(*moments),
-            "omega": _top(kin.omega), "alpha": _top(kin.alpha), "angle": 360.0,
+    loads = load_scales({"force": _top(*fs), "moment": _top(*moments)}, spec.size)
+    return {**kinematic_scales(kin), "force": loads["force"], "moment": loads["moment"],
             "mass": _top(np.array([l.mass for l in spec.links])),
             "inertia": _top(np.array([l.inertia for l in spec.links]))}
 

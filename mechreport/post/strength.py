@@ -43,6 +43,7 @@ from ..forces import ForceContext, ForceResult
 from ..kinematics.frames import cross, dot, perp
 from ..quantities import split as split_quantity
 from ..spec import Link, Material, Section
+from ..units import Display
 
 #: positions along each member where the internal forces are evaluated (ends included)
 POSITIONS = 41
@@ -340,10 +341,24 @@ def critical_load(section: Section, material: Material, length: float
     return section.area * (Sy - (Sy * slender / (2 * math.pi)) ** 2 / E), slender, "Johnson"
 
 
-def mass_note(link: Link, lengths: list[float], mids: list[np.ndarray]) -> str:
+def link_mass_note(link: Link, d: Display | None = None) -> str:
+    """:func:`mass_note` of ``link`` from its own points and members, its numbers in the
+    units of ``d`` (default SI; a report passes its Display, to print the note in its
+    units)."""
+    pts = link.points
+    pairs = link.strength.members
+    lengths = [float(np.hypot(*np.subtract(pts[b], pts[a]))) for a, b in pairs]
+    mids = [(np.asarray(pts[a]) + np.asarray(pts[b])) / 2 for a, b in pairs]
+    return mass_note(link, lengths, mids, d)
+
+
+def mass_note(link: Link, lengths: list[float], mids: list[np.ndarray],
+              d: Display | None = None) -> str:
     """What differs between ``link``'s own centre of mass and inertia and those of its
     members with its mass spread uniformly ("" when nothing does: the centres within 1e-6
-    of the members' length, the inertias within ``INERTIA_RTOL``)."""
+    of the members' length, the inertias within ``INERTIA_RTOL``); its numbers by the one
+    formatter in the units of ``d`` (default SI)."""
+    d = d or Display()
     total = sum(lengths)
     com = sum(L * c for L, c in zip(lengths, mids)) / total
     k2 = link.strength.section.inertia / link.strength.section.area
@@ -352,11 +367,12 @@ def mass_note(link: Link, lengths: list[float], mids: list[np.ndarray]) -> str:
     parts = []
     off = float(np.hypot(*(np.asarray(link.com) - com)))
     if off > 1e-6 * total:
-        parts.append(f"its centre of mass is {off:.4g} m from its members' middle "
-                     f"({com[0]:.4g}, {com[1]:.4g}) m")
+        parts.append(f"its centre of mass is {d.q(off, 'length')} from its members' middle "
+                     f"({d.num(com[0], 'length')}, {d.num(com[1], 'length')}) "
+                     f"{d.unit('length')}")
     if abs(link.inertia - spread) > INERTIA_RTOL * max(link.inertia, spread, 1e-300):
-        parts.append(f"its inertia is {link.inertia:.4g} kg·m², its uniform members' "
-                     f"{spread:.4g} kg·m²")
+        parts.append(f"its inertia is {d.q(link.inertia, 'inertia')}, its uniform members' "
+                     f"{d.q(spread, 'inertia')}")
     if not parts or link.mass == 0:
         return ""
     return (f"link {link.name}: {' and '.join(parts)}; the members carry the link's mass "

@@ -3,12 +3,13 @@ moving over the sweep) and the SVG frames at the reference angles (the PDF's fil
 
 Every frame is :func:`~mechreport.report.drawing.draw_scene` of its scene in one shared
 :class:`~mechreport.report.drawing.View`: the same data limits, figure size and arrow scale
-[m per N] for the whole sweep, set so that the largest force away from near-singular angles
-(``Animation.force_ref``) is ARROW_LEN of the drawing's extent; a longer arrow (near a
-left-out angle) is cut at CLIP times that and marked. Around the drawing each frame shows
-the arrow scale (top right), the driver's effort as a bar gauge (right) and the sweep as a
-strip (bottom): the effort over the sweep (near-singular stretches left out of the curve),
-the frame's place on it, the left-out angles (red). The GIF is written with Pillow
+[m per N] for the whole sweep, set so that the reference force (``Animation.force_ref``:
+the largest force away from near-singular angles, at most a few times the typical frame's,
+see :func:`~mechreport.report.frames.force_reference`) is ARROW_LEN of the drawing's extent;
+a longer arrow is cut at CLIP times that, marked // and labelled with its value. Around
+the drawing each frame shows the arrow scale (top right), the driver's effort as a bar
+gauge (right) and the sweep as a strip (bottom): the effort over the sweep (near-singular
+stretches left out of the curve), the frame's place on it, the left-out angles (red). The GIF is written with Pillow
 (matplotlib's own dependency), looping, with the first frame's palette for all (the same
 colours in every frame: no flicker, and quicker)."""
 from __future__ import annotations
@@ -23,10 +24,10 @@ import numpy as np
 from .drawing import (ARROW_LEN, CUT_COLOR, View, _arrow_geometry, _bounds, draw_scene,
                       view_axes)
 from .files import atomic_write_bytes
+from .frames import CLIP
 from .plots import save, styled
 from .scene import MOMENT_COLOR
 
-CLIP = 1.3             # arrows longer than CLIP x the longest away from left-out angles: cut
 FRAME_WIDTH = 4.2      # [in]; two frames side by side fill most of the PDF's text width
 GAUGE_W = 0.62         # [in] the effort gauge's column, right
 STRIP_H = 0.46         # [in] the sweep strip, bottom
@@ -166,8 +167,8 @@ def _frame_decor(fig, anim, frame, view: View, d) -> None:
     p = _Places(anim, view)
     w, h, tf = p.w, p.h, fig.transFigure
     if frame.note:
-        fig.text(0.36, 1 - 0.03 / h, frame.note + ": arrows cut (//)", ha="left", va="top",
-                 fontsize=7, color=CUT_COLOR)
+        fig.text(0.95 / w, 1 - 0.04 / h, frame.note, ha="left", va="top", fontsize=6.5,
+                 color=CUT_COLOR)
     z, v = p.gauge_y(0.0), p.gauge_y(frame.effort)
     fig.add_artist(Rectangle((p.gx, min(z, v)), p.gw, abs(v - z), transform=tf,
                              color=MOMENT_COLOR, lw=0))

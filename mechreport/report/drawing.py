@@ -98,11 +98,13 @@ def draw_ground_symbol(ax, x: float, y: float, size: float) -> None:
               [1.2] + [0.7] * len(ticks), 3.5)
 
 
-def draw_guide(ax, p0, p1, on_ground: bool, normal, offset: float) -> None:
-    p0, p1, nrm = np.asarray(p0), np.asarray(p1), np.asarray(normal)
+def guide_strokes(p0, p1, on_ground: bool, normal, offset: float):
+    """The lines of a T joint's guide [m]: (walls, ticks), each a list of segments ((x, y),
+    (x, y)). On ground: a wall either side of the line at ``offset`` along ``normal``, hatched
+    outward; on a moving link: the line itself (drawn dashed), no ticks."""
+    p0, p1, nrm = np.asarray(p0, float), np.asarray(p1, float), np.asarray(normal, float)
     if not on_ground:
-        _line(ax, *np.stack([p0, p1]).T, color="0.35", lw=0.8, ls=(0, (6, 3)), zorder=1)
-        return
+        return [[tuple(p0), tuple(p1)]], []
     length = np.linalg.norm(p1 - p0)
     hatch = min(0.35 * offset, 0.03 * length) if offset > 0 else 0.03 * length
     u = (p1 - p0) / length
@@ -115,12 +117,24 @@ def draw_guide(ax, p0, p1, on_ground: bool, normal, offset: float) -> None:
             q = a + t * (b - a)
             tip = q + side * nrm * hatch - u * hatch * 0.7
             ticks.append([tuple(q), tuple(tip)])
+    return walls, ticks
+
+
+def draw_guide(ax, p0, p1, on_ground: bool, normal, offset: float) -> None:
+    walls, ticks = guide_strokes(p0, p1, on_ground, normal, offset)
+    if not on_ground:
+        _line(ax, *np.asarray(walls[0]).T, color="0.35", lw=0.8, ls=(0, (6, 3)), zorder=1)
+        return
     _segments(ax, walls + ticks, [1.0] * len(walls) + [0.6] * len(ticks), 1)
 
 
 class Labels:
     """Greedy label placement in display space: each label takes the first candidate offset
-    whose box overlaps no obstacle (pins, arrow shafts, earlier labels), else the least bad."""
+    whose box overlaps no obstacle (pins, arrow shafts, earlier labels) and stays inside the
+    axes (beyond them lie the title, the key and the legend), else the least bad: a box's
+    area outside the axes counts OUTSIDE times an overlap."""
+
+    OUTSIDE = 4.0
 
     def __init__(self, ax, fontsize: float = 7.5):
         self.ax, self.fs = ax, fontsize
@@ -128,6 +142,7 @@ class Labels:
         fig = ax.figure
         self.pt = fig.dpi / 72.0              # display units per point
         self._m = ax.transData.get_affine().get_matrix()   # data -> display (linear axes)
+        self.frame = tuple(ax.bbox.extents)
 
     def _px(self, x: float, y: float) -> tuple[float, float]:
         m = self._m
@@ -141,6 +156,15 @@ class Labels:
 
     def block_segment(self, a, b, r_pt: float = 2.5) -> None:
         for t in np.linspace(0.0, 1.0, 8):
+            self.block(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), r_pt)
+
+    def block_line(self, a, b, r_pt: float = 2.0) -> None:
+        """An obstacle along the whole segment ``a``-``b`` (data): squares of half-size
+        ``r_pt`` points, one every ``r_pt`` points (a long line, such as a guide's wall,
+        with no gap a label could sit in)."""
+        (ax_, ay_), (bx_, by_) = self._px(*a), self._px(*b)
+        n = max(2, int(math.hypot(bx_ - ax_, by_ - ay_) / (r_pt * self.pt)) + 2)
+        for t in np.linspace(0.0, 1.0, n):
             self.block(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), r_pt)
 
     def _box(self, px, py, w, h, ha, va):
@@ -170,10 +194,17 @@ class Labels:
                  (-2.6 * d, -2.6 * d, "right", "top")]
         if prefer is not None:
             cands.sort(key=lambda c: -(c[0] * prefer[0] + c[1] * prefer[1]))
+        # last resorts, further out: where a crowded spot (a pin between a guide's walls)
+        # leaves no room near the point
+        cands += [(sx * 4.5 * d, sy * 4.5 * d, "left" if sx > 0 else "right",
+                   "bottom" if sy > 0 else "top") for sx, sy in ((1, 1), (-1, 1), (1, -1),
+                                                                 (-1, -1))]
         best, best_score = None, math.inf
         for dx, dy, ha, va in cands:
             box = self._box(px + dx * self.pt, py + dy * self.pt, w, h, ha, va)
-            score = sum(self._overlap(box, b) for b in self.boxes)
+            area = (box[2] - box[0]) * (box[3] - box[1])
+            score = (sum(self._overlap(box, b) for b in self.boxes)
+                     + self.OUTSIDE * (area - self._overlap(box, self.frame)))
             if score < best_score:
                 best, best_score = (dx, dy, ha, va, box), score
             if score == 0:
@@ -372,6 +403,11 @@ def draw_scene(scene, d=None, title: str | None = None, view: View | None = None
     labels = Labels(ax)
 
     _links(ax, scene, view is None)
+    if view is None:                           # the links' numbers: no label on them
+        for sh in scene.shapes:
+            if sh.kind in ("block", "bar"):
+                c = np.asarray(sh.xy, float).mean(axis=0)
+                labels.block(c[0], c[1], 4.0)
     size = 0.025 * ext
     shared: dict = {}                          # elements between the same two points
     for kind, p0, p1 in scene.elements:
@@ -387,6 +423,11 @@ def draw_scene(scene, d=None, title: str | None = None, view: View | None = None
         draw_element(ax, kind, p0, p1, size)
     for p0, p1, on_ground, normal, offset in scene.guides:
         draw_guide(ax, p0, p1, on_ground, normal, offset)
+        walls, ticks = guide_strokes(p0, p1, on_ground, normal, offset)
+        for a, b in walls:                 # no label on a wall or in its hatching
+            labels.block_line(a, b)
+        for a, b in ticks:
+            labels.block_segment(a, b, 2.0)
     for x, y, on_ground in scene.pins:
         if on_ground:
             draw_ground_symbol(ax, x, y, 0.04 * ext)
@@ -426,13 +467,17 @@ def draw_scene(scene, d=None, title: str | None = None, view: View | None = None
         for t in th[::5]:
             labels.block(x + r * math.cos(t), y + r * math.sin(t), 2.5)
         couple_spots.append((c, x + r * 0.8, y - r * 0.8))
-    # point labels first (they name the drawing), then arrows, then couples
+    # point labels first (they name the drawing), then arrows, then couples; an arrow cut
+    # to the view's longest is labelled with its value, named or not
     named = view is None or view.labels
     labels.place_points(scene.labels if named else [], ext)
-    for a, mag, start, tip, _ in arrows:
-        if tip is not None and named:
+    for a, mag, start, tip, cut in arrows:
+        if tip is not None and (named or cut):
             u = (tip - start) / max(np.linalg.norm(tip - start), 1e-300)
-            labels.place(a.label, tip[0], tip[1], color=a.color, prefer=(u[0], u[1]))
+            text = a.label if named else ""
+            if cut:
+                text = f"{text} = {fv(mag)} {F}" if named else f"{fv(mag)} {F}"
+            labels.place(text, tip[0], tip[1], color=a.color, prefer=(u[0], u[1]))
     for c, x, y in couple_spots if named else ():
         labels.place(c.label, x, y, color=c.color, prefer=(1, -1))
     if view is not None:                       # a frame: cheaper than an axes title

@@ -20,14 +20,24 @@ from .scene import Scene, build_scene, sweep_extent
 #: sweep; with SECONDS_PER_SWEEP the cycle runs in about 3 s
 FRAMES_PER_SWEEP = 24
 SECONDS_PER_SWEEP = 3.0
+#: an arrow longer than CLIP times the scale's reference force is cut to that length, marked
+#: // and labelled with its value
+CLIP = 1.3
+#: where a few frames carry much larger forces than the rest (beside a dead centre, a press
+#: stroke), at most one frame in CUT_SHARE has its arrows cut, so that the others' arrows
+#: are long enough to read; none is cut where the largest force is within SPREAD times the
+#: median frame's
+CUT_SHARE = 4
+SPREAD = 2.0
 
 
 @dataclass
 class Frame:
     """One frame: the ``scene`` at sweep value ``angle``, its ``title`` ("φ = 40°"), whether
-    it lies ``near`` a left-out angle (within the report's near-singular band: its arrows
-    may run off the scale) and the ``note`` that says so ("" otherwise), the driver's
-    ``effort`` [N m or N] there."""
+    it lies ``near`` a left-out angle (within the report's near-singular band), the
+    ``note`` that says so or that arrows are cut ("" otherwise), the driver's ``effort``
+    [N m or N] there, whether any of its arrows is ``cut`` (longer than CLIP times the
+    scale's reference force)."""
 
     scene: Scene
     angle: float
@@ -35,14 +45,15 @@ class Frame:
     near: bool
     note: str
     effort: float
+    cut: bool = False
 
 
 @dataclass
 class Animation:
     """The animation of one spec: ``frames`` over the sweep, ``strip`` the frames at the
     solved reference angles (the PDF's filmstrip; their SVGs ``strip_stems``), the drawing's
-    ``extent`` [m] shared by all, ``force_ref`` [N] the largest force drawn at any analysed
-    angle away from near-singular ones (what the one arrow scale is set by), ``step``
+    ``extent`` [m] shared by all, ``force_ref`` [N] the force the one arrow scale is set by
+    (:func:`force_reference`; arrows longer than CLIP times it are cut), ``step``
     between frames, ``seconds`` per frame (whole hundredths); ``caption`` and
     ``strip_caption`` as the reports print them. For the effort gauge and the sweep strip
     under the drawing: ``angles`` (n,) the analysed angles, ``effort`` (n,) the driver's torque [N m] or force
@@ -98,18 +109,45 @@ def frame_indices(sweep_angles: np.ndarray, analysed: np.ndarray,
     return out, step
 
 
-def _largest_force(analysis, res, near: np.ndarray) -> float:
-    """The largest force [N] drawn as an arrow at any analysed angle away from left-out ones
-    (all angles if every one is near): joint reactions, applied forces, a T driver's push."""
-    spec = analysis.spec
-    away = ~near if (~near).any() else np.ones_like(near)
+def _arrow_forces(analysis, res) -> np.ndarray:
+    """The largest force [N] drawn as an arrow at each analysed angle (n,): joint reactions,
+    applied forces, a T driver's push (NaN where none is finite)."""
     mags = [np.hypot(r.fx, r.fy) for r in res.reactions.values()]
     mags += [np.hypot(*np.asarray(ld.force, float).T) for ld in analysis.loads
              if ld.force is not None and ld.link != GROUND]
-    if spec.driver.kind == "T":
+    if analysis.spec.driver.kind == "T":
         mags.append(np.abs(np.asarray(res.driver_torque, float)))
-    top = [v[np.isfinite(v)] for v in (m[away] for m in mags)]
-    return max((float(v.max()) for v in top if v.size), default=0.0)
+    if not mags:
+        return np.full(analysis.kinematics.n, np.nan)
+    stack = np.vstack([np.where(np.isfinite(m), m, -np.inf) for m in mags])
+    top = stack.max(axis=0)
+    return np.where(np.isfinite(top), top, np.nan)
+
+
+def force_reference(largest: np.ndarray, near: np.ndarray, ks: list[int]) -> float:
+    """The force [N] the animation's one arrow scale is set by (drawn ARROW_LEN of the
+    extent; arrows longer than CLIP times it are cut), from the largest arrow at each
+    analysed angle ``largest`` (n,) [N], the near-singular mask ``near`` (n,) and the drawn
+    frames' indices ``ks``.
+
+    The largest force away from left-out angles (all angles if every one is near), unless
+    the drawn frames' largest forces spread wider than SPREAD times their median: then the
+    largest force of the frames after the 1 in CUT_SHARE with the largest (at least SPREAD
+    times the median). Beside a dead centre forces grow steeply even outside the
+    near-singular band (a slider-crank's 969 N at 84 deg against 150 N at 45 deg): the one
+    largest force made the arrows of most frames too short to see; now those few frames
+    are cut and labelled with their value."""
+    away = ~near if (~near).any() else np.ones_like(near)
+    far = largest[away]
+    far = far[np.isfinite(far)]
+    top = float(far.max()) if far.size else 0.0
+    drawn = np.array([largest[k] for k in ks], float)
+    drawn = np.sort(drawn[np.isfinite(drawn) & (drawn > 0)])[::-1]
+    if not drawn.size or top <= SPREAD * float(np.median(drawn)):
+        return top
+    kept = drawn[max(1, len(drawn) // CUT_SHARE):]
+    return min(top, max(float(kept[0]) if kept.size else top,
+                        SPREAD * float(np.median(drawn))))
 
 
 def animation_data(analysis, ref: str, sweep, colors: dict[str, str],
@@ -132,15 +170,19 @@ def animation_data(analysis, ref: str, sweep, colors: dict[str, str],
     flagged = [float(a) for a in sweep.flagged]
     unit = coord_unit
 
+    largest = _arrow_forces(analysis, res)
+    force_ref = force_reference(largest, near, ks + strip_ks)
+
     def frame(k: int) -> Frame:
         angle = float(kin.angles[k])
         title = f"φ = {deg(angle)}°" if unit == "°" else f"s = {deg(angle)}{unit}"
-        note = ""
+        cut = bool(force_ref > 0 and largest[k] > CLIP * force_ref)
+        note = "arrows cut (//)" if cut else ""
         if near[k] and flagged:
             fa = min(flagged, key=lambda a: abs(a - angle))
-            note = f"near the left-out {deg(fa)}{unit}"
+            note = f"near the left-out {deg(fa)}{unit}" + (f": {note}" if cut else "")
         scene = build_scene(analysis, res, k, colors, symbols, extent)
-        return Frame(scene, angle, title, bool(near[k]), note, float(torque[k]))
+        return Frame(scene, angle, title, bool(near[k]), note, float(torque[k]), cut)
 
     frames = [frame(k) for k in ks]
     strip = [frame(k) for k in strip_ks]
@@ -149,8 +191,8 @@ def animation_data(analysis, ref: str, sweep, colors: dict[str, str],
     effort = "torque M" if effort_kind == "moment" else "push Fd along its line"
     # a GIF counts in hundredths of a second
     seconds = max(0.02, round(SECONDS_PER_SWEEP / max(len(frames), 1), 2))
-    cut = (" Arrows marked // are longer than drawn: off the scale, near a left-out "
-           "angle." if near.any() else "")
+    cut = (" Arrows marked // are longer than drawn (off the scale), their value beside "
+           "them." if any(f.cut for f in frames + strip) else "")
     caption = (f"The mechanism over the sweep, one frame every {deg(abs(step))}{unit} "
                f"({len(frames)} frames, {seconds * len(frames):.3g} s a cycle): the joint "
                f"reactions (first link on second, {method_title}, coloured per joint, named "
@@ -163,7 +205,7 @@ def animation_data(analysis, ref: str, sweep, colors: dict[str, str],
                      + ("angles" if len(strip) > 1 else "angle") + ": "
                      + ", ".join(f"{coord} {deg(f.angle)}{unit}" for f in strip)
                      + "; the same scale as the animation, symbols on the drawing.")
-    return Animation(frames, strip, stems, extent, _largest_force(analysis, res, near), step,
+    return Animation(frames, strip, stems, extent, force_ref, step,
                      seconds,
                      np.asarray(kin.angles, float), torque, effort_kind, symbol,
                      near, flagged, (float(spec.sweep.start), float(spec.sweep.stop)), unit,

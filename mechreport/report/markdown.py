@@ -43,10 +43,56 @@ def md_inline(text) -> str:
     return s
 
 
+#: a fenced code block's opening or closing line: up to 3 spaces, then 3 or more ` or ~
+_FENCE = re.compile(r"^ {0,3}(`{3,}|~{3,})")
+#: a backslash escape, or a run of backticks (a code span's delimiter, if one matches it)
+_TICKS = re.compile(r"\\.|`+", re.S)
+
+
 def md_text(text) -> str:
     """Markdown written by the user (a spec's ``description``): kept as Markdown, but with
-    ``& < >`` as entities so it cannot carry raw HTML."""
-    return html.escape(str(text), quote=False)
+    ``& < >`` as entities so it cannot carry raw HTML; except in code (code spans and
+    fenced code blocks), where Markdown shows every character as written (an entity there
+    would be printed as ``&lt;``) and reads no HTML."""
+    out, prose, fence = [], [], None
+    for line in str(text).splitlines(keepends=True):
+        m = _FENCE.match(line)
+        if fence is None and m and not (m.group(1)[0] == "`" and "`" in line[m.end():]):
+            out.append(_escape_prose("".join(prose)))       # a fence opens
+            prose, fence = [], m.group(1)
+            out.append(line)
+        elif fence is not None:
+            out.append(line)
+            if (m and m.group(1)[0] == fence[0] and len(m.group(1)) >= len(fence)
+                    and not line[m.end():].strip()):
+                fence = None                                # and closes
+        else:
+            prose.append(line)
+    return "".join(out) + _escape_prose("".join(prose))
+
+
+def _escape_prose(text: str) -> str:
+    """``text`` (Markdown outside fenced code) with ``& < >`` as entities outside its code
+    spans: a run of backticks opens a span that the next run of as many closes (CommonMark);
+    an unmatched run, and a backslash-escaped backtick, are plain text."""
+    out, pos, i = [], 0, 0
+    while True:
+        m = _TICKS.search(text, i)
+        if m is None:
+            break
+        if m.group().startswith("\\"):
+            i = m.end()
+            continue
+        n = len(m.group())
+        close = re.compile(r"(?<!`)`{%d}(?!`)" % n).search(text, m.end())
+        if close is None:
+            i = m.end()
+            continue
+        out.append(html.escape(text[pos:m.start()], quote=False))
+        out.append(text[m.start():close.end()])            # the code span, as written
+        pos = i = close.end()
+    out.append(html.escape(text[pos:], quote=False))
+    return "".join(out)
 
 
 def md_url(target) -> str:

@@ -125,6 +125,9 @@ class SweepData:
     effort_label: str = "driver torque M"
     xlabel: str = "crank angle φ [deg]"
     xrange: tuple | None = None         # (start, stop) of a sweep that is not one whole turn
+    #: the parts of the shaking load (force, moment) that are 0 at every angle (round-off
+    #: of their kind): the shaking figure leaves them out and its caption says so
+    shaking_zero: tuple[str, ...] = ()
 
     @property
     def at_unit(self) -> str:
@@ -138,7 +141,8 @@ class CycleData:
     in: driver ``torque`` (N,) [N m] and its ``mean``; ``energy`` (N,) [J], the running
     integral of torque minus mean; motor lines [N m] when given; ``sources`` the torque (N,)
     [N m] of each source (they sum to ``torque``); ``transmission`` (N,) [deg] by dyad and its
-    lower limit; the inertial shaking force (N, 2) [N] without and with the counterweight."""
+    lower limit; the inertial shaking force (N, 2) [N] without and with the counterweight;
+    ``silent`` the sources whose torque is 0 at every angle (round-off: not drawn)."""
 
     angles: np.ndarray
     torque: np.ndarray
@@ -152,6 +156,7 @@ class CycleData:
     inertial: np.ndarray
     balanced: np.ndarray
     interpolated: list[float]
+    silent: list[str] = field(default_factory=list)
 
 
 @dataclass
@@ -159,7 +164,9 @@ class DesignSummary:
     """The report's first section. ``verdicts`` rows (design item, checked quantity, value,
     limit, margin, PASS/FAIL); ``values`` rows (meaning, cycle quantity, value with unit);
     ``bearings`` rows (joint, peak, mean, equivalent load, L10 life);
-    ``problem`` why there are no cycle quantities ("" when there are)."""
+    ``problem`` why there are no cycle quantities ("" when there are); ``absent`` the cycle
+    figures left out because they would show nothing, each with the sentence saying why
+    (the report prints it where the figure would be)."""
 
     verdicts: list[list[str]]
     values: list[list[str]]
@@ -169,6 +176,7 @@ class DesignSummary:
     passed: bool
     data: CycleData | None = None
     bearings: list[list[str]] = field(default_factory=list)   # joint, max, mean, equiv., L10
+    absent: dict[str, str] = field(default_factory=dict)
 
 
 @dataclass
@@ -371,9 +379,8 @@ def _colors(spec) -> dict[str, str]:
 def sweep_data(analysis) -> tuple[SweepData, Display]:
     """The report's plot data of ``analysis`` and its display units (for the plot
     functions, :mod:`mechreport.report.plots`)."""
-    spec = analysis.spec
-    return (_sweep(analysis, analysis.sweep_summary(), _symbols(spec), _colors(spec)),
-            display_of(analysis))
+    spec, d = analysis.spec, display_of(analysis)
+    return _sweep(analysis, analysis.sweep_summary(), _symbols(spec), _colors(spec), d), d
 
 
 def friction_data(analysis) -> tuple[FrictionPlot | None, Display]:
@@ -583,7 +590,7 @@ def _ref_angles(analysis, ref: str, symbols, colors, d: Display
 
 # ------------------------------------------------------------------------ sweep results
 
-def _sweep(analysis, summary: SweepSummary, symbols, colors) -> SweepData:
+def _sweep(analysis, summary: SweepSummary, symbols, colors, d: Display) -> SweepData:
     """The plot data of the sweep: the reference method's arrays and the summary's traces."""
     res = analysis.forces[summary.method]
     spec = analysis.spec
@@ -609,7 +616,9 @@ def _sweep(analysis, summary: SweepSummary, symbols, colors) -> SweepData:
                      summary.torque, joints, polar, summary.frame, summary.near,
                      summary.near_deg, kind, label,
                      f"{coord} [{'deg' if unit == '°' else unit.strip()}]",
-                     None if whole else (float(spec.sweep.start), float(spec.sweep.stop)))
+                     None if whole else (float(spec.sweep.start), float(spec.sweep.stop)),
+                     tuple(k for k, v in (("force", summary.frame.f), ("moment", summary.frame.m))
+                           if d.zero(v, k)))
 
 
 def effort_of(spec) -> tuple[str, str, str, str]:
@@ -623,7 +632,13 @@ def effort_of(spec) -> tuple[str, str, str, str]:
 
 
 def _peak_text(p: q.Peak | None, kind: str, d: Display, unit: str = "°") -> str:
-    return DASH if p is None else f"{d.q(p.value, kind)} at {deg(p.angle)}{unit}"
+    """``155.3 N at 45°``; a peak that prints as 0 is 0 everywhere: ``0 N·m at every
+    angle`` (``position`` for a stroke)."""
+    if p is None:
+        return DASH
+    if d.zero(p.value, kind):
+        return f"{d.q(0.0, kind)} at every {'angle' if unit == '°' else 'position'}"
+    return f"{d.q(p.value, kind)} at {deg(p.angle)}{unit}"
 
 
 def _torque_texts(st: q.TorqueStats | None, d: Display, kind: str = "moment",
@@ -632,7 +647,7 @@ def _torque_texts(st: q.TorqueStats | None, d: Display, kind: str = "moment",
         return {k: DASH for k in ("mean", "rms", "peak", "low", "high", "power")}
 
     def at(p):
-        return DASH if p is None else f"{d.q(p.value, kind)} at {deg(p.angle)}{unit}"
+        return _peak_text(p, kind, d, unit)
     return {"mean": d.q(st.mean, kind), "rms": d.q(st.rms, kind), "peak": at(st.peak),
             "low": at(st.low), "high": at(st.high), "power": d.q(st.power, "power")}
 
@@ -956,7 +971,7 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
                 sha256 if sha256 is not None else spec_sha256(source), d.describe())
     status_line = summary_line(source, analysis)
     refs, scenes = _ref_angles(analysis, ref, symbols, colors, d)
-    sw = _sweep(analysis, summary, symbols, colors)
+    sw = _sweep(analysis, summary, symbols, colors, d)
     power_text, power_json = _power_check(summary.power_check, sw.method_title, d,
                                           spec.driver.at_rest)
     header, rows = _csv(analysis)
@@ -971,7 +986,7 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
     friction = _friction(analysis, design, sw, d)
     dynamics = dynamics_section(analysis, d)
     strength = strength_section(analysis, d, spec.axis_unit)
-    figures = (_figures(sw, refs, ref, d) | _design_figures(design)
+    figures = (_figures(sw, refs, ref, d) | _design_figures(design, d)
                | _friction_figures(friction, sw) | _dynamics_figures(dynamics)
                | _strength_figures(strength, d))
     shaking = {"force": _peak_text(summary.shaking_force, "force", d, sw.at_unit),
@@ -1096,14 +1111,36 @@ def _design(analysis, d: Display) -> DesignSummary:
         interp = ("Left-out angles inside the cycle, interpolated from their neighbours for "
                   "the cycle quantities: " + ", ".join(deg(a) for a in rev.cycle.interpolated)
                   + " deg.")
+    sources = analysis.cycle_torque_by_source()
     data = CycleData(rev.cycle.angles, rev.torque, rev.values["cycle.torque.mean"], rev.energy,
                      spec.design.motor.get("rated_torque"), spec.design.motor.get("peak_torque"),
-                     analysis.cycle_torque_by_source(), rev.transmission,
+                     sources, rev.transmission,
                      spec.design.limits.get("transmission_angle"),
                      rev.inertial, rev.shaking_balanced,
-                     [float(a) for a in rev.cycle.interpolated])
+                     [float(a) for a in rev.cycle.interpolated],
+                     [name for name, part in sources.items() if d.zero(part, "moment")])
     return DesignSummary(verdict_rows, values, counter, interp, "", passed, data,
-                         list(bearings.values()))
+                         list(bearings.values()), _absent_figures(spec, rev, d))
+
+
+def _absent_figures(spec, rev, d: Display) -> dict[str, str]:
+    """The cycle figures that would show nothing, each with the sentence the report prints
+    instead: the flywheel diagram where the driver's torque does no work that fluctuates
+    (at rest, or a constant torque), the balancing diagram where there is no inertial
+    shaking force (0 at every angle by the round-off rule)."""
+    out = {}
+    if spec.driver.at_rest:
+        out["flywheel"] = ("No flywheel diagram: at rest the driver's torque does no work "
+                           "over a turn.")
+    elif d.zero(rev.values["cycle.energy_fluctuation"], "moment"):
+        out["flywheel"] = ("No flywheel diagram: the driver's torque is the same at every "
+                           "angle, so there is no energy fluctuation for a flywheel to take up.")
+    if d.zero(rev.inertial, "force"):
+        why = ("at rest no link accelerates" if spec.driver.at_rest else
+               "the links' inertia forces cancel at every angle")
+        out["balance"] = (f"No balancing diagram: {why}, so there is no inertial shaking "
+                          "force for a counterweight to balance.")
+    return out
 
 
 # ------------------------------------------------------------------------------ friction
@@ -1351,6 +1388,10 @@ MEANING = {
     "balance.counterweight.mr": "best counterweight m·r",
     "balance.counterweight.angle": "its angle from the crank",
     "balance.inertia_shaking.force_rms": "RMS inertial shaking, balanced",
+    "dynamics.speed_fluctuation": "speed fluctuation",
+    "dynamics.mean_rpm": "mean crank speed",
+    "dynamics.startup_time": "start-up time (to 95 %)",
+    "dynamics.motor_rms_torque": "motor's RMS torque",
     "f_max": "peak bearing load", "f_mean": "mean bearing load",
     "f_equivalent": "equivalent (cube-mean) load", "life_h": "L10 rating life",
 }
@@ -1386,24 +1427,52 @@ def _design_json(analysis, sc: dict) -> dict:
     return out
 
 
-def _design_figures(design: DesignSummary) -> dict[str, Figure]:
-    if design.data is None:
+def _design_figures(design: DesignSummary, d: Display) -> dict[str, Figure]:
+    """The Design summary's figures with their captions: the flywheel diagram, the torque
+    by source, the transmission angle, the balancing diagram; those in ``design.absent``
+    left out (the report says why instead)."""
+    cd = design.data
+    if cd is None:
         return {}
+    silent = cd.silent
+    if silent:
+        names = ", ".join(silent)
+        silent_text = (f" Not drawn: {names} ({'its' if len(silent) == 1 else 'their'} "
+                       f"torque is {d.q(0.0, 'moment')} at every angle).")
+    else:
+        silent_text = ""
     figs = {"flywheel": Figure("flywheel", "Driver torque over one turn against its mean: the "
                                "areas above (energy taken in) and below (given back) the mean "
                                "line; the largest energy fluctuation ΔE, which the flywheel "
                                "absorbs, lies between the two marked angles.", "flywheel"),
             "breakdown": Figure("breakdown", "Driver torque by source over one turn: each "
                                 "source's share stacked (positive above zero, negative below); "
-                                "the line is the total.", "breakdown"),
+                                f"the line is the total.{silent_text}", "breakdown"),
             "balance": Figure("balance", "Inertial shaking force (sum of m a_C) over one turn, "
                               "without and with the best point counterweight on the crank.",
                               "balance")}
-    if design.data.transmission:
+    if cd.transmission:
+        limit = (", with the design limit" if cd.transmission_limit is not None else "")
         figs["transmission"] = Figure("transmission", "Transmission angle of each group over "
-                                      "one turn (folded into 0-90°), with the design limit.",
-                                      "transmission")
-    return figs
+                                      f"one turn (folded into 0-90°){limit}.", "transmission")
+    return {k: f for k, f in figs.items() if k not in design.absent}
+
+
+def _shaking_caption(sw: SweepData, d: Display) -> str:
+    """The shaking figure's caption: what it draws, and which part of the load on the frame
+    is 0 at every angle and so is not drawn."""
+    force = "Shaking force (resultant of the reactions on the frame)"
+    moment = ("shaking moment about the driver pivot, including the driver's reaction "
+              "torque")
+    zero, every = sw.shaking_zero, "angle" if sw.at_unit == "°" else "position"
+    if not zero:
+        return f"{force} and {moment}."
+    if zero == ("moment",):
+        return f"{force}; the {moment}, is {d.q(0.0, 'moment')} at every {every} (not drawn)."
+    if zero == ("force",):
+        return (f"{moment[0].upper()}{moment[1:]}; the shaking force is "
+                f"{d.q(0.0, 'force')} at every {every} (not drawn).")
+    return ""
 
 
 def _flag_rows(analysis) -> list[list[str]]:
@@ -1444,11 +1513,11 @@ def _figures(sw: SweepData, refs: list[RefAngle], ref: str, d: Display) -> dict[
              "reactions": Figure("reactions", f"Magnitude of each joint's reaction over the "
                                  f"sweep ({title}; components are in results.csv){gaps}."
                                  f"{near}", "reactions"),
-             "shaking": Figure("shaking", "Shaking force (resultant of the reactions on the "
-                               "frame) and shaking moment about the driver pivot, including "
-                               f"the driver's reaction torque.{near}", "shaking")}
+             "shaking": Figure("shaking", _shaking_caption(sw, d) + near, "shaking")}
     if not sw.joints:
         del figs["reactions"]
+    if len(sw.shaking_zero) == 2:              # nothing to draw: the caption's words stand alone
+        del figs["shaking"]
     if sw.polar:
         figs["polar"] = Figure("polar", "Polar load diagrams of the pins: the tip of the "
                                "reaction (first link on second) over a turn, in the frame of "

@@ -425,13 +425,13 @@ def draw_torque(ax, sw, d) -> None:
     levels = [0.0]
     st = sw.stats
     if st is not None:
-        mean, rms = d.value(st.mean, kind), d.value(st.rms, kind)
+        mean = d.value(st.mean, kind)
         ax.axhline(mean, color="#0072B2", lw=1.0, ls="--",
-                   label=f"mean {fmt(mean)} {u} (RMS {fmt(rms)} {u})")
+                   label=f"mean {d.num(st.mean, kind)} {u} (RMS {d.num(st.rms, kind)} {u})")
         pk = d.value(st.peak.value, kind)
         at = f"{st.peak.angle:g}°" if sw.xrange is None else f"{st.peak.angle:g}"
         ax.plot([st.peak.angle], [pk], "o", color="#D55E00", ms=5,
-                label=f"peak {fmt(pk)} {u} at {at}")
+                label=f"peak {d.num(st.peak.value, kind)} {u} at {at}")
         levels.append(mean)
         curves.append(([st.peak.angle], [pk]))
     for r in sw.ref_angles:
@@ -649,27 +649,38 @@ def _keep_inside(ax, renderer) -> None:
 
 
 def shaking_figure(sw, d):
-    fig, axes = figure(4.2, 2, 1, gap=0.75, margins=(0.72, 0.12, 0.46, 0.3))
-    ax1, ax2 = axes[0, 0], axes[1, 0]
+    """The shaking force (magnitude and components) and the shaking moment over the sweep,
+    one panel each; a part that is 0 at every angle (``sw.shaking_zero``: round-off) is left
+    out, and the other panel fills the figure alone."""
+    parts = [k for k in ("force", "moment") if k not in sw.shaking_zero] or ["force", "moment"]
+    if len(parts) == 2:
+        fig, axes = figure(4.2, 2, 1, gap=0.75, margins=(0.72, 0.12, 0.46, 0.3))
+    else:
+        fig, axes = figure(2.6, margins=(0.72, 0.12, 0.46, 0.3))
+    panels = dict(zip(parts, axes[:, 0]))
     sh = sw.shaking
     F, M = d.unit("force"), d.unit("moment")
     fx, fy, f, m = (d.value(v, k) for v, k in ((sh.fx, "force"), (sh.fy, "force"),
                                                (sh.f, "force"), (sh.m, "moment")))
     a, gfx, gfy, gf, gm = with_gaps(sw.angles, fx, fy, f, m)
-    ax1.plot(a, gf, color=INK, lw=1.6, label="|F| shaking force")
-    ax1.plot(a, gfx, color="#0072B2", lw=1.0, ls="--", label="x component")
-    ax1.plot(a, gfy, color="#E69F00", lw=1.0, ls=":", label="y component")
-    ax1.axhline(0, color="0.3", lw=0.5)
-    ax1.set_ylabel(f"force on frame [{F}]")
-    legend_top(ax1, 3)
-    crank_axis(ax1, sw, label=False)
-    scale_to_trusted(ax1, sw, [fx, fy, f], F, names=["x", "y", "|F|"])
-    ax2.plot(a, gm, color="#CC79A7", lw=1.4, label="shaking moment about the driver pivot")
-    ax2.axhline(0, color="0.3", lw=0.5)
-    ax2.set_ylabel(f"moment on frame [{M}]")
-    legend_top(ax2, 1)
-    crank_axis(ax2, sw)
-    scale_to_trusted(ax2, sw, [m], M)
+    if "force" in panels:
+        ax1 = panels["force"]
+        ax1.plot(a, gf, color=INK, lw=1.6, label="|F| shaking force")
+        ax1.plot(a, gfx, color="#0072B2", lw=1.0, ls="--", label="x component")
+        ax1.plot(a, gfy, color="#E69F00", lw=1.0, ls=":", label="y component")
+        ax1.axhline(0, color="0.3", lw=0.5)
+        ax1.set_ylabel(f"force on frame [{F}]")
+        legend_top(ax1, 3)
+        crank_axis(ax1, sw, label="moment" not in panels)
+        scale_to_trusted(ax1, sw, [fx, fy, f], F, names=["x", "y", "|F|"])
+    if "moment" in panels:
+        ax2 = panels["moment"]
+        ax2.plot(a, gm, color="#CC79A7", lw=1.4, label="shaking moment about the driver pivot")
+        ax2.axhline(0, color="0.3", lw=0.5)
+        ax2.set_ylabel(f"moment on frame [{M}]")
+        legend_top(ax2, 1)
+        crank_axis(ax2, sw)
+        scale_to_trusted(ax2, sw, [m], M)
     return fig
 
 
@@ -699,7 +710,7 @@ def flywheel_figure(cd, d):
     M = d.unit("moment")
     a, t, mean = cd.angles, d.value(cd.torque, "moment"), d.value(cd.mean, "moment")
     ax.plot(a, t, color=INK, lw=1.5, label="driver torque")
-    ax.axhline(mean, color="#0072B2", lw=1.0, ls="--", label=f"mean {fmt(mean)} {M}")
+    ax.axhline(mean, color="#0072B2", lw=1.0, ls="--", label=f"mean {d.num(cd.mean, 'moment')} {M}")
     ax.fill_between(a, t, mean, where=t >= mean, interpolate=True, color="#E69F00", alpha=0.35,
                     lw=0, label="above the mean (energy in)")
     ax.fill_between(a, t, mean, where=t < mean, interpolate=True, color="#56B4E9", alpha=0.35,
@@ -716,11 +727,11 @@ def flywheel_figure(cd, d):
             for level in levels:
                 if lo - reach <= level <= hi + reach:
                     ax.axhline(level, color=LIMIT_COLOR, lw=1.0, ls=style,
-                               label=None if labelled else f"{name} {fmt(level)} {M}")
+                               label=None if labelled else f"{name} {d.num(value, 'moment')} {M}")
                     labelled = True
                     drawn.append(level)
                 elif level == v:                  # -peak far off the scale means nothing
-                    off["hi" if v > hi else "lo"].append(f"{name} {fmt(v)} {M}")
+                    off["hi" if v > hi else "lo"].append(f"{name} {d.num(value, 'moment')} {M}")
     ax.set_ylabel(f"torque [{M}]")
     legend_top(ax, 3)
     _cycle_axis(ax, cd, label=False)
@@ -739,23 +750,28 @@ def flywheel_figure(cd, d):
     ax2.set_ylabel("∫(M − mean) dφ [J]")
     _cycle_axis(ax2, cd)
     r = _renderer(fig)
-    _place_delta_e(ax2, delta, a, e, i_hi, i_lo, right, r)
+    _place_delta_e(ax2, delta, a, e, i_hi, i_lo, right, r, cd.interpolated)
     for side, names in off.items():
         if names:
             _limit_arrow(ax, side, "\n".join(names), [(a, t)], drawn, r)
     return fig
 
 
-def _place_delta_e(ax, text, a, e, i_hi, i_lo, right: bool, renderer) -> None:
-    """Put the ΔE label beside its arrow where the energy curve does not cross it: halfway
-    up the arrow on the side with more room first, then higher and lower, then the other
-    side."""
+def _place_delta_e(ax, text, a, e, i_hi, i_lo, right: bool, renderer, shaded=()) -> None:
+    """Put the ΔE label beside its arrow where neither the energy curve nor a line across
+    the panel (the zero line, the horizontal grid lines, the grey bands of the ``shaded``
+    angles) crosses it: halfway up the arrow on the side with more room first, then higher
+    and lower, then the other side."""
     x, top, bottom = a[i_lo], e[i_hi], e[i_lo]
     sides = [(-6, "right"), (6, "left")] if right else [(6, "left"), (-6, "right")]
     cands = [((x, bottom + f * (top - bottom)), (dx, 0), ha, "center")
-             for dx, ha in sides for f in (0.5, 0.3, 0.7, 0.15, 0.85)]
+             for dx, ha in sides for f in (0.5, 0.3, 0.7, 0.15, 0.85, 0.4, 0.6)]
     dots = _data_lines(ax, ([a[i_hi]], [e[i_hi]]), ([a[i_lo]], [e[i_lo]]))
-    _place(ax, text, cands, _data_lines(ax, (a, e)) + dots, (), renderer)
+    lo, hi = ax.get_ylim()
+    levels = {0.0} | {float(y) for y in ax.get_yticks() if lo <= y <= hi}
+    across = [_hline(ax, y) for y in sorted(levels)]
+    across += _data_lines(ax, *(([s, s], [lo, hi]) for s in shaded))
+    _place(ax, text, cands, _data_lines(ax, (a, e)) + dots + across, (), renderer)
 
 
 def _limit_arrow(ax, side: str, label: str, curves, levels, renderer) -> None:
@@ -795,7 +811,8 @@ def _limit_arrow(ax, side: str, label: str, curves, levels, renderer) -> None:
 
 def breakdown_figure(cd, d):
     """Torque by source, stacked: positive parts above zero, negative parts below."""
-    n = len(cd.sources) + 1
+    sources = {k: v for k, v in cd.sources.items() if k not in cd.silent}
+    n = len(sources) + 1
     ncol = min(5, n)
     fig, axes = figure(2.9, margins=(0.72, 0.12, 0.46, 0.22 + 0.17 * math.ceil(n / ncol)))
     ax = axes[0, 0]
@@ -803,8 +820,8 @@ def breakdown_figure(cd, d):
     a = cd.angles
     up, down = np.zeros_like(a), np.zeros_like(a)
     shown = []                  # the legend's entries, given: a name may start with "_"
-    for k, (name, part) in enumerate(cd.sources.items()):
-        color = SOURCE_COLORS[k % len(SOURCE_COLORS)]
+    for name, part in sources.items():
+        color = SOURCE_COLORS[list(cd.sources).index(name) % len(SOURCE_COLORS)]
         part = d.value(part, "moment")
         pos, neg = np.maximum(part, 0), np.minimum(part, 0)
         shown.append(ax.fill_between(a, up, up + pos, color=color, alpha=0.6, lw=0,
@@ -895,7 +912,7 @@ def draw_friction(ax, fp, d) -> None:
     with_f, without = d.value(fp.torque, kind), d.value(fp.frictionless, kind)
     labels = ["with friction", "without friction"]
     if fp.means is not None:
-        labels = [f"{text} (mean {fmt(d.value(m, kind))} {u})"
+        labels = [f"{text} (mean {d.num(m, kind)} {u})"
                   for text, m in zip(labels, fp.means)]
     a, w, wo = (fp.angles, with_f, without) if fp.sweep is None else \
         with_gaps(fp.angles, with_f, without)

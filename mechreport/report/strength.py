@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..post.strength import link_mass_note
 from ..units import DASH, Display, deg, fmt
 
 #: what each column of the table means, for the text under it
@@ -90,7 +91,11 @@ def strength_section(analysis, d: Display, axis: str = "deg") -> StrengthSection
                      f"{d.num(m.sigma_a, 'stress')} / {d.num(m.sigma_m, 'stress')} at "
                      f"{d.num(m.fatigue_s, 'length')}", buck, comp, pcr])
     worst = st.worst()
-    notes = list(dict.fromkeys(m.note for m in st.members.values() if m.note))
+    # the notes in the report's units (the review's own are SI, for summary.json)
+    links_of = {m.link for m in st.members.values() if m.note}
+    notes = list(dict.fromkeys(link_mass_note(spec.link(name), d) for name in
+                               dict.fromkeys(m.link for m in st.members.values())
+                               if name in links_of))
     plot = None
     text = ""
     if worst is not None and worst.diagram is not None:

@@ -16,25 +16,16 @@ def _table(header: list[str], rows: list[list[str]]) -> str:
 
 def kin_display(kin: Kinematics) -> Display:
     """The spec's display units (``report.units``; lengths by default in the spec's own
-    length unit), as the reports show them, with this sweep's scales so that round-off
-    prints as 0."""
-    import numpy as np
+    length unit), as the reports show them, with this sweep's kinematic scales (the
+    reports' :func:`~mechreport.post.columns.kinematic_scales`) so that round-off prints as
+    0."""
+    from ..post.columns import kinematic_scales
 
     spec = kin.mechanism.spec
-    pts = [kin.named_point(p, o) for p, o in spec.named_points()]
-
-    def top(arrs):
-        vals = [float(np.max(np.abs(a))) for a in arrs if np.size(a)]
-        return max(vals, default=0.0) or 1.0
-
     units = dict(spec.report.units)
     return Display(units.get("length", spec.units.get("length", "m")), units.get("force", "N"),
                    units.get("moment", "N*m"), units.get("mass", "kg"),
-                   scales={"length": top([p.r for p in pts]), "velocity": top([p.v for p in pts]),
-                           "acceleration": top([p.a for p in pts] + [kin.com(l.name).a
-                                                                     for l in spec.links]),
-                           "omega": top([kin.omega]), "alpha": top([kin.alpha]),
-                           "angle": 360.0})
+                   scales=kinematic_scales(kin))
 
 
 def kinematics_rows(kin: Kinematics, k: int, d: Display | None = None

@@ -106,3 +106,21 @@ def test_the_sheet_states_the_equation_of_motion_with_its_numbers():
         assert f"= {fmt(j)} kg·m² at φ = {fmt(am.angle)}°" in text
         i = int(np.flatnonzero(np.isclose(cycle.angles, am.angle))[0])
         assert f"= {fmt(cycle.alpha[i])} rad/s²" in text
+
+
+def test_design_summary_rows_of_the_dynamics_have_a_meaning_and_a_unit():
+    """four_bar_motor: the machine-dynamics rows of the Design summary's cycle quantities
+    said only their name and "293.5", "0.7632": each now says what it is and its unit,
+    like the other cycle-quantity rows."""
+    from mechreport.quantities import DYNAMICS_QUANTITIES, unit_of
+    from mechreport.report.model import MEANING, build_model
+    m = build_model(mechreport.analyse(MOTOR))
+    rows = {name: (meaning, value) for meaning, name, value in m.design.values}
+    assert set(DYNAMICS_QUANTITIES) <= set(rows)
+    for name in DYNAMICS_QUANTITIES:
+        meaning, value = rows[name]
+        assert meaning == MEANING[name] != name
+        unit = unit_of(name)
+        assert value.endswith(f" {unit}") if unit else " " not in value, (name, value)
+    assert rows["dynamics.mean_rpm"][1] == "293.5 rpm"
+    assert rows["dynamics.startup_time"][1] == "0.7632 s"

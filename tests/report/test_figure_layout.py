@@ -363,3 +363,180 @@ def test_reference_lines_of_a_stroke_sweep_name_the_stroke():
     with plots.style():
         fig = plots.torque_figure(m.sweep, m.display)
     assert "stroke 300 mm" in texts_of(fig)
+
+
+# ------------------------------------------------- at rest: figures with nothing to show
+
+STATIC = [ROOT / "specs" / "static_press.yaml", ROOT / "specs" / "toggle_press.yaml"]
+
+
+def legend_texts(fig) -> list[str]:
+    return [t.get_text() for ax in fig.axes if ax.get_legend() is not None
+            for t in ax.get_legend().get_texts()]
+
+
+@pytest.mark.parametrize("spec", STATIC, ids=[p.stem for p in STATIC])
+def test_at_rest_specs_leave_out_the_flywheel_and_balance_figures_and_say_why(spec):
+    """A driver at rest (rpm: 0): the driver's torque does no work over a turn and no link
+    accelerates, so there is no flywheel diagram (it spoke of "energy the flywheel absorbs")
+    nor an empty counterweight polar; one line of the report says why, in Markdown and
+    Typst."""
+    from mechreport.report.render import render
+    m = model_of(spec)
+    assert "flywheel" not in m.figures and "balance" not in m.figures
+    assert m.design.absent["flywheel"] == ("No flywheel diagram: at rest the driver's torque "
+                                           "does no work over a turn.")
+    assert m.design.absent["balance"].startswith("No balancing diagram: at rest no link "
+                                                 "accelerates")
+    md = render("report.md.j2", m=m)
+    typ = render("report.typ.j2", m=m, title=m.name)
+    for text in m.design.absent.values():
+        assert text in md and text in typ
+    assert "flywheel.svg" not in md and "balance.svg" not in md
+
+
+@pytest.mark.parametrize("spec", STATIC, ids=[p.stem for p in STATIC])
+def test_torque_by_source_leaves_out_a_source_that_is_zero_at_every_angle(spec):
+    """At rest the inertia's share of the torque is 0 at every angle: no legend entry with
+    nothing drawn for it; the caption names it."""
+    m = model_of(spec)
+    assert m.design.data.silent == ["inertia"]
+    with plots.style():
+        fig = plots.breakdown_figure(m.design.data, m.display)
+    assert "inertia" not in legend_texts(fig) and "total" in legend_texts(fig)
+    assert "Not drawn: inertia (its torque is 0 N·m at every angle)" in \
+        m.figures["breakdown"].caption
+
+
+def test_a_static_press_shaking_moment_is_zero_and_not_drawn():
+    """static_press: the shaking moment is round-off (1e-13 N·m beside 20 kN forces): it
+    was drawn on a 1e-13 axis whose offset label ran into the legend while the text said 0.
+    Now the figure is the force panel alone, and the caption and text say the moment is 0
+    at every angle."""
+    m = model_of(STATIC[0])
+    assert m.sweep.shaking_zero == ("moment",)
+    with plots.style():
+        fig = plots.shaking_figure(m.sweep, m.display)
+    assert len(fig.axes) == 1 and fig.axes[0].get_ylabel() == "force on frame [kN]"
+    assert fig.axes[0].get_xlabel() == "crank angle [deg]"
+    assert "is 0 N·m at every angle (not drawn)" in m.figures["shaking"].caption
+    assert m.shaking["moment"] == "0 N·m at every angle"
+    assert layout_problems(fig) == []
+
+
+def test_toggle_press_shaking_moment_is_drawn_it_is_not_round_off():
+    """toggle_press at rest: its shaking moment (the brake's reaction, -19690 N·m) is a real
+    value: both panels stay."""
+    m = model_of(STATIC[1])
+    assert m.sweep.shaking_zero == ()
+    with plots.style():
+        assert len(plots.shaking_figure(m.sweep, m.display).axes) == 2
+
+
+@pytest.mark.parametrize("spec", STATIC, ids=[p.stem for p in STATIC])
+def test_plot_legends_print_round_off_as_zero(spec):
+    """The torque figure's legend printed the mean as "6e-14 N·m" (and the flywheel's as
+    "-1.737e-14 N·m") while the tables said 0: legends use the tables' round-off rule."""
+    m = model_of(spec)
+    with plots.style():
+        fig = plots.torque_figure(m.sweep, m.display)
+    legend = legend_texts(fig)
+    assert any(t.startswith("mean 0 N·m (RMS ") for t in legend), legend
+    for key in figure_keys(m):
+        with plots.style():
+            texts = [t.get_text() for t in drawn_texts(make(m, key))]
+        assert not [t for t in texts if re.search(r"\de-\d", t)], (key, texts)
+
+
+def test_a_flywheel_mean_that_is_round_off_prints_zero(tmp_path):
+    """The flywheel legend's mean goes through the one round-off rule too (a moving
+    mechanism whose mean torque is round-off of its loads)."""
+    m = model_of(SLIDER)
+    cd = m.design.data
+    from dataclasses import replace
+    zero_mean = replace(cd, mean=1e-14)
+    with plots.style():
+        fig = plots.flywheel_figure(zero_mean, m.display)
+    assert "mean 0 N·m" in legend_texts(fig)
+
+
+# ------------------------------------------------- labels clear of the gauge and the guides
+
+FRICTION_PRESS = ROOT / "specs" / "crank_press_friction.yaml"
+
+
+def drawing_labels(fig, renderer):
+    """(text, window box) of the labels on a drawing's axes (point names, symbols, values)."""
+    ax = fig.axes[0]
+    return [(t.get_text(), t.get_window_extent(renderer)) for t in ax.texts
+            if t.get_visible() and t.get_text().strip()]
+
+
+def test_frame_labels_stay_inside_the_drawing_clear_of_the_gauge():
+    """four_bar's filmstrip: "M3ext" at 30° ran under the torque gauge, F03 at 210° beside
+    it: a label stays inside the drawing's axes (the gauge, the key and the title lie
+    outside them)."""
+    from mechreport.report import animation
+    m = model_of(FOUR_BAR)
+    anim = m.animation
+    view = animation.view_of(anim)
+    for f in anim.strip:
+        with plots.style():
+            fig = animation.draw_frame(anim, f, view, m.display)
+            r = draw(fig)
+        frame = fig.axes[0].bbox
+        for text, box in drawing_labels(fig, r):
+            assert (box.x0 >= frame.x0 - 1 and box.x1 <= frame.x1 + 1
+                    and box.y0 >= frame.y0 - 1 and box.y1 <= frame.y1 + 1), (f.angle, text)
+
+
+def test_no_label_crosses_a_guide_wall_or_its_hatching():
+    """crank_press_friction at 260°: F03 and F3ext were crossed by the ram guide's wall and
+    hatching, in the drawing and in the filmstrip's frame."""
+    from mechreport.report import animation
+    from mechreport.report.drawing import draw_scene, guide_strokes
+    m = model_of(FRICTION_PRESS)
+    scene, title = drawings(m)["drawing_260"]
+    anim = m.animation
+    (frame,) = [f for f in anim.strip if f.angle == 260.0]
+    for make_fig in (lambda: draw_scene(scene, m.display, title),
+                     lambda: animation.draw_frame(anim, frame, animation.view_of(anim),
+                                                  m.display)):
+        with plots.style():
+            fig = make_fig()
+            r = draw(fig)
+        ax = fig.axes[0]
+        walls = []
+        for g in scene.guides:
+            w, ticks = guide_strokes(*g)
+            walls += w + ticks
+        assert walls
+        for text, box in drawing_labels(fig, r):
+            for a, b in walls:
+                pa, pb = ax.transData.transform([a, b])
+                ts = np.linspace(0, 1, 200)[:, None]
+                pts = pa + ts * (pb - pa)
+                inside = ((pts[:, 0] > box.x0 + 0.5) & (pts[:, 0] < box.x1 - 0.5)
+                          & (pts[:, 1] > box.y0 + 0.5) & (pts[:, 1] < box.y1 - 0.5))
+                assert not inside.any(), (text, a, b)
+
+
+def test_delta_e_label_is_clear_of_the_zero_line_the_grid_and_the_left_out_bands():
+    """crank_press_friction: "ΔE = 126.1 J" sat on the energy panel's zero line and across
+    the grey band of the left-out 270°."""
+    m = model_of(FRICTION_PRESS)
+    cd = m.design.data
+    with plots.style():
+        fig = plots.flywheel_figure(cd, m.display)
+        ax2 = fig.axes[1]
+        r = draw(fig)
+    (label,) = [t for t in ax2.texts if t.get_text().startswith("ΔE = ")]
+    box = label.get_window_extent(r)
+    lo, hi = ax2.get_ylim()
+    for y in {0.0} | {float(t) for t in ax2.get_yticks() if lo <= t <= hi}:
+        py = ax2.transData.transform((0.0, y))[1]
+        assert not box.y0 <= py <= box.y1, y
+    for a in cd.interpolated:
+        px = ax2.transData.transform((a, 0.0))[0]
+        assert not box.x0 - 2 <= px <= box.x1 + 2, a
+    assert not curve_crosses(ax2, cd.angles, cd.energy, box)

@@ -253,3 +253,31 @@ def test_study_keys_and_quantities_with_a_dollar_are_drawn_literally(tmp_path):
     assert set(figures) == {"quantity-1", "quantity-2", "pareto"}
     for name in figures:
         assert maths((tmp_path / f"{name}.svg").read_text(encoding="utf-8")) == []
+
+
+# ------------------------------------------------------------------ one round-off rule
+
+@pytest.mark.parametrize("spec", ["static_press", "toggle_press", "slider_crank", "four_bar"])
+def test_moment_and_force_scales_share_the_load_scale_through_the_mechanism_size(spec):
+    """The round-off scale of moments includes the largest force times the mechanism's size
+    (and that of forces the largest moment over it): a moment that is round-off next to the
+    forces prints 0 (a static press's shaking moment, 1e-13 N·m beside 20 kN)."""
+    import mechreport
+    import numpy as np
+    a = mechreport.analyse(ROOT / "specs" / f"{spec}.yaml")
+    sc, size = a.scales(), a.spec.size
+    forces = [np.abs(v).max() for r in a.forces["newton_euler"].reactions.values()
+              for v in (r.fx, r.fy)]
+    top = max(forces)
+    assert sc["force"] >= top and sc["moment"] >= top * size * (1 - 1e-12)
+    assert sc["moment"] == pytest.approx(sc["force"] * size)      # one load scale
+
+
+@pytest.mark.parametrize("spec, limit", [("static_press", False), ("four_bar_motor", True)])
+def test_transmission_caption_names_the_design_limit_only_where_one_is_set(spec, limit):
+    """The caption said "with the design limit" where the spec sets none."""
+    import mechreport
+    from mechreport.report.model import build_model
+    m = build_model(mechreport.analyse(ROOT / "specs" / f"{spec}.yaml"))
+    assert (m.design.data.transmission_limit is not None) == limit
+    assert ("with the design limit" in m.figures["transmission"].caption) == limit

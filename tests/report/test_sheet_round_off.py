@@ -39,3 +39,18 @@ def test_round_off_still_prints_as_zero_on_the_textbook_sheet():
     a = mechreport.analyse(ROOT / "specs" / "slider_crank.yaml")
     text = render_markdown(build_sheet(a, SheetOptions(methods=("dyad",))))
     assert "e-1" not in text.replace("e-1)", "")        # no 1e-15 noise anywhere
+
+
+def test_kin_prints_a_rods_round_off_alpha_as_zero(capsys):
+    """`kin specs/slider_crank.yaml --angle 30` printed the rod's alpha as -3.205e-16: at
+    one angle the largest alpha was that round-off itself. An angular acceleration is
+    measured against omega squared too (:func:`mechreport.post.columns.kinematic_scales`),
+    so it prints 0, as in the report's tables."""
+    from pathlib import Path
+    from mechreport.app.kin import kin_command
+    spec = Path(__file__).resolve().parents[2] / "specs" / "slider_crank.yaml"
+    assert kin_command(str(spec), [30.0]) == 0
+    out = capsys.readouterr().out
+    assert "e-1" not in out
+    (rod,) = [line.split() for line in out.splitlines() if line.startswith("2 rod")]
+    assert rod[2:6] == ["-30", "-1", "0", "-1.299"]

@@ -41,3 +41,21 @@ def test_the_free_part_beyond_the_middle_gives_the_diagrams_values():
 def test_no_section_no_cuts():
     a = analyse(ROOT / "specs" / "slider_crank.yaml")
     assert cuts(a, 0) == []
+
+
+def test_strength_note_is_in_the_reports_length_unit():
+    """crank_press_strength (lengths in mm): the note on the crank's mass gave its lengths
+    in m ("0.05 m from its members' middle (0.05, 0) m"); the report prints it in its own
+    units by the one formatter, summary.json keeps SI."""
+    from pathlib import Path
+    import mechreport
+    from mechreport.report.model import build_model
+    spec = Path(__file__).resolve().parents[2] / "specs" / "crank_press_strength.yaml"
+    a = mechreport.analyse(spec)
+    m = build_model(a)
+    (note,) = m.strength.notes
+    assert "its centre of mass is 50 mm from its members' middle (50, 0) mm" in note
+    assert " m " not in note and " m)" not in note
+    si = a.strength.members["crank"].note
+    assert "0.05 m from its members' middle (0.05, 0) m" in si
+    assert m.summary["strength"]["members"]["crank"]["note"] == si
