@@ -7,6 +7,8 @@ Instantaneous quantities are values at an angle (``driver.torque``, ``joint.B.fx
 """
 from __future__ import annotations
 
+import math
+
 CYCLE_UNITS = {
     "cycle.torque.max": "N·m", "cycle.torque.min": "N·m", "cycle.torque.mean": "N·m",
     "cycle.torque.rms": "N·m", "cycle.power.max": "W", "cycle.power.mean": "W",
@@ -101,3 +103,15 @@ def unit_kind(quantity: str) -> str:
     """``moment`` for quantities in N·m (torques, couples), else ``force``: agreement scales
     compare like with like."""
     return "moment" if unit_of(quantity) == "N·m" else "force"
+
+
+def load_scales(tops: dict[str, float], size: float) -> dict[str, float]:
+    """The load scale of each kind (``force`` [N], ``moment`` [N m]) from the largest
+    magnitude of each kind ``tops`` and the mechanism's size [m] (``Spec.size``): a moment's
+    is the largest moment or the largest force times the size, a force's the largest force or
+    the largest moment over the size. The agreement check's floor and the round-off rule of
+    every output read it (a moment that is round-off next to the forces prints 0)."""
+    force, moment = tops.get("force", 0.0), tops.get("moment", 0.0)
+    if not (size > 0 and math.isfinite(size)):
+        return {"force": force, "moment": moment}
+    return {"force": max(force, moment / size), "moment": max(moment, force * size)}

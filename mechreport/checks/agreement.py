@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..forces import ForceResult
-from ..quantities import unit_kind
+from ..quantities import load_scales, unit_kind
 
 SCALE_FLOOR = 1e-3
 STACK_LIMIT = 1 << 21   # most values (16 MB) judged at once
@@ -136,15 +136,6 @@ def merge(a: Spreads, b: Spreads) -> Spreads:
         out[q] = Spread(keep.spread, keep.methods, keep.angle, max(r.top, s.top),
                         max(r.n_methods, s.n_methods))
     return out
-
-
-def load_scales(tops: dict[str, float], size: float) -> dict[str, float]:
-    """The load scale of each kind (``force`` [N], ``moment`` [N m]) from the largest
-    magnitude of each kind ``tops`` and the mechanism's size [m] (see the module docstring)."""
-    force, moment = tops.get("force", 0.0), tops.get("moment", 0.0)
-    if not (size > 0 and math.isfinite(size)):
-        return {"force": force, "moment": moment}
-    return {"force": max(force, moment / size), "moment": max(moment, force * size)}
 
 
 DRIVER_QUANTITIES = ("driver.torque", "driver.force")

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..checks.agreement import load_scales
+from ..quantities import load_scales
 from ..units import ZERO_RTOL
 from .transmission import smallest_transmission_angle
 
@@ -73,7 +73,7 @@ def scales(kin, forces: dict, loads) -> dict[str, float]:
     mass, inertia. The kinematic kinds are :func:`kinematic_scales`.
 
     Forces and moments share one load scale through the mechanism's size (``Spec.size``,
-    the agreement check's :func:`~mechreport.checks.agreement.load_scales`): a moment is
+    the agreement check's :func:`~mechreport.quantities.load_scales`): a moment is
     measured against the largest moment and the largest force times the size, a force
     against the largest force and the largest moment over the size; so that a moment that
     is round-off next to the forces (a static press's shaking moment, 1e-13 N m beside
