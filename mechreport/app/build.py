@@ -244,12 +244,10 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
     if not paths:
         print("no spec files given", file=sys.stderr)
         return 1
-    out = od.prepare(Path(out))
     names = od.folder_names(paths)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(paths)))
     start = time.perf_counter()
-    with sigterm_as_interrupt(), od.OutputLock(out).acquire(wait):
-        od.clean_leftovers(out)
+    with sigterm_as_interrupt(), od.writing(Path(out), wait) as out:
         progress = Progress(len(paths), quiet=quiet)
         failures: dict[str, dict] = {}
         rows: list[dict] = [{} for _ in paths]

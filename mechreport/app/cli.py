@@ -55,7 +55,7 @@ def _cmd_study(ns: argparse.Namespace) -> int:
 
 def _cmd_dynamics(ns: argparse.Namespace) -> int:
     from .dynamics import dynamics_command
-    return dynamics_command(ns.specs, ns.output)
+    return dynamics_command(ns.specs, ns.out, ns.wait)
 
 
 def _cmd_schema(ns: argparse.Namespace) -> int:
@@ -262,13 +262,17 @@ def main(argv: list[str] | None = None) -> int:
     p = sub.add_parser("dynamics", help="simulate the motion a motor and flywheel give "
                        "(a spec's dynamics: section)",
                        description="Simulate each spec's machine dynamics alone: the time "
-                       "histories into OUT/<spec>/dynamics.csv and dynamics.parquet, the "
-                       "steady state's quantities and verdicts printed. Exit status 1 if any "
-                       "spec fails or misses a verdict.")
+                       "histories into OUT/<name>/dynamics.csv and dynamics.parquet (<name> and "
+                       "the folder's rules as for build; the folder's other files are kept), "
+                       "the steady state's quantities and verdicts printed. Exit status 1 if "
+                       "any spec fails or misses a verdict.")
     p.add_argument("specs", nargs="+", metavar="SPEC", help="spec files with a dynamics: "
                    "section")
-    p.add_argument("-o", "--output", metavar="OUT", default="out",
-                   help="output folder (default: out)")
+    p.add_argument("-o", "--out", "--output", dest="out", metavar="OUT", default="out",
+                   help="output folder (default: out; --output is the same)")
+    p.add_argument("--wait", type=_seconds, default=120.0, metavar="SECONDS",
+                   help="how long to wait for another command writing to the same output "
+                   "folder (default 120)")
     p.set_defaults(func=_cmd_dynamics)
 
     p = sub.add_parser("schema", help="print the JSON Schema of a spec file (for editors)",
@@ -276,7 +280,7 @@ def main(argv: list[str] | None = None) -> int:
                        "YAML language server uses it to check and complete specs as they are "
                        "typed (docs/spec.md, 'Editor support'). Exit status 1 if FILE cannot "
                        "be written.")
-    p.add_argument("-o", "--output", metavar="FILE", default=None,
+    p.add_argument("-o", "--out", "--output", dest="output", metavar="FILE", default=None,
                    help="write the schema to FILE instead of printing it")
     p.set_defaults(func=_cmd_schema)
 

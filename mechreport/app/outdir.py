@@ -19,6 +19,10 @@
   ``.tmp-<name>-<pid>``/``.old-<name>-<pid>`` folders of an interrupted build are deleted by
   the next build (under the lock).
 - Nothing is written outside ``OUT``: every path is checked to resolve inside it.
+
+Every command that writes into ``OUT`` (``build``, ``study``, ``dynamics``) does so through
+:func:`writing` (the folder, its lock, the leftovers) and :func:`swap_in` (directly or through
+:func:`write_folder`): one set of rules for every command's outputs.
 """
 from __future__ import annotations
 
@@ -30,6 +34,7 @@ import shutil
 import stat
 import sys
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import MechreportError
@@ -252,12 +257,17 @@ def remove(path: Path) -> None:
 
 STUDY_ENTRIES = ("study.parquet", "study.csv", "study.md", "study.pdf", "study-figures",
                  "study-reports")   # what `mechreport study` writes beside a spec's report
+DYNAMICS_ENTRIES = ("dynamics.csv", "dynamics.parquet")   # what `mechreport dynamics` writes
+#: the entry that makes a folder one of mechreport's (besides an empty one): ``build``,
+#: ``study``, ``dynamics``
+OWN_ENTRIES = {"summary.json", "study.parquet", "dynamics.parquet"}
 
 
 def occupied(out: Path, name: str) -> str | None:
     """Why ``OUT/name`` must not be replaced, or None. Only a report folder (one holding
-    summary.json), a study folder (study.parquet) or an empty folder is replaced: a build into
-    ``-o .`` must never delete a folder of the user's that happens to share a spec's name."""
+    summary.json), a study folder (study.parquet), a dynamics folder (dynamics.parquet) or an
+    empty folder is replaced: a build into ``-o .`` must never delete a folder of the user's
+    that happens to share a spec's name."""
     path = Path(out) / name
     if not os.path.lexists(path):
         return None
@@ -268,9 +278,9 @@ def occupied(out: Path, name: str) -> str | None:
         entries = {e.name for e in path.iterdir()}
     except OSError as exc:
         return f"{path}: {exc.strerror or exc}"
-    if entries and not entries & {"summary.json", "study.parquet"}:
-        return (f"{path} exists and is neither a mechreport report nor a study folder (no "
-                f"summary.json, no study.parquet); {advice}")
+    if entries and not entries & OWN_ENTRIES:
+        return (f"{path} exists and is neither a mechreport report nor a study or dynamics "
+                f"folder (no summary.json, study.parquet or dynamics.parquet); {advice}")
     return None
 
 
@@ -321,6 +331,37 @@ def swap_in(out: Path, tmp: Path, name: str, carry=lambda entry: entry in STUDY_
     if had_old:
         remove(old)
     return final
+
+
+def write_folder(out: Path, name: str, write, carry) -> Path:
+    """Write ``OUT/name`` whole: ``write(tmp)`` fills a fresh private folder
+    (:func:`make_tmp_dir`), which is checked (nothing in it leads outside) and swapped in
+    (:func:`swap_in`, carrying over the old entries for which ``carry(entry)`` holds); if
+    anything fails or is interrupted, the private folder is deleted and ``OUT/name`` is left as
+    it was. Call with the lock held (:func:`writing`). Returns the final folder."""
+    why = occupied(out, name)
+    if why:
+        raise OutputError(why)
+    tmp = make_tmp_dir(out, name)
+    try:
+        write(tmp)
+        for written in tmp.rglob("*"):                  # nothing escaped the folder
+            inside(tmp, written)
+        return swap_in(out, tmp, name, carry)
+    finally:
+        remove(tmp)                                     # gone already once swapped in
+
+
+@contextmanager
+def writing(out: Path, wait: float = 120.0, stream=None):
+    """``with writing(OUT, wait) as out:`` the output folder made ready (:func:`prepare`) and
+    locked for the block (:class:`OutputLock`, waiting up to ``wait`` seconds for another
+    command writing there), an interrupted command's leftovers deleted
+    (:func:`clean_leftovers`). Raises :class:`OutputError` if ``out`` cannot be used."""
+    out = prepare(Path(out))
+    with OutputLock(out, stream).acquire(wait):
+        clean_leftovers(out)
+        yield out
 
 
 _LEFTOVER = re.compile(r"\.(?:tmp|old)-[A-Za-z0-9_][A-Za-z0-9._-]*-\d+")

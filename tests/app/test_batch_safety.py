@@ -281,8 +281,8 @@ def test_a_folder_that_is_not_a_report_is_never_replaced(tmp_path, capsys):
     assert (tmp_path / "docs" / "notes.txt").read_text() == "mine"
     assert (tmp_path / ".tmp-cache").is_dir()
     assert (f"FAIL {spec}: {tmp_path / 'docs'} exists and is neither a mechreport report nor "
-            "a study folder (no summary.json, no study.parquet); move it away or use another "
-            "-o folder") in capsys.readouterr().err
+            "a study or dynamics folder (no summary.json, study.parquet or dynamics.parquet); "
+            "move it away or use another -o folder") in capsys.readouterr().err
 
 
 # -------------------------------------------------------------------------- 12: locking
