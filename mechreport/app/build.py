@@ -6,8 +6,10 @@
 
 Folder names, the lock on ``OUT`` and the whole-folder swap are described in
 :mod:`mechreport.app.outdir`. One failing spec is reported (stderr, and a FAIL row with its
-message in the index) and does not stop the others. The index lists every report folder in
-``OUT`` (read back from each folder's summary.json), with this run's failures as FAIL rows.
+message in the index) and does not stop the others; its earlier report, if any, is kept and
+marked out of date (``FAILED.json``, see :mod:`.outdir`). The index lists every report
+folder in ``OUT`` (read back from each folder's summary.json), with this run's failures and
+the folders marked out of date as FAIL rows.
 The exit code is 1 if any spec of this run failed to build or failed its check.
 
 Workers end with the build (:mod:`.workers`).
@@ -48,10 +50,13 @@ def build_key(path: Path, sheet: bool, exact: bool, sheet_options=None,
 
 
 def up_to_date(out: Path, name: str, key: dict) -> dict | None:
-    """The summary of ``out/name`` when it was built from the same ``key`` and its files are
-    all there (then the spec need not be built again); None otherwise."""
+    """The summary of ``out/name`` when it was built from the same ``key``, its files are all
+    there and its latest build did not fail (then the spec need not be built again); None
+    otherwise."""
     import json
     folder = Path(out) / name
+    if od.failure_of(folder) is not None:
+        return None
     try:
         summary = json.loads((folder / "summary.json").read_text(encoding="utf-8"))
     except (OSError, ValueError):
@@ -148,6 +153,16 @@ def _failure(path, name: str, message: str) -> dict:
             "status": "FAIL", "message": message.strip() or "unknown error", "sheets": []}
 
 
+def _mark_out_of_date(out: Path, name: str, row: dict) -> None:
+    """A failed spec's earlier report, if any, marked out of date (``OUT/name/FAILED.json``);
+    when the mark cannot be written the row's message says so."""
+    try:
+        od.mark_failed(out, name, row["spec"], row["message"])
+    except (OSError, MechreportError) as exc:
+        row["message"] += (f" (its earlier report in {name}/ could not be marked out of date: "
+                           f"{describe_failure(exc)})")
+
+
 def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, exact: bool,
          finish, stages: bool = False, sheet_options=None, animation: bool = True) -> None:
     """Build each ``(i, path, name)`` of ``todo``; ``finish(i, row)`` is called in this
@@ -184,8 +199,9 @@ def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, e
 # -------------------------------------------------------------------------------- index
 
 def index_rows(out: Path, failures: dict[str, dict] | None = None) -> list[dict]:
-    """The index of ``out``: one row per report folder on disk (from its summary.json), with
-    ``failures`` (folder name -> this run's FAIL row) in place of, or beside, the folders."""
+    """The index of ``out``: one row per report folder on disk (from its summary.json; a FAIL
+    row for one marked out of date), with ``failures`` (folder name -> this run's FAIL row)
+    in place of, or beside, the folders."""
     from ..report.model import index_row
 
     failures = failures or {}
@@ -199,6 +215,13 @@ def index_rows(out: Path, failures: dict[str, dict] | None = None) -> list[dict]
             rows.append(row)
             continue
         data = disk[name]
+        why = od.failure_of(Path(out) / name)
+        if why is not None:
+            spec = data.get("spec") if isinstance(data, dict) else None
+            spec = spec if isinstance(spec, str) else name
+            rows.append(_failure(spec, name, f"the latest build failed: {why} (the report of "
+                                             f"an earlier build is still in {name}/)"))
+            continue
         try:
             if isinstance(data, str):
                 raise ValueError(data)
@@ -262,6 +285,7 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
                                    + describe_failure(exc))
             if not row["ok"]:
                 od.remove(od.tmp_dir(out, names[i]))           # a worker that died
+                _mark_out_of_date(out, names[i], row)
                 failures[names[i]] = row
             progress.update(row)
             rows[i] = row

@@ -247,10 +247,11 @@ def main(argv: list[str] | None = None) -> int:
                        description="Compare the summary.json files of two build folders and "
                        "print the quantities that changed beyond the tolerance as a Markdown "
                        "table (for a pull-request comment). Exit status 1 when anything "
-                       "changed (a quantity, a status or verdict, a spec added or removed; a "
-                       "change to or from NaN or infinity included), 0 when nothing did, 2 on "
-                       "a usage error, a folder that is not a build, or a summary.json that "
-                       "cannot be read or is not a mechreport summary.")
+                       "changed (a quantity, a status or verdict, a spec added or removed, a "
+                       "spec that no longer builds or builds again; a change to or from NaN "
+                       "or infinity included), 0 when nothing did, 2 on a usage error, a "
+                       "folder that is not a build, or a summary.json or index.json that "
+                       "cannot be read or is not mechreport's.")
     p.add_argument("old", metavar="OLD_OUT")
     p.add_argument("new", metavar="NEW_OUT")
     p.add_argument("--rtol", type=_number_above_0, default=1e-6,

@@ -18,6 +18,11 @@
   replaced; any other file or folder of that name makes the spec fail, untouched. Leftover
   ``.tmp-<name>-<pid>``/``.old-<name>-<pid>`` folders of an interrupted build are deleted by
   the next build (under the lock).
+- **Out of date.** When a spec fails to build and its folder holds an earlier report, the
+  build writes ``OUT/<name>/FAILED.json`` beside that report (the spec, the reason, the date):
+  the folder says that its report no longer matches its spec. The index lists it as FAIL,
+  ``diff`` as "no longer builds", and the next build rebuilds it (never "unchanged"); a
+  successful build replaces the folder, marker and all.
 - Nothing is written outside ``OUT``: every path is checked to resolve inside it.
 
 Every command that writes into ``OUT`` (``build``, ``study``, ``dynamics``) does so through
@@ -376,6 +381,59 @@ def clean_leftovers(out: Path) -> list[str]:
             remove(entry)
             gone.append(entry.name)
     return gone
+
+
+# ------------------------------------------------------------------------- out of date
+
+FAILED = "FAILED.json"
+MAX_FAILED_BYTES = 1 << 20          # a FAILED.json holds one message: a few kB at most
+
+
+def mark_failed(out: Path, name: str, spec: str, message: str) -> bool:
+    """Write ``OUT/name/FAILED.json`` (see the module docstring) when ``OUT/name`` is a report
+    folder; whether it was written. Never through a symbolic link. Raises OSError if it
+    cannot be written."""
+    from ..report.files import atomic_write_text
+    from ..report.model import build_time
+    from ..version import __version__
+    folder = Path(out) / name
+    if occupied(out, name) is not None or not (folder / "summary.json").is_file():
+        return False                    # no report there (or not ours): nothing out of date
+    record = {"status": "FAIL", "spec": spec, "message": message,
+              "date": build_time().strftime("%Y-%m-%d %H:%M UTC"),
+              "mechreport_version": __version__}
+    # a new file renamed into place: a link of that name is replaced, never followed
+    atomic_write_text(inside(out, folder) / FAILED, json.dumps(record, indent=2) + "\n")
+    return True
+
+
+def failure_of(folder: Path) -> str | None:
+    """Why the report in ``folder`` is out of date (the message of its FAILED.json, on one
+    line), or None when it has no FAILED.json. A FAILED.json that cannot be read still marks the folder (the
+    message then says so). Only a regular file is read, at most ``MAX_FAILED_BYTES``."""
+    path = Path(folder) / FAILED
+    try:
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0)
+                     | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
+    except OSError as exc:
+        if not os.path.lexists(path):
+            return None
+        return f"{FAILED} could not be read: {exc.strerror or exc}"
+    try:
+        st = os.fstat(fd)
+        data = os.read(fd, MAX_FAILED_BYTES + 1) if stat.S_ISREG(st.st_mode) else b""
+    except OSError as exc:
+        return f"{FAILED} could not be read: {exc.strerror or exc}"
+    finally:
+        os.close(fd)
+    try:
+        message = json.loads(data.decode("utf-8"))["message"]
+        if not isinstance(message, str) or len(data) > MAX_FAILED_BYTES:
+            raise ValueError
+    except (ValueError, TypeError, KeyError, RecursionError):
+        return f"{FAILED} could not be read (not a mechreport {FAILED})"
+    lines = (" ".join(line.split()) for line in message.splitlines())
+    return "; ".join(line for line in lines if line) or "no reason given"
 
 
 # ------------------------------------------------------------------------------ index
