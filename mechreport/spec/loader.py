@@ -1523,6 +1523,10 @@ def _angle_list(value: Any, path: tuple, ck: _Checker) -> tuple[float, ...]:
         ck.error(path, f"must be a list of crank angles in degrees, got {_show(value)}")
         return (0.0,)
     out = [ck.number(v, path + (i,)) for i, v in enumerate(value)]
+    for i, v in enumerate(out):
+        if v is not None and v in out[:i]:
+            ck.error(path + (i,), f"{_show(value[i])} is given twice (also {path[-1]}"
+                                  f"[{out.index(v)}]); give each reference angle once")
     return tuple(v for v in out if v is not None) or (0.0,)
 
 
