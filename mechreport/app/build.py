@@ -129,6 +129,7 @@ def build_safe(path: str, out: str, name: str, sheet: bool, exact: bool,
     except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the batch
         if tmp is not None:
             od.remove(tmp)
+            od.as_in_place(exc, tmp, Path(out) / name)
         row = _failure(path, name, describe_failure(exc))
         if os.environ.get("MECHREPORT_DEBUG"):
             row["traceback"] = traceback.format_exc()
@@ -332,8 +333,8 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
         check_failed = [r for r in rows if r["ok"] and r.get("status") != "PASS"]
         try:
             _write_index(out, failures)
-        except MechreportError as exc:
-            print(f"error: index: {exc}", file=sys.stderr)
+        except (OSError, MechreportError) as exc:
+            print(f"error: index: {describe_failure(exc)}", file=sys.stderr)
             return 1
     skipped = sum(1 for r in rows if r.get("skipped"))
     built = len(rows) - len(failed) - skipped

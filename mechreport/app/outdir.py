@@ -211,8 +211,11 @@ class OutputLock:
                               file=self.stream)
                         told = True
                     time.sleep(poll)
-            os.ftruncate(fd, 0)
-            os.pwrite(fd, f"{os.getpid()}\n".encode("ascii"), 0)
+            try:
+                os.ftruncate(fd, 0)
+                os.pwrite(fd, f"{os.getpid()}\n".encode("ascii"), 0)
+            except OSError:
+                pass        # a full disk: the lock holds all the same, its holder unnamed
         except BaseException:
             os.close(fd)
             raise
@@ -246,6 +249,17 @@ def make_tmp_dir(out: Path, name: str, pid: int | None = None) -> Path:
     remove(tmp)
     tmp.mkdir()                                    # 0777 less the umask, like mkdir(1)
     return tmp
+
+
+def as_in_place(exc: BaseException, tmp: Path, final: Path) -> BaseException:
+    """``exc`` naming the file it was about as it would be in place: ``final/x`` for
+    ``tmp/x`` (a private folder means nothing to a user reading "no space left on device
+    writing ...")."""
+    name = getattr(exc, "filename", None)
+    prefix = str(tmp) + os.sep
+    if isinstance(exc, OSError) and isinstance(name, str) and name.startswith(prefix):
+        exc.filename = str(Path(final) / name[len(prefix):])
+    return exc
 
 
 def remove(path: Path) -> None:
@@ -353,6 +367,8 @@ def write_folder(out: Path, name: str, write, carry) -> Path:
         for written in tmp.rglob("*"):                  # nothing escaped the folder
             inside(tmp, written)
         return swap_in(out, tmp, name, carry)
+    except OSError as exc:
+        raise as_in_place(exc, tmp, Path(out) / name)
     finally:
         remove(tmp)                                     # gone already once swapped in
 
