@@ -21,14 +21,15 @@ import os
 import sys
 import time
 import traceback
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
 
 from ..errors import MechreportError, describe_failure, internal_error
 from . import outdir as od
 from .console import spec_files
+from .process import Terminated, check_stop
 from .progress import Progress
-from .workers import Terminated, sigterm_as_interrupt, stop_pool, worker_init
+from .workers import stop_pool, worker_init
 
 DEFAULT_WAIT = 120.0
 
@@ -104,10 +105,13 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
     return dict(row, folder=name)
 
 
-def _stage_printer(label: str):
-    """Stage lines on stderr for a single spec: ``[1/4] specs/x.yaml: analysing``."""
+def _stages(label: str, shown: bool):
+    """The stage callback of one spec: a safe point for a stop request (:func:`check_stop`)
+    and, if ``shown``, a line on stderr: ``[1/4] specs/x.yaml: analysing``."""
     def stage(i: int, n: int, what: str) -> None:
-        print(f"[{i}/{n}] {label}: {what}", file=sys.stderr, flush=True)
+        check_stop()
+        if shown:
+            print(f"[{i}/{n}] {label}: {what}", file=sys.stderr, flush=True)
     return stage
 
 
@@ -123,8 +127,7 @@ def build_safe(path: str, out: str, name: str, sheet: bool, exact: bool,
     try:
         tmp = od.make_tmp_dir(Path(out), name, owner)
         row = build_one(Path(path), Path(out), name, tmp, sheet, exact,
-                        _stage_printer(str(path)) if stages else None, sheet_options,
-                        animation)
+                        _stages(str(path), stages), sheet_options, animation)
         row["tmp"] = str(tmp)
     except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the batch
         if tmp is not None:
@@ -184,13 +187,17 @@ def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, e
         futs = {pool.submit(build_safe, str(p), str(out), name, sheet, exact, owner,
                             sheet_options=sheet_options, animation=animation): (i, p, name)
                 for i, p, name in todo}
-        for fut in as_completed(futs):
-            i, p, name = futs[fut]
-            try:
-                row = fut.result()
-            except Exception as exc:  # noqa: BLE001 - a worker died
-                row = _failure(p, name, internal_error(exc))
-            finish(i, row)
+        pending = set(futs)
+        while pending:
+            done, pending = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
+            check_stop()                    # also while no spec finishes
+            for fut in done:
+                i, p, name = futs[fut]
+                try:
+                    row = fut.result()
+                except Exception as exc:  # noqa: BLE001 - a worker died
+                    row = _failure(p, name, internal_error(exc))
+                finish(i, row)
     except BaseException:
         stop_pool(pool)
         raise
@@ -271,7 +278,7 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
     names = od.folder_names(paths)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(paths)))
     start = time.perf_counter()
-    with sigterm_as_interrupt(), od.writing(Path(out), wait) as out:
+    with od.writing(Path(out), wait) as out:
         progress = Progress(len(paths), quiet=quiet)
         failures: dict[str, dict] = {}
         rows: list[dict] = [{} for _ in paths]

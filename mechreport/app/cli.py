@@ -4,16 +4,20 @@ Every command goes through all the specs it is given: a spec that cannot be read
 is reported (one message naming the file) and the others still run; the exit code is 1 if
 any spec failed. Errors never print a traceback, unless MECHREPORT_DEBUG=1 is set. The
 process is set up (:mod:`.process`) before any command imports numpy.
+
+Every command stops on Ctrl-C (exit status 130) and SIGTERM (143), always, even when the
+signal's exception was lost (:func:`.process.stop_requests`).
 """
 from __future__ import annotations
 
 import argparse
 import math
+import signal
 import sys
 
 from ..errors import MechreportError, SpecError, internal_error
 from .console import print_traceback_if_debug
-from .workers import Terminated
+from .process import Terminated
 
 EXIT_INTERRUPTED = 130          # 128 + SIGINT, as a shell reports Ctrl-C
 EXIT_TERMINATED = 143           # 128 + SIGTERM
@@ -177,9 +181,17 @@ def _add_study_parser(sub) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from .process import set_up
-    from ..version import __version__
+    """``mechreport`` with ``argv`` (default: the command line's, and then the process ends
+    with the command); the exit status."""
+    from .process import set_up, stop_requests
     set_up()
+    with stop_requests(then_default=argv is None):
+        return _main(argv)
+
+
+def _main(argv: list[str] | None) -> int:
+    from .process import check_stop, stop_requested
+    from ..version import __version__
     parser = argparse.ArgumentParser(
         prog="mechreport",
         description="Dynamic force analysis of planar linkages from YAML specs.")
@@ -290,7 +302,9 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return 0
     try:
-        return ns.func(ns)
+        code = ns.func(ns)
+        check_stop()                        # a stop whose exception was lost still stops
+        return code
     except SpecError as exc:
         print(str(exc), file=sys.stderr)
         return 1
@@ -298,7 +312,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: {exc}", file=sys.stderr)
         return 1
     except KeyboardInterrupt as exc:
-        terminated = isinstance(exc, Terminated)
+        terminated = (stop_requested() or (signal.SIGTERM if isinstance(exc, Terminated)
+                                           else signal.SIGINT)) == signal.SIGTERM
         if not getattr(exc, "reported", False):
             print("terminated" if terminated else "interrupted", file=sys.stderr)
         return EXIT_TERMINATED if terminated else EXIT_INTERRUPTED

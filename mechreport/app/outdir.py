@@ -43,6 +43,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import MechreportError
+from .process import check_stop, held_stops
 
 LOCK_NAME = ".mechreport.lock"
 MAX_NAME = 100
@@ -322,7 +323,8 @@ def swap_in(out: Path, tmp: Path, name: str, carry=lambda entry: entry in STUDY_
     """Replace ``OUT/name`` by the complete folder ``tmp`` (two renames; the old folder, if
     any, is deleted afterwards). Entries of the old folder for which ``carry(name)`` holds and
     that ``tmp`` lacks are carried over as hard links (a report keeps the study beside it, and
-    a study the report). Returns the final folder."""
+    a study the report). Once a stop (Ctrl-C, SIGTERM) is requested, it raises it instead;
+    one that comes during the renames is raised after them. Returns the final folder."""
     out = Path(out)
     if _UNSAFE.search(name) is not None or name.strip(".") == "" or name.startswith("."):
         raise OutputError(f"refusing to write {out / name}: {name!r} is not a folder name "
@@ -338,17 +340,19 @@ def swap_in(out: Path, tmp: Path, name: str, carry=lambda entry: entry in STUDY_
                 link_tree(entry, tmp / entry.name)
     old = out / f".old-{name}-{os.getpid()}"
     remove(old)
-    had_old = os.path.lexists(final)
-    if had_old:
-        os.rename(final, old)
-    try:
-        os.rename(tmp, final)
-    except BaseException:
+    check_stop()                       # once a stop is requested, no folder is replaced
+    with held_stops():                 # both renames, or neither
+        had_old = os.path.lexists(final)
         if had_old:
-            os.rename(old, final)
-        raise
-    if had_old:
-        remove(old)
+            os.rename(final, old)
+        try:
+            os.rename(tmp, final)
+        except BaseException:
+            if had_old:
+                os.rename(old, final)
+            raise
+        if had_old:
+            remove(old)
     return final
 
 

@@ -67,7 +67,7 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     from .progress import StudyProgress, duration
     from .study_workers import (auto_chunk, close_client, connect, dask_workers, local_jobs,
                                 run_variants)
-    from .workers import sigterm_as_interrupt
+    from .process import stop_requests
 
     err = stream or sys.stderr
     path = Path(path)
@@ -78,7 +78,7 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     out = od.prepare(Path(out))            # fail early on an unusable -o
     name = od.safe_stem(path)
     lost: list = []
-    with sigterm_as_interrupt():
+    with stop_requests():
         client = connect(scheduler) if scheduler is not None else None
         try:
             if client is not None:
