@@ -6,7 +6,9 @@ any spec failed. Errors never print a traceback, unless MECHREPORT_DEBUG=1 is se
 process is set up (:mod:`.process`) before any command imports numpy.
 
 Every command stops on Ctrl-C (exit status 130) and SIGTERM (143), always, even when the
-signal's exception was lost (:func:`.process.stop_requests`).
+signal's exception was lost (:func:`.process.stop_requests`); a closed stdout or stderr
+(``mechreport kin X | head -2``) ends it quietly, with exit status 141, as a Unix tool
+killed by SIGPIPE.
 """
 from __future__ import annotations
 
@@ -15,11 +17,12 @@ import math
 import signal
 import sys
 
-from ..errors import MechreportError, SpecError, internal_error
+from ..errors import MechreportError, SpecError, describe_failure, internal_error
 from .console import print_traceback_if_debug
 from .process import Terminated
 
 EXIT_INTERRUPTED = 130          # 128 + SIGINT, as a shell reports Ctrl-C
+EXIT_BROKEN_PIPE = 141          # 128 + SIGPIPE: stdout closed early (`| head`), as a shell
 EXIT_TERMINATED = 143           # 128 + SIGTERM
 
 
@@ -186,7 +189,50 @@ def main(argv: list[str] | None = None) -> int:
     from .process import set_up, stop_requests
     set_up()
     with stop_requests(then_default=argv is None):
-        return _main(argv)
+        try:
+            try:
+                return _main(argv)
+            finally:                        # --help and --version end in SystemExit
+                sys.stdout.flush()          # a closed pipe is found here, not at exit
+        except BrokenPipeError as exc:
+            if not _closed_pipe():                  # not stdout or stderr: a bug
+                print(f"error: {internal_error(exc, 'the command you ran')}", file=sys.stderr)
+                return 1
+            _silence_stdio()
+            return EXIT_BROKEN_PIPE
+        except OSError as exc:                      # stdout itself failed: a full disk
+            print(f"error: cannot write the output: {describe_failure(exc)}", file=sys.stderr)
+            return 1
+
+
+def _closed_pipe() -> bool:
+    """Whether stdout or stderr is a pipe whose reader is gone (``mechreport kin X | head``).
+    Where poll() is missing, any BrokenPipeError is taken to be one."""
+    import select
+    if not hasattr(select, "poll"):
+        return True
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            poller = select.poll()
+            poller.register(stream.fileno(), select.POLLOUT)
+            if any(events & select.POLLERR for _, events in poller.poll(0)):
+                return True
+        except (AttributeError, ValueError, OSError):     # no file behind it
+            continue
+    return False
+
+
+def _silence_stdio() -> None:
+    """stdout and stderr to /dev/null, so that nothing more (the final flush at exit
+    included) meets the closed pipe: Python's documented recipe for a BrokenPipeError."""
+    import os
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            os.dup2(devnull, stream.fileno())
+        except (AttributeError, ValueError, OSError):
+            pass
+    os.close(devnull)
 
 
 def _main(argv: list[str] | None) -> int:
@@ -317,6 +363,8 @@ def _main(argv: list[str] | None) -> int:
         if not getattr(exc, "reported", False):
             print("terminated" if terminated else "interrupted", file=sys.stderr)
         return EXIT_TERMINATED if terminated else EXIT_INTERRUPTED
+    except BrokenPipeError:
+        raise                               # see main()
     except Exception as exc:  # noqa: BLE001 - a bug: one line, a traceback only when asked
         print(f"error: {internal_error(exc, 'the command you ran')}", file=sys.stderr)
         print_traceback_if_debug()
