@@ -28,9 +28,11 @@ folder marked out of date by a failed build (its ``FAILED.json``, see :mod:`.out
 spec the folder's ``index.json`` lists as FAIL without a report folder. Such a spec "no longer
 builds" (with the build's reason) when it built in the old folder, "builds again" the other
 way round, and its stale report is not compared. A spec in one folder only is "added" or
-"removed". ``index.json`` is read as summary.json is (a regular file within the cap, UTF-8 JSON:
-an object whose ``specs`` is a list of objects with ``folder``, ``status`` and ``message``
-strings); it may be missing.
+"removed". A report folder whose summary says PASS where ``index.json`` says FAIL is taken
+as failed too (its build could not write the mark). ``index.json`` is read as summary.json is
+(a regular file within the cap, UTF-8 JSON: an object whose ``specs`` is a list of objects
+with ``folder`` and ``status`` strings, and ``message``, a string if given); it may be
+missing.
 
 Exit status: 0 nothing changed, 1 something changed, 2 a folder is not a build output, or a
 summary.json or index.json in it cannot be read (not a regular file, too large, unreadable,
@@ -74,8 +76,9 @@ def read_build(out: Path) -> dict[str, dict]:
     """Folder name -> what diff reads of each spec of the build in ``out``: the summary.json
     of every report folder, checked (see the module docstring) and reduced to what diff
     reads, numbers as floats, with ``failed``: None, or the reason its latest build failed
-    (a folder marked out of date); and ``{"failed": reason}`` for a spec index.json lists as
-    failed that has no report folder. Raises ``MechreportError`` when ``out`` is not a
+    (a folder marked out of date, or one whose summary says PASS where index.json says FAIL);
+    and ``{"failed": reason}`` for a spec index.json lists as failed that has no report
+    folder. Raises ``MechreportError`` when ``out`` is not a
     folder, holds no spec, or a summary.json or index.json in it cannot be read."""
     out = Path(out)
     if not out.is_dir():
@@ -97,7 +100,9 @@ def read_build(out: Path) -> dict[str, dict]:
             raise MechreportError(f"{_shown(f)}: not a mechreport summary: {exc}") from None
         found[sub.name]["failed"] = od.failure_of(sub)
     for folder, reason in _index_failures(out).items():
-        found.setdefault(folder, {"failed": reason})
+        entry = found.setdefault(folder, {"failed": reason})
+        if entry["failed"] is None and entry["status"] == "PASS":
+            entry["failed"] = reason        # the build failed and could not mark the folder
     if not found:
         raise MechreportError(f"{out}: no report folder (no */summary.json): is it a "
                               "`mechreport build` output folder?")
@@ -105,8 +110,8 @@ def read_build(out: Path) -> dict[str, dict]:
 
 
 def _index_failures(out: Path) -> dict[str, str]:
-    """Folder -> message of each spec ``out/index.json`` lists as FAIL (a report folder's own
-    summary.json says more; the caller keeps those). Empty when there is no index.json."""
+    """Folder -> message of each spec ``out/index.json`` lists as FAIL: its build failed, or
+    its check (then its summary.json says FAIL too). Empty when there is no index.json."""
     f = out / "index.json"
     data = _read_json(f)
     if data is _NONE:
@@ -116,11 +121,15 @@ def _index_failures(out: Path) -> dict[str, str]:
         specs = _typed(_field(data, "specs"), (list,), "a list", "specs")
         failed = {}
         for i, rec in enumerate(specs):
-            where = f"specs[{i}]"
-            _typed(rec, (dict,), "an object", where)
-            folder = _typed(_field(rec, "folder"), (str,), "a string", f"{where}.folder")
-            status = _typed(_field(rec, "status"), (str,), "a string", f"{where}.status")
-            message = _typed(_field(rec, "message"), (str,), "a string", f"{where}.message")
+            try:
+                _typed(rec, (dict,), "an object")
+                folder = _typed(_field(rec, "folder"), (str,), "a string", ".folder")
+                status = _typed(_field(rec, "status"), (str,), "a string", ".status")
+                message = rec.get("message")
+                message = "" if message is None else _typed(message, (str,), "a string",
+                                                             ".message")
+            except _Malformed as exc:
+                raise exc.within(f"specs[{i}]") from None
             if status != "PASS":
                 failed[folder] = "; ".join(" ".join(line.split())
                                            for line in message.splitlines()

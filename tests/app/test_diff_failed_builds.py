@@ -56,6 +56,9 @@ def test_diff_reports_a_spec_that_no_longer_builds(tmp_path, capsys):
     assert "links.crank.mass: must be a positive number" in out
     code, out = _diff(capsys, new, old)
     assert code == 1 and "| tiny | build | does not build | PASS | builds again |" in out
+    (new / "tiny" / od.FAILED).unlink()            # as if it could not be written: the index
+    code, out = _diff(capsys, old, new)
+    assert code == 1 and "no longer builds: " in out and "still in tiny/" in out
 
 
 def test_an_out_of_date_report_stays_marked_until_its_spec_builds_again(tmp_path, capsys):
