@@ -278,8 +278,8 @@ def remove(path: Path) -> None:
 STUDY_ENTRIES = ("study.parquet", "study.csv", "study.md", "study.pdf", "study-figures",
                  "study-reports")   # what `mechreport study` writes beside a spec's report
 DYNAMICS_ENTRIES = ("dynamics.csv", "dynamics.parquet")   # what `mechreport dynamics` writes
-#: the entry that makes a folder one of mechreport's (besides an empty one): ``build``,
-#: ``study``, ``dynamics``
+#: the entries that make a folder one of mechreport's (besides an empty one): one each of
+#: ``build``, ``study`` and ``dynamics``
 OWN_ENTRIES = {"summary.json", "study.parquet", "dynamics.parquet"}
 
 
@@ -429,8 +429,9 @@ def mark_failed(out: Path, name: str, spec: str, message: str) -> bool:
 
 def failure_of(folder: Path) -> str | None:
     """Why the report in ``folder`` is out of date (the message of its FAILED.json, on one
-    line), or None when it has no FAILED.json. A FAILED.json that cannot be read still marks the folder (the
-    message then says so). Only a regular file is read, at most ``MAX_FAILED_BYTES``."""
+    line), or None when it has no FAILED.json. A FAILED.json that cannot be read still marks
+    the folder (the message then says so). Only a regular file is read, at most
+    ``MAX_FAILED_BYTES``."""
     path = Path(folder) / FAILED
     try:
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0)
