@@ -1,6 +1,7 @@
 """Project exceptions. Their messages are for users: file, line, key path, what was expected."""
 from __future__ import annotations
 
+import errno
 from dataclasses import dataclass
 
 
@@ -53,6 +54,12 @@ def internal_error(exc: BaseException, attach: str = "the spec file") -> str:
             f"report this with {attach}")
 
 
+#: errno -> what a full disk is called in a message
+_FULL = {errno.ENOSPC: "no space left on device"}
+if hasattr(errno, "EDQUOT"):
+    _FULL[errno.EDQUOT] = "disk quota exceeded"
+
+
 def describe_failure(exc: BaseException) -> str:
     """The one text users read for a spec that failed with ``exc``: the error's own message
     for a :class:`MechreportError`, what the system said for a file problem, otherwise an
@@ -62,6 +69,9 @@ def describe_failure(exc: BaseException) -> str:
     if isinstance(exc, UnicodeDecodeError):
         return (f"cannot read file: not UTF-8 text (byte {exc.start}: {exc.reason}); save it "
                 "as UTF-8")
+    if isinstance(exc, OSError) and exc.errno in _FULL:
+        where = f" writing {exc.filename}" if exc.filename else ""
+        return f"{_FULL[exc.errno]}{where}; free some space and run it again"
     if isinstance(exc, OSError) and exc.strerror:
         where = f"{exc.filename}: " if exc.filename else ""
         return f"{where}{exc.strerror}"

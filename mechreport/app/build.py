@@ -6,8 +6,10 @@
 
 Folder names, the lock on ``OUT`` and the whole-folder swap are described in
 :mod:`mechreport.app.outdir`. One failing spec is reported (stderr, and a FAIL row with its
-message in the index) and does not stop the others. The index lists every report folder in
-``OUT`` (read back from each folder's summary.json), with this run's failures as FAIL rows.
+message in the index) and does not stop the others; its earlier report, if any, is kept and
+marked out of date (``FAILED.json``, see :mod:`.outdir`). The index lists every report
+folder in ``OUT`` (read back from each folder's summary.json), with this run's failures and
+the folders marked out of date as FAIL rows.
 The exit code is 1 if any spec of this run failed to build or failed its check.
 
 Workers end with the build (:mod:`.workers`).
@@ -19,14 +21,15 @@ import os
 import sys
 import time
 import traceback
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
 
 from ..errors import MechreportError, describe_failure, internal_error
 from . import outdir as od
 from .console import spec_files
+from .process import Terminated, check_stop
 from .progress import Progress
-from .workers import Terminated, sigterm_as_interrupt, stop_pool, worker_init
+from .workers import stop_pool, worker_init
 
 DEFAULT_WAIT = 120.0
 
@@ -48,10 +51,13 @@ def build_key(path: Path, sheet: bool, exact: bool, sheet_options=None,
 
 
 def up_to_date(out: Path, name: str, key: dict) -> dict | None:
-    """The summary of ``out/name`` when it was built from the same ``key`` and its files are
-    all there (then the spec need not be built again); None otherwise."""
+    """The summary of ``out/name`` when it was built from the same ``key``, its files are all
+    there and its latest build did not fail (then the spec need not be built again); None
+    otherwise."""
     import json
     folder = Path(out) / name
+    if od.failure_of(folder) is not None:
+        return None
     try:
         summary = json.loads((folder / "summary.json").read_text(encoding="utf-8"))
     except (OSError, ValueError):
@@ -99,10 +105,13 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
     return dict(row, folder=name)
 
 
-def _stage_printer(label: str):
-    """Stage lines on stderr for a single spec: ``[1/4] specs/x.yaml: analysing``."""
+def _stages(label: str, shown: bool):
+    """The stage callback of one spec: a safe point for a stop request (:func:`check_stop`)
+    and, if ``shown``, a line on stderr: ``[1/4] specs/x.yaml: analysing``."""
     def stage(i: int, n: int, what: str) -> None:
-        print(f"[{i}/{n}] {label}: {what}", file=sys.stderr, flush=True)
+        check_stop()
+        if shown:
+            print(f"[{i}/{n}] {label}: {what}", file=sys.stderr, flush=True)
     return stage
 
 
@@ -118,12 +127,12 @@ def build_safe(path: str, out: str, name: str, sheet: bool, exact: bool,
     try:
         tmp = od.make_tmp_dir(Path(out), name, owner)
         row = build_one(Path(path), Path(out), name, tmp, sheet, exact,
-                        _stage_printer(str(path)) if stages else None, sheet_options,
-                        animation)
+                        _stages(str(path), stages), sheet_options, animation)
         row["tmp"] = str(tmp)
     except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the batch
         if tmp is not None:
             od.remove(tmp)
+            od.as_in_place(exc, tmp, Path(out) / name)
         row = _failure(path, name, describe_failure(exc))
         if os.environ.get("MECHREPORT_DEBUG"):
             row["traceback"] = traceback.format_exc()
@@ -148,6 +157,16 @@ def _failure(path, name: str, message: str) -> dict:
             "status": "FAIL", "message": message.strip() or "unknown error", "sheets": []}
 
 
+def _mark_out_of_date(out: Path, name: str, row: dict) -> None:
+    """A failed spec's earlier report, if any, marked out of date (``OUT/name/FAILED.json``);
+    when the mark cannot be written the row's message says so."""
+    try:
+        od.mark_failed(out, name, row["spec"], row["message"])
+    except (OSError, MechreportError) as exc:
+        row["message"] += (f" (its earlier report in {name}/ could not be marked out of date: "
+                           f"{describe_failure(exc)})")
+
+
 def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, exact: bool,
          finish, stages: bool = False, sheet_options=None, animation: bool = True) -> None:
     """Build each ``(i, path, name)`` of ``todo``; ``finish(i, row)`` is called in this
@@ -168,13 +187,17 @@ def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, e
         futs = {pool.submit(build_safe, str(p), str(out), name, sheet, exact, owner,
                             sheet_options=sheet_options, animation=animation): (i, p, name)
                 for i, p, name in todo}
-        for fut in as_completed(futs):
-            i, p, name = futs[fut]
-            try:
-                row = fut.result()
-            except Exception as exc:  # noqa: BLE001 - a worker died
-                row = _failure(p, name, internal_error(exc))
-            finish(i, row)
+        pending = set(futs)
+        while pending:
+            done, pending = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
+            check_stop()                    # also while no spec finishes
+            for fut in done:
+                i, p, name = futs[fut]
+                try:
+                    row = fut.result()
+                except Exception as exc:  # noqa: BLE001 - a worker died
+                    row = _failure(p, name, internal_error(exc))
+                finish(i, row)
     except BaseException:
         stop_pool(pool)
         raise
@@ -184,8 +207,9 @@ def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, e
 # -------------------------------------------------------------------------------- index
 
 def index_rows(out: Path, failures: dict[str, dict] | None = None) -> list[dict]:
-    """The index of ``out``: one row per report folder on disk (from its summary.json), with
-    ``failures`` (folder name -> this run's FAIL row) in place of, or beside, the folders."""
+    """The index of ``out``: one row per report folder on disk (from its summary.json; a FAIL
+    row for one marked out of date), with ``failures`` (folder name -> this run's FAIL row)
+    in place of, or beside, the folders."""
     from ..report.model import index_row
 
     failures = failures or {}
@@ -199,6 +223,13 @@ def index_rows(out: Path, failures: dict[str, dict] | None = None) -> list[dict]
             rows.append(row)
             continue
         data = disk[name]
+        why = od.failure_of(Path(out) / name)
+        if why is not None:
+            spec = data.get("spec") if isinstance(data, dict) else None
+            spec = spec if isinstance(spec, str) else name
+            rows.append(_failure(spec, name, f"the latest build failed: {why} (the report of "
+                                             f"an earlier build is still in {name}/)"))
+            continue
         try:
             if isinstance(data, str):
                 raise ValueError(data)
@@ -244,12 +275,10 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
     if not paths:
         print("no spec files given", file=sys.stderr)
         return 1
-    out = od.prepare(Path(out))
     names = od.folder_names(paths)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(paths)))
     start = time.perf_counter()
-    with sigterm_as_interrupt(), od.OutputLock(out).acquire(wait):
-        od.clean_leftovers(out)
+    with od.writing(Path(out), wait) as out:
         progress = Progress(len(paths), quiet=quiet)
         failures: dict[str, dict] = {}
         rows: list[dict] = [{} for _ in paths]
@@ -264,6 +293,7 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
                                    + describe_failure(exc))
             if not row["ok"]:
                 od.remove(od.tmp_dir(out, names[i]))           # a worker that died
+                _mark_out_of_date(out, names[i], row)
                 failures[names[i]] = row
             progress.update(row)
             rows[i] = row
@@ -310,8 +340,8 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
         check_failed = [r for r in rows if r["ok"] and r.get("status") != "PASS"]
         try:
             _write_index(out, failures)
-        except MechreportError as exc:
-            print(f"error: index: {exc}", file=sys.stderr)
+        except (OSError, MechreportError) as exc:
+            print(f"error: index: {describe_failure(exc)}", file=sys.stderr)
             return 1
     skipped = sum(1 for r in rows if r.get("skipped"))
     built = len(rows) - len(failed) - skipped

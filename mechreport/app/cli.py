@@ -4,19 +4,26 @@ Every command goes through all the specs it is given: a spec that cannot be read
 is reported (one message naming the file) and the others still run; the exit code is 1 if
 any spec failed. Errors never print a traceback, unless MECHREPORT_DEBUG=1 is set. The
 process is set up (:mod:`.process`) before any command imports numpy.
+
+Every command stops on Ctrl-C (exit status 130) and SIGTERM (143), always, even when the
+signal's exception was lost (:func:`.process.stop_requests`); a closed stdout or stderr
+(``mechreport kin X | head -2``) ends it quietly, with exit status 141, as a Unix tool
+killed by SIGPIPE.
 """
 from __future__ import annotations
 
 import argparse
 import math
+import signal
 import sys
 import textwrap
 
-from ..errors import MechreportError, SpecError, internal_error
+from ..errors import MechreportError, SpecError, describe_failure, internal_error
 from .console import print_traceback_if_debug
-from .workers import Terminated
+from .process import Terminated
 
 EXIT_INTERRUPTED = 130          # 128 + SIGINT, as a shell reports Ctrl-C
+EXIT_BROKEN_PIPE = 141          # 128 + SIGPIPE: stdout closed early (`| head`), as a shell
 EXIT_TERMINATED = 143           # 128 + SIGTERM
 
 
@@ -56,7 +63,7 @@ def _cmd_study(ns: argparse.Namespace) -> int:
 
 def _cmd_dynamics(ns: argparse.Namespace) -> int:
     from .dynamics import dynamics_command
-    return dynamics_command(ns.specs, ns.output)
+    return dynamics_command(ns.specs, ns.out, ns.wait)
 
 
 def _cmd_schema(ns: argparse.Namespace) -> int:
@@ -186,9 +193,60 @@ def _add_study_parser(sub) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from .process import set_up
-    from ..version import __version__
+    """``mechreport`` with ``argv`` (default: the command line's, and then the process ends
+    with the command); the exit status."""
+    from .process import set_up, stop_requests
     set_up()
+    with stop_requests(then_default=argv is None):
+        try:
+            try:
+                return _main(argv)
+            finally:                        # --help and --version end in SystemExit
+                sys.stdout.flush()          # a closed pipe is found here, not at exit
+        except BrokenPipeError as exc:
+            if not _closed_pipe():                  # not stdout or stderr: a bug
+                print(f"error: {internal_error(exc, 'the command you ran')}", file=sys.stderr)
+                return 1
+            _silence_stdio()
+            return EXIT_BROKEN_PIPE
+        except OSError as exc:                      # stdout itself failed: a full disk
+            print(f"error: cannot write the output: {describe_failure(exc)}", file=sys.stderr)
+            return 1
+
+
+def _closed_pipe() -> bool:
+    """Whether stdout or stderr is a pipe whose reader is gone (``mechreport kin X | head``).
+    Where poll() is missing, any BrokenPipeError is taken to be one."""
+    import select
+    if not hasattr(select, "poll"):
+        return True
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            poller = select.poll()
+            poller.register(stream.fileno(), select.POLLOUT)
+            if any(events & select.POLLERR for _, events in poller.poll(0)):
+                return True
+        except (AttributeError, ValueError, OSError):     # no file behind it
+            continue
+    return False
+
+
+def _silence_stdio() -> None:
+    """stdout and stderr to /dev/null, so that nothing more (the final flush at exit
+    included) meets the closed pipe: Python's documented recipe for a BrokenPipeError."""
+    import os
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            os.dup2(devnull, stream.fileno())
+        except (AttributeError, ValueError, OSError):
+            pass
+    os.close(devnull)
+
+
+def _main(argv: list[str] | None) -> int:
+    from .process import check_stop, stop_requested
+    from ..version import __version__
     parser = argparse.ArgumentParser(
         prog="mechreport",
         description="Dynamic force analysis of planar linkages from YAML specs.")
@@ -260,10 +318,11 @@ def main(argv: list[str] | None = None) -> int:
                        description="Compare the summary.json files of two build folders and "
                        "print the quantities that changed beyond the tolerance as a Markdown "
                        "table (for a pull-request comment). Exit status 1 when anything "
-                       "changed (a quantity, a status or verdict, a spec added or removed; a "
-                       "change to or from NaN or infinity included), 0 when nothing did, 2 on "
-                       "a usage error, a folder that is not a build, or a summary.json that "
-                       "cannot be read or is not a mechreport summary.")
+                       "changed (a quantity, a status or verdict, a spec added or removed, a "
+                       "spec that no longer builds or builds again; a change to or from NaN "
+                       "or infinity included), 0 when nothing did, 2 on a usage error, a "
+                       "folder that is not a build, or a summary.json or index.json that "
+                       "cannot be read or is not mechreport's.")
     p.add_argument("old", metavar="OLD_OUT")
     p.add_argument("new", metavar="NEW_OUT")
     p.add_argument("--rtol", type=_number_above_0, default=1e-6,
@@ -275,13 +334,17 @@ def main(argv: list[str] | None = None) -> int:
     p = sub.add_parser("dynamics", help="simulate the motion a motor and flywheel give "
                        "(a spec's dynamics: section)",
                        description="Simulate each spec's machine dynamics alone: the time "
-                       "histories into OUT/<spec>/dynamics.csv and dynamics.parquet, the "
-                       "steady state's quantities and verdicts printed. Exit status 1 if any "
-                       "spec fails or misses a verdict.")
+                       "histories into OUT/<name>/dynamics.csv and dynamics.parquet (<name> and "
+                       "the folder's rules as for build; the folder's other files are kept), "
+                       "the steady state's quantities and verdicts printed. Exit status 1 if "
+                       "any spec fails or misses a verdict.")
     p.add_argument("specs", nargs="+", metavar="SPEC", help="spec files with a dynamics: "
                    "section")
-    p.add_argument("-o", "--output", metavar="OUT", default="out",
-                   help="output folder (default: out)")
+    p.add_argument("-o", "--out", "--output", dest="out", metavar="OUT", default="out",
+                   help="output folder (default: out; --output is the same)")
+    p.add_argument("--wait", type=_seconds, default=120.0, metavar="SECONDS",
+                   help="how long to wait for another command writing to the same output "
+                   "folder (default 120)")
     p.set_defaults(func=_cmd_dynamics)
 
     p = sub.add_parser("schema", help="print the JSON Schema of a spec file (for editors)",
@@ -289,7 +352,7 @@ def main(argv: list[str] | None = None) -> int:
                        "YAML language server uses it to check and complete specs as they are "
                        "typed (docs/spec.md, 'Editor support'). Exit status 1 if FILE cannot "
                        "be written.")
-    p.add_argument("-o", "--output", metavar="FILE", default=None,
+    p.add_argument("-o", "--out", "--output", dest="output", metavar="FILE", default=None,
                    help="write the schema to FILE instead of printing it")
     p.set_defaults(func=_cmd_schema)
 
@@ -298,7 +361,9 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return 0
     try:
-        return ns.func(ns)
+        code = ns.func(ns)
+        check_stop()                        # a stop whose exception was lost still stops
+        return code
     except SpecError as exc:
         print(str(exc), file=sys.stderr)
         return 1
@@ -306,10 +371,13 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: {exc}", file=sys.stderr)
         return 1
     except KeyboardInterrupt as exc:
-        terminated = isinstance(exc, Terminated)
+        terminated = (stop_requested() or (signal.SIGTERM if isinstance(exc, Terminated)
+                                           else signal.SIGINT)) == signal.SIGTERM
         if not getattr(exc, "reported", False):
             print("terminated" if terminated else "interrupted", file=sys.stderr)
         return EXIT_TERMINATED if terminated else EXIT_INTERRUPTED
+    except BrokenPipeError:
+        raise                               # see main()
     except Exception as exc:  # noqa: BLE001 - a bug: one line, a traceback only when asked
         print(f"error: {internal_error(exc, 'the command you ran')}", file=sys.stderr)
         print_traceback_if_debug()

@@ -1,4 +1,5 @@
-"""What every command shares on the terminal: the spec arguments, debug tracebacks."""
+"""What every command shares on the terminal: the spec arguments, a spec's failure, debug
+tracebacks."""
 from __future__ import annotations
 
 import os
@@ -6,6 +7,8 @@ import stat
 import sys
 import traceback
 from pathlib import Path
+
+from ..errors import MechreportError, describe_failure
 
 
 def debug() -> bool:
@@ -16,6 +19,17 @@ def debug() -> bool:
 def print_traceback_if_debug() -> None:
     if debug():
         traceback.print_exc(file=sys.stderr)
+
+
+def report_failure(path, exc: BaseException) -> None:
+    """One spec's failure on stderr: a :class:`MechreportError`'s own message (it names the
+    file), anything else after the spec's path (:func:`describe_failure`), with a traceback
+    when MECHREPORT_DEBUG is set."""
+    if isinstance(exc, MechreportError):
+        print(str(exc), file=sys.stderr)
+        return
+    print(f"{path}: {describe_failure(exc)}", file=sys.stderr)
+    print_traceback_if_debug()
 
 
 def _blocks(path: Path) -> bool:

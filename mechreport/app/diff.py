@@ -23,9 +23,20 @@ string, and optionally ``angle_deg``: a finite number or null) and ``design.verd
 of objects, each with ``item``: a string, and ``passed``: true or false). Anything else is a
 one-line error naming the file and what is wrong.
 
+A spec whose latest build failed is a change too, whatever its folder still holds: a report
+folder marked out of date by a failed build (its ``FAILED.json``, see :mod:`.outdir`), or a
+spec the folder's ``index.json`` lists as FAIL without a report folder. Such a spec "no longer
+builds" (with the build's reason) when it built in the old folder, "builds again" the other
+way round, and its stale report is not compared. A spec in one folder only is "added" or
+"removed". A report folder whose summary says PASS where ``index.json`` says FAIL is taken
+as failed too (its build could not write the mark). ``index.json`` is read as summary.json is
+(a regular file within the cap, UTF-8 JSON: an object whose ``specs`` is a list of objects
+with ``folder`` and ``status`` strings, and ``message``, a string if given); it may be
+missing.
+
 Exit status: 0 nothing changed, 1 something changed, 2 a folder is not a build output, or a
-summary.json in it cannot be read (not a regular file, too large, unreadable, not JSON, not a
-mechreport summary).
+summary.json or index.json in it cannot be read (not a regular file, too large, unreadable,
+not JSON, not a mechreport summary or index).
 """
 from __future__ import annotations
 
@@ -40,6 +51,7 @@ from pathlib import Path
 
 from ..errors import MechreportError
 from ..report.markdown import md_inline
+from . import outdir as od
 from ..units import SIG_DIGITS, fmt
 
 EXIT_CHANGED = 1
@@ -61,9 +73,13 @@ class Change:
 
 
 def read_build(out: Path) -> dict[str, dict]:
-    """Folder name -> summary.json of every report folder in ``out``, checked (see the module
-    docstring) and reduced to what diff reads, numbers as floats. Raises ``MechreportError``
-    when ``out`` is not a folder, holds no report, or a summary.json in it cannot be read."""
+    """Folder name -> what diff reads of each spec of the build in ``out``: the summary.json
+    of every report folder, checked (see the module docstring) and reduced to what diff
+    reads, numbers as floats, with ``failed``: None, or the reason its latest build failed
+    (a folder marked out of date, or one whose summary says PASS where index.json says FAIL);
+    and ``{"failed": reason}`` for a spec index.json lists as failed that has no report
+    folder. Raises ``MechreportError`` when ``out`` is not a
+    folder, holds no spec, or a summary.json or index.json in it cannot be read."""
     out = Path(out)
     if not out.is_dir():
         raise MechreportError(f"{out}: not a folder (give two `mechreport build` output "
@@ -75,24 +91,70 @@ def read_build(out: Path) -> dict[str, dict]:
     found: dict[str, dict] = {}
     for sub in subs:
         f = sub / "summary.json"
-        text = _read_summary(f)
-        if text is None:
+        data = _read_json(f)
+        if data is _NONE:
             continue
-        try:
-            data = json.loads(text)
-        except ValueError as exc:
-            raise MechreportError(f"{_shown(f)}: not JSON: {exc}") from None
-        except RecursionError:
-            raise MechreportError(f"{_shown(f)}: not JSON that can be read: nested too "
-                                  "deeply") from None
         try:
             found[sub.name] = _checked_summary(data)
         except _Malformed as exc:
             raise MechreportError(f"{_shown(f)}: not a mechreport summary: {exc}") from None
+        found[sub.name]["failed"] = od.failure_of(sub)
+    for folder, reason in _index_failures(out).items():
+        entry = found.setdefault(folder, {"failed": reason})
+        if entry["failed"] is None and entry["status"] == "PASS":
+            entry["failed"] = reason        # the build failed and could not mark the folder
     if not found:
         raise MechreportError(f"{out}: no report folder (no */summary.json): is it a "
                               "`mechreport build` output folder?")
     return found
+
+
+def _index_failures(out: Path) -> dict[str, str]:
+    """Folder -> message of each spec ``out/index.json`` lists as FAIL: its build failed, or
+    its check (then its summary.json says FAIL too). Empty when there is no index.json."""
+    f = out / "index.json"
+    data = _read_json(f)
+    if data is _NONE:
+        return {}
+    try:
+        _typed(data, (dict,), "an object")
+        specs = _typed(_field(data, "specs"), (list,), "a list", "specs")
+        failed = {}
+        for i, rec in enumerate(specs):
+            try:
+                _typed(rec, (dict,), "an object")
+                folder = _typed(_field(rec, "folder"), (str,), "a string", ".folder")
+                status = _typed(_field(rec, "status"), (str,), "a string", ".status")
+                message = rec.get("message")
+                message = "" if message is None else _typed(message, (str,), "a string",
+                                                             ".message")
+            except _Malformed as exc:
+                raise exc.within(f"specs[{i}]") from None
+            if status != "PASS":
+                failed[folder] = "; ".join(" ".join(line.split())
+                                           for line in message.splitlines()
+                                           if line.strip()) or "no reason given"
+    except _Malformed as exc:
+        raise MechreportError(f"{_shown(f)}: not a mechreport index: {exc}") from None
+    return failed
+
+
+_NONE = object()        # no such file
+
+
+def _read_json(f: Path):
+    """The JSON value of file ``f`` (read as :func:`_read_summary` reads), or ``_NONE`` when
+    there is no such file. Raises ``MechreportError`` when it is not JSON."""
+    text = _read_summary(f)
+    if text is None:
+        return _NONE
+    try:
+        return json.loads(text)
+    except ValueError as exc:
+        raise MechreportError(f"{_shown(f)}: not JSON: {exc}") from None
+    except RecursionError:
+        raise MechreportError(f"{_shown(f)}: not JSON that can be read: nested too "
+                              "deeply") from None
 
 
 # ------------------------------------------------------------------ reading a summary
@@ -108,7 +170,8 @@ def _why(exc: OSError) -> str:
 
 
 def _read_summary(f: Path) -> str | None:
-    """The text of summary.json ``f``; None when there is none (the folder is not a report).
+    """The text of summary.json (or index.json) ``f``; None when there is none (the folder is
+    not a report).
     Only a regular file is opened (no link, folder, pipe or device), and at most
     ``MAX_SUMMARY_BYTES`` + 1 bytes of it are read."""
     cap = MAX_SUMMARY_BYTES
@@ -168,7 +231,8 @@ def _check_kind(mode: int, where: str) -> None:
 def _too_large(where: str, size: str) -> str:
     cap = MAX_SUMMARY_BYTES
     shown = f"{cap // 2**20} MiB ({cap} bytes)" if cap % 2**20 == 0 else f"{cap} bytes"
-    return (f"{where}: too large: {size}, and a summary.json may have at most {shown} "
+    what = "an index.json" if where.endswith("index.json") else "a summary.json"
+    return (f"{where}: too large: {size}, and {what} may have at most {shown} "
             "(a real one has tens of kB)")
 
 
@@ -349,16 +413,42 @@ def _verdicts(summary: dict) -> dict[str, bool]:
     return {v.get("item", "?"): bool(v.get("passed")) for v in design.get("verdicts") or []}
 
 
+NO_BUILD = "does not build"
+
+
+def _state(entry: dict | None) -> str:
+    """A spec's state as the table shows it: its check status, "does not build" or "—"."""
+    if entry is None:
+        return "—"
+    return NO_BUILD if entry.get("failed") is not None else str(entry.get("status", "?"))
+
+
+def _build_change(spec: str, a: dict, b: dict) -> list[Change]:
+    """The change of a spec whose latest build failed in one folder or both."""
+    fa, fb = a.get("failed"), b.get("failed")
+    if fa is None:
+        return [Change(spec, "build", _state(a), NO_BUILD, f"no longer builds: {fb}")]
+    if fb is None:
+        return [Change(spec, "build", NO_BUILD, _state(b), "builds again")]
+    if fa != fb:
+        return [Change(spec, "build", NO_BUILD, NO_BUILD, f"still does not build: {fb}")]
+    return []
+
+
 def compare(old: dict[str, dict], new: dict[str, dict], rtol: float) -> list[Change]:
-    """Every change between two builds (folder name -> summary, as :func:`read_build` gives
+    """Every change between two builds (folder name -> entry, as :func:`read_build` gives
     it)."""
     out: list[Change] = []
     for spec in sorted(set(old) | set(new), key=str.casefold):
         a, b = old.get(spec), new.get(spec)
         if a is None or b is None:
-            out.append(Change(spec, "spec", "—" if a is None else a.get("status", "?"),
-                              "—" if b is None else b.get("status", "?"),
-                              "added" if a is None else "removed"))
+            why = (b or {}).get("failed")
+            added = "added" + (f" ({NO_BUILD}: {why})" if why is not None else "")
+            out.append(Change(spec, "spec", _state(a), _state(b),
+                              added if a is None else "removed"))
+            continue
+        if a.get("failed") is not None or b.get("failed") is not None:
+            out += _build_change(spec, a, b)            # a stale report is not compared
             continue
         if a.get("status") != b.get("status"):
             out.append(Change(spec, "check status", str(a.get("status")),

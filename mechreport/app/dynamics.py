@@ -1,24 +1,33 @@
 """``mechreport dynamics SPEC... [-o OUT]``: the machine dynamics of each spec alone (its
-``dynamics:`` section): the time histories into OUT/<spec>/dynamics.csv and .parquet, and
+``dynamics:`` section): the time histories into OUT/<name>/dynamics.csv and .parquet, and
 the steady state's quantities and verdicts printed. Exit status 1 if any spec fails (bad
-input, a stall, no steady state, a verdict not met)."""
+input, a stall, no steady state, a verdict not met, a folder that cannot be written).
+
+``OUT`` and ``<name>`` are those of ``mechreport build`` (:mod:`.outdir`: the same folder
+names, the same lock, the same whole-folder swap, nothing written outside ``OUT``); the
+other files of the folder (a report, a study) are kept."""
 from __future__ import annotations
 
 import sys
 from pathlib import Path
 
-from ..errors import MechreportError, describe_failure
-from .console import print_traceback_if_debug
+from . import outdir as od
+from .console import report_failure
 
 
-def dynamics_command(paths: list[str], out: str = "out") -> int:
+def dynamics_command(paths: list[str], out: str = "out", wait: float = 120.0) -> int:
+    """Simulate each spec of ``paths`` into ``out``; one failing spec does not stop the
+    others. Raises :class:`~mechreport.app.outdir.OutputError` if ``out`` cannot be used."""
+    files = od.unique_specs([Path(p) for p in paths])
+    names = od.folder_names(files)
     status = 0
-    for path in paths:
-        status = max(status, _one(path, Path(out)))
+    with od.writing(Path(out), wait) as folder:
+        for path, name in zip(files, names):
+            status = max(status, _one(path, folder, name))
     return status
 
 
-def _one(path: str, out: Path) -> int:
+def _one(path: Path, out: Path, name: str) -> int:
     from ..model import build_mechanism
     from ..pipeline.analysis import analysis_of
     from ..pipeline.dynamics import run_dynamics
@@ -33,15 +42,11 @@ def _one(path: str, out: Path) -> int:
                   "'Machine dynamics')", file=sys.stderr)
             return 1
         dyn = run_dynamics(build_mechanism(spec), analysis_of)
-        folder = out / Path(path).stem
-        folder.mkdir(parents=True, exist_ok=True)
-        files = write_histories(histories_of(dyn.simulation), folder)
-    except MechreportError as exc:               # its message names the file
-        print(str(exc), file=sys.stderr)
-        return 1
+        final = od.write_folder(out, name,
+                                lambda tmp: write_histories(histories_of(dyn.simulation), tmp),
+                                carry=lambda entry: entry not in od.DYNAMICS_ENTRIES)
     except Exception as exc:  # noqa: BLE001 - a message, not a traceback
-        print(f"{path}: {describe_failure(exc)}", file=sys.stderr)
-        print_traceback_if_debug()
+        report_failure(path, exc)
         return 1
     sim, cycle = dyn.simulation, dyn.simulation.steady
     if cycle is None:
@@ -49,15 +54,15 @@ def _one(path: str, out: Path) -> int:
               f"final speed {fmt(sim.omega[-1] * 30 / 3.141592653589793)} rpm")
     else:
         print(f"{path}: steady after {sim.turns} turns (t = {fmt(cycle.t0 + cycle.period)} s)")
-        for name, value in dyn.values.items():
+        for qname, value in dyn.values.items():
             from ..quantities import unit_of
-            unit = unit_of(name)
-            print(f"  {name} = {fmt(value)}{' ' + unit if unit else ''}")
+            unit = unit_of(qname)
+            print(f"  {qname} = {fmt(value)}{' ' + unit if unit else ''}")
         print(f"  flywheel estimate of the speed fluctuation = {fmt(dyn.estimate[2])}")
         for v in dyn.verdicts:
             print(f"  {'PASS' if v.passed else 'FAIL'} {v.describe(fmt)}")
-    for f in files:
-        print(f"  wrote {f}")
+    for entry in od.DYNAMICS_ENTRIES:
+        print(f"  wrote {final / entry}")
     passed = all(v.passed for v in dyn.verdicts) and (
         dyn.steady is None or dyn.steady.worst is None
         or dyn.steady.worst.relative <= dyn.steady.tol)

@@ -2,10 +2,7 @@
 spec's reference angles (or the given ones), as a table."""
 from __future__ import annotations
 
-import sys
-
-from ..errors import MechreportError, describe_failure
-from .console import print_traceback_if_debug
+from .console import report_failure
 
 
 def kin_command(path: str, angles: list[float] | None = None) -> int:
@@ -20,12 +17,8 @@ def kin_command(path: str, angles: list[float] | None = None) -> int:
         spec = load_spec(path)
         at = np.asarray(angles if angles else spec.at, float)
         kin = solve_kinematics(build_mechanism(spec), at)
-    except MechreportError as exc:               # its message names the file
-        print(str(exc), file=sys.stderr)
-        return 1
     except Exception as exc:  # noqa: BLE001 - a message, not a traceback
-        print(f"{path}: {describe_failure(exc)}", file=sys.stderr)
-        print_traceback_if_debug()
+        report_failure(path, exc)
         return 1
     print(kinematics_table(kin))
     print()

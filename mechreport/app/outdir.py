@@ -18,7 +18,16 @@
   replaced; any other file or folder of that name makes the spec fail, untouched. Leftover
   ``.tmp-<name>-<pid>``/``.old-<name>-<pid>`` folders of an interrupted build are deleted by
   the next build (under the lock).
+- **Out of date.** When a spec fails to build and its folder holds an earlier report, the
+  build writes ``OUT/<name>/FAILED.json`` beside that report (the spec, the reason, the date):
+  the folder says that its report no longer matches its spec. The index lists it as FAIL,
+  ``diff`` as "no longer builds", and the next build rebuilds it (never "unchanged"); a
+  successful build replaces the folder, marker and all.
 - Nothing is written outside ``OUT``: every path is checked to resolve inside it.
+
+Every command that writes into ``OUT`` (``build``, ``study``, ``dynamics``) does so through
+:func:`writing` (the folder, its lock, the leftovers) and :func:`swap_in` (directly or through
+:func:`write_folder`): one set of rules for every command's outputs.
 """
 from __future__ import annotations
 
@@ -30,9 +39,11 @@ import shutil
 import stat
 import sys
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import MechreportError
+from .process import check_stop, held_stops
 
 LOCK_NAME = ".mechreport.lock"
 MAX_NAME = 100
@@ -201,8 +212,11 @@ class OutputLock:
                               file=self.stream)
                         told = True
                     time.sleep(poll)
-            os.ftruncate(fd, 0)
-            os.pwrite(fd, f"{os.getpid()}\n".encode("ascii"), 0)
+            try:
+                os.ftruncate(fd, 0)
+                os.pwrite(fd, f"{os.getpid()}\n".encode("ascii"), 0)
+            except OSError:
+                pass        # a full disk: the lock holds all the same, its holder unnamed
         except BaseException:
             os.close(fd)
             raise
@@ -238,6 +252,17 @@ def make_tmp_dir(out: Path, name: str, pid: int | None = None) -> Path:
     return tmp
 
 
+def as_in_place(exc: BaseException, tmp: Path, final: Path) -> BaseException:
+    """``exc`` naming the file it was about as it would be in place: ``final/x`` for
+    ``tmp/x`` (a private folder means nothing to a user reading "no space left on device
+    writing ...")."""
+    name = getattr(exc, "filename", None)
+    prefix = str(tmp) + os.sep
+    if isinstance(exc, OSError) and isinstance(name, str) and name.startswith(prefix):
+        exc.filename = str(Path(final) / name[len(prefix):])
+    return exc
+
+
 def remove(path: Path) -> None:
     """Delete a file, symlink or folder tree if it is there (never follows a symlink)."""
     path = Path(path)
@@ -252,12 +277,17 @@ def remove(path: Path) -> None:
 
 STUDY_ENTRIES = ("study.parquet", "study.csv", "study.md", "study.pdf", "study-figures",
                  "study-reports")   # what `mechreport study` writes beside a spec's report
+DYNAMICS_ENTRIES = ("dynamics.csv", "dynamics.parquet")   # what `mechreport dynamics` writes
+#: the entries that make a folder one of mechreport's (besides an empty one): one each of
+#: ``build``, ``study`` and ``dynamics``
+OWN_ENTRIES = {"summary.json", "study.parquet", "dynamics.parquet"}
 
 
 def occupied(out: Path, name: str) -> str | None:
     """Why ``OUT/name`` must not be replaced, or None. Only a report folder (one holding
-    summary.json), a study folder (study.parquet) or an empty folder is replaced: a build into
-    ``-o .`` must never delete a folder of the user's that happens to share a spec's name."""
+    summary.json), a study folder (study.parquet), a dynamics folder (dynamics.parquet) or an
+    empty folder is replaced: a build into ``-o .`` must never delete a folder of the user's
+    that happens to share a spec's name."""
     path = Path(out) / name
     if not os.path.lexists(path):
         return None
@@ -268,9 +298,9 @@ def occupied(out: Path, name: str) -> str | None:
         entries = {e.name for e in path.iterdir()}
     except OSError as exc:
         return f"{path}: {exc.strerror or exc}"
-    if entries and not entries & {"summary.json", "study.parquet"}:
-        return (f"{path} exists and is neither a mechreport report nor a study folder (no "
-                f"summary.json, no study.parquet); {advice}")
+    if entries and not entries & OWN_ENTRIES:
+        return (f"{path} exists and is neither a mechreport report nor a study or dynamics "
+                f"folder (no summary.json, study.parquet or dynamics.parquet); {advice}")
     return None
 
 
@@ -293,7 +323,8 @@ def swap_in(out: Path, tmp: Path, name: str, carry=lambda entry: entry in STUDY_
     """Replace ``OUT/name`` by the complete folder ``tmp`` (two renames; the old folder, if
     any, is deleted afterwards). Entries of the old folder for which ``carry(name)`` holds and
     that ``tmp`` lacks are carried over as hard links (a report keeps the study beside it, and
-    a study the report). Returns the final folder."""
+    a study the report). Once a stop (Ctrl-C, SIGTERM) is requested, it raises it instead;
+    one that comes during the renames is raised after them. Returns the final folder."""
     out = Path(out)
     if _UNSAFE.search(name) is not None or name.strip(".") == "" or name.startswith("."):
         raise OutputError(f"refusing to write {out / name}: {name!r} is not a folder name "
@@ -309,18 +340,53 @@ def swap_in(out: Path, tmp: Path, name: str, carry=lambda entry: entry in STUDY_
                 link_tree(entry, tmp / entry.name)
     old = out / f".old-{name}-{os.getpid()}"
     remove(old)
-    had_old = os.path.lexists(final)
-    if had_old:
-        os.rename(final, old)
-    try:
-        os.rename(tmp, final)
-    except BaseException:
+    check_stop()                       # once a stop is requested, no folder is replaced
+    with held_stops():                 # both renames, or neither
+        had_old = os.path.lexists(final)
         if had_old:
-            os.rename(old, final)
-        raise
-    if had_old:
-        remove(old)
+            os.rename(final, old)
+        try:
+            os.rename(tmp, final)
+        except BaseException:
+            if had_old:
+                os.rename(old, final)
+            raise
+        if had_old:
+            remove(old)
     return final
+
+
+def write_folder(out: Path, name: str, write, carry) -> Path:
+    """Write ``OUT/name`` whole: ``write(tmp)`` fills a fresh private folder
+    (:func:`make_tmp_dir`), which is checked (nothing in it leads outside) and swapped in
+    (:func:`swap_in`, carrying over the old entries for which ``carry(entry)`` holds); if
+    anything fails or is interrupted, the private folder is deleted and ``OUT/name`` is left as
+    it was. Call with the lock held (:func:`writing`). Returns the final folder."""
+    why = occupied(out, name)
+    if why:
+        raise OutputError(why)
+    tmp = make_tmp_dir(out, name)
+    try:
+        write(tmp)
+        for written in tmp.rglob("*"):                  # nothing escaped the folder
+            inside(tmp, written)
+        return swap_in(out, tmp, name, carry)
+    except OSError as exc:
+        raise as_in_place(exc, tmp, Path(out) / name)
+    finally:
+        remove(tmp)                                     # gone already once swapped in
+
+
+@contextmanager
+def writing(out: Path, wait: float = 120.0, stream=None):
+    """``with writing(OUT, wait) as out:`` the output folder made ready (:func:`prepare`) and
+    locked for the block (:class:`OutputLock`, waiting up to ``wait`` seconds for another
+    command writing there), an interrupted command's leftovers deleted
+    (:func:`clean_leftovers`). Raises :class:`OutputError` if ``out`` cannot be used."""
+    out = prepare(Path(out))
+    with OutputLock(out, stream).acquire(wait):
+        clean_leftovers(out)
+        yield out
 
 
 _LEFTOVER = re.compile(r"\.(?:tmp|old)-[A-Za-z0-9_][A-Za-z0-9._-]*-\d+")
@@ -335,6 +401,60 @@ def clean_leftovers(out: Path) -> list[str]:
             remove(entry)
             gone.append(entry.name)
     return gone
+
+
+# ------------------------------------------------------------------------- out of date
+
+FAILED = "FAILED.json"
+MAX_FAILED_BYTES = 1 << 20          # a FAILED.json holds one message: a few kB at most
+
+
+def mark_failed(out: Path, name: str, spec: str, message: str) -> bool:
+    """Write ``OUT/name/FAILED.json`` (see the module docstring) when ``OUT/name`` is a report
+    folder; whether it was written. Never through a symbolic link. Raises OSError if it
+    cannot be written."""
+    from ..report.files import atomic_write_text
+    from ..report.model import build_time
+    from ..version import __version__
+    folder = Path(out) / name
+    if occupied(out, name) is not None or not (folder / "summary.json").is_file():
+        return False                    # no report there (or not ours): nothing out of date
+    record = {"status": "FAIL", "spec": spec, "message": message,
+              "date": build_time().strftime("%Y-%m-%d %H:%M UTC"),
+              "mechreport_version": __version__}
+    # a new file renamed into place: a link of that name is replaced, never followed
+    atomic_write_text(inside(out, folder) / FAILED, json.dumps(record, indent=2) + "\n")
+    return True
+
+
+def failure_of(folder: Path) -> str | None:
+    """Why the report in ``folder`` is out of date (the message of its FAILED.json, on one
+    line), or None when it has no FAILED.json. A FAILED.json that cannot be read still marks
+    the folder (the message then says so). Only a regular file is read, at most
+    ``MAX_FAILED_BYTES``."""
+    path = Path(folder) / FAILED
+    try:
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0)
+                     | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
+    except OSError as exc:
+        if not os.path.lexists(path):
+            return None
+        return f"{FAILED} could not be read: {exc.strerror or exc}"
+    try:
+        st = os.fstat(fd)
+        data = os.read(fd, MAX_FAILED_BYTES + 1) if stat.S_ISREG(st.st_mode) else b""
+    except OSError as exc:
+        return f"{FAILED} could not be read: {exc.strerror or exc}"
+    finally:
+        os.close(fd)
+    try:
+        message = json.loads(data.decode("utf-8"))["message"]
+        if not isinstance(message, str) or len(data) > MAX_FAILED_BYTES:
+            raise ValueError
+    except (ValueError, TypeError, KeyError, RecursionError):
+        return f"{FAILED} could not be read (not a mechreport {FAILED})"
+    lines = (" ".join(line.split()) for line in message.splitlines())
+    return "; ".join(line for line in lines if line) or "no reason given"
 
 
 # ------------------------------------------------------------------------------ index

@@ -3,10 +3,16 @@
 Two settings make the batched small solves of an analysis fast. Both change only speed,
 never a number, and both are set by :func:`set_up` at the start of ``mechreport`` and in
 each worker process it starts.
+
+Stop requests (Ctrl-C, SIGTERM) while a command runs: :func:`stop_requests`.
 """
 from __future__ import annotations
 
 import os
+import signal
+import sys
+import threading
+from contextlib import contextmanager
 
 
 def set_up() -> None:
@@ -68,3 +74,100 @@ def _libc(name: str):
         return getattr(ctypes.CDLL(None), name)
     except (OSError, AttributeError, TypeError):
         return None
+
+
+# ------------------------------------------------------------------------- stop requests
+#
+# A signal handler's exception is raised wherever the main thread happens to be. When that is
+# a finaliser or a weak-reference callback (``WeakSet._remove`` during garbage collection),
+# Python prints "Exception ignored in ..." and carries on: the stop was lost and the build
+# finished with exit status 0 (about 1 SIGTERM in 21). So a request is also recorded, and
+# raised again at safe points (:func:`check_stop`: between a build's stages and specs, before
+# a folder is swapped in, before a command reports success); a folder swap holds requests
+# until both of its renames are done (:func:`held_stops`).
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, handled like Ctrl-C."""
+
+
+_requested: int | None = None       # the first stop request's signal (SIGINT or SIGTERM)
+_holding = 0                        # > 0 inside held_stops(): record, do not raise
+_active = False                     # stop_requests() is in place
+
+
+def _stop_exception(signum: int) -> KeyboardInterrupt:
+    return Terminated() if signum == signal.SIGTERM else KeyboardInterrupt()
+
+
+def _on_stop(signum, frame) -> None:
+    global _requested
+    if _requested is None:
+        _requested = signum
+    if not _holding:
+        raise _stop_exception(signum)
+
+
+def stop_requested() -> int | None:
+    """The signal of the first stop request of the running command (None: none came)."""
+    return _requested
+
+
+def check_stop() -> None:
+    """A safe point: raise the stop request (KeyboardInterrupt, :class:`Terminated` for
+    SIGTERM) if one came, even if its first exception was lost."""
+    if _requested is not None and not _holding:
+        raise _stop_exception(_requested)
+
+
+@contextmanager
+def held_stops():
+    """A stop request inside the block is raised when the block ends, not in it (two renames
+    that must both happen, or neither)."""
+    global _holding
+    _holding += 1
+    try:
+        yield
+    finally:
+        _holding -= 1
+    check_stop()
+
+
+def _quiet_lost_stop(previous):
+    """An unraisable-exception hook that says nothing of a stop request's exception (Python
+    could not raise it where it landed: :func:`check_stop` raises it again)."""
+    def hook(unraisable) -> None:
+        if _requested is not None and isinstance(unraisable.exc_value, KeyboardInterrupt):
+            return
+        previous(unraisable)
+    return hook
+
+
+@contextmanager
+def stop_requests(then_default: bool = False):
+    """While the block runs (in the main thread), SIGINT raises KeyboardInterrupt and SIGTERM
+    :class:`Terminated`, and each request is recorded for :func:`check_stop`; the previous
+    handlers are restored afterwards, or with ``then_default`` (a process that ends with the
+    command) set to the system's default: a request that comes after the command ended its
+    work ends the process by that signal, which a shell reports as 130 or 143 too. A signal
+    the process was started ignoring stays ignored. Inside another ``stop_requests()`` block
+    it changes nothing."""
+    global _requested, _holding, _active
+    if _active or threading.current_thread() is not threading.main_thread():
+        yield                                   # already in place (or not possible)
+        return
+    previous = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
+    wanted = [s for s, h in previous.items() if h is not signal.SIG_IGN]   # nohup, `cmd &`
+    hook = sys.unraisablehook
+    _requested, _holding = None, 0
+    sys.unraisablehook = _quiet_lost_stop(hook)
+    for s in wanted:
+        signal.signal(s, _on_stop)
+    _active = True
+    try:
+        yield
+    finally:
+        for s in wanted:
+            back = previous[s] if previous[s] is not None and not then_default else signal.SIG_DFL
+            signal.signal(s, back)
+        sys.unraisablehook = hook
+        _requested, _holding, _active = None, 0, False

@@ -67,7 +67,7 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     from .progress import StudyProgress, duration
     from .study_workers import (auto_chunk, close_client, connect, dask_workers, local_jobs,
                                 run_variants)
-    from .workers import sigterm_as_interrupt
+    from .process import stop_requests
 
     err = stream or sys.stderr
     path = Path(path)
@@ -78,7 +78,7 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     out = od.prepare(Path(out))            # fail early on an unusable -o
     name = od.safe_stem(path)
     lost: list = []
-    with sigterm_as_interrupt():
+    with stop_requests():
         client = connect(scheduler) if scheduler is not None else None
         try:
             if client is not None:
@@ -182,30 +182,23 @@ def write_study(run, out: Path, name: str, reports: int = 0, wait: float = 120.0
     from ..study.outputs import write_csv, write_parquet
     from ..study.report import FIGURES, build_document, write_figures
     err = err or sys.stderr
-    with od.OutputLock(out).acquire(wait):
-        od.clean_leftovers(out)
-        why = od.occupied(out, name)
-        if why:
-            raise od.OutputError(why)
-        tmp = od.make_tmp_dir(out, name)
-        try:
-            t = run.table
-            meta = {"spec": run.base.file, "spec_sha256": run.sha256, "method": run.method,
-                    "sample": run.plan.sample, "seed": run.plan.seed, "variants": t.n,
-                    "version": _version()}
-            write_parquet(t, tmp / "study.parquet", meta)
-            write_csv(t, tmp / "study.csv")
-            if reports:
-                run.reports = write_best_reports(run, tmp, reports, err)
-            figures = write_figures(run, tmp / FIGURES)
-            doc = build_document(run, figures)
-            atomic_write_text(tmp / "study.md", doc.markdown())
-            compile_typst(doc.typst(), tmp / "study.pdf", tmp)
-            for written in tmp.rglob("*"):              # nothing escaped the folder
-                od.inside(tmp, written)
-            return install(out, tmp, name)
-        finally:
-            od.remove(tmp)
+
+    def write(tmp: Path) -> None:
+        t = run.table
+        meta = {"spec": run.base.file, "spec_sha256": run.sha256, "method": run.method,
+                "sample": run.plan.sample, "seed": run.plan.seed, "variants": t.n,
+                "version": _version()}
+        write_parquet(t, tmp / "study.parquet", meta)
+        write_csv(t, tmp / "study.csv")
+        if reports:
+            run.reports = write_best_reports(run, tmp, reports, err)
+        figures = write_figures(run, tmp / FIGURES)
+        doc = build_document(run, figures)
+        atomic_write_text(tmp / "study.md", doc.markdown())
+        compile_typst(doc.typst(), tmp / "study.pdf", tmp)
+
+    with od.writing(out, wait) as out:
+        return od.write_folder(out, name, write, carry=_not_the_study)
 
 
 def _version() -> str:
@@ -264,7 +257,12 @@ def variant_report(run, i: int, rank: int, tmp: Path, folder: str) -> None:
     write_report_folder(analysis, where, f"{folder}/{spec_file.name}", spec_sha256(spec_file))
 
 
+def _not_the_study(entry: str) -> bool:
+    """The entries of an old folder a new study keeps: all but the study's (its report)."""
+    return entry not in od.STUDY_ENTRIES
+
+
 def install(out: Path, tmp: Path, name: str) -> Path:
     """Make ``tmp`` (a complete study folder) ``OUT/name``, carrying over the entries of the
     old folder that are not a study's (its report); two renames, undone if the second fails."""
-    return od.swap_in(out, tmp, name, carry=lambda entry: entry not in od.STUDY_ENTRIES)
+    return od.swap_in(out, tmp, name, carry=_not_the_study)

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from ..errors import MechreportError, describe_failure
-from .console import print_traceback_if_debug, spec_files
+from .console import report_failure, spec_files
 
 
 def validate_command(args: list[str]) -> int:
@@ -25,14 +24,9 @@ def validate_command(args: list[str]) -> int:
         try:
             spec = load_spec(path)
             kin = solve_kinematics(build_mechanism(spec), np.asarray(spec.at, float))
-        except MechreportError as exc:           # its message names the file
-            failed += 1
-            print(str(exc), file=sys.stderr)
-            continue
         except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the others
             failed += 1
-            print(f"{path}: {describe_failure(exc)}", file=sys.stderr)
-            print_traceback_if_debug()
+            report_failure(path, exc)
             continue
         note = f" ({len(kin.flags)} reference angle(s) left out)" if kin.flags else ""
         print(f"{path}: OK{note}")

@@ -1,7 +1,7 @@
-"""Worker processes that end with the command: initialiser, pool shutdown, SIGTERM.
+"""Worker processes that end with the command: initialiser, pool shutdown.
 
-Ctrl-C or SIGTERM stops a pool and terminates its workers, and a worker whose parent has
-died exits by itself within a second.
+Ctrl-C or SIGTERM (:func:`.process.stop_requests`) stops a pool and terminates its workers,
+and a worker whose parent has died exits by itself within a second.
 """
 from __future__ import annotations
 
@@ -9,11 +9,6 @@ import os
 import signal
 import threading
 import time
-from contextlib import contextmanager
-
-
-class Terminated(KeyboardInterrupt):
-    """SIGTERM, handled like Ctrl-C."""
 
 
 def worker_init(parent: int) -> None:
@@ -70,20 +65,3 @@ def exit_codes(pool) -> str:
         if text not in said:
             said.append(text)
     return ", ".join(said)
-
-
-@contextmanager
-def sigterm_as_interrupt():
-    """SIGTERM raises :class:`Terminated` (a KeyboardInterrupt) in the main thread."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def handler(signum, frame):
-        raise Terminated()
-
-    previous = signal.signal(signal.SIGTERM, handler)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)

@@ -1031,13 +1031,21 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
 
 def _dxf(spec, refs: list[RefAngle], scenes: list[Scene]) -> DxfData:
     """The DXF's layers: ``crank_angle_45`` (``stroke_300`` for a T driver) per solved
-    reference angle."""
+    reference angle, the angle written exactly (``crank_angle_45.00001``, not rounded as the
+    report shows it), so that distinct angles never share a layer (the loader refuses an
+    angle given twice)."""
     from ..units import LENGTH_UNITS
     unit = spec.units.get("length", "m")
     coord = effort_of(spec)[2].replace(" ", "_")
-    solved = [r for r in refs if r.drawing is not None]
+    solved = [a for a, r in zip(spec.at, refs) if r.drawing is not None]
     return DxfData(unit, LENGTH_UNITS[unit],
-                   [(f"{coord}_{r.angle}", sc) for r, sc in zip(solved, scenes)])
+                   [(f"{coord}_{_exact(a)}", sc) for a, sc in zip(solved, scenes)])
+
+
+def _exact(value: float) -> str:
+    """``value`` in the fewest digits that read back as it: ``45``, ``45.00001``, ``1e-05``."""
+    text = repr(float(value))
+    return text[:-2] if text.endswith(".0") else text
 
 
 def _left_out_text(analysis, summary: SweepSummary, sw: SweepData, d: Display) -> str:

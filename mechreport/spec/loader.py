@@ -19,6 +19,7 @@ import difflib
 import math
 import os
 import re
+import unicodedata
 from dataclasses import replace
 from pathlib import Path as FsPath
 from typing import Any
@@ -271,7 +272,20 @@ class _Checker:
                     if value is None or isinstance(value, (bool, int, float)) else "")
             self.error(path, f"must be a name, got {_show(value)}{hint}")
             return None
+        self.no_bidi_control(value, path)
         return value
+
+    def no_bidi_control(self, name: str, path: tuple) -> None:
+        """A name (a value, or a mapping's key at ``path``) must not hold a bidirectional
+        control character: it would show the name in the report as other than it is (the
+        "Trojan Source" trick)."""
+        bad = _BIDI_CONTROL.search(name)
+        if bad is not None:
+            char = bad.group()
+            self.error(path, f"must not hold U+{ord(char):04X} "
+                             f"({unicodedata.name(char, 'a bidirectional control')}), a "
+                             "bidirectional control character that makes a name display as "
+                             "other than it is; remove it")
 
     def choice(self, value: Any, path: tuple, options: tuple[str, ...]) -> str | None:
         if not isinstance(value, str) or value not in options:
@@ -533,6 +547,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     top = ck.mapping(data, (), TOP_KEYS, required=TOP_REQUIRED)
     if top is None:
         return None
+    _key_names(top, (), ck)
     version = top.get("mechreport")
     if "mechreport" in top and not (type(version) is int and version == 1
                                     or type(version) is float and version == 1.1):
@@ -1518,11 +1533,33 @@ def _sweep(value: Any, ck: _Checker) -> Sweep:
     return sweep
 
 
+#: bidirectional controls: embeddings, overrides, isolates and marks (LRE ... RLO, LRI ... PDI,
+#: LRM, RLM, ALM)
+_BIDI_CONTROL = re.compile("[\u202a-\u202e\u2066-\u2069\u200e\u200f\u061c]")
+
+
+def _key_names(node: Any, path: tuple, ck: _Checker) -> None:
+    """Every mapping key of the document is a keyword or a name (of a link, point, joint,
+    material, ...): none may hold a bidirectional control character."""
+    if isinstance(node, dict):
+        for key, value in node.items():
+            if isinstance(key, str):
+                ck.no_bidi_control(key, path + (key,))
+            _key_names(value, path + (key,), ck)
+    elif isinstance(node, list):
+        for i, value in enumerate(node):
+            _key_names(value, path + (i,), ck)
+
+
 def _angle_list(value: Any, path: tuple, ck: _Checker) -> tuple[float, ...]:
     if not isinstance(value, list) or not value:
         ck.error(path, f"must be a list of crank angles in degrees, got {_show(value)}")
         return (0.0,)
     out = [ck.number(v, path + (i,)) for i, v in enumerate(value)]
+    for i, v in enumerate(out):
+        if v is not None and v in out[:i]:
+            ck.error(path + (i,), f"{_show(value[i])} is given twice (also {path[-1]}"
+                                  f"[{out.index(v)}]); give each reference angle once")
     return tuple(v for v in out if v is not None) or (0.0,)
 
 

@@ -146,14 +146,23 @@ def _show_tag(tag: str) -> str:
 
 
 def format_path(path: Path) -> str:
-    """``('links', 'rod', 'mass')`` -> ``links.rod.mass``; ``('loads', 0)`` -> ``loads[0]``."""
+    """``('links', 'rod', 'mass')`` -> ``links.rod.mass``; ``('loads', 0)`` -> ``loads[0]``.
+    A character that does not print (a control, a bidirectional override) is escaped as in
+    Python: ``ro\\u202ed``, so that a message shows the key as it is."""
     out = ""
     for part in path:
         if isinstance(part, int):
             out += f"[{part}]"
         else:
-            out += ("." if out else "") + str(part)
+            out += ("." if out else "") + _printable(str(part))
     return out
+
+
+def _printable(text: str) -> str:
+    if text.isprintable():
+        return text
+    return "".join(c if c.isprintable() else c.encode("unicode_escape").decode("ascii")
+                   for c in text)
 
 
 def line_at(text: str, offset: int) -> int:

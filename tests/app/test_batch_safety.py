@@ -243,7 +243,8 @@ def test_swap_leaves_only_this_runs_files(batch):
     assert not (out / "x" / "figures" / "stale.png").exists()
     assert {p.name for p in (out / "x").iterdir()} == {"figures", "report.md", "report.pdf",
                                                        "results.csv", "summary.json",
-                                                       "animation.gif"}
+                                                       "animation.gif",
+                                                       "FAILED.json"}   # build 3 failed
     assert sorted(p.name for p in out.iterdir() if p.name.startswith(".")) == \
         [".mechreport.lock"]                                  # no .tmp-* / .old-* left
 
@@ -265,6 +266,7 @@ def test_failed_spec_keeps_its_previous_folder_and_the_index_says_fail(batch):
     out, index = batch["out"], batch["index3"]
     assert batch["codes"][2] == 1
     assert json.loads((out / "x" / "summary.json").read_text())["name"] == "from a"
+    assert "malformed YAML" in json.loads((out / "x" / "FAILED.json").read_text())["message"]
     row = next(l for l in index.splitlines() if "x.yaml" in l)
     assert "| FAIL" in row and "earlier build is still in x/" in row
     assert "3 spec(s): 1 passed their check, 1 failed it, 1 could not be built." in index
@@ -281,8 +283,8 @@ def test_a_folder_that_is_not_a_report_is_never_replaced(tmp_path, capsys):
     assert (tmp_path / "docs" / "notes.txt").read_text() == "mine"
     assert (tmp_path / ".tmp-cache").is_dir()
     assert (f"FAIL {spec}: {tmp_path / 'docs'} exists and is neither a mechreport report nor "
-            "a study folder (no summary.json, no study.parquet); move it away or use another "
-            "-o folder") in capsys.readouterr().err
+            "a study or dynamics folder (no summary.json, study.parquet or dynamics.parquet); "
+            "move it away or use another -o folder") in capsys.readouterr().err
 
 
 # -------------------------------------------------------------------------- 12: locking

@@ -84,6 +84,23 @@ def test_report_keys_set_and_refused(tmp_path):
     assert "report.dxf: must be true or false" in text
 
 
+def test_dxf_layers_of_angles_closer_than_shown_stay_distinct(tmp_path):
+    """Issue 40: `at: [45, 45.00001]` with `report: {dxf: true}` named both layers
+    crank_angle_45 and the build failed: a layer is named after the exact angle."""
+    import ezdxf
+    from mechreport.report.dxf import dxf_text
+    text = SLIDER.read_text(encoding="utf-8")
+    assert text.count("at: [45]") == 1
+    spec = tmp_path / "close.yaml"
+    spec.write_text(text.replace("at: [45]", "at: [45, 45.00001, 1e-5]")
+                    + "report: {dxf: true, animation: false}\n", encoding="utf-8")
+    m = build_model(mechreport.analyse(spec))
+    names = [name for name, _ in m.dxf.layers]
+    assert names == ["crank_angle_45", "crank_angle_45.00001", "crank_angle_1e-05"]
+    doc = ezdxf.read(io.StringIO(dxf_text(m.dxf)))
+    assert set(names) <= {layer.dxf.name for layer in doc.layers}
+
+
 def test_no_animation_in_the_model_when_left_out():
     analysis = mechreport.analyse(SLIDER)
     assert build_model(analysis, animation=False).animation is None

@@ -808,3 +808,33 @@ def test_cli_validate_reports_hostile_files_without_traceback(tmp_path, content)
     assert run.returncode == 1
     assert "Traceback" not in run.stderr + run.stdout
     assert run.stderr.startswith(str(bad))
+
+
+# -- names that display as other than they are (issue 40) ---------------------------------
+
+BIDI = ["\u202a", "\u202b", "\u202c", "\u202d", "\u202e", "\u2066", "\u2067", "\u2068",
+        "\u2069", "\u200e", "\u200f", "\u061c"]
+
+
+@pytest.mark.parametrize("char", BIDI, ids=[f"U+{ord(c):04X}" for c in BIDI])
+def test_bidi_control_characters_in_names_are_refused_where_they_are(char):
+    """A right-to-left override in a name passed into report.md and report.pdf, where the
+    name displays reversed: refused in the spec's name, a load's name and every key (link,
+    point, joint names), each at its line, the character escaped in the message."""
+    text = edit(BASE, "name: slider-crank", f'name: "slider{char}-crank"')
+    text = edit(text, "  rod:\n", f"  r{char}od:\n")
+    text = edit(text, "links: [crank, rod]", f"links: [crank, r{char}od]")
+    text = edit(text, "links: [rod, slider]", f"links: [r{char}od, slider]")
+    text = edit(text, "quantity: link.rod.omega", f"quantity: link.r{char}od.omega")
+    text = edit(text, "value: [100, 0], oppose: velocity}",
+                f'value: [100, 0], oppose: velocity, name: "push{char}"}}')
+    found = refused(text)
+    escaped = char.encode("unicode_escape").decode()
+    assert [(p.line, p.path) for p in found] == [
+        (line_of(text, "name: \"slider"), "name"),
+        (line_of(text, f"  r{char}od:"), f"links.r{escaped}od"),
+        (line_of(text, "name: \"push"), "loads[0].name")]
+    for p in found:
+        assert p.message.startswith(f"must not hold U+{ord(char):04X} (")
+        assert "bidirectional control character" in p.message
+        assert str(p).isprintable()

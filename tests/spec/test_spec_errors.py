@@ -247,6 +247,16 @@ def test_wrong_type(old, new, needle, path, expected):
     assert_problem(p, line_of(text, needle), path, expected)
 
 
+def test_a_reference_angle_given_twice_is_refused_where_it_repeats():
+    """Issue 40: two equal `at` angles made two reference sections, figures and DXF layers of
+    one name (the build failed on the DXF); an angle closer than the report shows is not the
+    same angle and is kept."""
+    text = edit(BASE, "at: [45]", "at: [30, 45, 45.0]")
+    assert_problem(only_problem(text), line_of(text, "at:"), "at[2]",
+                   "45.0 is given twice (also at[1]); give each reference angle once")
+    assert parse_spec(edit(BASE, "at: [45]", "at: [45, 45.00001]"), FILE).at == (45, 45.00001)
+
+
 @pytest.mark.parametrize("speed", ["omega: 0", "rpm: 0", "omega: 0, alpha: 3"])
 def test_a_driver_at_rest_is_a_static_analysis_or_a_start(speed):
     """Format 1.1: zero speed is allowed (it was an error in format 1)."""

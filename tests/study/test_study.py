@@ -420,7 +420,7 @@ def test_study_refuses_a_folder_that_is_not_mechreports(tmp_path, capsys):
     mine.mkdir(parents=True)
     (mine / "notes.txt").write_text("mine", encoding="utf-8")
     assert main(["study", str(spec), "-o", str(tmp_path / "out"), "--jobs", "1"]) == 1
-    assert "neither a mechreport report nor a study folder" in capsys.readouterr().err
+    assert "neither a mechreport report nor a study or dynamics folder" in capsys.readouterr().err
     assert sorted(p.name for p in mine.iterdir()) == ["notes.txt"]
 
 
