@@ -101,10 +101,6 @@ class _OverBudget(Exception):
     """The integration of a turn took more evaluations than allowed (private)."""
 
 
-class _NotFinite(Exception):
-    """The equation of motion gave no finite acceleration (private)."""
-
-
 class _Turns:
     """The integration one turn at a time, and what it keeps of each turn: its start time
     ``starts`` [s] and speed ``omegas`` [rad/s] (every turn starts at the angle ``theta0``
@@ -117,7 +113,7 @@ class _Turns:
         self.eom, self.file, self.theta0 = eom, file, theta0
         self.alpha = eom.scalar()
         self.evaluations = 0
-        self._count, self._limit, self._y = 0, 0, None
+        self._count, self._limit, self._y, self._nan = 0, 0, None, False
         self.starts: list[float] = []
         self.omegas: list[float] = []
         self.bounds: list[float] = []
@@ -152,13 +148,17 @@ class _Turns:
         except (ValueError, OverflowError, ZeroDivisionError):     # from a state not finite
             a = math.nan
         if not math.isfinite(a):
-            self._y = y
-            raise _NotFinite
+            # a trial stage of a step too long for a stiff stretch: NaN makes the integrator
+            # reject the step and try a shorter one; where none helps it fails (reported)
+            if math.isfinite(phi) and math.isfinite(omega) or not self._nan:
+                self._y = y                 # where, for the message: a finite state if any
+            self._nan = True
+            return (math.nan, math.nan)
         return (omega, a)
 
     def _integrate(self, omega: float, bound: float, limit: int):
         from scipy.integrate import solve_ivp
-        self._count, self._limit = 0, limit
+        self._count, self._limit, self._nan = 0, limit, False
         scale = max(abs(omega), 1.0)
         return solve_ivp(self._rhs, (0.0, bound), (self.theta0, omega), method="DOP853",
                          rtol=RTOL, atol=(ATOL_ANGLE, RTOL * scale), events=self._events,
@@ -176,10 +176,10 @@ class _Turns:
         except _OverBudget:
             raise AnalysisError(_too_costly(self.eom, self.file, turn, t0, self._y,
                                             limit < MAX_EVALUATIONS_PER_TURN)) from None
-        except _NotFinite:
-            raise AnalysisError(_not_finite(self.eom, self.file, turn, self._y)) from None
         finally:
             self.evaluations += self._count
+        if sol.status < 0 and self._nan:
+            raise AnalysisError(_not_finite(self.eom, self.file, turn, self._y))
         if sol.status < 0:
             raise AnalysisError(f"{self.file}: the integration of the equation of motion "
                                 f"failed in turn {turn + 1} at t = {t0 + sol.t[-1]:.6g} s: "
@@ -204,8 +204,12 @@ class _Turns:
         if i not in self._again:
             if len(self._again) >= 2:
                 self._again.pop(next(iter(self._again)))
-            self._again[i] = self._integrate(self.omegas[i], self.bounds[i],
-                                             MAX_EVALUATIONS_PER_TURN).sol
+            try:
+                self._again[i] = self._integrate(self.omegas[i], self.bounds[i],
+                                                 MAX_EVALUATIONS_PER_TURN).sol
+            except _OverBudget:     # it did not the first time; with friction, barely
+                raise AnalysisError(_too_costly(self.eom, self.file, i, self.starts[i],
+                                                self._y, False)) from None
         return self._again[i]
 
     def __call__(self, t: np.ndarray) -> np.ndarray:
@@ -270,7 +274,7 @@ def simulate(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarray, file: str
         if t >= end:
             break
         if dyn.until is not None and len(start_turns) >= PREDICT_TURNS:
-            _require_turns_left(start_turns, dyn.until, turns.evaluations, file)
+            _require_turns_left(eom, start_turns, dyn.until, turns.evaluations, file)
     else:
         if dyn.until is not None:
             raise AnalysisError(
@@ -340,31 +344,55 @@ def _require_reachable(eom: EquationOfMotion, dyn: Dynamics, omega: float, file:
         "steady")
 
 
-def _require_turns_left(start_turns, until: float, evaluations: int, file: str) -> None:
-    """Raise ``AnalysisError`` where, at the rate the crank now turns, the turns to
-    ``until`` [s] would be more than ``MAX_TURNS``, or their evaluations of the equation
-    (at the mean so far, ``evaluations`` in all) more than ``MAX_EVALUATIONS``. Only while
-    it is not slowing down (the period not growing): the prediction is then no more than
-    it will do."""
+def _require_turns_left(eom: EquationOfMotion, start_turns, until: float, evaluations: int,
+                        file: str) -> None:
+    """Raise ``AnalysisError`` where the turns to ``until`` [s], predicted from the last
+    ones, would be more than ``MAX_TURNS``, or their evaluations of the equation (at the
+    mean so far, ``evaluations`` in all) more than ``MAX_EVALUATIONS``. While the crank is
+    not slowing down, at the rate it now turns: it makes no fewer. While it slows down, its
+    kinetic energy (as its mean speed squared) falling by the last turn's loss each turn,
+    and only as far as it keeps twice the loads' energy swing (it cannot stall against
+    them before): no fewer either where that loss does not grow as the crank slows
+    (dampers, a braking motor and friction take less at a lower speed)."""
     (t0, _), (t1, _), (t2, _) = start_turns[-3:]
     period, before = t2 - t1, t1 - t0
-    if period > before * (1 + STEADY_RTOL):
-        return
-    done = len(start_turns)
-    turns = done + (until - t2) / period
+    done, left = len(start_turns), until - t2
+    steady = period <= before * (1 + STEADY_RTOL)
+    if steady:
+        more = left / period
+    else:
+        stop = 1 / (1 - (before / period) ** 2)           # turns until the energy is gone
+        omega = 2 * math.pi / period
+        energy = (float(np.mean(eom.J)) + eom.flywheel) * omega ** 2 / 2
+        safe = stop * (1 - 2 * _load_swing(eom, omega) / energy)
+        if not safe > 0:
+            return
+        keep = 1 - left / (2 * stop * period)             # the speed kept by then, relative
+        more = min(safe, stop * (1 - keep ** 2) if keep > 0 else math.inf)
+    turns = done + more
     work = evaluations * turns / done
     if turns <= MAX_TURNS and work <= MAX_EVALUATIONS:
         return
     limit = (f"{MAX_TURNS} turns, the most integrated" if turns > MAX_TURNS else
              f"{MAX_EVALUATIONS:.3g} evaluations of the equation of motion, the most made "
              f"(here {evaluations / done:.3g} a turn)")
+    pace = "does not slow down" if steady else "loses its energy slowly"
     most = min(MAX_TURNS, MAX_EVALUATIONS * done / evaluations)
     raise AnalysisError(
         f"{file}: dynamics.until = {until:g} s is more than {limit}: after {done} turns "
-        f"({t2:.4g} s) the crank turns once in {period:.4g} s and does not slow down, so it "
-        f"would make some {turns:.3g} turns by then; simulate a shorter time ({most:.4g} "
-        f"turns are done within {t2 + (most - done) * period:.3g} s here), or write until: "
+        f"({t2:.4g} s) the crank turns once in {period:.4g} s and {pace}, so it would make "
+        f"at least some {turns:.3g} turns by then; simulate a shorter time (about "
+        f"{most:.4g} turns take {period * most:.3g} s at the present rate), or write until: "
         "steady")
+
+
+def _load_swing(eom: EquationOfMotion, omega: float) -> float:
+    """The largest swing [J] over a turn of the work of the loads (C omega + D, at the
+    constant speed ``omega`` [rad/s], against their mean): what the kinetic energy must
+    carry the crank over."""
+    torque = np.asarray(eom.C) * omega + np.asarray(eom.D)
+    work = np.cumsum(torque - np.mean(torque)) * math.radians(eom.grid[1] - eom.grid[0])
+    return float(np.max(work) - np.min(np.concatenate([[0.0], work])))
 
 
 def _contraction(values) -> float:
@@ -455,12 +483,17 @@ def _too_costly(eom: EquationOfMotion, file: str, turn: int, t0: float, y, total
     state ``y`` (phi [rad], omega [rad/s]) it had reached: the inertia nearly vanishing
     there, or the speed's rate of settling (the equation stiff), or else the count."""
     phi, omega = float(y[0]), float(y[1])
-    deg = math.degrees(phi) % 360
     if total:
         return (f"{file}: the integration of the equation of motion took more than "
                 f"{MAX_EVALUATIONS:.3g} evaluations in all (in turn {turn + 1}, t = {t0:.6g} "
-                "s, the budget of some 5000 ordinary turns): write dynamics.until as a shorter "
-                "time")
+                "s; some 5000 ordinary turns take that many): write dynamics.until as a time, "
+                "or a shorter one")
+    if not (math.isfinite(phi) and math.isfinite(omega)):
+        return (f"{file}: the integration of the equation of motion took more than "
+                f"{MAX_EVALUATIONS_PER_TURN:.3g} evaluations in turn {turn + 1} (an ordinary "
+                "turn takes about 2000) and its state overflowed: the motor's torque "
+                "(dynamics.motor) or the loads are too large for the inertia on the crank")
+    deg = math.degrees(phi) % 360
     j, b, c, _ = (float(x) for x in eom.at(np.array([phi]))[0])
     inertia = j + eom.flywheel
     top = float(np.max(eom.J)) + eom.flywheel
@@ -471,7 +504,6 @@ def _too_costly(eom: EquationOfMotion, file: str, turn: int, t0: float, y, total
         return (f"{head}: there the reduced inertia on the crank is {inertia:.3g} kg·m², "
                 f"against {top:.3g} kg·m² at most, and the speed swings violently; add a "
                 "flywheel (dynamics.flywheel)")
-    pts = eom.motor.points()
     h = max(abs(omega), 1e-9) * 1e-9
     slope = float(np.diff(motor_torque(eom.motor, np.array([omega - h, omega + h])))[0]
                   / (2 * h))
@@ -481,7 +513,7 @@ def _too_costly(eom: EquationOfMotion, file: str, turn: int, t0: float, y, total
         return (f"{head}: there a change of speed dies out within {1 / rate:.3g} s, "
                 f"{rate * period:.3g} times faster than a turn takes, so the equation is stiff "
                 f"(the motor's torque changes by {abs(slope) * RPM:.3g} N·m per rpm there, "
-                f"dynamics.motor, {len(pts)} points, over {inertia:.3g} kg·m² on the crank); "
+                f"dynamics.motor, over {inertia:.3g} kg·m² on the crank); "
                 "give the motor's curve a gentler slope near that speed, or the crank more "
                 "inertia (dynamics.flywheel)")
     return (f"{head}: the motion changes there faster than the integrator can follow at its "

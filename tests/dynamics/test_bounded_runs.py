@@ -223,6 +223,27 @@ def test_an_acceleration_that_is_not_finite_is_a_clear_error(four_bar, monkeypat
         run(four_bar)
 
 
+def test_a_trial_step_that_overflows_is_rejected_not_taken_for_the_motion(four_bar,
+                                                                          monkeypatch):
+    """A motor whose torque plunges from 7550 N·m at rest to 122 N·m at 1.6e-5 rpm, no
+    flywheel: the integrator's first trial steps overshoot to speeds where the equation
+    overflows. Such a stage gives NaN, the step is rejected and tried shorter (it stopped
+    the run as "no finite acceleration"); the crank settles."""
+    nans = []
+    original = SIM._Turns._rhs
+
+    def spy(self, t, y):
+        out = original(self, t, y)
+        if out[1] != out[1]:
+            nans.append(t)
+        return out
+    monkeypatch.setattr(SIM._Turns, "_rhs", spy)
+    sim = run(four_bar, motor=MotorCurve(curve=((0, 7550), (1.6e-5, 122), (300, 0))),
+              flywheel=0.0)
+    assert nans and sim.steady is not None
+    assert sim.steady.mean_omega / SIM.RPM == pytest.approx(298, abs=1)
+
+
 # -- 9. slow refusals ------------------------------------------------------------------------
 
 def test_an_until_beyond_the_turn_limit_is_refused_before_integrating(four_bar, counted):
@@ -249,6 +270,20 @@ def test_an_until_beyond_the_turn_limit_with_friction_is_refused_after_a_few_tur
                                             r"turns.*after \d+ turns"):
         mechreport.analyse(text)
     assert SIM.PREDICT_TURNS <= len(runs) <= SIM.PREDICT_TURNS + 5
+
+
+def test_an_until_beyond_the_turn_limit_of_a_crank_running_down_is_refused_early(
+        four_bar, monkeypatch):
+    """Coasting from 30 000 rpm (no motor torque, the loads taking a little energy each
+    turn) for 100 s: it would turn some 10 000 times before it could stall. Predicted from
+    the energy lost per turn after a few turns (it integrated the 5000 turns first)."""
+    runs = []
+    original = SIM._Turns.run
+    monkeypatch.setattr(SIM._Turns, "run", lambda self, *a: runs.append(1) or original(self, *a))
+    with pytest.raises(AnalysisError, match=r"dynamics\.until = 100 s is more than 5000 "
+                                            r"turns.*loses its energy slowly"):
+        run(four_bar, motor=MotorCurve(constant=0.0), flywheel=0.01, rpm=30000.0, until=100.0)
+    assert len(runs) <= SIM.PREDICT_TURNS + 5
 
 
 def test_an_until_time_without_output_step_samples_200_per_turn(four_bar):
