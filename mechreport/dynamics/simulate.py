@@ -7,8 +7,8 @@ grows and loosens the relative tolerance; the turns are counted apart. An event 
 turn exactly one turn on, another stops at a stall (the speed falling to ``STALL_SPEED``:
 the motor cannot carry the load on, or the crank would turn back). ``until: steady`` stops
 when successive turns agree (the speed at the turn's start and the turn's period within
-``STEADY_RTOL``, and the speed within it of the limit the turns approach); ``until: TIME``
-at that time.
+``STEADY_RTOL``, and both within it of the limits the turns approach, their ratio fitted
+over several turns); ``until: TIME`` at that time.
 
 Errors, never an endless run: what can be told before integrating is
 (:mod:`.prechecks`: a vanishing inertia, a stiff motor, an ``until`` beyond ``MAX_TURNS``),
