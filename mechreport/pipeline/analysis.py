@@ -85,6 +85,15 @@ class Analysis(Checked):
     # machine dynamics (a spec with ``dynamics:``): the motion the motor gives, and the
     # steady turn's own analysis (a :class:`mechreport.pipeline.dynamics.DynamicsResult`)
     dynamics: object | None = None
+    # each derived result computed once (see _once): the summary, the scales, the worked steps
+    _derived: dict = field(default_factory=dict, repr=False, compare=False)
+
+    def _once(self, key: tuple, build):
+        """``build()``'s result, computed at the first request of ``key`` and kept: every
+        output (report, sheets, summary.json) reads one value of a derived result."""
+        if key not in self._derived:
+            self._derived[key] = build()
+        return self._derived[key]
 
     @property
     def passed(self) -> bool:
@@ -145,8 +154,9 @@ class Analysis(Checked):
         method's values (one extra solve with one right-hand side per source)."""
         from ..forces.sources import split_by_source
         from ..post import reference_method
-        return split_by_source(self._context,
-                               self.worked_steps(method or reference_method(self.forces)))
+        method = method or reference_method(self.forces)
+        return self._once(("by_source", method), lambda: split_by_source(
+            self._context, self.worked_steps(method)))
 
     def cycle_torque_by_source(self) -> dict[str, np.ndarray]:
         """The driver torque over the design review's cycle grid (``review.cycle.angles``,
@@ -160,9 +170,9 @@ class Analysis(Checked):
 
     def worked_steps(self, method: str) -> tuple[Step, ...]:
         """The labelled systems ``method`` solved, in order, over ``angles``: the equation
-        objects its numbers came from (built again on each call: they hold every
-        coefficient at every angle)."""
-        return worked_steps(self._context, method)
+        objects its numbers came from (built at the first request, then kept: they hold
+        every coefficient at every angle)."""
+        return self._once(("worked_steps", method), lambda: worked_steps(self._context, method))
 
     @property
     def n(self) -> int:
@@ -173,18 +183,20 @@ class Analysis(Checked):
         """What the sweep's results come to (effort statistics, each joint's peak and RMS
         load, the frame load, bearing traces, the power balance's agreement): see
         :mod:`mechreport.post.sweep`."""
-        return sweep_summary(self.kinematics, self.forces, self.loads, self.flags,
-                             self.review.values if self.review is not None else None)
+        return self._once(("sweep_summary",), lambda: sweep_summary(
+            self.kinematics, self.forces, self.loads, self.flags,
+            self.review.values if self.review is not None else None))
 
     def scales(self) -> dict[str, float]:
         """The largest magnitude [SI] of each kind of quantity (length, force, moment ...):
         a value below 1e-9 of it is round-off (see :func:`mechreport.post.columns.scales`)."""
-        return scales(self.kinematics, self.forces, self.loads)
+        return self._once(("scales",), lambda: scales(self.kinematics, self.forces, self.loads))
 
     def columns(self) -> list[Column]:
         """Every result as a named column over ``angles`` (what results.csv holds, see
         :mod:`mechreport.post.columns`)."""
-        return result_columns(self.kinematics, self.forces, self.scales())
+        return self._once(("columns",), lambda: result_columns(self.kinematics, self.forces,
+                                                              self.scales()))
 
     def to_dataframe(self):
         """Every result as a pandas DataFrame (``pip install 'mechreport[pandas]'``): one
