@@ -245,10 +245,11 @@ def analyse(spec: Spec | str | Path, methods=None, tol: float = DEFAULT_TOL,
         spec = load_spec(spec)
     with np.errstate(all="ignore"):    # what is not finite is flagged or refused below, never a warning
         mech = build_mechanism(spec)
+        kin = solve_kinematics(mech)
         dynamics = None
-        if spec.dynamics is not None:
-            dynamics = run_dynamics(mech, analysis_of, methods, tol, plans)
-        return analysis_of(mech, solve_kinematics(mech), methods, tol, plans, dynamics)
+        if spec.dynamics is not None:       # the steady turn takes the sweep's poses
+            dynamics = run_dynamics(mech, analysis_of, methods, tol, plans, kin)
+        return analysis_of(mech, kin, methods, tol, plans, dynamics)
 
 
 def analysis_of(mech: Mechanism, kin: Kinematics, methods=None, tol: float = DEFAULT_TOL,

@@ -16,7 +16,7 @@ import numpy as np
 from ..dynamics import (EquationOfMotion, Simulation, equation_of_motion, flywheel_estimate,
                         simulate, spec_at_speed)
 from ..dynamics.motor import RPM
-from ..kinematics import solve_kinematics, with_rates
+from ..kinematics import Kinematics, solve_kinematics, with_rates
 from ..model import Mechanism
 
 
@@ -56,12 +56,13 @@ def simulated(mech: Mechanism) -> tuple[EquationOfMotion, Simulation, dict[str, 
                       "dynamics.motor_rms_torque": cycle.motor_rms}
 
 
-def run_dynamics(mech: Mechanism, analyse_turn, methods=None, tol: float = 1e-6, plans=None
-                 ) -> DynamicsResult:
+def run_dynamics(mech: Mechanism, analyse_turn, methods=None, tol: float = 1e-6, plans=None,
+                 kin: Kinematics | None = None) -> DynamicsResult:
     """The machine dynamics of ``mech``'s spec (its ``dynamics:``), its steady turn analysed
     by ``analyse_turn(mech, kin, methods, tol, plans, extra=values)`` (the pipeline's
-    :func:`~mechreport.pipeline.analysis.analysis_of`). Raises ``AnalysisError`` at a stall,
-    where the crank cannot turn, or without a steady state."""
+    :func:`~mechreport.pipeline.analysis.analysis_of`). ``kin``: the sweep's kinematics,
+    whose positions the steady turn takes (solved here when not given). Raises
+    ``AnalysisError`` at a stall, where the crank cannot turn, or without a steady state."""
     spec = mech.spec
     eom, sim, values = simulated(mech)
     cycle = sim.steady
@@ -71,7 +72,8 @@ def run_dynamics(mech: Mechanism, analyse_turn, methods=None, tol: float = 1e-6,
     # the steady turn's own analysis: the spec's expectations are the sweep's (at its speed)
     steady_spec = replace(spec_at_speed(spec, cycle.mean_omega), expect=())
     smech = mech.with_spec(steady_spec)
-    kin = solve_kinematics(smech)
+    # the sweep's poses: the steady turn differs in its speed only (with_rates sets it)
+    kin = solve_kinematics(smech) if kin is None else replace(kin, mechanism=smech)
     pick = np.searchsorted(np.round(angles, 9), np.round(kin.angles, 9))
     kin = with_rates(kin, cycle.omega[pick], cycle.alpha[pick])
     steady = analyse_turn(smech, kin, methods, tol, plans, extra=values)
