@@ -282,8 +282,12 @@ def _coarse(spec):
 @settings(max_examples=200, **COMMON)
 @given(st.one_of(tweaked_specs(), mutated_specs()))
 def test_analyse_of_what_loads_is_finite_or_a_project_error(case):
+    _analysed_finite_or_refused(case[2])
+
+
+def _analysed_finite_or_refused(text: str) -> None:
+    """What loads analyses (on a coarse sweep) to finite numbers or a project error."""
     from mechreport.pipeline.analysis import analyse
-    name, done, text = case
     spec = _load(text)
     if spec is None:
         return
@@ -314,13 +318,4 @@ def test_format_1_1_keys_analyse_finite_or_a_project_error(case):
     """What loads after a mutation below friction, dynamics, strength or polar points
     analyses to finite numbers or raises a project error (a dynamics spec's simulation is
     bounded in its work, never endless)."""
-    from mechreport.pipeline.analysis import analyse
-    name, done, text = case
-    spec = _load(text)
-    if spec is None:
-        return
-    try:
-        result = analyse(_coarse(spec))
-    except MechreportError:
-        return
-    _finite_results(result)
+    _analysed_finite_or_refused(case[2])
