@@ -155,8 +155,10 @@ def test_sigterm_and_ctrl_c_stop_a_build_at_any_moment(builds):
 @pytest.mark.slow
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 def test_sigterm_and_ctrl_c_stop_a_build_at_many_random_moments(builds):
+    """Twenty more moments at random (a lost stop was about 1 in 21 before the fix; the
+    in-process test of a signal swallowed by a finaliser guards the mechanism itself)."""
     import random
     rng = random.Random(40)
-    for _ in range(60):
+    for _ in range(20):
         builds.stop(rng.choice([signal.SIGTERM, signal.SIGINT]),
                     rng.uniform(0, builds.seconds))
