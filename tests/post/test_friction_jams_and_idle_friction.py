@@ -88,3 +88,10 @@ def test_friction_at_rest_with_a_sense_everywhere_keeps_its_efficiency():
     assert a.spec.idle_friction == ()
     assert not any("adds nothing" in n for n in a.notes())
     assert 0 < a.review.values["cycle.efficiency"] < 1
+
+
+def test_a_range_of_negative_strokes_reads_as_a_range():
+    """A self-locking note printed a range of strokes as "at -10-10 mm"."""
+    from mechreport.kinematics.result import angle_ranges
+    assert angle_ranges([-10, -5, 0, 5, 10], 5) == "-10–10"
+    assert angle_ranges([91, 92, 93, 236, 300, 301], 1) == "91–93, 236, 300–301"
