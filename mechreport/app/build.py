@@ -133,6 +133,9 @@ def build_safe(path: str, out: str, name: str, sheet: bool, exact: bool,
         if tmp is not None:
             od.remove(tmp)
             od.as_in_place(exc, tmp, Path(out) / name)
+        # a stop that landed in an import leaves a half-made module whose next use fails:
+        # that failure is the stop's, not the spec's (no FAIL row, no mark on its report)
+        check_stop()
         row = _failure(path, name, describe_failure(exc))
         if os.environ.get("MECHREPORT_DEBUG"):
             row["traceback"] = traceback.format_exc()
@@ -159,7 +162,9 @@ def _failure(path, name: str, message: str) -> dict:
 
 def _mark_out_of_date(out: Path, name: str, row: dict) -> None:
     """A failed spec's earlier report, if any, marked out of date (``OUT/name/FAILED.json``);
-    when the mark cannot be written the row's message says so."""
+    when the mark cannot be written the row's message says so. Never once a stop was
+    requested: a stopped build leaves every earlier report as it was."""
+    check_stop()
     try:
         od.mark_failed(out, name, row["spec"], row["message"])
     except (OSError, MechreportError) as exc:
