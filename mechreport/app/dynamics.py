@@ -33,7 +33,7 @@ def _one(path: Path, out: Path, name: str) -> int:
     from ..pipeline.dynamics import run_dynamics
     from ..report.dynamics import histories_of, write_histories
     from ..spec import load_spec
-    from ..units import fmt
+    from ..units import fmt, rad_s_to_rpm
 
     try:
         spec = load_spec(path)
@@ -51,7 +51,7 @@ def _one(path: Path, out: Path, name: str) -> int:
     sim, cycle = dyn.simulation, dyn.simulation.steady
     if cycle is None:
         print(f"{path}: transient to t = {fmt(sim.time[-1])} s, {sim.turns} whole turns; "
-              f"final speed {fmt(sim.omega[-1] * 30 / 3.141592653589793)} rpm")
+              f"final speed {fmt(rad_s_to_rpm(sim.omega[-1]))} rpm")
     else:
         print(f"{path}: steady after {sim.turns} turns (t = {fmt(cycle.t0 + cycle.period)} s)")
         for qname, value in dyn.values.items():
