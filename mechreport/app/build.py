@@ -29,7 +29,8 @@ from . import outdir as od
 from .console import spec_files
 from .process import Terminated, check_stop
 from .progress import Progress
-from .workers import stop_pool, worker_init
+from ..study.executor import stop_pool
+from .workers import worker_init
 
 DEFAULT_WAIT = 120.0
 
