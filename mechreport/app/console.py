@@ -1,5 +1,5 @@
-"""What every command shares on the terminal: the spec arguments, a spec's failure, debug
-tracebacks."""
+"""What every command shares on the terminal: the spec arguments, a spec's failure (one
+wrapper, :func:`attempt`, for every command's work on one spec), debug tracebacks."""
 from __future__ import annotations
 
 import os
@@ -30,6 +30,25 @@ def report_failure(path, exc: BaseException) -> None:
         return
     print(f"{path}: {describe_failure(exc)}", file=sys.stderr)
     print_traceback_if_debug()
+
+
+def attempt(path, work, say=None) -> tuple[bool, object]:
+    """``work()`` for the spec at ``path``, the one way every command treats a spec that
+    fails: ``(True, its result)``, or ``(False, None)`` when it raised an Exception (one bad
+    spec must not stop the others). The failure is said in one line: by ``say(text)`` with
+    :func:`describe_failure`'s text when the command has its own line for it (``check``:
+    ``FAIL path: text``), else on stderr by :func:`report_failure`; a traceback follows an
+    internal error when MECHREPORT_DEBUG is set. KeyboardInterrupt and the like go on."""
+    try:
+        return True, work()
+    except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the others
+        if say is None:
+            report_failure(path, exc)
+        else:
+            say(describe_failure(exc))
+            if not isinstance(exc, MechreportError):
+                print_traceback_if_debug()
+        return False, None
 
 
 def _blocks(path: Path) -> bool:
