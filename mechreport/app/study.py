@@ -7,10 +7,10 @@ the scheduler cannot be reached or used, the output folder cannot be written), w
 ``--cross-check`` finds a disagreement, when a report asked for with ``--reports`` could not
 be written ("error: no report for rank ..."), or when variants could not be computed because
 a worker process, a Dask task or the Dask scheduler was lost (see
-:mod:`mechreport.study.executor`: a lost chunk is computed again, up to three tries in all). In those last cases the study is
-still written, with the variants not computed as failed rows saying why, and one line on
-stderr says how many ("error: N of M variant(s) could not be computed ..."). 130 when
-interrupted (nothing is written then).
+:mod:`mechreport.study.executor`: a lost chunk is computed again, up to three tries in all).
+In those last cases the study is still written, with the variants not computed as failed
+rows saying why, and one line on stderr says how many ("error: N of M variant(s) could not
+be computed ..."). 130 when interrupted (nothing is written then).
 
 Local processes: ``--jobs`` is lowered to the usable cores and to the number of chunks,
 with one line on stderr saying so ("--jobs 1000: using 2 process(es), because ...").
