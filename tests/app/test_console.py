@@ -39,3 +39,14 @@ def test_an_interrupt_goes_on():
         raise KeyboardInterrupt
     with pytest.raises(KeyboardInterrupt):
         attempt("x.yaml", stop)
+
+
+@pytest.mark.parametrize("exc, said", [
+    (MechreportError("no such scheduler"), "error: no such scheduler\n"),
+    (ValueError("a bug"), "error: internal error: ValueError: a bug")])
+def test_a_command_that_cannot_run_is_one_line(capsys, monkeypatch, exc, said):
+    from mechreport.app.console import report_command_failure
+    monkeypatch.delenv("MECHREPORT_DEBUG", raising=False)
+    report_command_failure(exc)
+    out, err = capsys.readouterr()
+    assert out == "" and err.startswith(said) and err.count("\n") == 1
