@@ -1,7 +1,7 @@
 """The executor: items ``0 .. n-1`` computed in chunks of consecutive items, in this process
 or on a local process pool (one worker process per chunk in flight), with retries of lost
 chunks, partial results and a stop request honoured between waits. Dask clusters run the
-same chunks through :mod:`.dask`; :mod:`.run` chooses between them (``run_chunks``).
+same chunks through :mod:`.cluster`; :mod:`.run` chooses between them (``run_chunks``).
 
 A chunk ``(start, stop)`` is computed by ``task(shared, *args_of(chunk))`` in a worker;
 ``shared`` (a study's base spec) is sent to each worker once (the pool's initializer), a
