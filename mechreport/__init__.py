@@ -3,17 +3,19 @@
     import mechreport
     a = mechreport.analyse("specs/slider_crank.yaml")     # a path, or the YAML text
     a.forces["dyad"].reactions["B"].fx                     # (n,) [N] over a.angles [deg]
+    t = mechreport.run_study("specs/four_bar.yaml")        # its study: section, as a Table
 
 The pipeline, one package per stage, data flowing one way: ``spec`` (load, validate) ->
 ``model`` (graph, dyads, loops) -> ``kinematics`` -> ``forces`` (one module per method) ->
 ``checks`` and ``post`` (pure functions of the results) -> ``pipeline`` (analyse, streamed,
 batch) -> ``report`` -> ``study``; ``app`` (the command line) sits on top. Importing the
-package loads nothing else and changes nothing in the process: ``analyse`` is imported on
-first use.
+package loads nothing else and changes nothing in the process: ``analyse`` and
+``run_study`` (:func:`mechreport.study.run.run_study`: the rows ``mechreport study`` writes)
+are imported on first use.
 """
 from .version import __version__
 
-__all__ = ["analyse", "Analysis", "__version__"]
+__all__ = ["analyse", "Analysis", "run_study", "__version__"]
 
 
 def __getattr__(name: str):
@@ -22,4 +24,7 @@ def __getattr__(name: str):
     if name in ("analyse", "Analysis"):
         from . import pipeline
         return getattr(pipeline, name)
+    if name == "run_study":
+        from .study.run import run_study
+        return run_study
     raise AttributeError(f"module 'mechreport' has no attribute {name!r}")

@@ -12,24 +12,24 @@ folder in ``OUT`` (read back from each folder's summary.json), with this run's f
 the folders marked out of date as FAIL rows.
 The exit code is 1 if any spec of this run failed to build or failed its check.
 
-Workers end with the build (:mod:`.workers`).
+The specs are built by the study's executor (:mod:`mechreport.study.executor`): a worker
+process that dies is replaced and its spec built again; workers end with the build
+(:mod:`.workers`).
 """
 from __future__ import annotations
 
-import multiprocessing
 import os
 import sys
 import time
 import traceback
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
 
-from ..errors import MechreportError, describe_failure, internal_error
+from ..errors import MechreportError, describe_failure
 from . import outdir as od
 from .console import spec_files
 from .process import Terminated, check_stop
 from .progress import Progress
-from .workers import stop_pool, worker_init
+from .workers import worker_init
 
 DEFAULT_WAIT = 120.0
 
@@ -172,41 +172,50 @@ def _mark_out_of_date(out: Path, name: str, row: dict) -> None:
                            f"{describe_failure(exc)})")
 
 
+def _build_task(options: tuple, i: int, path: str, name: str) -> tuple[int, dict]:
+    """One spec's build in a worker of the executor: ``(i, its row)`` (:func:`build_safe`
+    with the build's ``options``: out, sheet, exact, owner, stages, sheet_options,
+    animation). Top-level, so that worker processes can run it."""
+    out, sheet, exact, owner, stages, sheet_options, animation = options
+    return i, build_safe(path, out, name, sheet, exact, owner, stages, sheet_options,
+                         animation)
+
+
 def _run(todo: list[tuple[int, Path, str]], out: Path, jobs: int, sheet: bool, exact: bool,
          finish, stages: bool = False, sheet_options=None, animation: bool = True) -> None:
-    """Build each ``(i, path, name)`` of ``todo``; ``finish(i, row)`` is called in this
-    process as each one ends (in completion order). ``stages``: print each stage of a spec
-    (for a build of one spec)."""
+    """Build each ``(i, path, name)`` of ``todo`` through the study's executor (one spec per
+    job, on ``jobs`` worker processes, or in this process for one); ``finish(i, row)`` is
+    called in this process as each one ends (in completion order). A worker process that
+    dies is replaced and its spec built again (up to three tries, then a FAIL row saying so;
+    a warning on stderr for each retry). ``stages``: print each stage of a spec (for a build
+    of one spec)."""
+    from functools import partial
+
+    from ..study.executor import Words
+    from ..study.run import run_chunks
+
     owner = os.getpid()
-    if jobs <= 1 or len(todo) <= 1:
-        for i, p, name in todo:
-            finish(i, build_safe(str(p), str(out), name, sheet, exact, owner, stages,
-                                 sheet_options, animation))
-        return
-    # fresh interpreters: forking a process whose Typst/BLAS threads are running can
-    # deadlock the child (seen under pytest, after a report was typeset in-process)
-    ctx = multiprocessing.get_context("spawn")
-    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=worker_init,
-                               initargs=(owner,))
-    try:
-        futs = {pool.submit(build_safe, str(p), str(out), name, sheet, exact, owner,
-                            sheet_options=sheet_options, animation=animation): (i, p, name)
-                for i, p, name in todo}
-        pending = set(futs)
-        while pending:
-            done, pending = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
-            check_stop()                    # also while no spec finishes
-            for fut in done:
-                i, p, name = futs[fut]
-                try:
-                    row = fut.result()
-                except Exception as exc:  # noqa: BLE001 - a worker died
-                    row = _failure(p, name, internal_error(exc))
-                finish(i, row)
-    except BaseException:
-        stop_pool(pool)
-        raise
-    pool.shutdown(wait=True)
+    options = (str(out), sheet, exact, owner, stages, sheet_options, animation)
+
+    def args_of(chunk) -> tuple:
+        i, p, name = todo[chunk[0]]
+        return i, str(p), name
+
+    def on_done(chunk, result) -> None:
+        finish(*result)
+
+    def on_lost(start: int, stop: int, reason: str) -> None:
+        for i, p, name in todo[start:stop]:
+            finish(i, _failure(p, name, reason))
+
+    def notify(line: str) -> None:
+        print(line, file=sys.stderr, flush=True)
+
+    words = Words(item="spec", part="specs", run="build", kept="the reports built are kept",
+                  label=lambda chunk: str(todo[chunk[0]][1]))
+    run_chunks(_build_task, options, len(todo), 1, args_of, on_done,
+               jobs=1 if len(todo) <= 1 else jobs, on_lost=on_lost, notify=notify,
+               stop_check=check_stop, setup=partial(worker_init, owner), words=words)
 
 
 # -------------------------------------------------------------------------------- index

@@ -4,8 +4,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from ..errors import MechreportError, describe_failure
-from .console import print_traceback_if_debug, spec_files
+from ..errors import describe_failure
+from .console import attempt, spec_files
 
 
 def check_command(args: list[str], tol: float, junit: str | Path | None = None) -> int:
@@ -28,18 +28,20 @@ def check_files(paths: list[Path], tol: float, junit: str | Path | None = None) 
             _write_junit(junit, [])
         return 1
     for path in paths:
-        try:
-            result = check_one(path, tol)
-            line = summary_line(path, result)
-        except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the others
-            failed += 1
-            text = str(exc) if isinstance(exc, MechreportError) else describe_failure(exc)
+        def fail(text: str) -> None:
             print(f"FAIL {path}: {text}")
-            if not isinstance(exc, MechreportError):
-                print_traceback_if_debug()
             if junit is not None:
                 cases.append((str(path), [("load and analyse", text)]))
+
+        def checked():
+            result = check_one(path, tol)
+            return result, summary_line(path, result)
+
+        ok, done = attempt(path, checked, say=fail)
+        if not ok:
+            failed += 1
             continue
+        result, line = done
         print(line)
         for note in result.notes():
             print(f"  note: {note}")

@@ -18,8 +18,8 @@ import signal
 import sys
 import textwrap
 
-from ..errors import MechreportError, SpecError, describe_failure, internal_error
-from .console import print_traceback_if_debug
+from ..errors import describe_failure, internal_error
+from .console import report_command_failure
 from .process import Terminated
 
 EXIT_INTERRUPTED = 130          # 128 + SIGINT, as a shell reports Ctrl-C
@@ -364,12 +364,6 @@ def _main(argv: list[str] | None) -> int:
         code = ns.func(ns)
         check_stop()                        # a stop whose exception was lost still stops
         return code
-    except SpecError as exc:
-        print(str(exc), file=sys.stderr)
-        return 1
-    except MechreportError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 1
     except KeyboardInterrupt as exc:
         terminated = (stop_requested() or (signal.SIGTERM if isinstance(exc, Terminated)
                                            else signal.SIGINT)) == signal.SIGTERM
@@ -378,9 +372,8 @@ def _main(argv: list[str] | None) -> int:
         return EXIT_TERMINATED if terminated else EXIT_INTERRUPTED
     except BrokenPipeError:
         raise                               # see main()
-    except Exception as exc:  # noqa: BLE001 - a bug: one line, a traceback only when asked
-        print(f"error: {internal_error(exc, 'the command you ran')}", file=sys.stderr)
-        print_traceback_if_debug()
+    except Exception as exc:  # noqa: BLE001 - said in one line (console.report_command_failure)
+        report_command_failure(exc)
         return 1
 
 

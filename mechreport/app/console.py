@@ -1,5 +1,6 @@
-"""What every command shares on the terminal: the spec arguments, a spec's failure, debug
-tracebacks."""
+"""What every command shares on the terminal: the spec arguments, failures (one wrapper,
+:func:`attempt`, for every command's work on one spec; :func:`report_command_failure` for a
+command that cannot run at all), debug tracebacks."""
 from __future__ import annotations
 
 import os
@@ -8,7 +9,7 @@ import sys
 import traceback
 from pathlib import Path
 
-from ..errors import MechreportError, describe_failure
+from ..errors import MechreportError, SpecError, describe_failure, internal_error
 
 
 def debug() -> bool:
@@ -30,6 +31,39 @@ def report_failure(path, exc: BaseException) -> None:
         return
     print(f"{path}: {describe_failure(exc)}", file=sys.stderr)
     print_traceback_if_debug()
+
+
+def report_command_failure(exc: Exception) -> None:
+    """A command that could not run, on stderr in one line: a spec's problems as the loader
+    words them (``SpecError``: they name the file and line), any other
+    :class:`MechreportError` after ``error:``, anything else as an internal error, with a
+    traceback when MECHREPORT_DEBUG is set."""
+    if isinstance(exc, SpecError):
+        print(str(exc), file=sys.stderr)
+    elif isinstance(exc, MechreportError):
+        print(f"error: {exc}", file=sys.stderr)
+    else:
+        print(f"error: {internal_error(exc, 'the command you ran')}", file=sys.stderr)
+        print_traceback_if_debug()
+
+
+def attempt(path, work, say=None) -> tuple[bool, object]:
+    """``work()`` for the spec at ``path``, the one way every command treats a spec that
+    fails: ``(True, its result)``, or ``(False, None)`` when it raised an Exception (one bad
+    spec must not stop the others). The failure is said in one line: by ``say(text)`` with
+    :func:`describe_failure`'s text when the command has its own line for it (``check``:
+    ``FAIL path: text``), else on stderr by :func:`report_failure`; a traceback follows an
+    internal error when MECHREPORT_DEBUG is set. KeyboardInterrupt and the like go on."""
+    try:
+        return True, work()
+    except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the others
+        if say is None:
+            report_failure(path, exc)
+        else:
+            say(describe_failure(exc))
+            if not isinstance(exc, MechreportError):
+                print_traceback_if_debug()
+        return False, None
 
 
 def _blocks(path: Path) -> bool:

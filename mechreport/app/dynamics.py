@@ -12,7 +12,7 @@ import sys
 from pathlib import Path
 
 from . import outdir as od
-from .console import report_failure
+from .console import attempt
 
 
 def dynamics_command(paths: list[str], out: str = "out", wait: float = 120.0) -> int:
@@ -33,25 +33,30 @@ def _one(path: Path, out: Path, name: str) -> int:
     from ..pipeline.dynamics import run_dynamics
     from ..report.dynamics import histories_of, write_histories
     from ..spec import load_spec
-    from ..units import fmt
+    from ..units import fmt, rad_s_to_rpm
 
-    try:
+    def simulated():
         spec = load_spec(path)
         if spec.dynamics is None:
-            print(f"{path}: no 'dynamics:' section: nothing to simulate (docs/spec.md, "
-                  "'Machine dynamics')", file=sys.stderr)
-            return 1
+            return None
         dyn = run_dynamics(build_mechanism(spec), analysis_of)
         final = od.write_folder(out, name,
                                 lambda tmp: write_histories(histories_of(dyn.simulation), tmp),
                                 carry=lambda entry: entry not in od.DYNAMICS_ENTRIES)
-    except Exception as exc:  # noqa: BLE001 - a message, not a traceback
-        report_failure(path, exc)
+        return dyn, final
+
+    ok, done = attempt(path, simulated)
+    if not ok:
         return 1
+    if done is None:
+        print(f"{path}: no 'dynamics:' section: nothing to simulate (docs/spec.md, "
+              "'Machine dynamics')", file=sys.stderr)
+        return 1
+    dyn, final = done
     sim, cycle = dyn.simulation, dyn.simulation.steady
     if cycle is None:
         print(f"{path}: transient to t = {fmt(sim.time[-1])} s, {sim.turns} whole turns; "
-              f"final speed {fmt(sim.omega[-1] * 30 / 3.141592653589793)} rpm")
+              f"final speed {fmt(rad_s_to_rpm(sim.omega[-1]))} rpm")
     else:
         print(f"{path}: steady after {sim.turns} turns (t = {fmt(cycle.t0 + cycle.period)} s)")
         for qname, value in dyn.values.items():

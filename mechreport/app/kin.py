@@ -2,7 +2,7 @@
 spec's reference angles (or the given ones), as a table."""
 from __future__ import annotations
 
-from .console import report_failure
+from .console import attempt
 
 
 def kin_command(path: str, angles: list[float] | None = None) -> int:
@@ -13,13 +13,15 @@ def kin_command(path: str, angles: list[float] | None = None) -> int:
     from ..report.text import branch_lines, kinematics_table
     from ..spec import load_spec
 
-    try:
+    def solved():
         spec = load_spec(path)
         at = np.asarray(angles if angles else spec.at, float)
-        kin = solve_kinematics(build_mechanism(spec), at)
-    except Exception as exc:  # noqa: BLE001 - a message, not a traceback
-        report_failure(path, exc)
+        return spec, solve_kinematics(build_mechanism(spec), at)
+
+    ok, done = attempt(path, solved)
+    if not ok:
         return 1
+    spec, kin = done
     print(kinematics_table(kin))
     print()
     for text in branch_lines(kin):

@@ -6,11 +6,11 @@ invalid, the method cannot give the kept quantities, the scheduler address is ma
 the scheduler cannot be reached or used, the output folder cannot be written), when
 ``--cross-check`` finds a disagreement, when a report asked for with ``--reports`` could not
 be written ("error: no report for rank ..."), or when variants could not be computed because
-a worker process, a Dask task or the Dask scheduler was lost (see :mod:`.study_workers`: a
-lost chunk is computed again, up to three tries in all). In those last cases the study is
-still written, with the variants not computed as failed rows saying why, and one line on
-stderr says how many ("error: N of M variant(s) could not be computed ..."). 130 when
-interrupted (nothing is written then).
+a worker process, a Dask task or the Dask scheduler was lost (see
+:mod:`mechreport.study.executor`: a lost chunk is computed again, up to three tries in all).
+In those last cases the study is still written, with the variants not computed as failed
+rows saying why, and one line on stderr says how many ("error: N of M variant(s) could not
+be computed ..."). 130 when interrupted (nothing is written then).
 
 Local processes: ``--jobs`` is lowered to the usable cores and to the number of chunks,
 with one line on stderr saying so ("--jobs 1000: using 2 process(es), because ...").
@@ -35,25 +35,13 @@ ever replaced.
 """
 from __future__ import annotations
 
+import os
 import sys
 import time
 from pathlib import Path
 
-from ..errors import MechreportError, describe_failure
+from ..errors import describe_failure
 from . import outdir as od
-
-
-def _method(base, method: str | None) -> tuple[str, str]:
-    from ..study.methods import cannot_serve, default_method
-    study, design = base.spec.study, base.spec.design
-    if method is None:
-        return (default_method(study.keep, design),
-                "the fastest method that gives every kept quantity and design verdict")
-    why = cannot_serve(method, study.keep, design)
-    if why:
-        raise MechreportError(f"--method {method}: {why}; leave --method out to use the "
-                              "fastest method that can")
-    return method, "chosen with --method"
 
 
 def study_command(path, out="out", method: str | None = None, scheduler: str | None = None,
@@ -62,18 +50,22 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     """Run the study of the spec at ``path`` into ``out``; the exit status (see the module
     docstring). Raises ``SpecError``/``MechreportError`` when the study cannot run and
     KeyboardInterrupt when interrupted."""
+    from functools import partial
+
+    from ..study.cluster import close_client, connect, dask_workers
+    from ..study.methods import choose_method
     from ..study.plan import plan_of
+    from ..study.run import auto_chunk, local_jobs, run_variants
     from ..study.variants import load_base
+    from .process import check_stop, stop_requests
     from .progress import StudyProgress, duration
-    from .study_workers import (auto_chunk, close_client, connect, dask_workers, local_jobs,
-                                run_variants)
-    from .process import stop_requests
+    from .workers import worker_init
 
     err = stream or sys.stderr
     path = Path(path)
     base = load_base(path)
     study = base.spec.study
-    method, why = _method(base, method)
+    method, why = choose_method(method, study.keep, base.spec.design)
     plan = plan_of(study)
     out = od.prepare(Path(out))            # fail early on an unusable -o
     name = od.safe_stem(path)
@@ -103,8 +95,10 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
             start = time.perf_counter()
             try:
                 table = run_variants(base, plan, method, study.keep, jobs=workers,
-                                     chunk=size, client=client, progress=progress,
-                                     lost=lost, notify=notify)
+                                     chunk=size, client=client, progress=progress.update,
+                                     lost=lost, notify=notify, stop_check=check_stop,
+                                     setup=partial(worker_init, os.getpid()))
+                progress.close()
             except KeyboardInterrupt as exc:
                 progress.close()
                 print(f"interrupted after {progress.done} of {plan.n} variant(s); nothing "

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from .console import report_failure, spec_files
+from .console import attempt, spec_files
 
 
 def validate_command(args: list[str]) -> int:
@@ -19,14 +19,15 @@ def validate_command(args: list[str]) -> int:
     if not paths:
         print("no spec files given", file=sys.stderr)
         return 1
+    def assembled(path):
+        spec = load_spec(path)
+        return solve_kinematics(build_mechanism(spec), np.asarray(spec.at, float))
+
     failed = 0
     for path in paths:
-        try:
-            spec = load_spec(path)
-            kin = solve_kinematics(build_mechanism(spec), np.asarray(spec.at, float))
-        except Exception as exc:  # noqa: BLE001 - one bad spec must not stop the others
+        ok, kin = attempt(path, lambda: assembled(path))
+        if not ok:
             failed += 1
-            report_failure(path, exc)
             continue
         note = f" ({len(kin.flags)} reference angle(s) left out)" if kin.flags else ""
         print(f"{path}: OK{note}")

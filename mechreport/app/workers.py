@@ -1,7 +1,8 @@
-"""Worker processes that end with the command: initialiser, pool shutdown.
+"""Worker processes that end with the command: their initialiser.
 
-Ctrl-C or SIGTERM (:func:`.process.stop_requests`) stops a pool and terminates its workers,
-and a worker whose parent has died exits by itself within a second.
+Ctrl-C or SIGTERM (:func:`.process.stop_requests`) stops the executor's pool, which
+terminates its workers (:mod:`mechreport.study.executor`), and a worker whose parent has
+died exits by itself within a second.
 """
 from __future__ import annotations
 
@@ -28,40 +29,3 @@ def _watch_parent(parent: int, every: float = 0.5) -> None:
         time.sleep(every)
         if os.getppid() != parent:
             os._exit(1)                    # orphaned: the command is gone, stop writing
-
-
-def stop_pool(pool) -> None:
-    """Cancel what has not started in ``pool`` (a ProcessPoolExecutor) and terminate its
-    workers (they must not outlive us)."""
-    procs = list((getattr(pool, "_processes", None) or {}).values())
-    pool.shutdown(wait=False, cancel_futures=True)
-    for p in procs:
-        if p.is_alive():
-            p.terminate()
-    deadline = time.monotonic() + 3.0
-    for p in procs:
-        p.join(max(0.0, deadline - time.monotonic()))
-        if p.is_alive():
-            p.kill()
-            p.join(1.0)
-
-
-def exit_codes(pool) -> str:
-    """How the worker processes of ``pool`` (a broken ProcessPoolExecutor) ended, for a
-    message: "killed by signal 9", "exit status 1"; "" when not known."""
-    said = []
-    for p in list((getattr(pool, "_processes", None) or {}).values()):
-        code = getattr(p, "exitcode", None)
-        if code is None or code == 0:
-            continue
-        if code < 0:
-            try:
-                name = signal.Signals(-code).name
-            except ValueError:
-                name = f"signal {-code}"
-            text = f"killed by {name}"
-        else:
-            text = f"exit status {code}"
-        if text not in said:
-            said.append(text)
-    return ", ".join(said)

@@ -15,9 +15,9 @@ import numpy as np
 
 from ..dynamics import (EquationOfMotion, Simulation, equation_of_motion, flywheel_estimate,
                         simulate, spec_at_speed)
-from ..dynamics.motor import RPM
 from ..kinematics import Kinematics, solve_kinematics, with_rates
 from ..model import Mechanism
+from ..units import RPM
 
 
 @dataclass(frozen=True)

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..kinematics.result import jam_note
+from ..units import rad_s_to_rpm
 from .balance import Counterweight, counterweight
 from .bearings import BearingLoad, bearing_load
 from .cycle import Cycle, CycleUndefined, cycle_of
@@ -172,7 +173,7 @@ def review_from(tr: Traces, spec, reachable: bool = True, turn_problem: str = ""
     values["balance.counterweight.angle"] = cw.angle
     values["balance.inertia_shaking.force_rms"] = cw.rms_after
     balanced = cw.balanced
-    rpm = abs(omega) * 30.0 / np.pi
+    rpm = rad_s_to_rpm(abs(omega))
     bearings = {}
     for name, magnitude in tr.reactions.items():
         rating = (ratings or {}).get(name)

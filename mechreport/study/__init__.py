@@ -8,8 +8,11 @@ Latin hypercube), :mod:`.variants` (the spec's data tree with the varied leaves 
 validated by the loader), :mod:`.evaluate` (THE SEAM: a chunk of variants -> one row each),
 :mod:`.methods` (which force method), :mod:`.table` (the rows as columns, ranking, Pareto front),
 :mod:`.outputs` (study.parquet, study.csv), :mod:`.report` and
-:mod:`.document` (study.md, study.pdf), :mod:`.cross_check`. The command, its workers and output folder are
-:mod:`mechreport.app.study`'s.
+:mod:`.document` (study.md, study.pdf), :mod:`.cross_check`; :mod:`.run` (chunks of variants
+run by the executor, and ``run_study``, the Python entry point), :mod:`.executor` (a local
+process pool with retries of lost chunks, partial results, stop checks; ``mechreport build``
+uses it too) and :mod:`.cluster` (the same on a Dask cluster). The command's messages,
+progress and output folder are :mod:`mechreport.app.study`'s.
 """
 from .evaluate import Row, evaluate_chunk
 from .plan import Plan, plan_of

@@ -55,3 +55,19 @@ def default_method(keep, design: Design) -> str:
         if name in METHODS and cannot_serve(name, keep, design) is None:
             return name
     return next(m for m in METHODS if cannot_serve(m, keep, design) is None)
+
+
+def choose_method(method: str | None, keep, design: Design,
+                  named: str = "--method") -> tuple[str, str]:
+    """(the method a study runs, why): ``method`` when it can give every kept quantity and
+    design verdict (else :class:`~mechreport.errors.MechreportError` saying why, the choice
+    called ``named`` as the caller's user knows it), the fastest that can when None."""
+    from ..errors import MechreportError
+    if method is None:
+        return (default_method(keep, design),
+                "the fastest method that gives every kept quantity and design verdict")
+    why = cannot_serve(method, keep, design)
+    if why:
+        raise MechreportError(f"{named} {method}: {why}; leave {named} out to use the "
+                              "fastest method that can")
+    return method, f"chosen with {named}"

@@ -55,11 +55,16 @@ class BaseSpec:
 def load_base(path: str | Path) -> BaseSpec:
     """Read and validate the spec at ``path`` (raises ``SpecError``); its study section must
     be there (else a ``SpecError`` saying so)."""
+    return study_base(load_source(path))
+
+
+def study_base(src: Source) -> BaseSpec:
+    """The :class:`BaseSpec` of the spec read into ``src``, validated (raises ``SpecError``);
+    its study section must be there (else a ``SpecError`` saying so)."""
     from ..errors import Problem, SpecError
-    src = load_source(path)
     spec = spec_from_data(src.data, src)
     if spec.study is None:
-        raise SpecError([Problem(str(path), None, "", "this spec has no 'study:' section; "
+        raise SpecError([Problem(src.filename, None, "", "this spec has no 'study:' section; "
                                  "`mechreport study` needs one saying what to vary and what "
                                  "to keep (docs/spec.md, section 17)")])
     return base_of(spec, src)

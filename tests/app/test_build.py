@@ -95,3 +95,38 @@ def test_no_animation_leaves_it_out_and_rebuilds_what_had_one(tmp_path):
     assert "animation.gif" not in (folder / "report.md").read_text(encoding="utf-8")
     assert json.loads((folder / "summary.json").read_text())["build"]["animation"] is False
     assert "[animation]" not in (out / "index.md").read_text(encoding="utf-8")
+
+
+# ------------------------------------------------- the executor's retries (issue 42, item 4)
+
+def _dies_once(options, i, path, name):
+    """The build's task, whose worker process dies on the first try of spec ``i == 0``."""
+    import os
+    from pathlib import Path
+
+    from mechreport.app import build
+    tries = Path(os.environ["BUILD_FAULTS"]) / f"tries-{i}"
+    with open(tries, "a", encoding="utf-8") as fh:
+        fh.write("try\n")
+    if i == 0 and len(tries.read_text(encoding="utf-8").splitlines()) == 1:
+        os._exit(1)
+    return build._build_task(options, i, path, name)
+
+
+def test_a_worker_that_dies_while_building_a_spec_costs_only_a_retry(tmp_path, monkeypatch,
+                                                                       capsys,
+                                                                       textbook_specs):
+    from mechreport.app import build
+    faults = tmp_path / "faults"
+    faults.mkdir()
+    monkeypatch.setenv("BUILD_FAULTS", str(faults))
+    monkeypatch.setattr(build, "_build_task", _dies_once)
+    specs = [shutil.copy(textbook_specs["4.6"], tmp_path / f"s{k}.yaml") for k in (1, 2)]
+    code = build_files(specs, tmp_path / "out", jobs=2, animation=False)
+    err = capsys.readouterr().err
+    assert code == 0, err
+    assert sorted(p.name for p in faults.iterdir()) == ["tries-0", "tries-1"]
+    assert len((faults / "tries-0").read_text().splitlines()) == 2
+    assert "a worker process died" in err and "computing them again (try 2 of 3)" in err
+    for k in (1, 2):
+        assert (tmp_path / "out" / f"s{k}" / "report.pdf").is_file()

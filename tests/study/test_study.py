@@ -17,7 +17,7 @@ from mechreport.errors import SpecError
 from mechreport.spec import parse_spec
 from mechreport.spec.loader import parse_source, spec_from_data
 from mechreport.study import evaluate_chunk, plan_of
-from mechreport.app.study_workers import run_variants
+from mechreport.study.run import run_variants
 from mechreport.study.variants import base_of, variant_spec
 
 pytestmark = pytest.mark.slow      # builds reports, starts processes or fuzzes: not in the fast tier
@@ -335,7 +335,7 @@ def test_dask_local_cluster_gives_the_local_pool_table():
 
 def test_unreachable_scheduler_is_a_clear_error():
     pytest.importorskip("distributed")
-    from mechreport.app.study_workers import SchedulerError, connect
+    from mechreport.study.cluster import SchedulerError, connect
     with pytest.raises(SchedulerError, match="cannot reach the Dask scheduler at "
                                              "tcp://127.0.0.1:9"):
         connect("tcp://127.0.0.1:9", timeout=1)

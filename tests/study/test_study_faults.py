@@ -26,7 +26,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import mechreport.app.study_workers as sw
+import mechreport.study.cluster as cl
+import mechreport.study.executor as ex
+import mechreport.study.run as sr
 from mechreport.spec import parse_spec
 from mechreport.spec.loader import parse_source, spec_from_data
 from mechreport.study import plan_of
@@ -46,8 +48,7 @@ study:
     - {key: driver.rpm, values: [250, 300]}
   keep: [cycle.torque.rms, joint.C.f_max]
 """
-_POOL_TASK = sw._pool_task          # the real tasks (in a worker too: imported afresh there)
-_DASK_TASK = sw._dask_task
+_TASK = sr.chunk_task          # the real task (in a worker too: imported afresh there)
 
 
 # ------------------------------------------------------------------------ fault injection
@@ -91,14 +92,9 @@ def _fault(start: int) -> None:
     raise AssertionError(how)
 
 
-def _faulty_pool_task(start, keys, values, method, keep):
+def _faulty_task(base, start, keys, values, method, keep):
     _fault(start)
-    return _POOL_TASK(start, keys, values, method, keep)
-
-
-def _faulty_dask_task(base, start, keys, values, method, keep):
-    _fault(start)
-    return _DASK_TASK(base, start, keys, values, method, keep)
+    return _TASK(base, start, keys, values, method, keep)
 
 
 def _faults(monkeypatch, tmp_path: Path, at="all", times=1000, how="exit") -> Path:
@@ -108,9 +104,8 @@ def _faults(monkeypatch, tmp_path: Path, at="all", times=1000, how="exit") -> Pa
     monkeypatch.setenv("FAULTS_AT", str(at))
     monkeypatch.setenv("FAULTS_TIMES", str(times))
     monkeypatch.setenv("FAULTS_HOW", how)
-    monkeypatch.setattr(sw, "_pool_task", _faulty_pool_task)
-    monkeypatch.setattr(sw, "_dask_task", _faulty_dask_task)
-    monkeypatch.setattr(sw, "usable_cores", lambda: 2)     # a pool even on one core
+    monkeypatch.setattr(sr, "chunk_task", _faulty_task)
+    monkeypatch.setattr(sr, "usable_cores", lambda: 2)     # a pool even on one core
     return where
 
 
@@ -126,13 +121,13 @@ def _base(text: str = COARSE + SMALL, filename: str = "four_bar.yaml"):
 
 def _serial(base):
     plan = plan_of(base.spec.study)
-    return sw.run_variants(base, plan, "dalembert", base.spec.study.keep, jobs=1)
+    return sr.run_variants(base, plan, "dalembert", base.spec.study.keep, jobs=1)
 
 
 def _run(base, **kw):
     plan = plan_of(base.spec.study)
     lost, said = [], []
-    table = sw.run_variants(base, plan, "dalembert", base.spec.study.keep, lost=lost,
+    table = sr.run_variants(base, plan, "dalembert", base.spec.study.keep, lost=lost,
                             notify=said.append, **kw)
     return table, lost, said
 
@@ -165,8 +160,8 @@ def test_a_chunk_whose_worker_always_dies_fails_its_rows_after_three_tries(tmp_p
     serial = _serial(base)
     where = _faults(monkeypatch, tmp_path, at=4)
     table, lost, said = _run(base, jobs=2, chunk=2)
-    assert _tries(where) == {4: sw.MAX_TRIES}
-    assert lost == [sw.Lost(4, 6, "a worker process died while computing this variant "
+    assert _tries(where) == {4: ex.MAX_TRIES}
+    assert lost == [ex.Lost(4, 6, "a worker process died while computing this variant "
                                   "(after 3 tries)")]
     for i in (4, 5):
         assert not table.ok[i] and table.reason[i] == lost[0].reason
@@ -183,8 +178,8 @@ def test_workers_dying_on_every_chunk_stop_the_study_after_three_chunks(tmp_path
     table, lost, said = _run(base, jobs=2, chunk=1)
     tries = _tries(where)
     # at most GIVE_UP_AFTER chunks lost for good, plus the one on the other process
-    assert len(tries) <= sw.GIVE_UP_AFTER + 1
-    assert sum(tries.values()) <= (sw.GIVE_UP_AFTER + 1) * sw.MAX_TRIES
+    assert len(tries) <= ex.GIVE_UP_AFTER + 1
+    assert sum(tries.values()) <= (ex.GIVE_UP_AFTER + 1) * ex.MAX_TRIES
     assert table.done.all() and not table.ok.any()
     assert sum(x.count for x in lost) == 8
     assert any(r.startswith("not computed: the study stopped after 3 chunks in a row")
@@ -198,7 +193,7 @@ def test_without_a_lost_list_a_lost_chunk_still_fails_the_run(tmp_path, monkeypa
     plan = plan_of(base.spec.study)
     _faults(monkeypatch, tmp_path, at=0)
     with pytest.raises(MechreportError, match="a worker process died"):
-        sw.run_variants(base, plan, "dalembert", base.spec.study.keep, jobs=2, chunk=4)
+        sr.run_variants(base, plan, "dalembert", base.spec.study.keep, jobs=2, chunk=4)
 
 
 def _write(tmp_path: Path, text: str, name: str = "four_bar.yaml") -> Path:
@@ -239,11 +234,11 @@ def cluster():
 
 @pytest.fixture
 def client(cluster):
-    client = sw.connect(cluster.scheduler_address, timeout=5)
+    client = cl.connect(cluster.scheduler_address, timeout=5)
     try:
         yield client
     finally:
-        assert sw.close_client(client) == ""
+        assert cl.close_client(client) == ""
 
 
 def test_a_lost_dask_task_is_submitted_again(tmp_path, monkeypatch, client):
@@ -265,7 +260,7 @@ def test_a_dask_chunk_lost_three_times_is_failed_rows(tmp_path, monkeypatch, cli
     where = _faults(monkeypatch, tmp_path, at=6, how="comm")
     table, lost, _said = _run(base, client=client, chunk=2)
     assert _tries(where) == {6: 3}
-    assert lost == [sw.Lost(6, 8, "the Dask task computing this variant was lost: "
+    assert lost == [ex.Lost(6, 8, "the Dask task computing this variant was lost: "
                                   "CommClosedError (after 3 tries)")]
     _same_rows(table, serial, range(6))
 
@@ -288,19 +283,19 @@ def test_a_killed_worker_is_final_and_a_task_bug_is_failed_rows(tmp_path, monkey
 def test_a_dask_cluster_that_loses_its_last_worker_keeps_the_rows_done(tmp_path,
                                                                        monkeypatch):
     distributed = pytest.importorskip("distributed")
-    monkeypatch.setattr(sw, "NO_WORKERS_WAIT", 1.0)
-    monkeypatch.setattr(sw, "POLL", 0.2)
+    monkeypatch.setattr(cl, "NO_WORKERS_WAIT", 1.0)
+    monkeypatch.setattr(cl, "POLL", 0.2)
     base = _base()
     serial = _serial(base)
     where = _faults(monkeypatch, tmp_path, at=4, how="close-worker")
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
                                   protocol="tcp://", host="127.0.0.1",
                                   dashboard_address="127.0.0.1:0") as cluster:
-        client = sw.connect(cluster.scheduler_address, timeout=5)
+        client = cl.connect(cluster.scheduler_address, timeout=5)
         try:
             table, lost, said = _run(base, client=client, chunk=2)
         finally:
-            sw.close_client(client)
+            cl.close_client(client)
     assert _tries(where) == {4: 1}
     assert table.done.all() and table.ok[:2].all() and not table.ok[4:].any()
     ok = np.flatnonzero(table.ok)
@@ -327,13 +322,13 @@ def test_a_killed_scheduler_keeps_the_rows_done_with_one_clean_error(tmp_path):
     preload = tmp_path / "inject_faults.py"
     preload.write_text(
         "def dask_setup(worker):\n"
-        "    import mechreport.app.study_workers as sw\n"
+        "    import mechreport.study.run as sr\n"
         "    import test_study_faults as t\n"
-        "    task = sw._dask_task\n"
+        "    task = sr.chunk_task\n"
         "    def faulty(base, start, *rest):\n"
         "        t._fault(start)\n"
         "        return task(base, start, *rest)\n"
-        "    sw._dask_task = faulty\n", encoding="utf-8")
+        "    sr.chunk_task = faulty\n", encoding="utf-8")
     sched_file = tmp_path / "scheduler.json"
     procs = []
     try:
@@ -372,7 +367,7 @@ def test_a_killed_scheduler_keeps_the_rows_done_with_one_clean_error(tmp_path):
     table = pq.read_table(tmp_path / "out" / "four_bar" / "study.parquet").to_pydict()
     ok = [s == "ok" for s in table["status"]]
     assert ok[0] and not ok[4]                          # the rows done are kept
-    assert all(r == sw.SCHEDULER_LOST for r, good in zip(table["reason"], ok) if not good)
+    assert all(r == cl.SCHEDULER_LOST for r, good in zip(table["reason"], ok) if not good)
 
 
 # ------------------------------------------------------------ item 8: bad addresses
@@ -396,7 +391,7 @@ def test_a_bad_scheduler_address_fails_fast_without_a_traceback(tmp_path, addres
 
 def test_an_unreachable_scheduler_is_one_line_within_the_stated_timeout(tmp_path):
     pytest.importorskip("distributed")
-    code = ("import sys; from mechreport.app.study_workers import connect, SchedulerError\n"
+    code = ("import sys; from mechreport.study.cluster import connect, SchedulerError\n"
             "try:\n    connect('127.0.0.1:9', timeout=1)\n"
             "except SchedulerError as e:\n    print(e, file=sys.stderr)\n")
     run = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True,
@@ -412,7 +407,7 @@ def test_an_unreachable_scheduler_is_one_line_within_the_stated_timeout(tmp_path
     ("sched-1.example.org:8786", "tcp://sched-1.example.org:8786"),
     (" [::1]:8786 ", "tcp://[::1]:8786"), ("tcp://node_7:01234", "tcp://node_7:1234")])
 def test_scheduler_addresses_of_the_right_form_are_accepted(address, normal):
-    assert sw.check_address(address) == normal
+    assert cl.check_address(address) == normal
 
 
 # ---------------------------------------------------- item 7: names that look like numbers
@@ -528,14 +523,14 @@ def test_a_report_that_cannot_be_written_makes_the_exit_status_1(tmp_path, capsy
 # ------------------------------------------------------------------ item 11: --jobs
 
 def test_jobs_are_bounded_by_the_cores_and_the_chunks(monkeypatch):
-    monkeypatch.setattr(sw, "usable_cores", lambda: 2)
-    workers, size, why = sw.local_jobs(63, 1000, None)
+    monkeypatch.setattr(sr, "usable_cores", lambda: 2)
+    workers, size, why = sr.local_jobs(63, 1000, None)
     assert workers == 2 and size == 4 and "2 usable core(s)" in why
-    assert sw.local_jobs(63, 2, None) == (2, 4, "")
-    assert sw.local_jobs(63, None, None) == (2, 4, "")
-    workers, size, why = sw.local_jobs(63, 2, 40)
+    assert sr.local_jobs(63, 2, None) == (2, 4, "")
+    assert sr.local_jobs(63, None, None) == (2, 4, "")
+    workers, size, why = sr.local_jobs(63, 2, 40)
     assert workers == 2 and why == ""
-    workers, size, why = sw.local_jobs(3, 1000, 3)
+    workers, size, why = sr.local_jobs(3, 1000, 3)
     assert workers == 1 and "1 chunk(s)" in why and "2 usable core(s)" in why
 
 
@@ -543,14 +538,14 @@ def test_cli_jobs_1000_starts_at_most_a_process_per_core_and_says_so(tmp_path, m
                                                                    capsys):
     from concurrent.futures import ProcessPoolExecutor
     from mechreport.app.cli import main
-    monkeypatch.setattr(sw, "usable_cores", lambda: 2)
+    monkeypatch.setattr(sr, "usable_cores", lambda: 2)
     started = []
 
     class Counted(ProcessPoolExecutor):
         def __init__(self, *a, **k):
             started.append(k.get("max_workers", a[0] if a else None))
             super().__init__(*a, **k)
-    monkeypatch.setattr(sw, "ProcessPoolExecutor", Counted)
+    monkeypatch.setattr(ex, "ProcessPoolExecutor", Counted)
     spec = _write(tmp_path, COARSE + SMALL)
     code = main(["study", str(spec), "-o", str(tmp_path / "out"), "--jobs", "1000"])
     err = capsys.readouterr().err

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechreport.app.study_workers import run_variants
+from mechreport.study.run import run_variants
 from mechreport.errors import SpecError
 from mechreport.pipeline.analysis import analyse
 from mechreport.spec import parse_spec
