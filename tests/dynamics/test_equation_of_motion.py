@@ -338,7 +338,7 @@ def test_a_study_varies_the_flywheel_and_keeps_the_simulated_fluctuation():
     """Sizing a flywheel is a study: `vary: dynamics.flywheel`, `keep:
     dynamics.speed_fluctuation`; each row is what analysing that variant alone gives, and a
     larger flywheel smooths the speed."""
-    from mechreport.app.study_workers import run_variants
+    from mechreport.study.run import run_variants
     from mechreport.spec.loader import parse_source, spec_from_data
     from mechreport.study import plan_of
     from mechreport.study.variants import base_of

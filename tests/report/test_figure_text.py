@@ -232,7 +232,7 @@ def test_sheet_figures_draw_point_names_literally_and_symbols_as_maths(hostile, 
 def test_study_keys_and_quantities_with_a_dollar_are_drawn_literally(tmp_path):
     """A varied key through a link named ``$x^2$`` and a kept quantity of the joint ``$B_2$``
     label the study's figures as written."""
-    from mechreport.app.study_workers import run_variants
+    from mechreport.study.run import run_variants
     from mechreport.spec.loader import parse_source, spec_from_data
     from mechreport.study import plan_of
     from mechreport.study.report import StudyRun, write_figures
