@@ -25,7 +25,7 @@ from .drawing import (ARROW_LEN, CUT_COLOR, View, _arrow_geometry, _bounds, draw
                       view_axes)
 from .files import atomic_write_bytes
 from .frames import CLIP
-from .plots import save, styled
+from .mpl import save, styled
 from .scene import MOMENT_COLOR
 
 FRAME_WIDTH = 4.2      # [in]; two frames side by side fill most of the PDF's text width

@@ -5,7 +5,7 @@ hatching, point labels, load and reaction arrows, couples. Geometry comes from t
 Links are stacked so that the driver (the crank) is drawn on top of every other link, bars
 over blocks over plates. Labels (points, arrows, couples) are placed one by one at the first
 of several candidate spots that overlaps nothing already drawn or labelled. Point names come
-from the spec and are drawn literally (:func:`~mechreport.report.plots.literal`); the arrows'
+from the spec and are drawn literally (:func:`~mechreport.report.mpl.literal`); the arrows'
 and couples' labels are mechreport's symbols (F12, F3ext, M)."""
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from ..units import fmt
-from .plots import WIDTH, literal, save, styled
+from .mpl import WIDTH, literal, save, styled
 
 LINK_FILL = ["#dbe6f4", "#f6e3cf", "#dcefdc", "#f3dada", "#e7def0", "#ece3dc", "#f7e1ef"]
 ARROW_LEN = 0.26        # longest arrow as a fraction of the mechanism's extent

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from ..units import fmt
-from .plots import GREY, OKABE_ITO, figure, legend_top, save, styled
+from .mpl import GREY, OKABE_ITO, figure, legend_top, save, styled
 
 SPEED_COLOR = OKABE_ITO[0]
 

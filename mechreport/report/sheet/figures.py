@@ -12,7 +12,7 @@
 Geometry comes from :func:`mechreport.report.scene.build_scene` and is drawn with the report
 drawings' helpers (:mod:`mechreport.report.drawing`). The symbols are mathtext that mechreport
 writes (from link numbers, never from names); the points' names are the spec's, drawn
-literally (:func:`mechreport.report.plots.literal`)."""
+literally (:func:`mechreport.report.mpl.literal`)."""
 from __future__ import annotations
 
 import math
@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from ..drawing import LINK_FILL, Labels, draw_element, draw_ground_symbol, draw_guide
-from ..plots import literal, save, styled
+from ..mpl import literal, save, styled
 from ..scene import build_scene
 from .symbols import split_symbol
 
