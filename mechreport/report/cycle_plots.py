@@ -9,9 +9,9 @@ import numpy as np
 
 from ..units import fmt
 from .labels import LINE_CLEAR, crossings, data_lines, grow, hline, place
-from .mpl import (INK, STYLES, WIDTH, figure, fit_y_labels, layout, legend_top, literal,
-                  pt_to_px, text_renderer, text_size)
-from .mpl import OKABE_ITO as SOURCE_COLORS
+from .mpl import (BLUE, GREEN, INK, ORANGE, PALETTE, PURPLE, SKY, STYLES, VERMILION, WIDTH,
+                  figure, fit_y_labels, layout, legend_top, literal, pt_to_px, text_renderer,
+                  text_size)
 
 def _cycle_axis(ax, cd, label: bool = True) -> None:
     """0-360 deg over one turn, interpolated (left-out) angles marked."""
@@ -25,7 +25,7 @@ def _cycle_axis(ax, cd, label: bool = True) -> None:
 
 #: a motor limit further than this share of the torque's range beyond it is off the scale
 LIMIT_REACH = 0.5
-LIMIT_COLOR = "#CC79A7"
+LIMIT_COLOR = PURPLE
 
 
 def flywheel_figure(cd, d):
@@ -39,10 +39,10 @@ def flywheel_figure(cd, d):
     M = d.unit("moment")
     a, t, mean = cd.angles, d.value(cd.torque, "moment"), d.value(cd.mean, "moment")
     ax.plot(a, t, color=INK, lw=1.5, label="driver torque")
-    ax.axhline(mean, color="#0072B2", lw=1.0, ls="--", label=f"mean {d.num(cd.mean, 'moment')} {M}")
-    ax.fill_between(a, t, mean, where=t >= mean, interpolate=True, color="#E69F00", alpha=0.35,
+    ax.axhline(mean, color=BLUE, lw=1.0, ls="--", label=f"mean {d.num(cd.mean, 'moment')} {M}")
+    ax.fill_between(a, t, mean, where=t >= mean, interpolate=True, color=ORANGE, alpha=0.35,
                     lw=0, label="above the mean (energy in)")
-    ax.fill_between(a, t, mean, where=t < mean, interpolate=True, color="#56B4E9", alpha=0.35,
+    ax.fill_between(a, t, mean, where=t < mean, interpolate=True, color=SKY, alpha=0.35,
                     lw=0, label="below the mean (energy out)")
     lo, hi = min(float(np.min(t)), mean), max(float(np.max(t)), mean)
     reach = LIMIT_REACH * ((hi - lo) or max(abs(hi), 1.0))
@@ -66,14 +66,14 @@ def flywheel_figure(cd, d):
     _cycle_axis(ax, cd, label=False)
     e = cd.energy
     i_hi, i_lo = int(np.argmax(e)), int(np.argmin(e))
-    ax2.plot(a, e, color="#009E73", lw=1.4)
-    ax2.plot([a[i_hi], a[i_lo]], [e[i_hi], e[i_lo]], "o", color="#D55E00", ms=4)
+    ax2.plot(a, e, color=GREEN, lw=1.4)
+    ax2.plot([a[i_hi], a[i_lo]], [e[i_hi], e[i_lo]], "o", color=VERMILION, ms=4)
     ax2.annotate("", xy=(a[i_lo], e[i_lo]), xytext=(a[i_lo], e[i_hi]),
-                 arrowprops={"arrowstyle": "<->", "color": "#D55E00", "lw": 1.0})
+                 arrowprops={"arrowstyle": "<->", "color": VERMILION, "lw": 1.0})
     right = a[i_lo] > 250
     delta = ax2.annotate(f"ΔE = {fmt(e[i_hi] - e[i_lo])} J", (a[i_lo], (e[i_hi] + e[i_lo]) / 2),
                          fontsize=7.5, xytext=(-6 if right else 6, 0),
-                         textcoords="offset points", color="#D55E00", va="center",
+                         textcoords="offset points", color=VERMILION, va="center",
                          ha="right" if right else "left")
     ax2.axhline(0, color="0.3", lw=0.5)
     ax2.set_ylabel("∫(M − mean) dφ [J]")
@@ -150,7 +150,7 @@ def breakdown_figure(cd, d):
     up, down = np.zeros_like(a), np.zeros_like(a)
     shown = []                  # the legend's entries, given: a name may start with "_"
     for name, part in sources.items():
-        color = SOURCE_COLORS[list(cd.sources).index(name) % len(SOURCE_COLORS)]
+        color = PALETTE[list(cd.sources).index(name) % len(PALETTE)]
         part = d.value(part, "moment")
         pos, neg = np.maximum(part, 0), np.minimum(part, 0)
         shown.append(ax.fill_between(a, up, up + pos, color=color, alpha=0.6, lw=0,
@@ -170,10 +170,10 @@ def transmission_figure(cd, d):
     fig, axes = figure(2.5, margins=(0.72, 0.12, 0.46, 0.22 + 0.17 * math.ceil(n / 3)))
     ax = axes[0, 0]
     for k, (label, ta) in enumerate(cd.transmission.items()):
-        ax.plot(cd.angles, ta, color=SOURCE_COLORS[k % len(SOURCE_COLORS)], lw=1.4,
+        ax.plot(cd.angles, ta, color=PALETTE[k % len(PALETTE)], lw=1.4,
                 ls=STYLES[k % 4], label=literal(f"group {label}"))
     if cd.transmission_limit is not None:
-        ax.axhline(cd.transmission_limit, color="#D55E00", lw=1.0, ls="--",
+        ax.axhline(cd.transmission_limit, color=VERMILION, lw=1.0, ls="--",
                    label=f"limit {cd.transmission_limit:g}°")
     ax.set_ylim(0, 90)
     ax.set_yticks(np.arange(0, 91, 15))
@@ -190,8 +190,8 @@ def balance_figure(cd, d):
     fig, axes = figure(w, margins=margins, width=w)
     ax = axes[0, 0]
     F = d.unit("force")
-    for xy, name, color, style in ((cd.inertial, "without counterweight", "#0072B2", "-"),
-                                   (cd.balanced, "with counterweight", "#D55E00", "--")):
+    for xy, name, color, style in ((cd.inertial, "without counterweight", BLUE, "-"),
+                                   (cd.balanced, "with counterweight", VERMILION, "--")):
         xy = d.value(np.asarray(xy), "force")
         closed = np.vstack([xy, xy[:1]])
         ax.plot(closed[:, 0], closed[:, 1], color=color, lw=1.3, ls=style, label=name)

@@ -16,13 +16,11 @@ from pathlib import Path
 import numpy as np
 
 from ..units import fmt
-from .mpl import WIDTH, literal, save, styled
+from .mpl import CUT_COLOR, LINK_FILL, WIDTH, literal, save, styled
 
-LINK_FILL = ["#dbe6f4", "#f6e3cf", "#dcefdc", "#f3dada", "#e7def0", "#ece3dc", "#f7e1ef"]
 ARROW_LEN = 0.26        # longest arrow as a fraction of the mechanism's extent
 ARROW_MIN = 0.05        # shortest drawn (non-zero) arrow, same unit
 AX_FRACTION = 0.70      # the drawing's share of the figure width (the legend has the rest)
-CUT_COLOR = "#b00000"   # the mark on an arrow cut to the view's longest (off scale)
 
 
 @dataclass(frozen=True)

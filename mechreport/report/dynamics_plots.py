@@ -7,9 +7,9 @@ from pathlib import Path
 import numpy as np
 
 from ..units import fmt
-from .mpl import GREY, OKABE_ITO, figure, legend_top, save, styled
+from .mpl import BLUE, GREY, figure, legend_top, save, styled
 
-SPEED_COLOR = OKABE_ITO[0]
+SPEED_COLOR = BLUE
 
 
 def dynamics_figure(dp, d=None):

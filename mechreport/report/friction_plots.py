@@ -5,13 +5,13 @@ from __future__ import annotations
 import numpy as np
 
 from .labels import CLEAR
-from .mpl import INK, figure, layout, legend_top, pt_to_px, text_renderer
+from .mpl import BLUE, INK, VERMILION, figure, layout, legend_top, pt_to_px, text_renderer
 from .quantities import with_gaps
 from .sweep_axes import crank_axis, scale_to_trusted
 
 LEGEND_SLACK = 0.05
-FRICTION_COLOR = "#D55E00"       # the effort with friction
-FRICTIONLESS_COLOR = "#0072B2"   # and without it
+FRICTION_COLOR = VERMILION       # the effort with friction
+FRICTIONLESS_COLOR = BLUE   # and without it
 
 
 def friction_figure(fp, d):

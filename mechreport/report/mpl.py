@@ -23,26 +23,33 @@ from pathlib import Path
 from .files import atomic_write_bytes
 
 WIDTH = 6.5          # [in], the text width of the PDF
-INK = "#222222"
-GREY = "0.55"
-#: the report's one palette: one colour per series (a joint, a source of torque, a member),
-#: in order. Okabe & Ito's colour-blind-safe set first, in an order where neighbours differ
-#: in lightness as well as hue, then Tol's (black is kept for loads, wine for the driver
-#: torque: :data:`mechreport.report.scene.MOMENT_COLOR`)
+
+# ----------------------------------------------------------------------------- palette
+#
+# The report's one palette: every figure (plots, drawings, sheets, the animation) takes its
+# colours from here.
+
+INK = "#222222"      # text-coloured lines: a total, a mark
+GREY = "0.55"        # guides: a mean, a threshold
+#: one colour per series (a joint, a source of torque, a group, a member), in order:
+#: Okabe & Ito's colour-blind-safe set first, in an order where neighbours differ in
+#: lightness as well as hue, then Tol's (black is kept for loads, wine for the driver
+#: torque: :data:`MOMENT_COLOR`)
 PALETTE = ["#0072B2", "#E69F00", "#009E73", "#CC79A7", "#56B4E9", "#D55E00", "#999933",
            "#44AA99", "#332288", "#117733"]
-#: Okabe & Ito's set alone (matplotlib's colour cycle in the report's style, and the study's
-#: figures): the palette's first six, then Okabe & Ito's yellow and black
+BLUE, ORANGE, GREEN, PURPLE, SKY, VERMILION = PALETTE[:6]
+#: Okabe & Ito's set alone, in the palette's order (matplotlib's colour cycle in the
+#: report's style, and the study's figures): the palette's first six, then yellow and black
 OKABE_ITO = PALETTE[:6] + ["#F0E442", "#000000"]
+MOMENT_COLOR = "#882255"   # the driver's torque and push (Tol's wine)
+CUT_COLOR = "#b00000"      # the mark on an arrow cut to the view's longest (off scale)
+#: the links' fills on a drawing, by link number (pale tints)
+LINK_FILL = ["#dbe6f4", "#f6e3cf", "#dcefdc", "#f3dada", "#e7def0", "#ece3dc", "#f7e1ef"]
+
 #: line styles that tell series of one colour apart (a joint's reactions, a group's angle)
 STYLES = ["-", (0, (5, 2)), (0, (1.5, 1.5)), (0, (6, 2, 1.5, 2)), "-", (0, (5, 2))]
 #: margins [in]: left (tick labels and axis label), right, bottom (ticks and label), top
 MARGINS = (0.72, 0.12, 0.46, 0.36)
-
-
-def color(k: int) -> str:
-    """The palette's ``k``-th colour (it repeats after the last)."""
-    return PALETTE[k % len(PALETTE)]
 
 
 def style():

@@ -31,7 +31,7 @@ from .sweep_axes import (OFF_SCALE_SIZE, REF_SIZE, crank_axis,  # noqa: F401
 from .sweep_plots import (draw_reactions, draw_torque, reactions_figure,  # noqa: F401
                           shaking_figure, torque_figure)
 
-SOURCE_COLORS = OKABE_ITO
+SOURCE_COLORS = PALETTE          # the colours of the series, in order (as before)
 
 
 @styled

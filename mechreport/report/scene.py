@@ -9,9 +9,8 @@ import numpy as np
 from ..forces import ForceResult
 from ..kinematics.frames import rotate
 from ..spec import GROUND
+from .mpl import MOMENT_COLOR
 
-#: the driver torque's colour (no joint's reaction has it)
-MOMENT_COLOR = "#882255"
 BAR_MIN = 0.022     # bar width at least this fraction of the drawing's extent
 BLOCK_MIN = 0.07    # block sides at least this fraction of the extent
 

@@ -7,8 +7,9 @@ import math
 
 import numpy as np
 
-from .mpl import STYLES, figure, fit_y_labels, layout, legend_top, literal
-from .mpl import OKABE_ITO as SOURCE_COLORS
+from .mpl import (BLUE, GREEN, PALETTE, STYLES, VERMILION, figure, fit_y_labels, layout,
+                  legend_top, literal)
+
 
 def strength_figure(sp, d):
     """N, V and M along the most loaded member at its worst angle (a report's StrengthPlot
@@ -16,9 +17,9 @@ def strength_figure(sp, d):
     fig, axes = figure(4.6, rows=3, gap=0.22, margins=(0.85, 0.12, 0.46, 0.15), sharex=True)
     s = d.value(sp.s, "length")
     for ax, values, kind, name, color in (
-            (axes[0, 0], sp.N, "force", "N", "#0072B2"),
-            (axes[1, 0], sp.V, "force", "V", "#009E73"),
-            (axes[2, 0], sp.M, "moment", "M", "#D55E00")):
+            (axes[0, 0], sp.N, "force", "N", BLUE),
+            (axes[1, 0], sp.V, "force", "V", GREEN),
+            (axes[2, 0], sp.M, "moment", "M", VERMILION)):
         v = d.value(np.asarray(values, float), kind)
         ax.plot(s, v, color=color, lw=1.5)
         ax.fill_between(s, v, 0, color=color, alpha=0.18, lw=0)
@@ -38,7 +39,7 @@ def stress_figure(sp, d):
     fig, axes = figure(2.6, margins=(0.72, 0.12, 0.46, 0.22 + 0.17 * math.ceil(n / 4)))
     ax = axes[0, 0]
     for k, (name, values) in enumerate(sp.stress.items()):
-        ax.plot(sp.angles, d.value(values, "stress"), color=SOURCE_COLORS[k % len(SOURCE_COLORS)],
+        ax.plot(sp.angles, d.value(values, "stress"), color=PALETTE[k % len(PALETTE)],
                 lw=1.4, ls=STYLES[k % 4], label=literal(name))
     ax.set_ylabel(f"largest stress [{d.unit('stress')}]")
     ax.set_ylim(bottom=0)

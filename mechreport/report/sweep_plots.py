@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from .mpl import INK, STYLES, figure, legend_top, literal
+from .mpl import BLUE, INK, ORANGE, PURPLE, STYLES, VERMILION, figure, legend_top, literal
 from .quantities import with_gaps
 from .sweep_axes import crank_axis, label_reference_lines, scale_to_trusted
 
@@ -28,17 +28,17 @@ def draw_torque(ax, sw, d) -> None:
     curves = [(a, t)]
     if sw.torque_check is not None:
         _, tc = with_gaps(sw.angles, d.value(sw.torque_check, kind))
-        ax.plot(a, tc, color="#E69F00", lw=1.0, ls=(0, (4, 3)), label="power balance (check)")
+        ax.plot(a, tc, color=ORANGE, lw=1.0, ls=(0, (4, 3)), label="power balance (check)")
         curves.append((a, tc))
     levels = [0.0]
     st = sw.stats
     if st is not None:
         mean = d.value(st.mean, kind)
-        ax.axhline(mean, color="#0072B2", lw=1.0, ls="--",
+        ax.axhline(mean, color=BLUE, lw=1.0, ls="--",
                    label=f"mean {d.num(st.mean, kind)} {u} (RMS {d.num(st.rms, kind)} {u})")
         pk = d.value(st.peak.value, kind)
         at = f"{st.peak.angle:g}°" if sw.xrange is None else f"{st.peak.angle:g}"
-        ax.plot([st.peak.angle], [pk], "o", color="#D55E00", ms=5,
+        ax.plot([st.peak.angle], [pk], "o", color=VERMILION, ms=5,
                 label=f"peak {d.num(st.peak.value, kind)} {u} at {at}")
         levels.append(mean)
         curves.append(([st.peak.angle], [pk]))
@@ -118,8 +118,8 @@ def shaking_figure(sw, d):
     if "force" in panels:
         ax1 = panels["force"]
         ax1.plot(a, gf, color=INK, lw=1.6, label="|F| shaking force")
-        ax1.plot(a, gfx, color="#0072B2", lw=1.0, ls="--", label="x component")
-        ax1.plot(a, gfy, color="#E69F00", lw=1.0, ls=":", label="y component")
+        ax1.plot(a, gfx, color=BLUE, lw=1.0, ls="--", label="x component")
+        ax1.plot(a, gfy, color=ORANGE, lw=1.0, ls=":", label="y component")
         ax1.axhline(0, color="0.3", lw=0.5)
         ax1.set_ylabel(f"force on frame [{F}]")
         legend_top(ax1, 3)
@@ -127,7 +127,7 @@ def shaking_figure(sw, d):
         scale_to_trusted(ax1, sw, [fx, fy, f], F, names=["x", "y", "|F|"])
     if "moment" in panels:
         ax2 = panels["moment"]
-        ax2.plot(a, gm, color="#CC79A7", lw=1.4, label="shaking moment about the driver pivot")
+        ax2.plot(a, gm, color=PURPLE, lw=1.4, label="shaking moment about the driver pivot")
         ax2.axhline(0, color="0.3", lw=0.5)
         ax2.set_ylabel(f"moment on frame [{M}]")
         legend_top(ax2, 1)
