@@ -35,7 +35,17 @@ def flywheel_figure(cd, d):
     it is not drawn but marked at the panel's edge, an arrow with its value."""
     fig, axes = figure(3.6, 2, 1, gap=0.4, margins=(0.72, 0.12, 0.42, 0.5),
                        gridspec_kw={"height_ratios": [3, 2]}, sharex=True)
-    ax, ax2 = axes[0, 0], axes[1, 0]
+    r = text_renderer(fig)
+    draw_flywheel(axes[0, 0], cd, d, label=False, renderer=r)
+    draw_energy(axes[1, 0], cd, r)
+    return fig
+
+
+def draw_flywheel(ax, cd, d, label: bool = True, renderer=None) -> None:
+    """The driver's torque over one turn against its mean on ``ax``, in the display unit
+    of moments (``d``): the energy areas shaded, the motor's rated (RMS) and peak torque
+    when given; a motor line further than LIMIT_REACH of the torque's range beyond it is not
+    drawn but marked at the edge, an arrow with its value. ``label``: the x axis labelled."""
     M = d.unit("moment")
     a, t, mean = cd.angles, d.value(cd.torque, "moment"), d.value(cd.mean, "moment")
     ax.plot(a, t, color=INK, lw=1.5, label="driver torque")
@@ -63,27 +73,33 @@ def flywheel_figure(cd, d):
                     off["hi" if v > hi else "lo"].append(f"{name} {d.num(value, 'moment')} {M}")
     ax.set_ylabel(f"torque [{M}]")
     legend_top(ax, 3)
-    _cycle_axis(ax, cd, label=False)
-    e = cd.energy
-    i_hi, i_lo = int(np.argmax(e)), int(np.argmin(e))
-    ax2.plot(a, e, color=GREEN, lw=1.4)
-    ax2.plot([a[i_hi], a[i_lo]], [e[i_hi], e[i_lo]], "o", color=VERMILION, ms=4)
-    ax2.annotate("", xy=(a[i_lo], e[i_lo]), xytext=(a[i_lo], e[i_hi]),
-                 arrowprops={"arrowstyle": "<->", "color": VERMILION, "lw": 1.0})
-    right = a[i_lo] > 250
-    delta = ax2.annotate(f"ΔE = {fmt(e[i_hi] - e[i_lo])} J", (a[i_lo], (e[i_hi] + e[i_lo]) / 2),
-                         fontsize=7.5, xytext=(-6 if right else 6, 0),
-                         textcoords="offset points", color=VERMILION, va="center",
-                         ha="right" if right else "left")
-    ax2.axhline(0, color="0.3", lw=0.5)
-    ax2.set_ylabel("∫(M − mean) dφ [J]")
-    _cycle_axis(ax2, cd)
-    r = text_renderer(fig)
-    _place_delta_e(ax2, delta, a, e, i_hi, i_lo, right, r, cd.interpolated)
+    _cycle_axis(ax, cd, label=label)
+    r = renderer or text_renderer(ax.figure)
     for side, names in off.items():
         if names:
             _limit_arrow(ax, side, "\n".join(names), [(a, t)], drawn, r)
-    return fig
+
+
+def draw_energy(ax, cd, renderer=None) -> None:
+    """The energy the driver's torque gives above its mean, ∫(M − mean) dφ [J], over one
+    turn on ``ax``, its largest fluctuation ΔE marked with an arrow and labelled where the
+    label is free."""
+    a, e = cd.angles, cd.energy
+    i_hi, i_lo = int(np.argmax(e)), int(np.argmin(e))
+    ax.plot(a, e, color=GREEN, lw=1.4)
+    ax.plot([a[i_hi], a[i_lo]], [e[i_hi], e[i_lo]], "o", color=VERMILION, ms=4)
+    ax.annotate("", xy=(a[i_lo], e[i_lo]), xytext=(a[i_lo], e[i_hi]),
+                arrowprops={"arrowstyle": "<->", "color": VERMILION, "lw": 1.0})
+    right = a[i_lo] > 250
+    delta = ax.annotate(f"ΔE = {fmt(e[i_hi] - e[i_lo])} J", (a[i_lo], (e[i_hi] + e[i_lo]) / 2),
+                        fontsize=7.5, xytext=(-6 if right else 6, 0),
+                        textcoords="offset points", color=VERMILION, va="center",
+                        ha="right" if right else "left")
+    ax.axhline(0, color="0.3", lw=0.5)
+    ax.set_ylabel("∫(M − mean) dφ [J]")
+    _cycle_axis(ax, cd)
+    _place_delta_e(ax, delta, a, e, i_hi, i_lo, right, renderer or text_renderer(ax.figure),
+                   cd.interpolated)
 
 
 def _place_delta_e(ax, text, a, e, i_hi, i_lo, right: bool, renderer, shaded=()) -> None:
@@ -144,7 +160,15 @@ def breakdown_figure(cd, d):
     n = len(sources) + 1
     ncol = min(5, n)
     fig, axes = figure(2.9, margins=(0.72, 0.12, 0.46, 0.22 + 0.17 * math.ceil(n / ncol)))
-    ax = axes[0, 0]
+    draw_breakdown(axes[0, 0], cd, d, ncol)
+    return fig
+
+
+def draw_breakdown(ax, cd, d, ncol: int = 5) -> None:
+    """The driver's torque over one turn by source on ``ax``, stacked (positive parts above
+    zero, negative parts below; a source's colour is its place in ``cd.sources``), and the
+    total, in the display unit of moments (``d``); the legend in ``ncol`` columns."""
+    sources = {k: v for k, v in cd.sources.items() if k not in cd.silent}
     M = d.unit("moment")
     a = cd.angles
     up, down = np.zeros_like(a), np.zeros_like(a)
@@ -162,13 +186,19 @@ def breakdown_figure(cd, d):
     ax.set_ylabel(f"torque [{M}]")
     legend_top(ax, ncol, handles=shown)
     _cycle_axis(ax, cd)
-    return fig
 
 
 def transmission_figure(cd, d):
+    """The transmission angle of each group over one turn (:func:`draw_transmission`)."""
     n = len(cd.transmission) + (cd.transmission_limit is not None)
     fig, axes = figure(2.5, margins=(0.72, 0.12, 0.46, 0.22 + 0.17 * math.ceil(n / 3)))
-    ax = axes[0, 0]
+    draw_transmission(axes[0, 0], cd)
+    return fig
+
+
+def draw_transmission(ax, cd, d=None) -> None:
+    """Each group's transmission angle [deg] over one turn on ``ax``, and the design's
+    limit when it has one (``d``, the display units, is not needed: angles are degrees)."""
     for k, (label, ta) in enumerate(cd.transmission.items()):
         ax.plot(cd.angles, ta, color=PALETTE[k % len(PALETTE)], lw=1.4,
                 ls=STYLES[k % 4], label=literal(f"group {label}"))
@@ -180,7 +210,6 @@ def transmission_figure(cd, d):
     ax.set_ylabel("transmission angle [deg]")
     legend_top(ax, 3)
     _cycle_axis(ax, cd)
-    return fig
 
 
 def balance_figure(cd, d):
@@ -188,7 +217,15 @@ def balance_figure(cd, d):
     w = WIDTH * 0.55
     margins = (0.62, 0.12, 0.42, 0.45)
     fig, axes = figure(w, margins=margins, width=w)
-    ax = axes[0, 0]
+    draw_balance(axes[0, 0], cd, d)
+    fit_y_labels(fig, axes, lambda left, _: layout(fig, 1, 1, 0.55, 0.75,
+                                                     (left, *margins[1:])), margins[0], 0.75)
+    return fig
+
+
+def draw_balance(ax, cd, d) -> None:
+    """The inertial shaking force over one turn as a polar trace on ``ax`` (x against y, in
+    the display unit of forces, ``d``), without and with the counterweight."""
     F = d.unit("force")
     for xy, name, color, style in ((cd.inertial, "without counterweight", BLUE, "-"),
                                    (cd.balanced, "with counterweight", VERMILION, "--")):
@@ -200,6 +237,3 @@ def balance_figure(cd, d):
     ax.set_xlabel(f"x [{F}]")
     ax.set_ylabel(f"y [{F}]")
     legend_top(ax, 1)
-    fit_y_labels(fig, axes, lambda left, _: layout(fig, 1, 1, 0.55, 0.75,
-                                                     (left, *margins[1:])), margins[0], 0.75)
-    return fig

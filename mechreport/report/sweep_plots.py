@@ -55,9 +55,7 @@ def draw_torque(ax, sw, d) -> None:
 def reactions_figure(sw, d):
     """Every joint's |F| on one axis (colour and line style per joint); the couples of T
     joints on a second axis below when any is not zero."""
-    couples = [js for js in sw.joints if js.moment is not None
-               and np.max(np.abs(js.moment), initial=0.0) > 1e-9 * max(
-                   1.0, float(np.max(np.abs(sw.torque), initial=0.0)))]
+    couples = slider_couples(sw)
     rows = 2 if couples else 1
     ncol = min(len(sw.joints), 5)
     top = 0.22 + 0.17 * math.ceil(len(sw.joints) / ncol)
@@ -66,21 +64,34 @@ def reactions_figure(sw, d):
                        gridspec_kw={"height_ratios": [2, 1]} if rows == 2 else None)
     draw_reactions(axes[0, 0], sw, d, ncol, label=rows == 1)
     if rows == 2:
-        ax2 = axes[1, 0]
-        M = d.unit("moment")
-        mseries, lines = [], []
-        for js in couples:
-            m = d.value(js.moment, "moment")
-            mseries.append(m)
-            a, mm = with_gaps(sw.angles, m)
-            lines += ax2.plot(a, mm, color=js.color, lw=1.2,
-                              label=literal(f"{js.name}: couple M{js.symbol[1:]}"))
-        ax2.axhline(0, color="0.3", lw=0.5)
-        crank_axis(ax2, sw)
-        scale_to_trusted(ax2, sw, mseries, M, names=[js.name for js in couples])
-        ax2.set_ylabel(f"slider couple [{M}]")
-        legend_top(ax2, min(len(couples), 4), handles=lines)
+        draw_couples(axes[1, 0], sw, d, couples)
     return fig
+
+
+def slider_couples(sw) -> list:
+    """The joints of ``sw`` whose couple (a T joint's) is not zero at every angle."""
+    return [js for js in sw.joints if js.moment is not None
+            and np.max(np.abs(js.moment), initial=0.0) > 1e-9 * max(
+                1.0, float(np.max(np.abs(sw.torque), initial=0.0)))]
+
+
+def draw_couples(ax, sw, d, couples=None) -> None:
+    """The couples of the T joints ``couples`` (default: every one that is not zero,
+    :func:`slider_couples`) over the sweep on ``ax``, in the display unit of moments."""
+    couples = slider_couples(sw) if couples is None else couples
+    M = d.unit("moment")
+    mseries, lines = [], []
+    for js in couples:
+        m = d.value(js.moment, "moment")
+        mseries.append(m)
+        a, mm = with_gaps(sw.angles, m)
+        lines += ax.plot(a, mm, color=js.color, lw=1.2,
+                         label=literal(f"{js.name}: couple M{js.symbol[1:]}"))
+    ax.axhline(0, color="0.3", lw=0.5)
+    crank_axis(ax, sw)
+    scale_to_trusted(ax, sw, mseries, M, names=[js.name for js in couples])
+    ax.set_ylabel(f"slider couple [{M}]")
+    legend_top(ax, min(len(couples), 4), handles=lines)
 
 
 def draw_reactions(ax, sw, d, ncol: int = 5, label: bool = True) -> None:
@@ -110,27 +121,39 @@ def shaking_figure(sw, d):
     else:
         fig, axes = figure(2.6, margins=(0.72, 0.12, 0.46, 0.3))
     panels = dict(zip(parts, axes[:, 0]))
-    sh = sw.shaking
-    F, M = d.unit("force"), d.unit("moment")
-    fx, fy, f, m = (d.value(v, k) for v, k in ((sh.fx, "force"), (sh.fy, "force"),
-                                               (sh.f, "force"), (sh.m, "moment")))
-    a, gfx, gfy, gf, gm = with_gaps(sw.angles, fx, fy, f, m)
     if "force" in panels:
-        ax1 = panels["force"]
-        ax1.plot(a, gf, color=INK, lw=1.6, label="|F| shaking force")
-        ax1.plot(a, gfx, color=BLUE, lw=1.0, ls="--", label="x component")
-        ax1.plot(a, gfy, color=ORANGE, lw=1.0, ls=":", label="y component")
-        ax1.axhline(0, color="0.3", lw=0.5)
-        ax1.set_ylabel(f"force on frame [{F}]")
-        legend_top(ax1, 3)
-        crank_axis(ax1, sw, label="moment" not in panels)
-        scale_to_trusted(ax1, sw, [fx, fy, f], F, names=["x", "y", "|F|"])
+        draw_shaking_force(panels["force"], sw, d, label="moment" not in panels)
     if "moment" in panels:
-        ax2 = panels["moment"]
-        ax2.plot(a, gm, color=PURPLE, lw=1.4, label="shaking moment about the driver pivot")
-        ax2.axhline(0, color="0.3", lw=0.5)
-        ax2.set_ylabel(f"moment on frame [{M}]")
-        legend_top(ax2, 1)
-        crank_axis(ax2, sw)
-        scale_to_trusted(ax2, sw, [m], M)
+        draw_shaking_moment(panels["moment"], sw, d)
     return fig
+
+
+def draw_shaking_force(ax, sw, d, label: bool = True) -> None:
+    """The shaking force on the frame over the sweep on ``ax``: its magnitude and its x and
+    y components, in the display unit of forces; ``label``: the x axis labelled."""
+    sh = sw.shaking
+    F = d.unit("force")
+    fx, fy, f = (d.value(v, "force") for v in (sh.fx, sh.fy, sh.f))
+    a, gfx, gfy, gf = with_gaps(sw.angles, fx, fy, f)
+    ax.plot(a, gf, color=INK, lw=1.6, label="|F| shaking force")
+    ax.plot(a, gfx, color=BLUE, lw=1.0, ls="--", label="x component")
+    ax.plot(a, gfy, color=ORANGE, lw=1.0, ls=":", label="y component")
+    ax.axhline(0, color="0.3", lw=0.5)
+    ax.set_ylabel(f"force on frame [{F}]")
+    legend_top(ax, 3)
+    crank_axis(ax, sw, label=label)
+    scale_to_trusted(ax, sw, [fx, fy, f], F, names=["x", "y", "|F|"])
+
+
+def draw_shaking_moment(ax, sw, d) -> None:
+    """The shaking moment on the frame about the driver's pivot over the sweep on ``ax``, in
+    the display unit of moments."""
+    M = d.unit("moment")
+    m = d.value(sw.shaking.m, "moment")
+    a, gm = with_gaps(sw.angles, m)
+    ax.plot(a, gm, color=PURPLE, lw=1.4, label="shaking moment about the driver pivot")
+    ax.axhline(0, color="0.3", lw=0.5)
+    ax.set_ylabel(f"moment on frame [{M}]")
+    legend_top(ax, 1)
+    crank_axis(ax, sw)
+    scale_to_trusted(ax, sw, [m], M)
