@@ -18,18 +18,23 @@ from __future__ import annotations
 from pathlib import Path
 
 from .cycle_plots import (LIMIT_COLOR, LIMIT_REACH, balance_figure, breakdown_figure,  # noqa: F401
-                          flywheel_figure, transmission_figure)
+                          draw_balance, draw_breakdown, draw_energy, draw_flywheel,
+                          draw_transmission, flywheel_figure, transmission_figure)
+from .dynamics_plots import draw_startup, draw_steady_turn, dynamics_figure  # noqa: F401
 from .friction_plots import (FRICTION_COLOR, FRICTIONLESS_COLOR, LEGEND_SLACK,  # noqa: F401
                              draw_friction, friction_figure)
 from .labels import CLEAR, LINE_CLEAR  # noqa: F401
 from .mpl import (GREY, INK, MARGINS, OKABE_ITO, PALETTE, STYLES, WIDTH, figure,  # noqa: F401
                   legend_top, literal, save, style, styled)
-from .polar_plots import POLAR_TITLE_OVERHANG, POLAR_TITLE_SIZE, polar_figure  # noqa: F401
-from .strength_plots import strength_figure, stress_figure  # noqa: F401
+from .polar_plots import (POLAR_TITLE_OVERHANG, POLAR_TITLE_SIZE, draw_polar,  # noqa: F401
+                          polar_figure)
+from .strength_plots import (draw_internal_force, draw_stress, strength_figure,  # noqa: F401
+                             stress_figure)
 from .sweep_axes import (OFF_SCALE_SIZE, REF_SIZE, crank_axis,  # noqa: F401
                          label_reference_lines, off_scale_labels, scale_to_trusted)
-from .sweep_plots import (draw_reactions, draw_torque, reactions_figure,  # noqa: F401
-                          shaking_figure, torque_figure)
+from .sweep_plots import (draw_couples, draw_reactions, draw_shaking_force,  # noqa: F401
+                          draw_shaking_moment, draw_torque, reactions_figure, shaking_figure,
+                          slider_couples, torque_figure)
 
 SOURCE_COLORS = PALETTE          # the colours of the series, in order (as before)
 
@@ -64,13 +69,50 @@ def write_plots(model, outdir: Path) -> list[Path]:
 
 
 # ------------------------------------------------------------------------ for notebooks
+#
+# plot_x(analysis, ax=None): figure x of an Analysis as the report draws it, on ``ax`` (a
+# matplotlib Axes; default: a new figure's, outside pyplot), in the report's style and its
+# display units; returns the Axes. Each builds the report's records of its figure and draws
+# them with the figure's draw_x. ValueError where the spec has nothing to plot.
 
-def _axes(ax, height: float):
-    """``ax``, or a new figure's one axes (report width, ``height`` inches)."""
+def _axes(ax, height: float, width: float | None = None):
+    """``ax``, or a new figure's one axes (``width``, default the report's, by ``height``
+    [in])."""
     if ax is not None:
         return ax
-    fig, axes = figure(height, margins=(0.72, 0.12, 0.46, 0.5))
+    if width is None:
+        fig, axes = figure(height, margins=(0.72, 0.12, 0.46, 0.5))
+    else:
+        fig, axes = figure(height, margins=(0.62, 0.12, 0.42, 0.45), width=width)
     return axes[0, 0]
+
+
+def _model(analysis):
+    """The report model of ``analysis`` (no animation): its figures' records."""
+    from .model import build_model
+    return build_model(analysis, animation=False)
+
+
+def _nothing(analysis, what: str):
+    return ValueError(f"{analysis.spec.file}: no {what} to plot")
+
+
+def _sweep(analysis):
+    """The report's sweep records of ``analysis`` and its display units; ValueError when no
+    position of the sweep was solved."""
+    from .model import sweep_data
+    sw, d = sweep_data(analysis)
+    if len(sw.angles) == 0:
+        raise _nothing(analysis, "solved position in the sweep")
+    return sw, d
+
+
+def _cycle(analysis):
+    """The report's cycle records (CycleData) of ``analysis`` and its display units."""
+    model = _model(analysis)
+    if model.design.data is None:
+        raise _nothing(analysis, "steady turn (a cycle over a whole turn)")
+    return model.design.data, model.display
 
 
 @styled
@@ -100,6 +142,110 @@ def plot_reactions(analysis, ax=None):
 
 
 @styled
+def plot_couples(analysis, ax=None):
+    """The couples of the T joints of ``analysis`` over the sweep (those not zero at every
+    angle), on ``ax`` (default: a new figure's); returns the Axes."""
+    sw, d = _sweep(analysis)
+    couples = slider_couples(sw)
+    if not couples:
+        raise _nothing(analysis, "slider couple (a T joint's, not zero)")
+    ax = _axes(ax, 2.6)
+    draw_couples(ax, sw, d, couples)
+    return ax
+
+
+@styled
+def plot_shaking_force(analysis, ax=None):
+    """The shaking force on the frame over the sweep of ``analysis`` (magnitude and
+    components), on ``ax`` (default: a new figure's); returns the Axes."""
+    sw, d = _sweep(analysis)
+    ax = _axes(ax, 2.6)
+    draw_shaking_force(ax, sw, d)
+    return ax
+
+
+@styled
+def plot_shaking_moment(analysis, ax=None):
+    """The shaking moment on the frame over the sweep of ``analysis``, on ``ax`` (default:
+    a new figure's); returns the Axes."""
+    sw, d = _sweep(analysis)
+    ax = _axes(ax, 2.6)
+    draw_shaking_moment(ax, sw, d)
+    return ax
+
+
+@styled
+def plot_polar(analysis, joint: str | None = None, ax=None):
+    """The polar diagram of the reaction of ``joint`` (its name; default: the first joint's)
+    over the sweep of ``analysis``, on ``ax`` (default: a new square figure's); returns the
+    Axes."""
+    sw, d = _sweep(analysis)
+    series = [ps for ps in sw.polar if joint is None or ps.name == joint]
+    if not series:
+        raise _nothing(analysis, "polar diagram" + (f" of joint {joint!r}" if joint else ""))
+    ax = _axes(ax, 3.2, width=3.2)
+    draw_polar(ax, sw, series[0], d)
+    return ax
+
+
+@styled
+def plot_flywheel(analysis, ax=None):
+    """The driver's torque over the steady turn of ``analysis`` against its mean, the energy
+    areas shaded (the flywheel diagram's upper panel), on ``ax`` (default: a new figure's);
+    returns the Axes."""
+    cd, d = _cycle(analysis)
+    ax = _axes(ax, 2.9)
+    draw_flywheel(ax, cd, d)
+    return ax
+
+
+@styled
+def plot_energy(analysis, ax=None):
+    """The energy over the steady turn of ``analysis``, ∫(M − mean) dφ [J], with its largest
+    fluctuation ΔE (the flywheel diagram's lower panel), on ``ax`` (default: a new
+    figure's); returns the Axes."""
+    cd, _ = _cycle(analysis)
+    ax = _axes(ax, 2.4)
+    draw_energy(ax, cd)
+    return ax
+
+
+@styled
+def plot_breakdown(analysis, ax=None):
+    """The driver's torque over the steady turn of ``analysis`` by source, stacked, on
+    ``ax`` (default: a new figure's); returns the Axes."""
+    cd, d = _cycle(analysis)
+    ax = _axes(ax, 2.9)
+    draw_breakdown(ax, cd, d)
+    return ax
+
+
+@styled
+def plot_transmission(analysis, ax=None):
+    """The transmission angle of each group of ``analysis`` over the steady turn, on ``ax``
+    (default: a new figure's); returns the Axes."""
+    cd, _ = _cycle(analysis)
+    if not cd.transmission:
+        raise _nothing(analysis, "transmission angle")
+    ax = _axes(ax, 2.5)
+    draw_transmission(ax, cd)
+    return ax
+
+
+@styled
+def plot_balance(analysis, ax=None):
+    """The inertial shaking force of ``analysis`` over the steady turn, a polar trace without
+    and with the counterweight, on ``ax`` (default: a new square figure's); returns the
+    Axes."""
+    cd, d = _cycle(analysis)
+    if cd.inertial is None or cd.balanced is None:
+        raise _nothing(analysis, "balancing")
+    ax = _axes(ax, 3.6, width=3.6)
+    draw_balance(ax, cd, d)
+    return ax
+
+
+@styled
 def plot_friction(analysis, ax=None):
     """The driver's effort with and without friction in the joints of ``analysis`` as the
     report draws it, on ``ax`` (default: a new figure's); returns the Axes. Raises
@@ -112,3 +258,68 @@ def plot_friction(analysis, ax=None):
     ax = _axes(ax, 2.9)
     draw_friction(ax, fp, d)
     return ax
+
+
+def _strength(analysis):
+    model = _model(analysis)
+    sp = model.strength.plot if model.strength is not None else None
+    if sp is None:
+        raise _nothing(analysis, "strength (a 'strength:' section with a loaded member)")
+    return sp, model.display
+
+
+@styled
+def plot_internal_force(analysis, part: str = "M", ax=None):
+    """One internal force along the most loaded member of ``analysis`` at its worst angle:
+    ``part`` "N", "V" or "M", on ``ax`` (default: a new figure's); returns the Axes."""
+    sp, d = _strength(analysis)
+    ax = _axes(ax, 2.4)
+    draw_internal_force(ax, sp, d, part)
+    return ax
+
+
+@styled
+def plot_stress(analysis, ax=None):
+    """The largest stress along each member of ``analysis`` over the sweep, on ``ax``
+    (default: a new figure's); returns the Axes."""
+    sp, d = _strength(analysis)
+    ax = _axes(ax, 2.6)
+    draw_stress(ax, sp, d)
+    return ax
+
+
+def _dynamics(analysis):
+    model = _model(analysis)
+    if model.dynamics is None:
+        raise _nothing(analysis, "machine dynamics (a 'dynamics:' section)")
+    return model.dynamics.plot
+
+
+@styled
+def plot_startup(analysis, ax=None):
+    """The crank's speed [rpm] of ``analysis`` from the start against the time [s], on
+    ``ax`` (default: a new figure's); returns the Axes."""
+    dp = _dynamics(analysis)
+    ax = _axes(ax, 2.6)
+    draw_startup(ax, dp)
+    return ax
+
+
+@styled
+def plot_steady_turn(analysis, ax=None):
+    """The crank's speed [rpm] of ``analysis`` over its steady turn against the crank
+    angle, on ``ax`` (default: a new figure's); returns the Axes. ValueError without a
+    steady state."""
+    dp = _dynamics(analysis)
+    if not len(dp.angles):
+        raise _nothing(analysis, "steady turn of the machine dynamics")
+    ax = _axes(ax, 2.6)
+    draw_steady_turn(ax, dp)
+    return ax
+
+
+#: every figure's notebook function, by the name its draw_x has
+PLOT_FUNCTIONS = {f.__name__[5:]: f for f in (
+    plot_torque, plot_reactions, plot_couples, plot_shaking_force, plot_shaking_moment,
+    plot_polar, plot_flywheel, plot_energy, plot_breakdown, plot_transmission, plot_balance,
+    plot_friction, plot_internal_force, plot_stress, plot_startup, plot_steady_turn)}
