@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from .mpl import pt_to_px, text_renderer
+from .mpl import literal, pt_to_px, text_renderer, text_size
 
 #: room kept between placed text and other text, and between placed text and a curve (half
 #: its line width, and some air) [pt]
@@ -102,3 +102,130 @@ def place(ax, text, candidates, lines=(), boxes=(), renderer=None):
     text.set_va(va)
     return box
 
+
+def measure(renderer, text: str, size: float, weight: str = "normal") -> tuple[float, float]:
+    """(width, height) of the box matplotlib gives ``text`` (one line; mathtext where it has
+    unescaped ``$``, else drawn as written, ``\\$`` as ``$``) at ``size`` points, in display
+    units of ``renderer``: its width, and the height of its line (at least that of "lp", as
+    matplotlib lays out a line)."""
+    from matplotlib import cbook
+    from matplotlib.font_manager import FontProperties
+    prop = FontProperties(size=size, weight=weight)
+    if cbook.is_math_text(text):
+        w, h, _ = renderer.get_text_width_height_descent(text, prop, ismath=True)
+    else:
+        w, h, _ = text_size(renderer, text.replace("\\$", "$"), size, weight)
+    return w, max(h, text_size(renderer, "lp", size, weight)[1])
+
+
+class Labels:
+    """Greedy placement of labels beside their points (a drawing's point names, arrow and
+    couple symbols), in display space: each label's box (its text measured by the renderer,
+    :meth:`size`) takes the first candidate offset where it overlaps no obstacle (pins,
+    arrow shafts, guide walls, earlier labels), CLEAR kept, and stays inside the axes (beyond them lie
+    the title, the key and the legend), else the least bad: a box's area outside the axes
+    counts OUTSIDE times an overlap."""
+
+    OUTSIDE = 4.0
+
+    def __init__(self, ax, fontsize: float = 7.5, renderer=None):
+        self.ax, self.fs = ax, fontsize
+        self.boxes: list[tuple[float, float, float, float]] = []
+        fig = ax.figure
+        self.pt = fig.dpi / 72.0              # display units per point
+        self.renderer = renderer or text_renderer(fig)
+        self.clear = pt_to_px(fig, CLEAR)       # room kept from other labels and obstacles
+        self._m = ax.transData.get_affine().get_matrix()   # data -> display (linear axes)
+        self.frame = tuple(ax.bbox.extents)
+
+    def _px(self, x: float, y: float) -> tuple[float, float]:
+        m = self._m
+        return m[0, 0] * x + m[0, 1] * y + m[0, 2], m[1, 0] * x + m[1, 1] * y + m[1, 2]
+
+    def block(self, x: float, y: float, r_pt: float = 4.0) -> None:
+        """An obstacle: a square of half-size ``r_pt`` points around data point (x, y)."""
+        px, py = self._px(x, y)
+        r = r_pt * self.pt
+        self.boxes.append((px - r, py - r, px + r, py + r))
+
+    def block_segment(self, a, b, r_pt: float = 2.5) -> None:
+        for t in np.linspace(0.0, 1.0, 8):
+            self.block(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), r_pt)
+
+    def block_line(self, a, b, r_pt: float = 2.0) -> None:
+        """An obstacle along the whole segment ``a``-``b`` (data): squares of half-size
+        ``r_pt`` points, one every ``r_pt`` points (a long line, such as a guide's wall,
+        with no gap a label could sit in)."""
+        (ax_, ay_), (bx_, by_) = self._px(*a), self._px(*b)
+        n = max(2, int(math.hypot(bx_ - ax_, by_ - ay_) / (r_pt * self.pt)) + 2)
+        for t in np.linspace(0.0, 1.0, n):
+            self.block(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), r_pt)
+
+    def size(self, text: str, fontsize: float, bold: bool = False) -> tuple[float, float]:
+        """(width, height) of the box ``text`` takes at ``fontsize`` points, in display
+        units, as matplotlib lays it out (see :func:`measure`)."""
+        return measure(self.renderer, text, fontsize, "bold" if bold else "normal")
+
+    def _box(self, px, py, w, h, ha, va):
+        x0 = px if ha == "left" else (px - w if ha == "right" else px - w / 2)
+        y0 = py if va == "bottom" else (py - h if va == "top" else py - h / 2)
+        return (x0, y0, x0 + w, y0 + h)
+
+    @staticmethod
+    def _overlap(a, b) -> float:
+        dx = min(a[2], b[2]) - max(a[0], b[0])
+        dy = min(a[3], b[3]) - max(a[1], b[1])
+        return dx * dy if dx > 0 and dy > 0 else 0.0
+
+    def place(self, text: str, x: float, y: float, color: str = "k", bold: bool = False,
+              prefer=None, fontsize: float | None = None) -> None:
+        fs = fontsize or self.fs
+        w, h = self.size(text, fs, bold)
+        px, py = self._px(x, y)
+        d = 5.0
+        cands = [(d, d, "left", "bottom"), (-d, d, "right", "bottom"), (d, -d, "left", "top"),
+                 (-d, -d, "right", "top"), (0, 1.6 * d, "center", "bottom"),
+                 (0, -1.6 * d, "center", "top"), (1.6 * d, 0, "left", "center"),
+                 (-1.6 * d, 0, "right", "center"), (2.6 * d, 2.6 * d, "left", "bottom"),
+                 (-2.6 * d, 2.6 * d, "right", "bottom"), (2.6 * d, -2.6 * d, "left", "top"),
+                 (-2.6 * d, -2.6 * d, "right", "top")]
+        if prefer is not None:
+            cands.sort(key=lambda c: -(c[0] * prefer[0] + c[1] * prefer[1]))
+        # last resorts, further out: where a crowded spot (a pin between a guide's walls)
+        # leaves no room near the point
+        cands += [(sx * k * d, sy * k * d, "left" if sx > 0 else "right",
+                   "bottom" if sy > 0 else "top") for k in (4.5, 6.5)
+                  for sx, sy in ((1, 1), (-1, 1), (1, -1), (-1, -1))]
+        best, best_score = None, math.inf
+        for dx, dy, ha, va in cands:
+            box = self._box(px + dx * self.pt, py + dy * self.pt, w, h, ha, va)
+            area = (box[2] - box[0]) * (box[3] - box[1])
+            room = grow(box, self.clear)
+            score = (sum(self._overlap(room, b) for b in self.boxes)
+                     + self.OUTSIDE * (area - self._overlap(box, self.frame)))
+            if score < best_score:
+                best, best_score = (dx, dy, ha, va, box), score
+            if score == 0:
+                break
+        self._annotate(text, x, y, best, fs, color, bold)
+
+    def place_points(self, points, extent: float) -> None:
+        """Name the points ``points`` [(x, y, name)], one label for names that share a
+        place (A/O); ``extent`` the drawing's size (what "the same place" is relative to).
+        The names are the spec's, drawn literally."""
+        merged: dict[tuple, list] = {}
+        for x, y, text in points:
+            key = (round(x / extent, 4), round(y / extent, 4))
+            merged.setdefault(key, [x, y, []])[2].append(literal(text))
+        for x, y, names in merged.values():
+            self.place("/".join(names), x, y, bold=True, fontsize=8.5, prefer=(-1, 1))
+
+    def _annotate(self, text: str, x: float, y: float, best, fs: float, color: str,
+                  bold: bool) -> None:
+        """Write ``text`` at the chosen offset ``best`` = (dx, dy, ha, va, box) [pt] from its
+        point, and keep its box out of the way of the labels after it."""
+        dx, dy, ha, va, box = best
+        self.boxes.append(box)
+        self.ax.annotate(text, (x, y), xytext=(dx, dy), textcoords="offset points",
+                         fontsize=fs, color=color, ha=ha, va=va, zorder=9,
+                         fontweight="bold" if bold else "normal", annotation_clip=False)

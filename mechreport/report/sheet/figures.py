@@ -20,14 +20,15 @@ from pathlib import Path
 
 import numpy as np
 
-from ..drawing import LINK_FILL, Labels, draw_element, draw_ground_symbol, draw_guide
+from ..drawing import LINK_FILL, draw_element, draw_ground_symbol, draw_guide
+from ..labels import Labels, grow
 from ..mpl import literal, save, styled
 from ..scene import build_scene
 from .symbols import split_symbol
 
 class SheetLabels(Labels):
-    """The drawings' label placer, measuring a mathtext label by what it prints ($F_{21x}$
-    is four glyphs wide, not ten), keeping labels inside the figure and near their point:
+    """The sheets' label placer (a mathtext label measured as it prints: $F_{21x}$ is four
+    glyphs wide, not ten), keeping labels inside the figure and near their point:
     the candidate offsets are tried ring by ring (nearest first), each ring from the
     preferred side round, and the first box that touches no obstacle is taken (else the least
     bad). Obstacles are pins, link outlines, arrow shafts, couple arcs and earlier labels."""
@@ -52,13 +53,8 @@ class SheetLabels(Labels):
 
     def place(self, text: str, x: float, y: float, color: str = "k", bold: bool = False,
               prefer=None, fontsize: float | None = None) -> None:
-        import re
         fs = fontsize or self.fs
-        shown = re.sub(r"\\mathrm|[${}\\]", "", text)
-        subs = len(re.findall(r"_\{([^}]*)\}", text.replace(r"\mathrm", "")))
-        glyphs = len(shown.replace("_", "")) - 0.3 * subs
-        w = (0.62 if bold else 0.58) * fs * glyphs * self.pt + 2 * self.pt
-        h = 1.15 * fs * self.pt
+        w, h = self.size(text, fs, bold)
         px, py = self.ax.transData.transform((x, y))
         fig_w, fig_h = self.ax.figure.bbox.width, self.ax.figure.bbox.height
         pref = np.asarray(prefer if prefer is not None else (1.0, 1.0), float)
@@ -74,8 +70,9 @@ class SheetLabels(Labels):
             cands.sort(key=lambda c: -(c[0] * pref[0] + c[1] * pref[1]) / math.hypot(c[0], c[1]))
             for dx, dy, ha, va in cands:
                 box = self._box(px + dx * self.pt, py + dy * self.pt, w, h, ha, va)
-                ox = np.minimum(box[2], boxes[:, 2]) - np.maximum(box[0], boxes[:, 0])
-                oy = np.minimum(box[3], boxes[:, 3]) - np.maximum(box[1], boxes[:, 1])
+                room = grow(box, self.clear)
+                ox = np.minimum(room[2], boxes[:, 2]) - np.maximum(room[0], boxes[:, 0])
+                oy = np.minimum(room[3], boxes[:, 3]) - np.maximum(room[1], boxes[:, 1])
                 score = float(np.sum(np.where((ox > 0) & (oy > 0), ox * oy, 0.0)))
                 inside = (min(box[2], fig_w) - max(box[0], 0)) * \
                     (min(box[3], fig_h) - max(box[1], 0))
