@@ -122,7 +122,7 @@ class Labels:
     """Greedy placement of labels beside their points (a drawing's point names, arrow and
     couple symbols), in display space: each label's box (its text measured by the renderer,
     :meth:`size`) takes the first candidate offset where it overlaps no obstacle (pins,
-    arrow shafts, guide walls, earlier labels), CLEAR kept, and stays inside the axes (beyond them lie
+    arrow shafts, guide walls, earlier labels) and stays inside the axes (beyond them lie
     the title, the key and the legend), else the least bad: a box's area outside the axes
     counts OUTSIDE times an overlap."""
 
@@ -133,8 +133,7 @@ class Labels:
         self.boxes: list[tuple[float, float, float, float]] = []
         fig = ax.figure
         self.pt = fig.dpi / 72.0              # display units per point
-        self.renderer = renderer or text_renderer(fig)
-        self.clear = pt_to_px(fig, CLEAR)       # room kept from other labels and obstacles
+        self._renderer = renderer             # made when the first label is measured
         self._m = ax.transData.get_affine().get_matrix()   # data -> display (linear axes)
         self.frame = tuple(ax.bbox.extents)
 
@@ -164,7 +163,9 @@ class Labels:
     def size(self, text: str, fontsize: float, bold: bool = False) -> tuple[float, float]:
         """(width, height) of the box ``text`` takes at ``fontsize`` points, in display
         units, as matplotlib lays it out (see :func:`measure`)."""
-        return measure(self.renderer, text, fontsize, "bold" if bold else "normal")
+        if self._renderer is None:
+            self._renderer = text_renderer(self.ax.figure)
+        return measure(self._renderer, text, fontsize, "bold" if bold else "normal")
 
     def _box(self, px, py, w, h, ha, va):
         x0 = px if ha == "left" else (px - w if ha == "right" else px - w / 2)
@@ -179,6 +180,9 @@ class Labels:
 
     def place(self, text: str, x: float, y: float, color: str = "k", bold: bool = False,
               prefer=None, fontsize: float | None = None) -> None:
+        """Write ``text`` (as given: literal where it carries a spec's name) beside data
+        point (``x``, ``y``) at ``fontsize`` points (default: the placer's), at the first
+        free candidate offset, the ones towards ``prefer`` (a direction (dx, dy)) first."""
         fs = fontsize or self.fs
         w, h = self.size(text, fs, bold)
         px, py = self._px(x, y)
@@ -200,8 +204,7 @@ class Labels:
         for dx, dy, ha, va in cands:
             box = self._box(px + dx * self.pt, py + dy * self.pt, w, h, ha, va)
             area = (box[2] - box[0]) * (box[3] - box[1])
-            room = grow(box, self.clear)
-            score = (sum(self._overlap(room, b) for b in self.boxes)
+            score = (sum(self._overlap(box, b) for b in self.boxes)
                      + self.OUTSIDE * (area - self._overlap(box, self.frame)))
             if score < best_score:
                 best, best_score = (dx, dy, ha, va, box), score

@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from ..drawing import LINK_FILL, draw_element, draw_ground_symbol, draw_guide
-from ..labels import Labels, grow
+from ..labels import Labels
 from ..mpl import literal, save, styled
 from ..scene import build_scene
 from .symbols import split_symbol
@@ -70,9 +70,8 @@ class SheetLabels(Labels):
             cands.sort(key=lambda c: -(c[0] * pref[0] + c[1] * pref[1]) / math.hypot(c[0], c[1]))
             for dx, dy, ha, va in cands:
                 box = self._box(px + dx * self.pt, py + dy * self.pt, w, h, ha, va)
-                room = grow(box, self.clear)
-                ox = np.minimum(room[2], boxes[:, 2]) - np.maximum(room[0], boxes[:, 0])
-                oy = np.minimum(room[3], boxes[:, 3]) - np.maximum(room[1], boxes[:, 1])
+                ox = np.minimum(box[2], boxes[:, 2]) - np.maximum(box[0], boxes[:, 0])
+                oy = np.minimum(box[3], boxes[:, 3]) - np.maximum(box[1], boxes[:, 1])
                 score = float(np.sum(np.where((ox > 0) & (oy > 0), ox * oy, 0.0)))
                 inside = (min(box[2], fig_w) - max(box[0], 0)) * \
                     (min(box[3], fig_h) - max(box[1], 0))
