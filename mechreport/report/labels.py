@@ -106,16 +106,17 @@ def place(ax, text, candidates, lines=(), boxes=(), renderer=None):
 def measure(renderer, text: str, size: float, weight: str = "normal") -> tuple[float, float]:
     """(width, height) of the box matplotlib gives ``text`` (one line; mathtext where it has
     unescaped ``$``, else drawn as written, ``\\$`` as ``$``) at ``size`` points, in display
-    units of ``renderer``: its width, and the height of its line (at least that of "lp", as
-    matplotlib lays out a line)."""
+    units of ``renderer``: its width, and the height of its line (its ascent and descent,
+    each at least that of "lp", as matplotlib lays out a line)."""
     from matplotlib import cbook
     from matplotlib.font_manager import FontProperties
     prop = FontProperties(size=size, weight=weight)
     if cbook.is_math_text(text):
-        w, h, _ = renderer.get_text_width_height_descent(text, prop, ismath=True)
+        w, h, d = renderer.get_text_width_height_descent(text, prop, ismath=True)
     else:
-        w, h, _ = text_size(renderer, text.replace("\\$", "$"), size, weight)
-    return w, max(h, text_size(renderer, "lp", size, weight)[1])
+        w, h, d = text_size(renderer, text.replace("\\$", "$"), size, weight)
+    _, h_lp, d_lp = text_size(renderer, "lp", size, weight)
+    return w, max(h - d, h_lp - d_lp) + max(d, d_lp)
 
 
 class Labels:
