@@ -3,10 +3,11 @@ hatching, point labels, load and reaction arrows, couples. Geometry comes from t
 (global coordinates [m]); this module only draws, in the report's display units.
 
 Links are stacked so that the driver (the crank) is drawn on top of every other link, bars
-over blocks over plates. Labels (points, arrows, couples) are placed one by one at the first
-of several candidate spots that overlaps nothing already drawn or labelled. Point names come
-from the spec and are drawn literally (:func:`~mechreport.report.mpl.literal`); the arrows'
-and couples' labels are mechreport's symbols (F12, F3ext, M)."""
+over blocks over plates. Labels (points, arrows, couples) are placed one by one, by the
+report's label placer (:class:`~mechreport.report.labels.Labels`: their text measured), at
+the first of several candidate spots that overlaps nothing already drawn or labelled. Point
+names come from the spec and are drawn literally (:func:`~mechreport.report.mpl.literal`);
+the arrows' and couples' labels are mechreport's symbols (F12, F3ext, M)."""
 from __future__ import annotations
 
 import math
