@@ -43,6 +43,11 @@ BLUE, ORANGE, GREEN, PURPLE, SKY, VERMILION = PALETTE[:6]
 OKABE_ITO = PALETTE[:6] + ["#F0E442", "#000000"]
 MOMENT_COLOR = "#882255"   # the driver's torque and push (Tol's wine)
 CUT_COLOR = "#b00000"      # the mark on an arrow cut to the view's longest (off scale)
+LOAD_COLOR = "#000000"     # loads on a drawing (known forces and couples)
+#: the solution sheets' free-body diagrams: the unknowns (reactions and the driver, drawn in
+#: their positive direction), the known forces (weights and loads) and d'Alembert's inertia
+#: force and couple (dashed)
+UNKNOWN_COLOR, KNOWN_COLOR, INERTIA_COLOR = "#0b4f8a", INK, "#c0392b"
 #: the links' fills on a drawing, by link number (pale tints)
 LINK_FILL = ["#dbe6f4", "#f6e3cf", "#dcefdc", "#f3dada", "#e7def0", "#ece3dc", "#f7e1ef"]
 

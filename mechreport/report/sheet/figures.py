@@ -20,9 +20,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..drawing import LINK_FILL, draw_element, draw_ground_symbol, draw_guide
+from ..drawing import draw_element, draw_ground_symbol, draw_guide
 from ..labels import Labels
-from ..mpl import literal, save, styled
+from ..mpl import (INERTIA_COLOR, KNOWN_COLOR, LINK_FILL, UNKNOWN_COLOR, literal, save,
+                   styled)
 from ..scene import build_scene
 from .symbols import split_symbol
 
@@ -86,9 +87,9 @@ class SheetLabels(Labels):
         self._annotate(text, x, y, best, fs, color, bold)
 
 
-UNKNOWN = "#0b4f8a"      # reactions and the driver: unknown, drawn in their positive direction
-KNOWN = "#222222"        # weights and loads
-INERTIA = "#c0392b"      # d'Alembert's inertia force and couple (dashed)
+UNKNOWN = UNKNOWN_COLOR   # reactions and the driver: unknown, drawn in their positive direction
+KNOWN = KNOWN_COLOR       # weights and loads
+INERTIA = INERTIA_COLOR   # d'Alembert's inertia force and couple (dashed)
 
 
 def tex_symbol(symbol: str, comp: str = "") -> str:
