@@ -6,8 +6,8 @@ The figures live in modules of one job each, re-exported here: the sweep plots
 (:mod:`.sweep_plots`: driver torque, joint reactions, shaking force and moment; their axis in
 :mod:`.sweep_axes`), polar bearing diagrams (:mod:`.polar_plots`), the cycle and design plots
 (:mod:`.cycle_plots`: flywheel diagram, torque by source, transmission angle, balancing), the
-driver torque with and without friction (:mod:`.friction_plots`) and the strength plots
-(:mod:`.strength_plots`). The matplotlib infrastructure they share (style, palette, figure,
+driver torque with and without friction (:mod:`.friction_plots`), the strength plots
+(:mod:`.strength_plots`) and the machine's speed (:mod:`.dynamics_plots`). The matplotlib infrastructure they share (style, palette, figure,
 saving, literal text, measuring text) is :mod:`.mpl`; the one label placer is
 :mod:`.labels`.
 
@@ -36,7 +36,7 @@ from .sweep_plots import (draw_couples, draw_reactions, draw_shaking_force,  # n
                           draw_shaking_moment, draw_torque, reactions_figure, shaking_figure,
                           slider_couples, torque_figure)
 
-SOURCE_COLORS = PALETTE          # the colours of the series, in order (as before)
+SOURCE_COLORS = PALETTE          # the series' colours: the palette's (Okabe & Ito's before)
 
 
 @styled
