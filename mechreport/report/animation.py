@@ -21,12 +21,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .drawing import (ARROW_LEN, CUT_COLOR, View, _arrow_geometry, _bounds, draw_scene,
-                      view_axes)
+from .drawing import ARROW_LEN, View, _arrow_geometry, _bounds, draw_scene, view_axes
 from .files import atomic_write_bytes
 from .frames import CLIP
-from .plots import save, styled
-from .scene import MOMENT_COLOR
+from .mpl import CUT_COLOR, MOMENT_COLOR, save, styled
 
 FRAME_WIDTH = 4.2      # [in]; two frames side by side fill most of the PDF's text width
 GAUGE_W = 0.62         # [in] the effort gauge's column, right

@@ -3,10 +3,11 @@ hatching, point labels, load and reaction arrows, couples. Geometry comes from t
 (global coordinates [m]); this module only draws, in the report's display units.
 
 Links are stacked so that the driver (the crank) is drawn on top of every other link, bars
-over blocks over plates. Labels (points, arrows, couples) are placed one by one at the first
-of several candidate spots that overlaps nothing already drawn or labelled. Point names come
-from the spec and are drawn literally (:func:`~mechreport.report.plots.literal`); the arrows'
-and couples' labels are mechreport's symbols (F12, F3ext, M)."""
+over blocks over plates. Labels (points, arrows, couples) are placed one by one, by the
+report's label placer (:class:`~mechreport.report.labels.Labels`: their text measured), at
+the first of several candidate spots that overlaps nothing already drawn or labelled. Point
+names come from the spec and are drawn literally (:func:`~mechreport.report.mpl.literal`);
+the arrows' and couples' labels are mechreport's symbols (F12, F3ext, M)."""
 from __future__ import annotations
 
 import math
@@ -16,13 +17,12 @@ from pathlib import Path
 import numpy as np
 
 from ..units import fmt
-from .plots import WIDTH, literal, save, styled
+from .labels import Labels
+from .mpl import CUT_COLOR, LINK_FILL, WIDTH, save, styled
 
-LINK_FILL = ["#dbe6f4", "#f6e3cf", "#dcefdc", "#f3dada", "#e7def0", "#ece3dc", "#f7e1ef"]
 ARROW_LEN = 0.26        # longest arrow as a fraction of the mechanism's extent
 ARROW_MIN = 0.05        # shortest drawn (non-zero) arrow, same unit
 AX_FRACTION = 0.70      # the drawing's share of the figure width (the legend has the rest)
-CUT_COLOR = "#b00000"   # the mark on an arrow cut to the view's longest (off scale)
 
 
 @dataclass(frozen=True)
@@ -126,111 +126,6 @@ def draw_guide(ax, p0, p1, on_ground: bool, normal, offset: float) -> None:
         _line(ax, *np.asarray(walls[0]).T, color="0.35", lw=0.8, ls=(0, (6, 3)), zorder=1)
         return
     _segments(ax, walls + ticks, [1.0] * len(walls) + [0.6] * len(ticks), 1)
-
-
-class Labels:
-    """Greedy label placement in display space: each label takes the first candidate offset
-    whose box overlaps no obstacle (pins, arrow shafts, earlier labels) and stays inside the
-    axes (beyond them lie the title, the key and the legend), else the least bad: a box's
-    area outside the axes counts OUTSIDE times an overlap."""
-
-    OUTSIDE = 4.0
-
-    def __init__(self, ax, fontsize: float = 7.5):
-        self.ax, self.fs = ax, fontsize
-        self.boxes: list[tuple[float, float, float, float]] = []
-        fig = ax.figure
-        self.pt = fig.dpi / 72.0              # display units per point
-        self._m = ax.transData.get_affine().get_matrix()   # data -> display (linear axes)
-        self.frame = tuple(ax.bbox.extents)
-
-    def _px(self, x: float, y: float) -> tuple[float, float]:
-        m = self._m
-        return m[0, 0] * x + m[0, 1] * y + m[0, 2], m[1, 0] * x + m[1, 1] * y + m[1, 2]
-
-    def block(self, x: float, y: float, r_pt: float = 4.0) -> None:
-        """An obstacle: a square of half-size ``r_pt`` points around data point (x, y)."""
-        px, py = self._px(x, y)
-        r = r_pt * self.pt
-        self.boxes.append((px - r, py - r, px + r, py + r))
-
-    def block_segment(self, a, b, r_pt: float = 2.5) -> None:
-        for t in np.linspace(0.0, 1.0, 8):
-            self.block(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), r_pt)
-
-    def block_line(self, a, b, r_pt: float = 2.0) -> None:
-        """An obstacle along the whole segment ``a``-``b`` (data): squares of half-size
-        ``r_pt`` points, one every ``r_pt`` points (a long line, such as a guide's wall,
-        with no gap a label could sit in)."""
-        (ax_, ay_), (bx_, by_) = self._px(*a), self._px(*b)
-        n = max(2, int(math.hypot(bx_ - ax_, by_ - ay_) / (r_pt * self.pt)) + 2)
-        for t in np.linspace(0.0, 1.0, n):
-            self.block(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), r_pt)
-
-    def _box(self, px, py, w, h, ha, va):
-        x0 = px if ha == "left" else (px - w if ha == "right" else px - w / 2)
-        y0 = py if va == "bottom" else (py - h if va == "top" else py - h / 2)
-        return (x0, y0, x0 + w, y0 + h)
-
-    @staticmethod
-    def _overlap(a, b) -> float:
-        dx = min(a[2], b[2]) - max(a[0], b[0])
-        dy = min(a[3], b[3]) - max(a[1], b[1])
-        return dx * dy if dx > 0 and dy > 0 else 0.0
-
-    def place(self, text: str, x: float, y: float, color: str = "k", bold: bool = False,
-              prefer=None, fontsize: float | None = None) -> None:
-        fs = fontsize or self.fs
-        glyphs = len(text.replace("\\$", "$"))      # an escaped $ (literal) is one glyph
-        w = (0.62 if bold else 0.58) * fs * glyphs * self.pt + 2 * self.pt
-        h = 1.15 * fs * self.pt
-        px, py = self._px(x, y)
-        d = 5.0
-        cands = [(d, d, "left", "bottom"), (-d, d, "right", "bottom"), (d, -d, "left", "top"),
-                 (-d, -d, "right", "top"), (0, 1.6 * d, "center", "bottom"),
-                 (0, -1.6 * d, "center", "top"), (1.6 * d, 0, "left", "center"),
-                 (-1.6 * d, 0, "right", "center"), (2.6 * d, 2.6 * d, "left", "bottom"),
-                 (-2.6 * d, 2.6 * d, "right", "bottom"), (2.6 * d, -2.6 * d, "left", "top"),
-                 (-2.6 * d, -2.6 * d, "right", "top")]
-        if prefer is not None:
-            cands.sort(key=lambda c: -(c[0] * prefer[0] + c[1] * prefer[1]))
-        # last resorts, further out: where a crowded spot (a pin between a guide's walls)
-        # leaves no room near the point
-        cands += [(sx * 4.5 * d, sy * 4.5 * d, "left" if sx > 0 else "right",
-                   "bottom" if sy > 0 else "top") for sx, sy in ((1, 1), (-1, 1), (1, -1),
-                                                                 (-1, -1))]
-        best, best_score = None, math.inf
-        for dx, dy, ha, va in cands:
-            box = self._box(px + dx * self.pt, py + dy * self.pt, w, h, ha, va)
-            area = (box[2] - box[0]) * (box[3] - box[1])
-            score = (sum(self._overlap(box, b) for b in self.boxes)
-                     + self.OUTSIDE * (area - self._overlap(box, self.frame)))
-            if score < best_score:
-                best, best_score = (dx, dy, ha, va, box), score
-            if score == 0:
-                break
-        self._annotate(text, x, y, best, fs, color, bold)
-
-    def place_points(self, points, extent: float) -> None:
-        """Name the points ``points`` [(x, y, name)], one label for names that share a
-        place (A/O); ``extent`` the drawing's size (what "the same place" is relative to).
-        The names are the spec's, drawn literally."""
-        merged: dict[tuple, list] = {}
-        for x, y, text in points:
-            key = (round(x / extent, 4), round(y / extent, 4))
-            merged.setdefault(key, [x, y, []])[2].append(literal(text))
-        for x, y, names in merged.values():
-            self.place("/".join(names), x, y, bold=True, fontsize=8.5, prefer=(-1, 1))
-
-    def _annotate(self, text: str, x: float, y: float, best, fs: float, color: str,
-                  bold: bool) -> None:
-        """Write ``text`` at the chosen offset ``best`` = (dx, dy, ha, va, box) [pt] from its
-        point, and keep its box out of the way of the labels after it."""
-        dx, dy, ha, va, box = best
-        self.boxes.append(box)
-        self.ax.annotate(text, (x, y), xytext=(dx, dy), textcoords="offset points",
-                         fontsize=fs, color=color, ha=ha, va=va, zorder=9,
-                         fontweight="bold" if bold else "normal", annotation_clip=False)
 
 
 def _arrow_geometry(scene, extent: float, view: "View | None" = None):

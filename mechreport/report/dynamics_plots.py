@@ -7,9 +7,9 @@ from pathlib import Path
 import numpy as np
 
 from ..units import fmt
-from .plots import GREY, OKABE_ITO, figure, legend_top, save, styled
+from .mpl import BLUE, GREY, figure, legend_top, save, styled
 
-SPEED_COLOR = OKABE_ITO[0]
+SPEED_COLOR = BLUE
 
 
 def dynamics_figure(dp, d=None):
@@ -18,7 +18,16 @@ def dynamics_figure(dp, d=None):
     crank angle, with its mean. One panel (the start-up) without a steady state."""
     two = len(dp.angles) > 0
     fig, axes = figure(2.6, 1, 2 if two else 1, wgap=0.75, margins=(0.62, 0.12, 0.46, 0.42))
-    ax = axes[0, 0]
+    draw_startup(axes[0, 0], dp)
+    if two:
+        draw_steady_turn(axes[0, 1], dp)
+    return fig
+
+
+def draw_startup(ax, dp, d=None) -> None:
+    """The crank's speed [rpm] against the time from the start [s] on ``ax``, with the
+    steady mean and its 95 % (the end of the start-up) dashed when there is a steady state
+    (``dp`` a report's DynamicsPlot; speeds and times need no display unit)."""
     ax.plot(dp.time, dp.rpm, color=SPEED_COLOR, lw=1.3, label="speed")
     if dp.mean is not None:
         ax.axhline(dp.mean, color=GREY, lw=0.8, ls=(0, (5, 2)), label="steady mean")
@@ -28,21 +37,23 @@ def dynamics_figure(dp, d=None):
     ax.set_xlabel("time [s]")
     ax.set_ylabel("crank speed [rpm]")
     legend_top(ax, 3 if dp.mean is not None else 1)
-    if two:
-        ax2 = axes[0, 1]
-        ax2.plot(dp.angles, dp.turn_rpm, color=SPEED_COLOR, lw=1.3,
-                 label=f"steady turn (mean {fmt(dp.mean)} rpm)")
-        ax2.axhline(dp.mean, color=GREY, lw=0.8, ls=(0, (5, 2)))
-        ax2.set_xlim(0, 360)
-        ax2.set_xticks(np.arange(0, 361, 90))
-        ax2.set_xlabel("crank angle φ [deg]")
-        ax2.set_ylabel("crank speed [rpm]")
-        span = float(np.ptp(dp.turn_rpm))
-        pad = max(span * 0.25, abs(dp.mean) * 1e-4)
-        ax2.set_ylim(float(np.min(dp.turn_rpm)) - pad, float(np.max(dp.turn_rpm)) + pad)
-        ax2.ticklabel_format(axis="y", useOffset=False)
-        legend_top(ax2, 1)
-    return fig
+
+
+def draw_steady_turn(ax, dp, d=None) -> None:
+    """The crank's speed [rpm] over the steady turn against the crank angle [deg] on
+    ``ax``, with its mean (``dp`` a report's DynamicsPlot with a steady state)."""
+    ax.plot(dp.angles, dp.turn_rpm, color=SPEED_COLOR, lw=1.3,
+            label=f"steady turn (mean {fmt(dp.mean)} rpm)")
+    ax.axhline(dp.mean, color=GREY, lw=0.8, ls=(0, (5, 2)))
+    ax.set_xlim(0, 360)
+    ax.set_xticks(np.arange(0, 361, 90))
+    ax.set_xlabel("crank angle φ [deg]")
+    ax.set_ylabel("crank speed [rpm]")
+    span = float(np.ptp(dp.turn_rpm))
+    pad = max(span * 0.25, abs(dp.mean) * 1e-4)
+    ax.set_ylim(float(np.min(dp.turn_rpm)) - pad, float(np.max(dp.turn_rpm)) + pad)
+    ax.ticklabel_format(axis="y", useOffset=False)
+    legend_top(ax, 1)
 
 
 @styled
@@ -54,4 +65,4 @@ def write_dynamics_plot(model, outdir: Path) -> list[Path]:
     return save(dynamics_figure(sec.plot, model.display), outdir, model.figures["dynamics"].stem)
 
 
-__all__ = ["dynamics_figure", "write_dynamics_plot"]
+__all__ = ["draw_startup", "draw_steady_turn", "dynamics_figure", "write_dynamics_plot"]

@@ -34,14 +34,11 @@ from ..units import DASH, SIG_DIGITS, Display, clean, deg, fmt, kind_of
 from .check_text import failure_rows, summary_line
 from .dynamics import dynamics_json, dynamics_section
 from .frames import Animation, animation_data
+from .mpl import PALETTE
 from .scene import Scene, build_scene
 from .strength import StrengthSection, strength_json, strength_section
 from .text import kinematics_rows
 
-#: one colour per joint, in spec order, across every figure: Okabe & Ito's colour-blind-safe
-#: palette and Tol's (black is kept for loads, wine for the driver torque: scene.MOMENT_COLOR)
-PALETTE = ["#0072B2", "#E69F00", "#009E73", "#CC79A7", "#56B4E9", "#D55E00", "#999933",
-           "#44AA99", "#332288", "#117733"]
 
 
 def num(x, digits: int = SIG_DIGITS) -> str:

@@ -9,9 +9,8 @@ import numpy as np
 from ..forces import ForceResult
 from ..kinematics.frames import rotate
 from ..spec import GROUND
+from .mpl import LOAD_COLOR, MOMENT_COLOR
 
-#: the driver torque's colour (no joint's reaction has it)
-MOMENT_COLOR = "#882255"
 BAR_MIN = 0.022     # bar width at least this fraction of the drawing's extent
 BLOCK_MIN = 0.07    # block sides at least this fraction of the extent
 
@@ -201,10 +200,10 @@ def build_scene(analysis, res: ForceResult, k: int, colors: dict[str, str],
         if ld.force is not None:
             at = tuple(map(float, kin.named_point(ld.point, ld.link).r[k]))
             sc.arrows.append(Arrow(at, tuple(map(float, ld.force[k])), ld.symbol, "load",
-                                   "#000000"))
+                                   LOAD_COLOR))
         else:
             c = tuple(map(float, kin.com(ld.link).r[k]))
-            sc.couples.append(Couple(c, float(ld.moment[k]), ld.symbol, "#000000"))
+            sc.couples.append(Couple(c, float(ld.moment[k]), ld.symbol, LOAD_COLOR))
     pivot = tuple(map(float, points[spec.driver.joint][k]))
     sc.driver = spec.driver.link
     if spec.driver.kind == "R":

@@ -12,7 +12,7 @@
 Geometry comes from :func:`mechreport.report.scene.build_scene` and is drawn with the report
 drawings' helpers (:mod:`mechreport.report.drawing`). The symbols are mathtext that mechreport
 writes (from link numbers, never from names); the points' names are the spec's, drawn
-literally (:func:`mechreport.report.plots.literal`)."""
+literally (:func:`mechreport.report.mpl.literal`)."""
 from __future__ import annotations
 
 import math
@@ -20,14 +20,16 @@ from pathlib import Path
 
 import numpy as np
 
-from ..drawing import LINK_FILL, Labels, draw_element, draw_ground_symbol, draw_guide
-from ..plots import literal, save, styled
+from ..drawing import draw_element, draw_ground_symbol, draw_guide
+from ..labels import Labels
+from ..mpl import (INERTIA_COLOR, KNOWN_COLOR, LINK_FILL, UNKNOWN_COLOR, literal, save,
+                   styled)
 from ..scene import build_scene
 from .symbols import split_symbol
 
 class SheetLabels(Labels):
-    """The drawings' label placer, measuring a mathtext label by what it prints ($F_{21x}$
-    is four glyphs wide, not ten), keeping labels inside the figure and near their point:
+    """The sheets' label placer (a mathtext label measured as it prints: $F_{21x}$ is four
+    glyphs wide, not ten), keeping labels inside the figure and near their point:
     the candidate offsets are tried ring by ring (nearest first), each ring from the
     preferred side round, and the first box that touches no obstacle is taken (else the least
     bad). Obstacles are pins, link outlines, arrow shafts, couple arcs and earlier labels."""
@@ -52,13 +54,8 @@ class SheetLabels(Labels):
 
     def place(self, text: str, x: float, y: float, color: str = "k", bold: bool = False,
               prefer=None, fontsize: float | None = None) -> None:
-        import re
         fs = fontsize or self.fs
-        shown = re.sub(r"\\mathrm|[${}\\]", "", text)
-        subs = len(re.findall(r"_\{([^}]*)\}", text.replace(r"\mathrm", "")))
-        glyphs = len(shown.replace("_", "")) - 0.3 * subs
-        w = (0.62 if bold else 0.58) * fs * glyphs * self.pt + 2 * self.pt
-        h = 1.15 * fs * self.pt
+        w, h = self.size(text, fs, bold)
         px, py = self.ax.transData.transform((x, y))
         fig_w, fig_h = self.ax.figure.bbox.width, self.ax.figure.bbox.height
         pref = np.asarray(prefer if prefer is not None else (1.0, 1.0), float)
@@ -90,9 +87,9 @@ class SheetLabels(Labels):
         self._annotate(text, x, y, best, fs, color, bold)
 
 
-UNKNOWN = "#0b4f8a"      # reactions and the driver: unknown, drawn in their positive direction
-KNOWN = "#222222"        # weights and loads
-INERTIA = "#c0392b"      # d'Alembert's inertia force and couple (dashed)
+UNKNOWN = UNKNOWN_COLOR   # reactions and the driver: unknown, drawn in their positive direction
+KNOWN = KNOWN_COLOR       # weights and loads
+INERTIA = INERTIA_COLOR   # d'Alembert's inertia force and couple (dashed)
 
 
 def tex_symbol(symbol: str, comp: str = "") -> str:
