@@ -74,6 +74,7 @@ def write_index(rows: list[dict], out: Path, title: str = "mechreport batch") ->
     """OUT/index.md, index.pdf, index.csv and index.json: one row per spec (failed ones carry
     their message); the CSV and JSON are SI with the unit in each field name, for CI."""
     from ..version import __version__
+    from .index_doc import index_document
     from .model import build_time
 
     out = Path(out)
@@ -84,9 +85,9 @@ def write_index(rows: list[dict], out: Path, title: str = "mechreport batch") ->
              atomic_write_text(out / "index.json", json.dumps(
                  {"mechreport_version": __version__, "date": when, "specs": records},
                  indent=2, allow_nan=False) + "\n")]
-    ctx = dict(rows=rows, title=title, version=__version__, date=when)
-    files.append(atomic_write_text(out / "index.md", render("index.md.j2", **ctx)))
-    files.append(compile_typst(render("index.typ.j2", **ctx), out / "index.pdf", out))
+    doc = index_document(rows, title, __version__, when)
+    files.append(atomic_write_text(out / "index.md", doc.markdown()))
+    files.append(compile_typst(doc.typst(), out / "index.pdf", out))
     return files
 
 

@@ -2,7 +2,8 @@
 key) and problem.md / problem.pdf (statement, data, figures, what to find), beside the
 figures they show (figures/sheet-*.svg).
 
-Templates: ``templates/solution.{md,typ}.j2`` and ``templates/problem.{md,typ}.j2``, through
+The problem sheet is a document (:mod:`.problem_doc`) written by the document writers.
+Templates: ``templates/solution.{md,typ}.j2``, through
 the reports' one Jinja2 environment (:func:`mechreport.report.render.environment`) with the
 sheets' math filters: ``mtex`` / ``mtyp`` render an atom, expression or equation (or rich
 text: a list of strings and math) as LaTeX or Typst math."""
@@ -16,6 +17,7 @@ from ..pdf import compile_typst, typst_escape
 from ..render import environment
 from .expr import Equation, fmt, math, round_off
 from .model import SheetOptions, build_problem, build_sheet
+from .problem_doc import problem_document
 from .symbols import rich_label
 
 
@@ -62,13 +64,15 @@ def render_typst(model) -> str:
 
 
 def render_problem_markdown(model) -> str:
+    """problem.md of the :class:`.model.ProblemModel` ``model``."""
     with round_off(model.zero):
-        return _env().get_template("problem.md.j2").render(p=model)
+        return problem_document(model).markdown()
 
 
 def render_problem_typst(model) -> str:
+    """The Typst source of problem.pdf."""
     with round_off(model.zero):
-        return _env().get_template("problem.typ.j2").render(p=model)
+        return problem_document(model).typst()
 
 
 def write_sheet(analysis, outdir: Path, options: SheetOptions | None = None) -> list[Path]:

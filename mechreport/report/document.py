@@ -1,0 +1,241 @@
+"""The one document model of every human-readable output (the index, the study report, and in
+time the reports and the sheets): a :class:`Doc` is a title and a list of blocks (headings,
+paragraphs of inline runs, lists, tables, figures, equations, user Markdown, page breaks),
+written out by one writer per format (:mod:`.write_markdown`, :mod:`.write_typst`), so the
+formats say the same thing. The model holds text as given: each writer escapes it with its
+format's one escaper.
+
+Inline text (:data:`Inline`) is a string, a run, or a list of strings and runs; a string is
+plain text. Runs: :class:`Code`, :class:`Strong`, :class:`Emph`, :class:`Link`,
+:class:`Math` (a sheet's atom, expression or equation), :class:`Aside` (a cell's secondary
+line), :class:`Verdict` (a PASS / FAIL badge).
+
+Print-only hints (page setup, table rules and widths) are in :class:`Layout` and
+:class:`Print`: the text formats ignore them."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+# ----------------------------------------------------------------------------- inline runs
+
+
+@dataclass(frozen=True)
+class Code:
+    """Monospace text (a file name, a key)."""
+    text: str
+
+
+@dataclass(frozen=True)
+class Strong:
+    text: str
+
+
+@dataclass(frozen=True)
+class Emph:
+    text: str
+
+
+@dataclass(frozen=True)
+class Link:
+    """``text`` linking to the relative file ``target``."""
+    text: str
+    target: str
+
+
+@dataclass(frozen=True)
+class Math:
+    """Inline math: an atom, expression or equation of :mod:`.sheet.expr`, or a list of them."""
+    value: object
+
+
+@dataclass(frozen=True)
+class Aside:
+    """A table cell's secondary text (a name's file): after it in parentheses where lines
+    cannot break, on a small line of its own in print."""
+    text: str
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """A check's verdict (``PASS`` or ``FAIL``) as a badge, and what it says (may be empty):
+    ``PASS``, ``FAIL: detail``."""
+    status: str
+    detail: str = ""
+
+    @property
+    def passed(self) -> bool:
+        return self.status == "PASS"
+
+
+@dataclass(frozen=True)
+class Wording:
+    """The program's own wording (never user text) written as it stands in Markdown, where
+    the escaper would add backslashes it does not need (``points [m]``), and escaped in print."""
+    text: str
+
+
+Inline = object   # str | run | list[str | run]
+
+
+def rich(segments) -> list:
+    """A sheet's rich text (strings and math atoms) as inline runs."""
+    return [s if isinstance(s, str) else Math(s) for s in segments]
+
+
+def runs(inline) -> list:
+    """``inline`` as a list of strings and runs."""
+    if isinstance(inline, (list, tuple)) and not isinstance(inline, Math):
+        return list(inline)
+    return [inline]
+
+
+# ---------------------------------------------------------------------------------- blocks
+
+
+@dataclass(frozen=True)
+class Print:
+    """How print lays a table out (the text formats ignore it). ``widths``: the columns'
+    relative widths (``None``: as wide as their content); ``max_columns``: a wider table is
+    split into parts of that many columns that repeat the leading ``lead`` ones; ``wrap``:
+    header cells may break after dots and underscores (long key paths); ``inset_y``: the
+    cells' vertical padding (pt); ``grid``: ruled cells (a data sheet's table) rather than
+    rules above and below and shaded rows; ``size``: its text size (pt)."""
+    widths: tuple | None = None
+    max_columns: int | None = None
+    lead: int = 1
+    wrap: bool = False
+    inset_y: float = 2.5
+    grid: bool = False
+    size: float | None = None
+    right: frozenset | None = None
+
+
+@dataclass
+class Cell:
+    """A table cell that spans ``span`` columns in print; where cells cannot span, ``span - 1``
+    cells of ``fill`` come first."""
+    text: object
+    span: int = 1
+    fill: str = "—"
+
+
+@dataclass
+class Heading:
+    text: object
+    level: int = 2
+
+
+@dataclass
+class Paragraph:
+    text: object
+
+
+@dataclass
+class Items:
+    """A bullet list (or a numbered one) of inline texts; ``intro``: the line that introduces
+    it (``Loads:``), kept close above it in print."""
+    items: list
+    ordered: bool = False
+    intro: object = None
+
+
+@dataclass
+class Table:
+    """A table of inline cells (or :class:`Cell`) with a header; ``right``: the indices of the
+    right-aligned columns; ``note``: small text under it."""
+    header: list
+    rows: list
+    right: set = field(default_factory=set)
+    note: object = ""
+    print: Print = field(default_factory=Print)
+
+
+@dataclass
+class Figure:
+    """An image file (relative to the document) and its caption. ``alt``: the image's text
+    where it differs from the caption; ``caption_below``: the text formats, whose images show
+    no caption, repeat it under the image; ``width`` (a fraction of the line) or ``height``
+    (inches): its size in print."""
+    path: str
+    caption: object
+    alt: object = None
+    caption_below: bool = False
+    width: float = 1.0
+    height: float | None = None
+
+
+@dataclass
+class Description:
+    """Markdown written by the user (a spec's description: its text, or a list of its
+    paragraphs), kept as Markdown in Markdown and interpreted in print; never raw HTML."""
+    markdown: object
+
+    @property
+    def text(self) -> str:
+        m = self.markdown
+        return m if isinstance(m, str) else "\n\n".join(m)
+
+
+@dataclass(frozen=True)
+class Layout:
+    """The page in print (the text formats ignore it): A4, ``landscape`` or not, ``margin``
+    (cm: all sides; x and y; or x, top and bottom), the body ``size`` (pt), the
+    ``title_size`` (pt), the level-2 heading size (pt, ``None``: Typst's own), the spacing
+    around headings (em, ``None``: Typst's own), the ``leading`` of paragraphs (em, ``None``:
+    Typst's own); ``title_heading``: the title is a level-1 heading (a sheet's) rather than a
+    line of large bold text."""
+    landscape: bool = False
+    margin: tuple = (1.8, 1.8)
+    size: float = 9
+    title_size: float = 16
+    heading_size: float | None = 11.5
+    heading_space: tuple | None = (1.3, 0.7)
+    leading: float | None = None
+    title_heading: bool = False
+
+
+@dataclass
+class Doc:
+    """A document: its title and its blocks, built in order by the methods below."""
+    title: str
+    blocks: list = field(default_factory=list)
+    layout: Layout = field(default_factory=Layout)
+
+    def add(self, block) -> None:
+        self.blocks.append(block)
+
+    def h(self, text, level: int = 2) -> None:
+        self.add(Heading(text, level))
+
+    def p(self, *parts) -> None:
+        self.add(Paragraph(list(parts)))
+
+    def items(self, items: list, ordered: bool = False, intro=None) -> None:
+        self.add(Items(items, ordered, intro))
+
+    def table(self, header: list, rows: list, right=frozenset(), note="",
+              print: Print | None = None) -> None:
+        self.add(Table(header, rows, set(right), note, print or Print()))
+
+    def image(self, path: str, caption, height: float | None = None, **how) -> None:
+        self.add(Figure(path, caption, height=height, **how))
+
+    def markdown(self) -> str:
+        """The document as Markdown."""
+        from .write_markdown import markdown
+        return markdown(self)
+
+    def typst(self) -> str:
+        """The document as Typst source."""
+        from .write_typst import typst
+        return typst(self)
+
+
+@dataclass(frozen=True)
+class Either:
+    """Where the formats say a thing differently on purpose: ``text`` in the text formats
+    (Markdown, HTML), ``print`` in print (the PDF); each an inline text (may be empty). Kept
+    for the few places a PDF leaves out what only a file browser can use (links to Markdown
+    and CSV files)."""
+    text: object
+    print: object

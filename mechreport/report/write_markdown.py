@@ -1,0 +1,106 @@
+"""The Markdown writer of a :class:`~.document.Doc`: GitHub Markdown, user text escaped by the
+one Markdown escaper (:func:`.markdown.md_inline`; a user's own Markdown by
+:func:`.markdown.md_text`, link targets by :func:`.markdown.md_url`), math as TeX between
+dollars. Each block ends with a blank line; the file ends with one line break."""
+from __future__ import annotations
+
+from . import document as d
+from .markdown import md_inline, md_text, md_url
+
+
+def markdown(doc: d.Doc) -> str:
+    """``doc`` as Markdown."""
+    out = [f"# {_trim(doc.title)}\n\n"]
+    out.extend(block(b) for b in doc.blocks)
+    return "".join(out).rstrip() + "\n"
+
+
+def block(b) -> str:
+    """One block, with the blank line after it."""
+    if isinstance(b, d.Heading):
+        return "#" * b.level + " " + _trim(b.text) + "\n\n"
+    if isinstance(b, d.Paragraph):
+        return inline(b.text) + "\n\n"
+    if isinstance(b, d.Items):
+        intro = inline(b.intro) + "\n\n" if b.intro is not None else ""
+        return intro + "".join((f"{i}. " if b.ordered else "- ") + inline(item) + "\n"
+                               for i, item in enumerate(b.items, 1)) + "\n"
+    if isinstance(b, d.Table):
+        return _table(b)
+    if isinstance(b, d.Figure):
+        alt = _trim(b.caption if b.alt is None else b.alt)
+        text = f"![{alt}]({md_url(b.path)})\n\n"
+        return text + (f"*{_trim(b.caption)}*\n\n" if b.caption_below else "")
+    if isinstance(b, d.Description):
+        return md_text(b.text) + "\n\n"
+    raise TypeError(f"no Markdown for the block {b!r}")
+
+
+def _table(t: d.Table) -> str:
+    lines = ["| " + " | ".join(_trim(h) for h in t.header) + " |",
+             "|" + "".join("---:|" if i in t.right else "---|" for i in range(len(t.header)))]
+    lines += ["| " + " | ".join(_cells(row)) + " |" for row in t.rows]
+    text = "\n".join(lines) + "\n\n"
+    return text + (_trim(t.note) + "\n\n" if t.note else "")
+
+
+def _cells(row) -> list[str]:
+    """A row's cells; a spanning cell as its filler cells, then its text."""
+    out = []
+    for cell in row:
+        if isinstance(cell, d.Cell):
+            out += [_trim(cell.fill)] * (cell.span - 1) + [_trim(cell.text)]
+        else:
+            out.append(_trim(cell))
+    return out
+
+
+def inline(text) -> str:
+    """Inline text (a string, a run or a list of them) as Markdown."""
+    return "".join(_run(r) for r in d.runs(text))
+
+
+def _trim(text) -> str:
+    """Inline text where it stands alone (a heading, a table cell, a caption, a note): without
+    blanks at either end."""
+    return inline(text).strip()
+
+
+def _run(r) -> str:
+    if isinstance(r, str):
+        return _plain(r)
+    if isinstance(r, d.Code):
+        return f"`{_code(r.text)}`"
+    if isinstance(r, d.Strong):
+        return f"**{md_inline(r.text)}**"
+    if isinstance(r, d.Emph):
+        return f"*{md_inline(r.text)}*"
+    if isinstance(r, d.Link):
+        return f"[{md_inline(r.text)}]({md_url(r.target)})"
+    if isinstance(r, d.Math):
+        from .sheet.expr import math
+        return "$" + math(r.value, "tex") + "$"
+    if isinstance(r, d.Aside):
+        return f" ({md_inline(r.text)})"
+    if isinstance(r, d.Verdict):
+        return md_inline(r.status) + (f": {md_inline(r.detail)}" if r.detail else "")
+    if isinstance(r, d.Wording):
+        return r.text
+    if isinstance(r, d.Either):
+        return inline(r.text)
+    raise TypeError(f"no Markdown for the inline run {r!r}")
+
+
+def _plain(text: str) -> str:
+    """Plain text, escaped; one blank kept at either end where it has one (the escaper trims,
+    but text next to a run needs its space)."""
+    text = str(text)
+    core = md_inline(text)
+    lead = " " if text[:1].isspace() else ""
+    tail = " " if text[-1:].isspace() and core else ""
+    return lead + core + tail
+
+
+def _code(text: str) -> str:
+    """Text for a code span: backticks and line breaks cannot end it early."""
+    return " ".join(str(text).replace("`", "'").split())

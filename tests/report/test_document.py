@@ -1,0 +1,51 @@
+"""The one document model and its two writers: the same blocks in Markdown and in Typst, user
+text escaped by each format's escaper, print-only hints ignored by Markdown."""
+from __future__ import annotations
+
+from mechreport.report.document import (Aside, Cell, Code, Doc, Either, Figure, Layout, Link,
+                                        Print, Strong, Verdict, Wording)
+from mechreport.report.pdf import compile_typst
+
+HOSTILE = "*x* _y_ [l](u) #set $m$ <b> | `c` \\"
+
+
+def _doc() -> Doc:
+    doc = Doc(HOSTILE, layout=Layout(landscape=True))
+    doc.h(HOSTILE)
+    doc.p("plain ", Strong(HOSTILE), " and ", Code(HOSTILE), " ", Link(HOSTILE, "a b/r.pdf"))
+    doc.items([HOSTILE, [Strong("b"), " tail"]], intro="Intro:")
+    doc.items(["one", "two"], ordered=True)
+    doc.table(["name", "check", "value"],
+              [[[HOSTILE, Aside(HOSTILE)], Verdict("FAIL", HOSTILE), "1.5"],
+               ["x", Cell(HOSTILE, span=2)]], right={2}, note=HOSTILE,
+              print=Print(widths=(2, None, 1)))
+    doc.table(["a", "b"], [["1", "2"]], print=Print(grid=True))
+    doc.p(Either(Wording("[text]"), "print"))
+    doc.add(Figure("fig.svg", HOSTILE, alt="alt", caption_below=True))
+    return doc
+
+
+def test_markdown_escapes_user_text_and_keeps_the_blocks():
+    md = _doc().markdown()
+    assert md.startswith("# \\*x\\* \\_y\\_ \\[l\\](u) \\#set \\$m\\$ &lt;b&gt; \\| \\`c\\` \\\\\n\n")
+    assert "## \\*x\\*" in md
+    assert "[\\*x\\*" in md and "(a%20b/r.pdf)" in md
+    assert "Intro:\n\n- \\*x\\*" in md and "- **b** tail\n" in md
+    assert "1. one\n2. two\n" in md
+    assert "|---|---|---:|" in md
+    assert "(\\*x\\*" in md and "FAIL: \\*x\\*" in md
+    assert "| x | — | \\*x\\*" in md                  # a spanning cell: filler, then its text
+    assert "[text]" in md and "print" not in md
+    assert "![alt](fig.svg)\n\n*\\*x\\*" in md
+    assert md.endswith("\n") and not md.endswith("\n\n")
+
+
+def test_typst_escapes_user_text_and_compiles(tmp_path):
+    (tmp_path / "fig.svg").write_text('<svg xmlns="http://www.w3.org/2000/svg" width="10" '
+                                      'height="10"><rect width="10" height="10"/></svg>')
+    src = _doc().typst()
+    assert "flipped: true" in src
+    assert "== \\*x\\* \\_y\\_" in src
+    assert "table.cell(colspan: 2" in src and "columns: (2fr, auto, 1fr)" in src
+    assert "\\[text\\]" not in src and "print" in src
+    assert compile_typst(src, tmp_path / "d.pdf", tmp_path).stat().st_size > 1000
