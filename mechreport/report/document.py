@@ -70,8 +70,21 @@ class Verdict:
 @dataclass(frozen=True)
 class Wording:
     """The program's own wording (never user text) written as it stands in Markdown, where
-    the escaper would add backslashes it does not need (``points [m]``), and escaped in print."""
+    the escaper would add backslashes it does not need (``points [m]``), and escaped in print
+    but for its apostrophes (set as typographic ones, ``report’s``)."""
     text: str
+
+
+@dataclass(frozen=True)
+class Number:
+    """A number as the program wrote it (``-15925.1``, ``3.4 N``): print sets its leading
+    minus as a minus sign."""
+    text: str
+
+
+@dataclass(frozen=True)
+class NewLine:
+    """A line break inside a paragraph (a soft one in Markdown, a forced one in print)."""
 
 
 Inline = object   # str | run | list[str | run]
@@ -97,14 +110,14 @@ class Print:
     """How print lays a table out (the text formats ignore it). ``widths``: the columns'
     relative widths (``None``: as wide as their content); ``max_columns``: a wider table is
     split into parts of that many columns that repeat the leading ``lead`` ones; ``wrap``:
-    header cells may break after dots and underscores (long key paths); ``inset_y``: the
-    cells' vertical padding (pt); ``grid``: ruled cells (a data sheet's table) rather than
+    header cells may break after dots and underscores (long key paths); ``inset``: the
+    cells' padding (pt: vertical, 4 pt across, in a ruled table; all round in a grid); ``grid``: ruled cells (a data sheet's table) rather than
     rules above and below and shaded rows; ``size``: its text size (pt)."""
     widths: tuple | None = None
     max_columns: int | None = None
     lead: int = 1
     wrap: bool = False
-    inset_y: float = 2.5
+    inset: float = 2.5
     grid: bool = False
     size: float | None = None
     right: frozenset | None = None
@@ -127,7 +140,9 @@ class Heading:
 
 @dataclass
 class Paragraph:
+    """A paragraph of inline text; ``small``: in small print (a side note)."""
     text: object
+    small: bool = False
 
 
 @dataclass
@@ -137,6 +152,7 @@ class Items:
     items: list
     ordered: bool = False
     intro: object = None
+    small: bool = False
 
 
 @dataclass
@@ -165,6 +181,46 @@ class Figure:
 
 
 @dataclass
+class Figures:
+    """Figures side by side (``columns`` to a row in print; one line of images in Markdown)."""
+    figures: list
+    columns: int = 3
+
+
+@dataclass
+class Equation:
+    """Display math (an equation of :mod:`.sheet.expr`); with a ``number``, and with
+    ``numeric``, the same equation with the numbers put in, under it."""
+    value: object
+    number: int | None = None
+    numeric: object = None
+
+
+@dataclass
+class Found:
+    """What a derivation found, set off as a result: ``label`` (``(1)–(3) give``; in print
+    only where ``print_label``), the ``items`` (inline texts, separated by commas) and
+    ``more`` (further statements, separated by semicolons); ``gap``: the space print adds
+    after each comma (em)."""
+    label: object
+    items: list
+    more: list = field(default_factory=list)
+    print_label: bool = True
+    gap: float = 0.5
+
+
+@dataclass
+class Columns:
+    """Tables side by side in print, one after the other in the text formats."""
+    blocks: list
+
+
+@dataclass
+class Gap:
+    """An empty line in the text formats (kept where the Markdown has always had one)."""
+
+
+@dataclass
 class Description:
     """Markdown written by the user (a spec's description: its text, or a list of its
     paragraphs), kept as Markdown in Markdown and interpreted in print; never raw HTML."""
@@ -180,18 +236,21 @@ class Description:
 class Layout:
     """The page in print (the text formats ignore it): A4, ``landscape`` or not, ``margin``
     (cm: all sides; x and y; or x, top and bottom), the body ``size`` (pt), the
-    ``title_size`` (pt), the level-2 heading size (pt, ``None``: Typst's own), the spacing
-    around headings (em, ``None``: Typst's own), the ``leading`` of paragraphs (em, ``None``:
-    Typst's own); ``title_heading``: the title is a level-1 heading (a sheet's) rather than a
-    line of large bold text."""
+    ``title_size`` (pt), ``heading_sizes`` ((level, pt) pairs), the spacing around headings
+    (em, ``None``: Typst's own), the ``leading`` of paragraphs and the ``spacing`` between
+    them (em, ``None``: Typst's own); ``title_heading``: the title is a level-1 heading (a
+    sheet's) rather than a line of large bold text; ``equations_left``: display equations
+    flush left, tight and breakable (a sheet's derivations)."""
     landscape: bool = False
     margin: tuple = (1.8, 1.8)
     size: float = 9
     title_size: float = 16
-    heading_size: float | None = 11.5
+    heading_sizes: tuple = ((2, 11.5),)
     heading_space: tuple | None = (1.3, 0.7)
     leading: float | None = None
+    spacing: float | None = None
     title_heading: bool = False
+    equations_left: bool = False
 
 
 @dataclass
@@ -200,6 +259,7 @@ class Doc:
     title: str
     blocks: list = field(default_factory=list)
     layout: Layout = field(default_factory=Layout)
+    end_blank: bool = False     # Markdown: end with an empty line (the sheets always have)
 
     def add(self, block) -> None:
         self.blocks.append(block)

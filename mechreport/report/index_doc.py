@@ -8,7 +8,7 @@ from .document import Aside, Cell, Code, Doc, Either, Layout, Link, Print, Verdi
 HEADER = ["spec", "check", "design verdicts", "peak driver torque/force", "RMS torque/force",
           "largest bearing load", "mean power", "worst disagreement", "report"]
 #: a landscape page of small text: the index is one wide table
-LAYOUT = Layout(landscape=True, margin=(1.5,), size=8.5, heading_size=None, heading_space=None)
+LAYOUT = Layout(landscape=True, margin=(1.5,), size=8.5, heading_sizes=(), heading_space=None)
 #: the columns' relative widths in print (None: as wide as the content)
 WIDTHS = (2, None, 1.2, 1.3, None, 1.5, None, 1.4, 1.2)
 
@@ -23,7 +23,7 @@ def index_document(rows: list[dict], title: str, version: str, date: str) -> Doc
           Either([" Machine-readable: ", Link("index.csv", "index.csv"), ", ",
                   Link("index.json", "index.json"), "."], ""))
     doc.table(HEADER, [_row(r) if r["ok"] else _failure(r) for r in rows], right={3, 4, 6, 7},
-              print=Print(widths=WIDTHS, inset_y=3, right=frozenset({3, 4, 6})))
+              print=Print(widths=WIDTHS, inset=3, right=frozenset({3, 4, 6})))
     return doc
 
 

@@ -12,7 +12,8 @@ def markdown(doc: d.Doc) -> str:
     """``doc`` as Markdown."""
     out = [f"# {_trim(doc.title)}\n\n"]
     out.extend(block(b) for b in doc.blocks)
-    return "".join(out).rstrip() + "\n"
+    text = "".join(out)
+    return text if doc.end_blank else text.rstrip() + "\n"
 
 
 def block(b) -> str:
@@ -31,6 +32,24 @@ def block(b) -> str:
         alt = _trim(b.caption if b.alt is None else b.alt)
         text = f"![{alt}]({md_url(b.path)})\n\n"
         return text + (f"*{_trim(b.caption)}*\n\n" if b.caption_below else "")
+    if isinstance(b, d.Figures):
+        return "".join(f"![{_trim(f.caption if f.alt is None else f.alt)}]({md_url(f.path)}) "
+                       for f in b.figures) + "\n\n"
+    if isinstance(b, d.Equation):
+        from .sheet.expr import math
+        tag = f" \\tag{{{b.number}}}" if b.number is not None else ""
+        text = f"$${math(b.value, 'tex')}{tag}$$\n\n"
+        if b.numeric is not None:
+            text += f"$$\\Rightarrow\\quad {math(b.numeric, 'tex')}$$\n\n"
+        return text
+    if isinstance(b, d.Found):
+        label = f"**{_trim(b.label)}** " if b.label else ""
+        return (label + ", ".join(inline(i) for i in b.items)
+                + "".join("; " + inline(m) for m in b.more) + "\n\n")
+    if isinstance(b, d.Columns):
+        return "".join(block(x) for x in b.blocks)
+    if isinstance(b, d.Gap):
+        return "\n"
     if isinstance(b, d.Description):
         return md_text(b.text) + "\n\n"
     raise TypeError(f"no Markdown for the block {b!r}")
@@ -84,6 +103,10 @@ def _run(r) -> str:
         return f" ({md_inline(r.text)})"
     if isinstance(r, d.Verdict):
         return md_inline(r.status) + (f": {md_inline(r.detail)}" if r.detail else "")
+    if isinstance(r, d.Number):
+        return md_inline(r.text)
+    if isinstance(r, d.NewLine):
+        return "\n"
     if isinstance(r, d.Wording):
         return r.text
     if isinstance(r, d.Either):

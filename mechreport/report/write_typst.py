@@ -4,6 +4,8 @@ Typst escaper (:func:`.pdf.typst_escape` in markup, :func:`.pdf.typst_string` as
 a user's own Markdown through :func:`.pdf.typst_markdown`), math as Typst math."""
 from __future__ import annotations
 
+import re
+
 from . import document as d
 from .pdf import typst_escape, typst_markdown, typst_string
 
@@ -24,20 +26,37 @@ def _preamble(doc: d.Doc) -> str:
               f"(x: {m[0]}, top: {m[1]}, bottom: {m[2]})")
     flipped = "flipped: true, " if lay.landscape else ""
     leading = f", leading: {_n(lay.leading)}em" if lay.leading is not None else ""
+    leading += f", spacing: {_n(lay.spacing)}em" if lay.spacing is not None else ""
     lines = [f"#set document(title: {typst_string(doc.title)}, date: none)",
              f'#set page(paper: "a4", {flipped}margin: {margin}, numbering: "1 / 1")',
              f"#set text(size: {_n(lay.size)}pt)",
              f"#set par(justify: false{leading})"]
     if lay.title_heading:
         lines.append(f"#show heading.where(level: 1): set text(size: {_n(lay.title_size)}pt)")
-    if lay.heading_size is not None:
-        lines.append(f"#show heading.where(level: 2): set text(size: {_n(lay.heading_size)}pt)")
+    for level, size in lay.heading_sizes:
+        lines.append(f"#show heading.where(level: {level}): set text(size: {_n(size)}pt)")
     if lay.heading_space is not None:
         above, below = lay.heading_space
         lines.append(f"#show heading: set block(above: {_n(above)}em, below: {_n(below)}em)")
+    if lay.equations_left:
+        lines += ["#show math.equation.where(block: true): set block(above: 0.25em, "
+                  "below: 0.25em, breakable: true)",
+                  "#show math.equation.where(block: true): set align(left)"]
+    lines.append(HELPERS)
     title = (f"= {typst_escape(doc.title)}" if lay.title_heading else
              f'#text(size: {_n(lay.title_size)}pt, weight: "bold", {typst_string(doc.title)})')
     return "\n".join(lines) + "\n\n" + title + "\n\n"
+
+
+#: a numbered equation with its numbers under it; a result set off on a grey ground
+HELPERS = """#let eqn(n, sym, num) = block(breakable: false, above: 0.45em, below: 0.45em, grid(
+  columns: (1fr, 2.6em), column-gutter: 4pt, row-gutter: 1pt,
+  pad(left: 0.6em, sym), align(right + horizon, text(fill: luma(90))[(#n)]),
+  pad(left: 1.6em, num), []))
+#let found(body) = block(above: 0.5em, below: 0.7em, fill: luma(242), inset: (x: 6pt, y: 4pt),
+  radius: 2pt, width: 100%, body)"""
+_MINUS = re.compile(r"-\d")   # a negative number's sign
+SMALL = 8   # pt: side notes, a sheet's tables
 
 
 def block(b, layout: d.Layout) -> str:
@@ -45,17 +64,43 @@ def block(b, layout: d.Layout) -> str:
     if isinstance(b, d.Heading):
         return "=" * b.level + " " + inline(b.text) + "\n\n"
     if isinstance(b, d.Paragraph):
+        if b.small:
+            return f"#text(size: {SMALL}pt)[{inline(b.text)}]\n\n"
         return inline(b.text) + "\n\n"
     if isinstance(b, d.Items):
         mark = "+ " if b.ordered else "- "
         intro = inline(b.intro) + "\n" if b.intro is not None else ""
-        return intro + "".join(mark + inline(item) + "\n" for item in b.items) + "\n"
+        text = "".join(mark + inline(item) + "\n" for item in b.items)
+        if b.small:
+            text = f"#text(size: {SMALL}pt)[\n{text}]\n"
+        return intro + text + "\n"
     if isinstance(b, d.Table):
-        return _grid(b) if b.print.grid else _table(b)
+        return "#" + _grid(b) + "\n\n" if b.print.grid else _table(b)
     if isinstance(b, d.Figure):
         size = f"height: {_n(b.height)}in" if b.height else f"width: {_n(b.width * 100)}%"
         return (f"#figure(image({typst_string(b.path)}, {size}), "
                 f"caption: [{inline(b.caption)}])\n\n")
+    if isinstance(b, d.Figures):
+        return (f"#grid(columns: {b.columns}, column-gutter: 8pt, row-gutter: 6pt,\n"
+                + "".join(f"  figure(image({typst_string(f.path)}, width: 100%), caption: "
+                          f"[{inline(f.caption)}], supplement: none, numbering: none),\n"
+                          for f in b.figures) + ")\n\n")
+    if isinstance(b, d.Equation):
+        from .sheet.expr import math
+        if b.number is None:
+            return f"$ {math(b.value, 'typ')} $\n\n"
+        return (f"#eqn({b.number}, $ {math(b.value, 'typ')} $, "
+                f"$ {math(b.numeric, 'typ')} $)\n\n")
+    if isinstance(b, d.Found):
+        label = inline(b.label) + " #h(0.4em) " if b.label and b.print_label else ""
+        return ("#found[" + label + f", #h({_n(b.gap)}em) ".join(inline(i) for i in b.items)
+                + "".join("; #h(0.3em) " + inline(m) for m in b.more) + "]\n\n")
+    if isinstance(b, d.Columns):
+        return ("#grid(columns: (" + ", ".join("auto" for _ in b.blocks)
+                + "), column-gutter: 10pt,\n" + ",\n".join(_grid(x) for x in b.blocks)
+                + ")\n\n")
+    if isinstance(b, d.Gap):
+        return ""
     if isinstance(b, d.Description):
         return typst_markdown(b.text) + "\n\n"
     raise TypeError(f"no Typst for the block {b!r}")
@@ -82,7 +127,7 @@ def _table(t: d.Table) -> str:
                          for i in cols)
         lines = ["#block(breakable: true, table(",
                  f"  columns: {columns}, align: ({align}), stroke: none,",
-                 f"  inset: (x: 4pt, y: {_n(pr.inset_y)}pt),",
+                 f"  inset: (x: 4pt, y: {_n(pr.inset)}pt),",
                  "  fill: (_, y) => if y > 0 and calc.even(y) { luma(244) },",
                  "  table.hline(stroke: 0.8pt),",
                  f"  table.header({head}),",
@@ -97,18 +142,19 @@ def _table(t: d.Table) -> str:
 
 
 def _grid(t: d.Table) -> str:
-    """A table of ruled cells, its header in bold."""
+    """A table of ruled cells, its header in bold (a code expression)."""
     pr = t.print
-    align = ", ".join("right" if i in t.right else "left" for i in range(len(t.header)))
-    lines = [f"#text(size: {_n(pr.size or 8.5)}pt, table(stroke: 0.4pt + luma(170), "
-             f"inset: 3.5pt, columns: {len(t.header)}, align: ({align}),",
+    right = t.right if pr.right is None else pr.right
+    align = ", ".join("right" if i in right else "left" for i in range(len(t.header)))
+    lines = [f"text(size: {_n(pr.size or SMALL)}pt, table(stroke: 0.4pt + luma(170), "
+             f"inset: {_n(pr.inset)}pt, columns: {len(t.header)}, align: ({align}),",
              "  " + ", ".join(f"[#strong[{inline(h)}]]" for h in t.header) + ","]
     cols = range(len(t.header))
     lines += ["  " + ", ".join(_cell(row, cols)) + "," for row in t.rows]
-    out = "\n".join(lines) + "\n))\n"
+    out = "\n".join(lines) + "\n))"
     if t.note:
-        out += f"#text(size: 8pt)[{inline(t.note)}]\n"
-    return out + "\n"
+        out += f"\n#text(size: {SMALL}pt)[{inline(t.note)}]"
+    return out
 
 
 def _cell(row, cols) -> list[str]:
@@ -161,8 +207,15 @@ def _run(r) -> str:
         colour = PASS_COLOUR if r.passed else FAIL_COLOUR
         badge = f'#text(fill: rgb("{colour}"), weight: "bold", {typst_string(r.status)})'
         return badge + (f" #text(size: 7pt, {typst_string(r.detail)})" if r.detail else "")
-    if isinstance(r, d.Wording):
-        return typst_escape(r.text)
+    if isinstance(r, d.Number):
+        text = str(r.text)
+        if _MINUS.match(text):                  # markup sets "-1" with a minus sign
+            return "-" + typst_escape(text[1:])
+        return typst_escape(text)
+    if isinstance(r, d.NewLine):
+        return "\n\\ "
+    if isinstance(r, d.Wording):              # its apostrophes typeset as such (’)
+        return typst_escape(r.text).replace("\\'", "'")
     if isinstance(r, d.Either):
         return inline(r.print)
     raise TypeError(f"no Typst for the inline run {r!r}")

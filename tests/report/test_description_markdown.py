@@ -165,13 +165,9 @@ def test_description_markdown_maps_to_typst_markup_per_token(markdown, typst):
     assert typst_markdown(markdown) == typst
 
 
-def test_a_sheet_rendered_first_leaves_the_reports_description_rendering_alone(report):
-    """The sheets' template environment is the reports' one, with the sheets' filters added
-    (among them their own ``desc_typ``): after a sheet, report.typ still renders the
-    description's Markdown with the report's filter."""
-    from mechreport.report.sheet import render as sheet_render
-
-    sheet_render._env()                    # what rendering any sheet does first
+def test_the_reports_description_is_rendered_as_typst_markup(report):
+    """report.typ renders the description's Markdown as Typst markup (the sheets, documents
+    of their own, add nothing to the reports' template environment)."""
     assert "#emph[Dynamic Force Analysis]" in typst_source(report[0])
 
 

@@ -3,16 +3,15 @@
 computed result: only what the spec gives (a :class:`.model.ProblemModel`)."""
 from __future__ import annotations
 
-from ..document import Description, Doc, Either, Figure, Layout, Math, Paragraph, Print, \
-    Wording, rich
+from ..document import Description, Doc, Either, Figure, Layout, Math, Print, Wording, rich
 from .expr import Raw
 from .symbols import rich_label
 
 #: a sheet's page: 10 pt text, its title a heading
-LAYOUT = Layout(margin=(1.8, 1.8, 2), size=10, title_size=15, heading_size=12,
+LAYOUT = Layout(margin=(1.8, 1.8, 2), size=10, title_size=15, heading_sizes=((2, 12),),
                 heading_space=None, leading=0.6, title_heading=True)
 #: the data tables: ruled cells in small text
-DATA = Print(grid=True, size=8.5)
+DATA = Print(grid=True, size=8.5, inset=3.5)
 
 
 def _sym(name: str) -> Math:
