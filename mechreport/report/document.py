@@ -126,10 +126,11 @@ class Print:
 @dataclass
 class Cell:
     """A table cell that spans ``span`` columns in print; where cells cannot span, ``span - 1``
-    cells of ``fill`` come first."""
+    cells of ``fill`` come first. ``small``: in small print (a long message)."""
     text: object
     span: int = 1
     fill: str = "—"
+    small: bool = False
 
 
 @dataclass

@@ -51,4 +51,4 @@ def _links(r: dict) -> list:
 
 def _failure(r: dict) -> list:
     return [Either(r["spec"], Code(r["spec"])), Verdict("FAIL", "could not be built"),
-            Cell(r["message"], span=7)]
+            Cell(r["message"], span=7, small=True)]

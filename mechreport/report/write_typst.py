@@ -163,7 +163,9 @@ def _cell(row, cols) -> list[str]:
     for cell in row:
         if isinstance(cell, d.Cell):
             if col in cols:
-                out.append(f"table.cell(colspan: {cell.span}, [{inline(cell.text)}])")
+                text = inline(cell.text)
+                text = f"#text(size: {SMALL}pt)[{text}]" if cell.small else text
+                out.append(f"table.cell(colspan: {cell.span}, [{text}])")
             col += cell.span
         else:
             if col in cols:

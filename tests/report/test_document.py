@@ -49,3 +49,31 @@ def test_typst_escapes_user_text_and_compiles(tmp_path):
     assert "table.cell(colspan: 2" in src and "columns: (2fr, auto, 1fr)" in src
     assert "\\[text\\]" not in src and "print" in src
     assert compile_typst(src, tmp_path / "d.pdf", tmp_path).stat().st_size > 1000
+
+
+def test_sheet_blocks_in_both_formats():
+    from mechreport.report.document import (Columns, Equation, Figures, Found, Gap, Math,
+                                            NewLine, Number, Paragraph, Table)
+    from mechreport.report.sheet.expr import Raw
+
+    x = Raw(r"\alpha_{1}", "alpha_1", "alpha1")
+    doc = Doc("Sheet", end_blank=True)
+    doc.p("the report's ", Wording("the report's"), " ", Number("-1.5"), NewLine(), Math(x))
+    doc.add(Equation(x, 3, x))
+    doc.add(Found("(3) gives", [Math(x), Math(x)], [["more ", Math(x)]]))
+    doc.add(Columns([Table(["a"], [["1"]], print=Print(grid=True))] * 2))
+    doc.add(Figures([Figure("a.svg", "A"), Figure("b.svg", "B")]))
+    doc.add(Paragraph("small", small=True))
+    doc.add(Gap())
+    md, typ = doc.markdown(), doc.typst()
+    assert "the report's the report's -1.5\n$\\alpha_{1}$\n\n" in md
+    assert "$$\\alpha_{1} \\tag{3}$$\n\n$$\\Rightarrow\\quad \\alpha_{1}$$\n\n" in md
+    assert "**(3) gives** $\\alpha_{1}$, $\\alpha_{1}$; more $\\alpha_{1}$\n\n" in md
+    assert md.count("| a |\n|---|\n| 1 |\n\n") == 2
+    assert "![A](a.svg) ![B](b.svg) \n\n" in md
+    assert md.endswith("small\n\n\n")                       # end_blank and the Gap
+    assert "the report\\'s the report's -1\\.5\n\\ $alpha_1$" in typ   # a true minus
+    assert "#eqn(3, $ alpha_1 $, $ alpha_1 $)" in typ
+    assert "#found[\\(3\\) gives #h(0.4em) $alpha_1$, #h(0.5em) $alpha_1$; #h(0.3em) more" in typ
+    assert "#grid(columns: (auto, auto)" in typ and "#grid(columns: 3," in typ
+    assert "#text(size: 8pt)[small]" in typ
