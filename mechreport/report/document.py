@@ -84,7 +84,24 @@ class Number:
 
 @dataclass(frozen=True)
 class NewLine:
-    """A line break inside a paragraph (a soft one in Markdown, a forced one in print)."""
+    """A line break inside a paragraph (a soft one in Markdown, a forced one in print, or a
+    soft one there too where not ``hard``)."""
+    hard: bool = True
+
+
+@dataclass(frozen=True)
+class Key:
+    """A name to write in a spec (``cycle.torque.rms``) beside what it means: code, small
+    and grey in print."""
+    text: str
+
+
+@dataclass(frozen=True)
+class Ref:
+    """``text`` linking to a heading of this document (its Markdown ``anchor``); plain text
+    in print, which numbers its headings instead."""
+    text: str
+    anchor: str
 
 
 Inline = object   # str | run | list[str | run]
@@ -111,8 +128,11 @@ class Print:
     relative widths (``None``: as wide as their content); ``max_columns``: a wider table is
     split into parts of that many columns that repeat the leading ``lead`` ones; ``wrap``:
     header cells may break after dots and underscores (long key paths); ``inset``: the
-    cells' padding (pt: vertical, 4 pt across, in a ruled table; all round in a grid); ``grid``: ruled cells (a data sheet's table) rather than
-    rules above and below and shaded rows; ``size``: its text size (pt)."""
+    cells' padding (pt: vertical in a ruled table; all round in a grid), ``inset_x`` across
+    in a ruled table; ``grid``: ruled cells (a data sheet's table) rather than rules above
+    and below and shaded rows; ``size``: its text size (pt); ``right``: the right-aligned
+    columns in print where they differ from the table's; ``keep``: a table of up to 30 rows
+    is never split across pages (a longer one breaks between rows and repeats its header)."""
     widths: tuple | None = None
     max_columns: int | None = None
     lead: int = 1
@@ -121,6 +141,13 @@ class Print:
     grid: bool = False
     size: float | None = None
     right: frozenset | None = None
+    keep: bool = False
+    inset_x: float = 4
+
+
+@dataclass
+class Blank:
+    """An empty cell of a total row (one blank between the bars in Markdown)."""
 
 
 @dataclass
@@ -141,19 +168,28 @@ class Heading:
 
 @dataclass
 class Paragraph:
-    """A paragraph of inline text; ``small``: in small print (a side note)."""
+    """A paragraph of inline text; ``small``: in small print (a side note: ``True``, or its
+    size in pt)."""
     text: object
-    small: bool = False
+    small: object = False
+    tight: bool = False     # Markdown: no empty line after it (as the report has had)
 
 
 @dataclass
 class Items:
-    """A bullet list (or a numbered one) of inline texts; ``intro``: the line that introduces
-    it (``Loads:``), kept close above it in print."""
+    """A bullet list (or a numbered one) of inline texts (or :class:`Item`); ``intro``: the
+    line that introduces it (``Loads:``), kept close above it in print."""
     items: list
     ordered: bool = False
     intro: object = None
     small: bool = False
+
+
+@dataclass
+class Item:
+    """A list item with a list of its own (``sub``: inline texts)."""
+    text: object
+    sub: list = field(default_factory=list)
 
 
 @dataclass
@@ -165,6 +201,7 @@ class Table:
     right: set = field(default_factory=set)
     note: object = ""
     print: Print = field(default_factory=Print)
+    header_blank: bool = False    # Markdown: the header row ends with a blank (as it has)
 
 
 @dataclass
@@ -179,6 +216,37 @@ class Figure:
     caption_below: bool = False
     width: float = 1.0
     height: float | None = None
+
+
+@dataclass
+class Only:
+    """Blocks for print only (``print``) or for the text formats only: where a PDF and a
+    Markdown file serve their readers differently (a contents list of links, an animation
+    shown as frames)."""
+    blocks: list
+    print: bool
+
+
+@dataclass
+class Space:
+    """Vertical space before a block in print (em); nothing in the text formats."""
+    em: float = 1
+
+
+@dataclass
+class Box:
+    """Blocks set off in a box in print, tinted by ``tone`` (``PASS``: green, else red); as
+    they are in the text formats."""
+    blocks: list
+    tone: str = "PASS"
+
+
+@dataclass
+class Pairs:
+    """Label and value rows (traceability): a table without a header in Markdown, a compact
+    grid in print; ``text_rows``: rows only the text formats show (links to sibling files)."""
+    rows: list
+    text_rows: list = field(default_factory=list)
 
 
 @dataclass
@@ -212,8 +280,12 @@ class Found:
 
 @dataclass
 class Columns:
-    """Tables side by side in print, one after the other in the text formats."""
+    """Columns side by side in print, one after the other in the text formats: each a block
+    or a list of blocks; ``widths``: their relative widths (``None``: as wide as their
+    content); ``gutter``: the space between them (pt)."""
     blocks: list
+    widths: tuple | None = None
+    gutter: float = 10
 
 
 @dataclass
@@ -228,9 +300,13 @@ class Description:
     markdown: object
 
     @property
-    def text(self) -> str:
+    def paragraphs(self) -> list[str]:
         m = self.markdown
-        return m if isinstance(m, str) else "\n\n".join(m)
+        return [m] if isinstance(m, str) else list(m)
+
+    @property
+    def text(self) -> str:
+        return "\n\n".join(self.paragraphs)
 
 
 @dataclass(frozen=True)
@@ -241,9 +317,21 @@ class Layout:
     (em, ``None``: Typst's own), the ``leading`` of paragraphs and the ``spacing`` between
     them (em, ``None``: Typst's own); ``title_heading``: the title is a level-1 heading (a
     sheet's) rather than a line of large bold text; ``equations_left``: display equations
-    flush left, tight and breakable (a sheet's derivations)."""
+    flush left, tight and breakable (a sheet's derivations); ``justify``: justified
+    paragraphs; ``numbered``: numbered headings (1.1); ``heading_shift``: print's heading
+    levels are Markdown's less this (a report's title is no heading in print);
+    ``level_spaces``: (print level, above, below) em; ``figures_whole``: figures never
+    split, small captions; ``title_center``: a centred title block (with the document's
+    subtitle and byline); ``header``: (left, right) text of the page header from page 2 on."""
     landscape: bool = False
     margin: tuple = (1.8, 1.8)
+    justify: bool = False
+    numbered: bool = False
+    heading_shift: int = 0
+    level_spaces: tuple = ()
+    figures_whole: bool = False
+    title_center: bool = False
+    header: tuple | None = None
     size: float = 9
     title_size: float = 16
     heading_sizes: tuple = ((2, 11.5),)
@@ -261,6 +349,9 @@ class Doc:
     blocks: list = field(default_factory=list)
     layout: Layout = field(default_factory=Layout)
     end_blank: bool = False     # Markdown: end with an empty line (the sheets always have)
+    subtitle: str = ""          # under the title (bold in Markdown)
+    byline: object = None       # print only: a line under the title (what and from where)
+    author: str = ""            # the PDF's metadata
 
     def add(self, block) -> None:
         self.blocks.append(block)

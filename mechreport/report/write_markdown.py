@@ -11,6 +11,8 @@ from .markdown import md_inline, md_text, md_url
 def markdown(doc: d.Doc) -> str:
     """``doc`` as Markdown."""
     out = [f"# {_trim(doc.title)}\n\n"]
+    if doc.subtitle:
+        out.append(f"**{_trim(doc.subtitle)}**\n\n")
     out.extend(block(b) for b in doc.blocks)
     text = "".join(out)
     return text if doc.end_blank else text.rstrip() + "\n"
@@ -21,16 +23,17 @@ def block(b) -> str:
     if isinstance(b, d.Heading):
         return "#" * b.level + " " + _trim(b.text) + "\n\n"
     if isinstance(b, d.Paragraph):
-        return inline(b.text) + "\n\n"
+        return inline(b.text) + ("\n" if b.tight else "\n\n")
     if isinstance(b, d.Items):
         intro = inline(b.intro) + "\n\n" if b.intro is not None else ""
-        return intro + "".join((f"{i}. " if b.ordered else "- ") + inline(item) + "\n"
+        return intro + "".join(_item(item, f"{i}. " if b.ordered else "- ")
                                for i, item in enumerate(b.items, 1)) + "\n"
     if isinstance(b, d.Table):
         return _table(b)
     if isinstance(b, d.Figure):
         alt = _trim(b.caption if b.alt is None else b.alt)
-        text = f"![{alt}]({md_url(b.path)})\n\n"
+        paths = b.path if isinstance(b.path, list) else [b.path]
+        text = "".join(f"![{alt}]({md_url(p)})\n\n" for p in paths)
         return text + (f"*{_trim(b.caption)}*\n\n" if b.caption_below else "")
     if isinstance(b, d.Figures):
         return "".join(f"![{_trim(f.caption if f.alt is None else f.alt)}]({md_url(f.path)}) "
@@ -47,27 +50,47 @@ def block(b) -> str:
         return (label + ", ".join(inline(i) for i in b.items)
                 + "".join("; " + inline(m) for m in b.more) + "\n\n")
     if isinstance(b, d.Columns):
-        return "".join(block(x) for x in b.blocks)
+        return "".join(block(x) for col in b.blocks
+                       for x in (col if isinstance(col, list) else [col]))
     if isinstance(b, d.Gap):
         return "\n"
     if isinstance(b, d.Description):
-        return md_text(b.text) + "\n\n"
+        return "".join(md_text(p) + "\n\n" for p in b.paragraphs)
+    if isinstance(b, d.Only):
+        return "" if b.print else "".join(block(x) for x in b.blocks)
+    if isinstance(b, d.Space):
+        return ""
+    if isinstance(b, d.Box):
+        return "".join(block(x) for x in b.blocks)
+    if isinstance(b, d.Pairs):
+        return ("| | |\n|---|---|\n" + "".join(f"| {_trim(k)} | {_trim(v)} |\n"
+                                                for k, v in [*b.rows, *b.text_rows]) + "\n")
     raise TypeError(f"no Markdown for the block {b!r}")
 
 
+def _item(item, mark: str) -> str:
+    if isinstance(item, d.Item):
+        return mark + inline(item.text) + "\n" + "".join(f"  - {inline(s)}\n" for s in item.sub)
+    return mark + inline(item) + "\n"
+
+
 def _table(t: d.Table) -> str:
-    lines = ["| " + " | ".join(_trim(h) for h in t.header) + " |",
+    lines = ["| " + " | ".join(_trim(h) for h in t.header) + " |" + (" " if t.header_blank else ""),
              "|" + "".join("---:|" if i in t.right else "---|" for i in range(len(t.header)))]
-    lines += ["| " + " | ".join(_cells(row)) + " |" for row in t.rows]
+    lines += ["|" + "|".join(" " if c is None else f" {c} " for c in _cells(row)) + "|"
+              for row in t.rows]
     text = "\n".join(lines) + "\n\n"
     return text + (_trim(t.note) + "\n\n" if t.note else "")
 
 
 def _cells(row) -> list[str]:
-    """A row's cells; a spanning cell as its filler cells, then its text."""
+    """A row's cells (None: a blank one); a spanning cell as its filler cells, then its
+    text."""
     out = []
     for cell in row:
-        if isinstance(cell, d.Cell):
+        if isinstance(cell, d.Blank):
+            out.append(None)
+        elif isinstance(cell, d.Cell):
             out += [_trim(cell.fill)] * (cell.span - 1) + [_trim(cell.text)]
         else:
             out.append(_trim(cell))
@@ -103,6 +126,10 @@ def _run(r) -> str:
         return f" ({md_inline(r.text)})"
     if isinstance(r, d.Verdict):
         return md_inline(r.status) + (f": {md_inline(r.detail)}" if r.detail else "")
+    if isinstance(r, d.Key):
+        return f"`{_code(r.text)}`"
+    if isinstance(r, d.Ref):
+        return f"[{md_inline(r.text)}](#{r.anchor})"
     if isinstance(r, d.Number):
         return md_inline(r.text)
     if isinstance(r, d.NewLine):

@@ -42,17 +42,17 @@ def report(tmp_path_factory):
 
 
 def typst_source(model, description=None) -> str:
-    from mechreport.report.render import render
+    from mechreport.report.render import report_markdown, report_typst
 
     if description is not None:
         model = dataclasses.replace(model, description=description)
-    return render("report.typ.j2", m=model)
+    return report_typst(model)
 
 
 def report_md(model, description) -> str:
-    from mechreport.report.render import render
+    from mechreport.report.render import report_markdown, report_typst
 
-    return render("report.md.j2", m=dataclasses.replace(model, description=description))
+    return report_markdown(dataclasses.replace(model, description=description))
 
 
 def pdf_text(report, description, tmp_path: Path) -> str:
