@@ -113,7 +113,7 @@ def test_html_in_a_description_is_not_interpreted(report, tmp_path):
                "<img src=\"figures/torque.svg\"> <a href=\"http://e.org\">link</a>"]
     source = typst_source(report[0], written)
     assert "#strong[\\<b\\>bold\\<\\/b\\>]" in source
-    assert "#image" not in source.split("= Design summary")[0].split("*Left out:*")[1]
+    assert "#image" not in source.split("= Design summary")[0].split("#strong[Left out\\:]")[1]
     text = pdf_text(report, written, tmp_path)
     assert "<b>bold</b> <script>alert(1)</script> <!-- note -->" in text
     assert "<div> x </div>" in text
