@@ -1,7 +1,8 @@
 """The Markdown writer of a :class:`~.document.Doc`: GitHub Markdown, user text escaped by the
 one Markdown escaper (:func:`.markdown.md_inline`; a user's own Markdown by
 :func:`.markdown.md_text`, link targets by :func:`.markdown.md_url`), math as TeX between
-dollars. Each block ends with a blank line; the file ends with one line break."""
+dollars. Each block ends with a blank line; the file ends with one line break (with an empty
+line after it where the document asks for one: the sheets)."""
 from __future__ import annotations
 
 from . import document as d
