@@ -1,17 +1,27 @@
-"""The one document model of every human-readable output (the index, the study report, and in
-time the reports and the sheets): a :class:`Doc` is a title and a list of blocks (headings,
-paragraphs of inline runs, lists, tables, figures, equations, user Markdown, page breaks),
-written out by one writer per format (:mod:`.write_markdown`, :mod:`.write_typst`), so the
-formats say the same thing. The model holds text as given: each writer escapes it with its
-format's one escaper.
+"""The one document model of every human-readable output: the report, the solution and
+problem sheets, the batch index and the study report are each a :class:`Doc` (a title and a
+list of blocks) built in Python from their models (:mod:`.report_doc`, :mod:`.sheet.solution_doc`,
+:mod:`.sheet.problem_doc`, :mod:`.index_doc`, :mod:`mechreport.study.report`) and written out
+by one writer per format (:mod:`.write_markdown`, :mod:`.write_typst`), so the formats say the
+same thing. The model holds text as given: each writer escapes it with its format's one
+escaper. A writer is a function of a document to a string that dispatches on the classes below.
 
-Inline text (:data:`Inline`) is a string, a run, or a list of strings and runs; a string is
-plain text. Runs: :class:`Code`, :class:`Strong`, :class:`Emph`, :class:`Link`,
-:class:`Math` (a sheet's atom, expression or equation), :class:`Aside` (a cell's secondary
-line), :class:`Verdict` (a PASS / FAIL badge).
+Inline text is a string (plain text), a run, or a list of strings and runs. Runs:
+:class:`Code`, :class:`Strong`, :class:`Emph`, :class:`Link`, :class:`Ref` (to a heading),
+:class:`Math` (a sheet's atom, expression or equation: TeX in Markdown, Typst math in print),
+:class:`Number`, :class:`Key` (a spec's quantity name), :class:`Aside` (a cell's secondary
+line), :class:`Verdict` (a PASS / FAIL badge), :class:`NewLine`, :class:`Wording` (the
+program's own words, written as they stand in Markdown).
+
+Blocks: :class:`Heading`, :class:`Paragraph`, :class:`Items` (with :class:`Item`),
+:class:`Table` (cells inline, :class:`Cell` spanning, :class:`Blank`), :class:`Figure`,
+:class:`Figures`, :class:`Equation`, :class:`Found`, :class:`Columns`, :class:`Box`,
+:class:`Pairs`, :class:`Description` (the user's Markdown), :class:`Space` and :class:`Gap`
+(vertical space in print, an empty line in Markdown). No PDF needs a forced page break.
 
 Print-only hints (page setup, table rules and widths) are in :class:`Layout` and
-:class:`Print`: the text formats ignore them."""
+:class:`Print`: the text formats ignore them. Where a PDF and a Markdown file say a thing
+differently on purpose, :class:`Either` (inline) and :class:`Only` (blocks) hold both."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field

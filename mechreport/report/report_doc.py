@@ -4,6 +4,8 @@ mechanism, each reference angle, the sweep, friction, machine dynamics, strength
 agreement and the left-out angles. It formats nothing: every string is the model's."""
 from __future__ import annotations
 
+from dataclasses import replace
+
 from .document import (Blank, Box, Code, Columns, Description, Doc, Either, Emph, Figure,
                        Gap, Heading, Item, Items, Key, Layout, Link, NewLine, Only, Pairs,
                        Paragraph, Print, Ref, Space, Strong, Table, Wording)
@@ -13,13 +15,8 @@ LAYOUT = Layout(margin=(1.8, 1.9, 1.8), size=10, title_size=17, heading_sizes=()
                 heading_space=None, justify=True, numbered=True, heading_shift=1,
                 level_spaces=((1, 1.3, 0.7), (2, 1.1, 0.6)), figures_whole=True,
                 title_center=True)
-#: the CYCLE_FIGURES of the design summary, in order (the balance one narrower)
+#: the design summary's figures of the cycle, in order (the balance one narrower)
 CYCLE_FIGURES = ("flywheel", "breakdown", "transmission", "balance")
-
-
-def data(size: float = 8, right=None) -> Print:
-    """A data table's print: small, kept whole up to 30 rows."""
-    return Print(keep=True, size=size, inset=2, right=right)
 
 
 def _u(label: str, unit: str) -> Wording:
@@ -28,7 +25,9 @@ def _u(label: str, unit: str) -> Wording:
 
 
 def _table(header, rows, right=frozenset(), size: float = 8, **how) -> Table:
-    return Table(header, rows, set(right), print=data(size), **how)
+    """A data table: small print (``size`` pt), kept whole up to 30 rows; ``right``: its
+    right-aligned columns."""
+    return Table(header, rows, set(right), print=Print(keep=True, size=size, inset=2), **how)
 
 
 def _first_left(header, rows, size: float = 8, **how) -> Table:
@@ -40,8 +39,8 @@ def report_document(m) -> Doc:
     """The report of the :class:`~.model.ReportModel` ``m``."""
     title = m.meta.title or m.name
     rev = f" · rev. {m.meta.revision}" if m.meta.revision else ""
-    layout = Layout(**{**LAYOUT.__dict__,
-                       "header": (f"{title}{rev}", f"mechreport {m.meta.version} · {m.meta.date}")})
+    layout = replace(LAYOUT, header=(f"{title}{rev}",
+                                      f"mechreport {m.meta.version} · {m.meta.date}"))
     doc = Doc(title, layout=layout, author=m.meta.author or "mechreport",
               subtitle=m.name if m.meta.title and m.meta.title != m.name else "",
               byline=["Dynamic force analysis report · source ", Code(m.source)])
