@@ -77,3 +77,31 @@ def test_sheet_blocks_in_both_formats():
     assert "#found[\\(3\\) gives #h(0.4em) $alpha_1$, #h(0.5em) $alpha_1$; #h(0.3em) more" in typ
     assert "#grid(columns: (auto, auto)" in typ and "#grid(columns: 3," in typ
     assert "#text(size: 8pt)[small]" in typ
+
+
+def test_report_blocks_in_both_formats():
+    from mechreport.report.document import (Blank, Box, Heading, Item, Items, Key, Only,
+                                            Pairs, Paragraph, Ref, Space, Table)
+
+    doc = Doc("Title", layout=Layout(title_center=True, numbered=True, heading_shift=1,
+                                     header=("left", "right")),
+              subtitle="sub", byline=["by ", Code("x.yaml")], author="me")
+    doc.add(Pairs([["Date", "today"]], text_rows=[["Source", Link("a.csv", "a.csv")]]))
+    doc.add(Box([Paragraph([Strong("Check:"), " PASS"])], "PASS"))
+    doc.add(Only([Heading("Contents"), Items([Ref("Design", "design")])], print=False))
+    doc.add(Space())
+    doc.h("Design")
+    doc.add(Table(["q", "name"], [[Blank(), Key("cycle.torque.rms")]], header_blank=True,
+                  print=Print(keep=True, size=7.5)))
+    doc.items([Item([Strong("Loads:")], ["one", "two"])])
+    md, typ = doc.markdown(), doc.typst()
+    assert md.startswith("# Title\n\n**sub**\n\n| | |\n|---|---|\n| Date | today |\n"
+                         "| Source | [a.csv](a.csv) |\n\n**Check:** PASS\n\n## Contents\n\n"
+                         "- [Design](#design)\n\n## Design\n\n| q | name | \n")
+    assert "| | `cycle.torque.rms` |\n" in md
+    assert "- **Loads:**\n  - one\n  - two\n" in md
+    assert "= Design" in typ and "== Contents" not in typ and "#v(1em)" in typ
+    assert 'author: "me"' in typ and '#set heading(numbering: "1.1")' in typ
+    assert "#align(center)[" in typ and "#raw(\"x.yaml\")" in typ
+    assert 'rgb("#e6f4e6")' in typ and "a.csv" not in typ
+    assert "#block(breakable: false)[\n#set text(size: 7.5pt)" in typ
