@@ -1,6 +1,6 @@
 """The one Markdown escaper for user text (spec, link, joint, point and load names, file
-paths, error messages) and the link-target encoder; every Markdown template uses them through
-the ``md``, ``md_text`` and ``url`` filters of :func:`mechreport.report.render.environment`.
+paths, error messages) and the link-target encoder; the Markdown writer of the documents
+(:mod:`mechreport.report.write_markdown`) uses them for every string it writes.
 
 ``md_inline`` makes a string plain inline text in CommonMark / GitHub Markdown, wherever a
 template puts it (a heading, a table cell, a list item, a paragraph):

@@ -1,52 +1,18 @@
 """Render a :class:`~mechreport.report.model.ReportModel` to report.md, report.pdf,
 results.csv and summary.json, and a batch's index; every file written atomically.
 
-Templates live in ``templates/`` (Jinja2); they format nothing but strings the model holds,
-and every string that can hold user text goes through an escaping filter (see
-:func:`environment`)."""
+report.md / report.pdf and index.md / index.pdf are documents (:mod:`.report_doc`,
+:mod:`.index_doc`: blocks of :mod:`.document`) written by the one Markdown and the one Typst
+writer, which escape every string that can hold user text."""
 from __future__ import annotations
 
 import csv
 import io
 import json
-from functools import lru_cache
 from pathlib import Path
 
-from .templating import loader
 from .files import atomic_write_text
-from .markdown import md_inline, md_text, md_url
-from .pdf import compile_typst, typst_escape, typst_markdown, typst_string
-
-
-@lru_cache(maxsize=1)
-def environment():
-    """The Jinja2 environment of the report and index templates. User text reaches a template
-    only through a filter: Markdown ``md`` (inline text: names, paths, messages), ``md_text``
-    (a spec's Markdown description: no raw HTML), ``url`` (link targets); Typst ``typ``
-    (markup text), ``ts`` (a string literal) and ``md_typ`` (a spec's Markdown description,
-    a string or a list of its paragraphs, as Typst markup: :func:`.pdf.typst_markdown`)."""
-    import jinja2
-    env = jinja2.Environment(loader=loader(),
-                             undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
-                             trim_blocks=True, lstrip_blocks=True, autoescape=False)
-    env.filters["typ"] = typst_escape
-    env.filters["ts"] = typst_string
-    env.filters["md_typ"] = _description_typst
-    env.filters["md"] = md_inline
-    env.filters["md_text"] = md_text
-    env.filters["url"] = md_url
-    return env
-
-
-def _description_typst(description) -> str:
-    """A description (its text, or the list of paragraphs a ReportModel holds) as Typst."""
-    if not isinstance(description, str):
-        description = "\n\n".join(description)
-    return typst_markdown(description)
-
-
-def render(template: str, **context) -> str:
-    return environment().get_template(template).render(**context)
+from .pdf import compile_typst
 
 
 def csv_text(header: list[str], rows: list[list[str]]) -> str:
@@ -57,6 +23,18 @@ def csv_text(header: list[str], rows: list[list[str]]) -> str:
     return buf.getvalue()
 
 
+def report_markdown(model) -> str:
+    """report.md of the :class:`~.model.ReportModel` ``model``."""
+    from .report_doc import report_document
+    return report_document(model).markdown()
+
+
+def report_typst(model) -> str:
+    """The Typst source of report.pdf."""
+    from .report_doc import report_document
+    return report_document(model).typst()
+
+
 def write_report(model, outdir: Path) -> list[Path]:
     """results.csv, summary.json, report.md and report.pdf of ``model`` in ``outdir``
     (figures must already be there: the PDF embeds them)."""
@@ -64,9 +42,8 @@ def write_report(model, outdir: Path) -> list[Path]:
     out = [atomic_write_text(outdir / "results.csv", csv_text(model.csv_header, model.csv_rows)),
            atomic_write_text(outdir / "summary.json",
                              json.dumps(model.summary, indent=2, allow_nan=False) + "\n"),
-           atomic_write_text(outdir / "report.md", render("report.md.j2", m=model))]
-    source = render("report.typ.j2", m=model)
-    out.append(compile_typst(source, outdir / "report.pdf", outdir))
+           atomic_write_text(outdir / "report.md", report_markdown(model))]
+    out.append(compile_typst(report_typst(model), outdir / "report.pdf", outdir))
     return out
 
 
@@ -74,6 +51,7 @@ def write_index(rows: list[dict], out: Path, title: str = "mechreport batch") ->
     """OUT/index.md, index.pdf, index.csv and index.json: one row per spec (failed ones carry
     their message); the CSV and JSON are SI with the unit in each field name, for CI."""
     from ..version import __version__
+    from .index_doc import index_document
     from .model import build_time
 
     out = Path(out)
@@ -84,9 +62,9 @@ def write_index(rows: list[dict], out: Path, title: str = "mechreport batch") ->
              atomic_write_text(out / "index.json", json.dumps(
                  {"mechreport_version": __version__, "date": when, "specs": records},
                  indent=2, allow_nan=False) + "\n")]
-    ctx = dict(rows=rows, title=title, version=__version__, date=when)
-    files.append(atomic_write_text(out / "index.md", render("index.md.j2", **ctx)))
-    files.append(compile_typst(render("index.typ.j2", **ctx), out / "index.pdf", out))
+    doc = index_document(rows, title, __version__, when)
+    files.append(atomic_write_text(out / "index.md", doc.markdown()))
+    files.append(compile_typst(doc.typst(), out / "index.pdf", out))
     return files
 
 

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..report.plots import styled
 from ..units import fmt
-from .document import Doc
+from ..report.document import Code, Doc, Print, Strong
 from .table import Table, badness, column_name, larger_is_better, quantity_unit, with_unit
 
 FIGURES = "study-figures"
@@ -294,20 +294,37 @@ def _sampling_text(run: StudyRun) -> str:
     return f"{what}, seed {study.seed}"
 
 
+class StudyDoc(Doc):
+    """The study report's document: its tables split into parts of at most
+    :data:`MAX_COLUMNS` columns in print (repeating rank and variant), their headers
+    breakable (long key paths); its figures' captions repeated under them in Markdown."""
+
+    def table(self, header, rows, right=frozenset(), note="", print=None) -> None:
+        lead = 2 if header[1:2] == ["variant"] else 1
+        super().table(header, rows, right, note,
+                      Print(max_columns=MAX_COLUMNS, lead=lead, wrap=True))
+
+    def image(self, path, caption, height=None, **how) -> None:
+        super().image(path, caption, height, caption_below=True, **how)
+
+
+MAX_COLUMNS = 8   # columns of a study table that fit a page side by side
+
+
 def build_document(run: StudyRun, figures: dict[str, str]) -> Doc:
     t, plan = run.table, run.plan
     spec = run.base.spec
     units = key_units(run.base)
-    doc = Doc(f"Design study: {spec.name}")
+    doc = StudyDoc(f"Design study: {spec.name}")
     ok, passing = t.ok, t.passing
     n_ok, n_pass = int(np.count_nonzero(ok)), int(np.count_nonzero(passing))
     n_failed = int(t.n - n_ok)
     from ..version import __version__
     sha = f" (SHA-256 {run.sha256[:16]}...)" if run.sha256 else ""
-    doc.p("Spec ", ("code", spec.file), f"{sha}; mechreport {__version__}",
+    doc.p("Spec ", Code(spec.file), f"{sha}; mechreport {__version__}",
           f"; {run.date}." if run.date else ".")
-    doc.p(("b", f"{t.n} variants"), f" ({_sampling_text(run)}), analysed by ",
-          ("b", METHOD_TITLES.get(run.method, run.method)), f" ({run.method}: {run.method_why})"
+    doc.p(Strong(f"{t.n} variants"), f" ({_sampling_text(run)}), analysed by ",
+          Strong(METHOD_TITLES.get(run.method, run.method)), f" ({run.method}: {run.method_why})"
           f" on {run.where}, in chunks of {run.chunk}, in {run.seconds:.1f} s. A study runs one "
           "force method for every variant; the full cross-check of all methods is for single "
           "reports (mechreport build), and --cross-check N re-runs N variants with every "
@@ -390,7 +407,7 @@ def _best_section(doc: Doc, run: StudyRun, units: dict[str, str]) -> None:
         picked, note = ranked[:BEST], ""
     else:
         best_any = t.ranked(t.ok)
-        doc.p(("b", "No variant passes the design review."),
+        doc.p(Strong("No variant passes the design review."),
               f" The {min(BEST, len(best_any))} best completed variants, ranked by "
               f"{t.keep[0]}, with the design items they fail:")
         picked, note = best_any[:BEST], "fails"
@@ -475,14 +492,14 @@ def _cross_section(doc: Doc, run: StudyRun) -> None:
 
 def _files_section(doc: Doc, run: StudyRun) -> None:
     doc.h("Files")
-    items = [[("code", "study.parquet"), ", ", ("code", "study.csv"),
+    items = [[Code("study.parquet"), ", ", Code("study.csv"),
               ": one row per variant: variant number, the varied values (spec units), the kept "
               "quantities (SI, the unit in each column name), design_pass, design_failed, "
               "status, reason."]]
     for rank, i, folder, message in run.reports:
         if folder:
             items.append([f"rank {rank}, variant {i + 1}: full report in ",
-                          ("code", f"{folder}/report.pdf")])
+                          Code(f"{folder}/report.pdf")])
         else:
             items.append([f"rank {rank}, variant {i + 1}: no report: {message}"])
     doc.items(items)

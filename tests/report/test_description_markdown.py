@@ -42,17 +42,17 @@ def report(tmp_path_factory):
 
 
 def typst_source(model, description=None) -> str:
-    from mechreport.report.render import render
+    from mechreport.report.render import report_markdown, report_typst
 
     if description is not None:
         model = dataclasses.replace(model, description=description)
-    return render("report.typ.j2", m=model)
+    return report_typst(model)
 
 
 def report_md(model, description) -> str:
-    from mechreport.report.render import render
+    from mechreport.report.render import report_markdown, report_typst
 
-    return render("report.md.j2", m=dataclasses.replace(model, description=description))
+    return report_markdown(dataclasses.replace(model, description=description))
 
 
 def pdf_text(report, description, tmp_path: Path) -> str:
@@ -113,7 +113,7 @@ def test_html_in_a_description_is_not_interpreted(report, tmp_path):
                "<img src=\"figures/torque.svg\"> <a href=\"http://e.org\">link</a>"]
     source = typst_source(report[0], written)
     assert "#strong[\\<b\\>bold\\<\\/b\\>]" in source
-    assert "#image" not in source.split("= Design summary")[0].split("*Left out:*")[1]
+    assert "#image" not in source.split("= Design summary")[0].split("#strong[Left out\\:]")[1]
     text = pdf_text(report, written, tmp_path)
     assert "<b>bold</b> <script>alert(1)</script> <!-- note -->" in text
     assert "<div> x </div>" in text
@@ -165,13 +165,9 @@ def test_description_markdown_maps_to_typst_markup_per_token(markdown, typst):
     assert typst_markdown(markdown) == typst
 
 
-def test_a_sheet_rendered_first_leaves_the_reports_description_rendering_alone(report):
-    """The sheets' template environment is the reports' one, with the sheets' filters added
-    (among them their own ``desc_typ``): after a sheet, report.typ still renders the
-    description's Markdown with the report's filter."""
-    from mechreport.report.sheet import render as sheet_render
-
-    sheet_render._env()                    # what rendering any sheet does first
+def test_the_reports_description_is_rendered_as_typst_markup(report):
+    """report.typ renders the description's Markdown as Typst markup (the sheets, documents
+    of their own, add nothing to the reports' template environment)."""
     assert "#emph[Dynamic Force Analysis]" in typst_source(report[0])
 
 

@@ -16,7 +16,7 @@ import pytest
 import mechreport
 from mechreport.report import plots
 from mechreport.report.model import build_model
-from mechreport.report.render import render
+from mechreport.report.render import report_markdown, report_typst
 from mechreport.report.sheet import build_problem, build_sheet, render_problem_markdown
 from mechreport.report.sheet.render import render_markdown, render_typst
 from test_figure_layout import layout_problems   # noqa: E402 - tests/report's layout check
@@ -67,7 +67,7 @@ def models(analyses):
 
 
 def markdown(model) -> str:
-    return render("report.md.j2", m=model)
+    return report_markdown(model)
 
 
 # ------------------------------------------------------------------------------ report
@@ -78,9 +78,9 @@ def test_the_friction_section_appears_only_with_friction(models):
     assert "## Friction" not in plain and "(#friction)" not in plain
     assert "## Friction" in with_friction and "- [Friction](#friction)" in with_friction
     assert "(figures/friction.svg)" in with_friction
-    typst = render("report.typ.j2", m=models["friction"])
+    typst = report_typst(models["friction"])
     assert "= Friction" in typst and "figures/friction.svg" in typst
-    assert "= Friction" not in render("report.typ.j2", m=models["plain"])
+    assert "= Friction" not in report_typst(models["plain"])
     for text in (plain, with_friction, typst):
         assert "nan" not in text.lower()
 

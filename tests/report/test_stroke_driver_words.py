@@ -9,7 +9,7 @@ import mechreport
 from mechreport.app.cli import main
 from mechreport.report.check_text import problems
 from mechreport.report.model import build_model
-from mechreport.report.render import render
+from mechreport.report.render import report_markdown, report_typst
 
 ROOT = Path(__file__).resolve().parents[2]
 BOOM = ROOT / "specs" / "hydraulic_boom.yaml"
@@ -21,7 +21,7 @@ def _anchor(heading: str) -> str:
 
 
 def test_report_headings_say_stroke_and_every_contents_link_has_its_heading():
-    md = render("report.md.j2", m=build_model(mechreport.analyse(BOOM)))
+    md = report_markdown(build_model(mechreport.analyse(BOOM)))
     assert "## Stroke 300 mm" in md and "Crank angle" not in md
     headings = {_anchor(h) for h in re.findall(r"^#+ (.+)$", md, flags=re.M)}
     links = re.findall(r"\]\(#([^)]+)\)", md)

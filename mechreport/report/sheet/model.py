@@ -1,5 +1,6 @@
 """The model of a solution sheet (the answer key) and of its problem version, built from an
-analysis: what the templates print, and the figures to draw.
+analysis: what the sheet documents (:mod:`.solution_doc`, :mod:`.problem_doc`) print, and the
+figures to draw.
 
 A sheet has, for each chosen reference angle: the mechanism's figure, the kinematics
 derivation (:mod:`.kinematics`), the inertia forces, a free-body diagram of every link, each
