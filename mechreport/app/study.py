@@ -172,6 +172,8 @@ def write_study(run, out: Path, name: str, reports: int = 0, wait: float = 120.0
                 err=None) -> Path:
     """Write every file of ``run`` into ``OUT/name`` (see :mod:`.outputs`); the folder."""
     from ..report.pdf import compile_typst
+    from ..report.write_markdown import markdown
+    from ..report.write_typst import typst
     from ..report.files import atomic_write_text
     from ..study.outputs import write_csv, write_parquet
     from ..study.report import FIGURES, build_document, write_figures
@@ -188,8 +190,8 @@ def write_study(run, out: Path, name: str, reports: int = 0, wait: float = 120.0
             run.reports = write_best_reports(run, tmp, reports, err)
         figures = write_figures(run, tmp / FIGURES)
         doc = build_document(run, figures)
-        atomic_write_text(tmp / "study.md", doc.markdown())
-        compile_typst(doc.typst(), tmp / "study.pdf", tmp)
+        atomic_write_text(tmp / "study.md", markdown(doc))
+        compile_typst(typst(doc), tmp / "study.pdf", tmp)
 
     with od.writing(out, wait) as out:
         return od.write_folder(out, name, write, carry=_not_the_study)

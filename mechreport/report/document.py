@@ -382,15 +382,6 @@ class Doc:
     def image(self, path: str, caption, height: float | None = None, **how) -> None:
         self.add(Figure(path, caption, height=height, **how))
 
-    def markdown(self) -> str:
-        """The document as Markdown."""
-        from .write_markdown import markdown
-        return markdown(self)
-
-    def typst(self) -> str:
-        """The document as Typst source."""
-        from .write_typst import typst
-        return typst(self)
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,8 @@ from pathlib import Path
 
 from .files import atomic_write_text
 from .pdf import compile_typst
+from .write_markdown import markdown
+from .write_typst import typst
 
 
 def csv_text(header: list[str], rows: list[list[str]]) -> str:
@@ -26,13 +28,13 @@ def csv_text(header: list[str], rows: list[list[str]]) -> str:
 def report_markdown(model) -> str:
     """report.md of the :class:`~.model.ReportModel` ``model``."""
     from .report_doc import report_document
-    return report_document(model).markdown()
+    return markdown(report_document(model))
 
 
 def report_typst(model) -> str:
     """The Typst source of report.pdf."""
     from .report_doc import report_document
-    return report_document(model).typst()
+    return typst(report_document(model))
 
 
 def write_report(model, outdir: Path) -> list[Path]:
@@ -63,8 +65,8 @@ def write_index(rows: list[dict], out: Path, title: str = "mechreport batch") ->
                  {"mechreport_version": __version__, "date": when, "specs": records},
                  indent=2, allow_nan=False) + "\n")]
     doc = index_document(rows, title, __version__, when)
-    files.append(atomic_write_text(out / "index.md", doc.markdown()))
-    files.append(compile_typst(doc.typst(), out / "index.pdf", out))
+    files.append(atomic_write_text(out / "index.md", markdown(doc)))
+    files.append(compile_typst(typst(doc), out / "index.pdf", out))
     return files
 
 

@@ -5,6 +5,8 @@ from __future__ import annotations
 from mechreport.report.document import (Aside, Cell, Code, Doc, Either, Figure, Layout, Link,
                                         Print, Strong, Verdict, Wording)
 from mechreport.report.pdf import compile_typst
+from mechreport.report.write_markdown import markdown
+from mechreport.report.write_typst import typst
 
 HOSTILE = "*x* _y_ [l](u) #set $m$ <b> | `c` \\"
 
@@ -26,7 +28,7 @@ def _doc() -> Doc:
 
 
 def test_markdown_escapes_user_text_and_keeps_the_blocks():
-    md = _doc().markdown()
+    md = markdown(_doc())
     assert md.startswith("# \\*x\\* \\_y\\_ \\[l\\](u) \\#set \\$m\\$ &lt;b&gt; \\| \\`c\\` \\\\\n\n")
     assert "## \\*x\\*" in md
     assert "[\\*x\\*" in md and "(a%20b/r.pdf)" in md
@@ -43,7 +45,7 @@ def test_markdown_escapes_user_text_and_keeps_the_blocks():
 def test_typst_escapes_user_text_and_compiles(tmp_path):
     (tmp_path / "fig.svg").write_text('<svg xmlns="http://www.w3.org/2000/svg" width="10" '
                                       'height="10"><rect width="10" height="10"/></svg>')
-    src = _doc().typst()
+    src = typst(_doc())
     assert "flipped: true" in src
     assert "== \\*x\\* \\_y\\_" in src
     assert "table.cell(colspan: 2" in src and "columns: (2fr, auto, 1fr)" in src
@@ -65,7 +67,7 @@ def test_sheet_blocks_in_both_formats():
     doc.add(Figures([Figure("a.svg", "A"), Figure("b.svg", "B")]))
     doc.add(Paragraph("small", small=True))
     doc.add(Gap())
-    md, typ = doc.markdown(), doc.typst()
+    md, typ = markdown(doc), typst(doc)
     assert "the report's the report's -1.5\n$\\alpha_{1}$\n\n" in md
     assert "$$\\alpha_{1} \\tag{3}$$\n\n$$\\Rightarrow\\quad \\alpha_{1}$$\n\n" in md
     assert "**(3) gives** $\\alpha_{1}$, $\\alpha_{1}$; more $\\alpha_{1}$\n\n" in md
@@ -94,7 +96,7 @@ def test_report_blocks_in_both_formats():
     doc.add(Table(["q", "name"], [[Blank(), Key("cycle.torque.rms")]], header_blank=True,
                   print=Print(keep=True, size=7.5)))
     doc.items([Item([Strong("Loads:")], ["one", "two"])])
-    md, typ = doc.markdown(), doc.typst()
+    md, typ = markdown(doc), typst(doc)
     assert md.startswith("# Title\n\n**sub**\n\n| | |\n|---|---|\n| Date | today |\n"
                          "| Source | [a.csv](a.csv) |\n\n**Check:** PASS\n\n## Contents\n\n"
                          "- [Design](#design)\n\n## Design\n\n| q | name | \n")

@@ -15,30 +15,32 @@ from .expr import round_off
 from .model import SheetOptions, build_problem, build_sheet
 from .problem_doc import problem_document
 from .solution_doc import solution_document
+from ..write_markdown import markdown
+from ..write_typst import typst
 
 
 def render_markdown(model) -> str:
     """solution.md of the :class:`.model.SheetModel` ``model``."""
     with round_off(model.zero):
-        return solution_document(model).markdown()
+        return markdown(solution_document(model))
 
 
 def render_typst(model) -> str:
     """The Typst source of solution.pdf."""
     with round_off(model.zero):
-        return solution_document(model).typst()
+        return typst(solution_document(model))
 
 
 def render_problem_markdown(model) -> str:
     """problem.md of the :class:`.model.ProblemModel` ``model``."""
     with round_off(model.zero):
-        return problem_document(model).markdown()
+        return markdown(problem_document(model))
 
 
 def render_problem_typst(model) -> str:
     """The Typst source of problem.pdf."""
     with round_off(model.zero):
-        return problem_document(model).typst()
+        return typst(problem_document(model))
 
 
 def write_sheet(analysis, outdir: Path, options: SheetOptions | None = None) -> list[Path]:
