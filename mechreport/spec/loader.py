@@ -72,7 +72,7 @@ OPPOSE = {kind: choices_of(schema.LOAD_MODELS[kind], "oppose") for kind in ("for
 REACTS_ON = choices_of(schema.ForceLoad, "reacts_on")
 FRICTION_KEYS = {"R": keys_of(schema.RFriction), "T": keys_of(schema.TFriction)}
 DYNAMICS_KEYS, DYNAMICS_REQUIRED = keys_of(schema.Dynamics), required_of(schema.Dynamics)
-DYN_MOTOR_KEYS = keys_of(schema.DynamicsMotor)
+DYN_MOTOR_KEYS = schema.DYNAMICS_MOTOR_KINDS
 LINEAR_MOTOR_KEYS = keys_of(schema.LinearMotor)
 START_KEYS = keys_of(schema.DynamicsStart)
 FRICTION_REQUIRED = {"R": required_of(schema.RFriction), "T": required_of(schema.TFriction)}
@@ -142,9 +142,15 @@ def _number_problem(value: Any, positive: bool = False) -> str | None:
     return None
 
 
+def _is_whole(value: Any) -> bool:
+    """An int, or a float with a whole value (``3.0``: the same number in JSON, as a YAML
+    language server checks it)."""
+    return type(value) is int or type(value) is float and value.is_integer()
+
+
 def _whole_problem(value: Any, low: int, high: int) -> str | None:
     """Why ``value`` is not a whole number in [low, high], or None."""
-    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+    if not _is_whole(value) or not low <= value <= high:
         return f"must be a whole number from {low} to {high}, got {_show(value)}" \
                f"{_text_hint(value)}"
     return None
@@ -549,8 +555,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
         return None
     _key_names(top, (), ck)
     version = top.get("mechreport")
-    if "mechreport" in top and not (type(version) is int and version == 1
-                                    or type(version) is float and version == 1.1):
+    if "mechreport" in top and not (type(version) in (int, float) and version in (1, 1.1)):
         ck.error(("mechreport",), f"format version must be 1, got {_show(top['mechreport'])}"
                                   " (or 1.1: the same format with its version 1.1 keys)")
 
@@ -949,7 +954,7 @@ def _whole(value: Any, path: tuple, ck: _Checker, low: int, high: int) -> int | 
     if problem is not None:
         ck.error(path, problem)
         return None
-    return value
+    return int(value)
 
 
 def _study(value: Any, ck: _Checker, top: dict) -> Study | None:
@@ -2001,8 +2006,8 @@ def _report(value: Any, ck: _Checker, units: dict[str, str],
     meta = {}
     for key in REPORT_TEXT_KEYS:
         text = body.get(key, "")
-        if isinstance(text, int) and not isinstance(text, bool):
-            text = str(text)                     # revision: 2
+        if _is_whole(text):
+            text = str(text)                     # revision: 2 (or 2.0)
         if text is None:
             text = ""
         if not isinstance(text, str):

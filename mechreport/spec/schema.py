@@ -21,16 +21,19 @@ JSON Schema on request.
 """
 import functools
 import json
+import re
 import typing
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal, Optional, Union
 
-from pydantic import (AfterValidator, BaseModel, ConfigDict, Discriminator, Field, Tag,
+from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Discriminator,
+                      Field, Tag, model_validator,
                       ValidationError)
 from pydantic.fields import FieldInfo
 from pydantic.json_schema import GenerateJsonSchema
 from pydantic_core import PydanticCustomError
 
+from ..quantities import CYCLE_UNITS, JOINT_CYCLE_UNITS, MEMBER_UNITS
 from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES
 from .types import GROUND
 
@@ -136,7 +139,27 @@ def _direction_tag(value: Any) -> str:
 
 def _text_tag(value: Any) -> str:
     """Report metadata: text, or a whole number read as its text (``revision: 2``)."""
-    return "number" if isinstance(value, int) and not isinstance(value, bool) else "text"
+    return "number" if _is_whole(value) else "text"
+
+
+def _is_whole(value: Any) -> bool:
+    """An int, or a float with a whole value: ``3.0`` is the number 3 in JSON, as a YAML
+    language server checks a spec (never true/false)."""
+    return type(value) is int or type(value) is float and value.is_integer()
+
+
+def _whole_value(value: Any) -> Any:
+    """A whole float as its int (``3.0`` -> 3); any other value as it is."""
+    return int(value) if type(value) is float and value.is_integer() else value
+
+
+def _motor_tag(value: Any) -> str | None:
+    """``dynamics.motor``: the one kind (torque, curve, linear) a mapping gives; None when it
+    gives none or several."""
+    if not isinstance(value, dict):
+        return None
+    given = [kind for kind in DYNAMICS_MOTOR_KINDS if kind in value]
+    return given[0] if len(given) == 1 else None
 
 
 def _friction_tag(value: Any) -> str:
@@ -186,8 +209,8 @@ Text = Annotated[str, Field(strict=True), Wording("text")]
 
 
 def _whole(low: int, high: int) -> Any:
-    """A whole number (an int, not 2.0) from ``low`` to ``high``."""
-    return Annotated[int, Field(strict=True, ge=low, le=high),
+    """A whole number (3, or 3.0: the same number in JSON) from ``low`` to ``high``."""
+    return Annotated[int, Field(strict=True, ge=low, le=high), BeforeValidator(_whole_value),
                      Wording(f"a whole number from {low} to {high}")]
 
 
@@ -445,7 +468,12 @@ class Sweep(_Model):
     step: Positive = Field(1, description="Step, degrees (positive).")
 
 
-Profile = Annotated[list[Annotated[Pair, Wording("a pair [crank_angle_deg, magnitude]")]],
+#: a profile's crank angle, degrees: in [0, 360)
+ProfileAngle = Annotated[float, Field(strict=True, ge=0, lt=360, allow_inf_nan=False),
+                         AfterValidator(_magnitude), _NOT_TINY,
+                         Wording("an angle in [0, 360)")]
+Profile = Annotated[list[Annotated[tuple[ProfileAngle, Number],
+                                   Wording("a pair [crank_angle_deg, magnitude]")]],
                     Field(min_length=1), Wording("a list of [crank_angle_deg, magnitude] pairs")]
 End = Annotated[tuple[Name, Name], Wording("an end [link, point]"),
                 _shared("end", "[link, point]: a point of a link (or of ground).")]
@@ -625,14 +653,36 @@ class LinearMotor(_Model):
 CurvePoint = Annotated[tuple[Number, Number], Wording("a pair [rpm, torque]")]
 
 
-class DynamicsMotor(_Model):
-    """The motor on the crank shaft: exactly one of torque, curve, linear."""
+class TorqueMotor(_Model):
+    """A motor of constant torque."""
 
-    torque: Number = Field(None, description="A constant torque, N·m.")
+    model_config = ConfigDict(title="constant torque motor")
+    torque: Number = Field(description="A constant torque, N·m.")
+
+
+class CurveMotor(_Model):
+    """A motor whose torque follows a curve over speed."""
+
+    model_config = ConfigDict(title="torque curve motor")
     curve: Annotated[list[CurvePoint], Wording("a list of [rpm, torque] pairs")] = Field(
-        None, min_length=2, description="[[rpm, N·m], ...], speeds increasing; linear between "
-                                        "the points and along the end segments beyond them.")
-    linear: LinearMotor = Field(None, description="{stall_torque, no_load_rpm}.")
+        min_length=2, description="[[rpm, N·m], ...], speeds increasing; linear between "
+                                  "the points and along the end segments beyond them.")
+
+
+class LinearCurveMotor(_Model):
+    """A motor whose torque falls linearly with speed."""
+
+    model_config = ConfigDict(title="linear motor")
+    linear: LinearMotor = Field(description="{stall_torque, no_load_rpm}.")
+
+
+#: the kinds of dynamics.motor, one key each (a motor gives exactly one)
+DYNAMICS_MOTOR_KINDS = ("torque", "curve", "linear")
+DynamicsMotor = Annotated[Union[Annotated[TorqueMotor, Tag("torque")],
+                                Annotated[CurveMotor, Tag("curve")],
+                                Annotated[LinearCurveMotor, Tag("linear")]],
+                          Discriminator(_motor_tag),
+                          Wording("exactly one of {torque}, {curve} or {linear}")]
 
 
 class DynamicsStart(_Model):
@@ -682,7 +732,7 @@ REPORT_TEXT_MAX = 200
 ReportText = Optional[Annotated[
     Union[Annotated[str, Field(strict=True, max_length=REPORT_TEXT_MAX,
                                pattern=r"^\s*[^\n]*\s*$"), Tag("text")],
-          Annotated[int, Field(strict=True), Tag("number")]],
+          Annotated[int, Field(strict=True), BeforeValidator(_whole_value), Tag("number")]],
     Discriminator(_text_tag), Wording("text")]]
 
 
@@ -722,8 +772,31 @@ class Vary(_Model):
         description="The values the key takes, instead of a range.")
 
 
+def _cycle_pattern() -> str:
+    """What :func:`mechreport.quantities.is_cycle` accepts, as a regular expression."""
+    named = "|".join(re.escape(q) for q in CYCLE_UNITS)
+    joint = "|".join(map(re.escape, JOINT_CYCLE_UNITS))
+    member = "|".join(map(re.escape, MEMBER_UNITS))
+    return (f"^(?:{named}|joint\\.[\\s\\S]+\\.(?:{joint})"
+            f"|member\\.[\\s\\S]+\\.(?:{member}))$")
+
+
+#: a quantity with one value per sweep (cycle.*, balance.*, joint.J.f_max, member.L.*)
+CycleQuantity = Annotated[str, Field(strict=True, pattern=_cycle_pattern()),
+                          Wording("a cycle quantity")]
+
+#: in JSON Schema, what :meth:`Study._grid_ranges` checks
+_GRID_RANGES = {
+    "if": {"properties": {"sample": {"enum": ["random", "lhs"]}}, "required": ["sample"]},
+    "else": {"properties": {"vary": {"items": {
+        "if": {"anyOf": [{"required": ["from"]}, {"required": ["to"]}]},
+        "then": {"properties": {"count": {"minimum": 2}}}}}}}}
+
+
 class Study(_Model):
     """The variants `mechreport study` runs."""
+
+    model_config = ConfigDict(json_schema_extra=_GRID_RANGES)
 
     vary: Annotated[list[Vary], Wording("a list of {key, from, to, count} or {key, "
                                         "values}")] = Field(
@@ -734,9 +807,20 @@ class Study(_Model):
         None, description="How many variants random and lhs draw.")
     seed: _whole(0, MAX_SEED) = Field(0, description="The same spec and seed give the same "
                                                      "variants.")
-    keep: Annotated[list[Name], Wording("a list of cycle quantities")] = Field(
+    keep: Annotated[list[CycleQuantity], Wording("a list of cycle quantities")] = Field(
         min_length=1, description="The cycle quantities to tabulate (cycle.*, balance.*, "
                                   "joint.J.f_max|f_mean|f_equivalent|life_h).")
+
+    @model_validator(mode="after")
+    def _grid_ranges(self):
+        """A grid takes ``count`` values of a range, both ends included: at least 2."""
+        if self.sample == "grid":
+            for i, vary in enumerate(self.vary):
+                if (vary.from_ is not None or vary.to is not None) and vary.count == 1:
+                    raise PydanticCustomError(
+                        "grid_range_count", "vary[{i}].count must be at least 2 for a range",
+                        {"i": i})
+        return self
 
 
 class SpecFile(_Model):
