@@ -41,7 +41,6 @@ from .yaml_source import (MAX_DEPTH, MAX_FILE_BYTES, HugeInteger, Source, check_
 #: the units a spec's numbers may be written in, to SI (factors from the one unit table)
 LENGTH_UNITS = {u: UNIT_TABLES["length"][u] for u in SPEC_UNITS["length"]}
 MASS_UNITS = {u: UNIT_TABLES["mass"][u] for u in SPEC_UNITS["mass"]}
-DEFAULT_GRAVITY = (0.0, -9.80665)
 
 # Every number in a spec is finite and, unless exactly zero, has a magnitude between
 # NUMBER_MIN and NUMBER_MAX (declared in .schema), as written and in SI.
@@ -441,6 +440,9 @@ def _shape_problem(error: dict) -> tuple[tuple, str]:
         return where.path, _unknown_key(str(where.path[-1]), keys_of(where.owner))
     if kind in ("union_tag_invalid", "union_tag_not_found"):
         return _tag_problem(where, value)
+    refusal = where.marker(schema.Refusal)
+    if refusal is not None:
+        return where.path, refusal.text.format(value=_show(value))
     return where.path, _value_problem(where, kind, value, error.get("msg", ""))
 
 
@@ -554,10 +556,6 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     if top is None:
         return None
     _key_names(top, (), ck)
-    version = top.get("mechreport")
-    if "mechreport" in top and not (type(version) in (int, float) and version in (1, 1.1)):
-        ck.error(("mechreport",), f"format version must be 1, got {_show(top['mechreport'])}"
-                                  " (or 1.1: the same format with its version 1.1 keys)")
 
     name = ck.name(top.get("name"), ("name",)) if "name" in top else None
     description = top.get("description", "")
@@ -568,9 +566,9 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
         description = ""
 
     length_scale, mass_scale, units = _units(top.get("units"), ck)
-    gravity = DEFAULT_GRAVITY
+    gravity = _default_gravity()
     if "gravity" in top:
-        gravity = ck.vec2(top["gravity"], ("gravity",), "[gx, gy] in m/s^2") or DEFAULT_GRAVITY
+        gravity = ck.vec2(top["gravity"], ("gravity",), "[gx, gy] in m/s^2") or gravity
 
     ground = _ground(top.get("ground", {}), ck, length_scale, units["length"])
     links = _links(top.get("links", _ABSENT), ck, length_scale, mass_scale, units)
@@ -1514,27 +1512,41 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
     return Driver(jname, link, omega, alpha, rpm, "R", (a, b))
 
 
+def _default_gravity() -> Vec:
+    """Gravity where a spec gives none, m/s² (the model's default)."""
+    gx, gy = schema.SpecFile.model_fields["gravity"].default
+    return (float(gx), float(gy))
+
+
+def _default_sweep() -> Sweep:
+    """The sweep of a spec without ``sweep:`` (the model's defaults), degrees."""
+    return Sweep(**{key: float(field.default)
+                    for key, field in schema.Sweep.model_fields.items()})
+
+
 def _sweep(value: Any, ck: _Checker) -> Sweep:
     if value is None:
-        return Sweep()
+        return _default_sweep()
     body = ck.mapping(value, ("sweep",), SWEEP_KEYS) or {}
     vals = {}
-    for key, default in (("start", 0.0), ("stop", 360.0), ("step", 1.0)):
+    defaults = _default_sweep()
+    for key in ("start", "stop", "step"):
+        default = getattr(defaults, key)
         v = ck.number(body[key], ("sweep", key), positive=(key == "step")) if key in body \
             else default
         vals[key] = default if v is None else v
     if vals["stop"] <= vals["start"]:
         ck.error(("sweep", "stop"), f"must be greater than start ({vals['start']:g})")
-        return Sweep()
+        return defaults
     if (vals["stop"] - vals["start"]) / vals["step"] > MAX_SWEEP_ANGLES:
         ck.error(("sweep", "step"), f"gives more than {MAX_SWEEP_ANGLES} angles; use a larger "
                                     "step")
-        return Sweep()
+        return defaults
     sweep = Sweep(**vals)
     if len(sweep.angles()) == 0:   # stop - start below 1e-9 deg reads as "zero whole turns"
         ck.error(("sweep", "stop"), f"gives no crank angle: stop must exceed start "
                                     f"({vals['start']:g}) by more than 1e-9 degrees")
-        return Sweep()
+        return defaults
     return sweep
 
 

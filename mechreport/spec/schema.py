@@ -39,7 +39,7 @@ from .types import GROUND
 
 __all__ = ["SpecFile", "LOAD_MODELS", "NUMBER_MAX", "NUMBER_MIN", "MAX_STUDY_VARIANTS",
            "MAX_SEED", "REPORT_TEXT_MAX", "SCHEMA_ID", "keys_of", "required_of", "choices_of",
-           "literal_values", "shape_errors", "locate", "Located", "Wording", "ByKey",
+           "literal_values", "shape_errors", "locate", "Located", "Wording", "Refusal", "ByKey",
            "json_schema"]
 
 # Every number in a spec is finite and, unless exactly zero, has a magnitude between
@@ -60,6 +60,14 @@ SCHEMA_DIALECT = "https://json-schema.org/draft/2020-12/schema"
 class Wording:
     """What a value must be, in the loader's words ("a pair [x, y]"): how a type error on it
     is reported (``must be <text>, got ...``). Metadata only: it changes no validation."""
+
+    text: str
+
+
+@dataclass(frozen=True)
+class Refusal:
+    """The whole message a wrong value of a key gets, ``{value}`` standing for the value as
+    written (the format version's: "format version must be 1, got 2"). Metadata only."""
 
     text: str
 
@@ -151,6 +159,13 @@ def _is_whole(value: Any) -> bool:
 def _whole_value(value: Any) -> Any:
     """A whole float as its int (``3.0`` -> 3); any other value as it is."""
     return int(value) if type(value) is float and value.is_integer() else value
+
+
+def _not_true_or_false(value: Any) -> Any:
+    """``value``, unless it is true or false (which pydantic reads as 1 and 0)."""
+    if isinstance(value, bool):
+        raise PydanticCustomError("bool_refused", "must not be true or false")
+    return value
 
 
 def _motor_tag(value: Any) -> str | None:
@@ -827,7 +842,10 @@ class SpecFile(_Model):
     """A mechreport spec: one planar linkage (docs/spec.md)."""
 
     model_config = ConfigDict(title="mechreport spec")
-    mechreport: Literal[1, 1.1] = Field(description="Format version: 1, or 1.1.")
+    mechreport: Annotated[Literal[1, 1.1], BeforeValidator(_not_true_or_false),
+                          Refusal("format version must be 1, got {value} (or 1.1: the same "
+                                  "format with its version 1.1 keys)")] = Field(
+        description="Format version: 1, or 1.1.")
     name: Name = Field(description="The mechanism's name, used in report titles.")
     description: Optional[Text] = Field(None, description="Markdown shown at the top of the "
                                                           "report.")
