@@ -56,14 +56,12 @@ __all__ = ["load_spec", "parse_spec", "load_source", "parse_source", "spec_from_
 # The key tables, from the models of .schema (the one place a key is declared): the keys a
 # mapping may have, in their order, and those it must have.
 TOP_KEYS, TOP_REQUIRED = keys_of(schema.SpecFile), required_of(schema.SpecFile)
-UNITS_KEYS = keys_of(schema.Units)
 POLAR_KEYS, POLAR_REQUIRED = keys_of(schema.Polar), required_of(schema.Polar)
 LINK_KEYS, LINK_REQUIRED = keys_of(schema.Link), required_of(schema.Link)
 SHAPE_KEYS = {"bar": keys_of(schema.Bar), "block": keys_of(schema.Block)}
 JOINT_KEYS = {"R": keys_of(schema.RJoint), "T": keys_of(schema.TJoint)}
 LINE_KEYS, LINE_REQUIRED = keys_of(schema.Line), required_of(schema.Line)
 DRIVER_KEYS, DRIVER_REQUIRED = keys_of(schema.Driver), required_of(schema.Driver)
-SWEEP_KEYS = keys_of(schema.Sweep)
 LOAD_KEYS = {kind: keys_of(model) for kind, model in schema.LOAD_MODELS.items()}
 LOAD_REQUIRED = {kind: tuple(k for k in required_of(model) if k != "type")
                  for kind, model in schema.LOAD_MODELS.items()}
@@ -193,6 +191,20 @@ class _Checker:
         self.invalid_links: set[str] = set()
         self.invalid_joints: set[str] = set()
         self.invalid_points: set[str] = set()
+        # the models' errors (pydantic's) and the key paths they are at, once validated
+        self.shape: list[dict] | None = None
+        self.refused_paths: list[tuple] = []
+
+    def validate(self, data: Any) -> None:
+        """Validate ``data`` with the models of :mod:`.schema` (their problems are reported
+        later, by :func:`_shape_check`): a section the models refuse is not converted."""
+        self.shape = schema.shape_errors(data) if isinstance(data, dict) else []
+        self.refused_paths = [schema.locate(tuple(e["loc"])).path for e in self.shape]
+
+    def refused(self, path: tuple) -> bool:
+        """Whether the models refused the value at ``path`` or something in it."""
+        n = len(path)
+        return any(tuple(p[:n]) == path for p in self.refused_paths)
 
     def error(self, path: tuple, message: str) -> None:
         if len(self.problems) >= MAX_PROBLEMS:
@@ -376,6 +388,7 @@ def _source(text: str | bytes, filename: str) -> Source:
 
 def _checked(data: Any, src: Source) -> Spec:
     ck = _Checker(src)
+    ck.validate(data)
     spec = _build(data, ck)
     _shape_check(data, ck)
     if spec is None or ck.problems:
@@ -395,9 +408,11 @@ def _shape_check(data: Any, ck: _Checker) -> None:
     below one (unless that one is only a missing key) or above one."""
     if not isinstance(data, dict) or len(ck.problems) >= MAX_PROBLEMS:
         return              # a document that is not a mapping is reported as it is
+    if ck.shape is None:
+        ck.validate(data)
     reported = [(p.path, p.message) for p in ck.problems]
     added: set[tuple[str, str]] = set()
-    for error in schema.shape_errors(data):
+    for error in ck.shape:
         path, message = _shape_problem(error)
         shown = format_path(path)
         if (shown, message) in added or _already_reported(shown, message, reported):
@@ -567,8 +582,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
 
     length_scale, mass_scale, units = _units(top.get("units"), ck)
     gravity = _default_gravity()
-    if "gravity" in top:
-        gravity = ck.vec2(top["gravity"], ("gravity",), "[gx, gy] in m/s^2") or gravity
+    if "gravity" in top and not ck.refused(("gravity",)):
+        gravity = (float(top["gravity"][0]), float(top["gravity"][1]))
 
     ground = _ground(top.get("ground", {}), ck, length_scale, units["length"])
     links = _links(top.get("links", _ABSENT), ck, length_scale, mass_scale, units)
@@ -1168,12 +1183,13 @@ def _study_requests(spec: Spec, ck: _Checker) -> None:
 
 
 def _units(value: Any, ck: _Checker) -> tuple[float, float, dict[str, str]]:
-    if value is None:
-        return 1.0, 1.0, {"length": "m", "mass": "kg"}
-    units = ck.mapping(value, ("units",), UNITS_KEYS) or {}
-    length = ck.choice(units.get("length", "m"), ("units", "length"), tuple(LENGTH_UNITS)) or "m"
-    mass = ck.choice(units.get("mass", "kg"), ("units", "mass"), tuple(MASS_UNITS)) or "kg"
-    return LENGTH_UNITS[length], MASS_UNITS[mass], {"length": length, "mass": mass}
+    """The factors of the spec's length and mass units to m and kg, and their names (the
+    model's defaults where absent or refused)."""
+    given = value if isinstance(value, dict) else {}
+    names = {key: (given[key] if key in given and not ck.refused(("units", key))
+                   else field.default)
+             for key, field in schema.Units.model_fields.items()}
+    return LENGTH_UNITS[names["length"]], MASS_UNITS[names["mass"]], names
 
 
 def _ground(value: Any, ck: _Checker, s: float, unit: str) -> dict[str, Vec]:
@@ -1525,16 +1541,13 @@ def _default_sweep() -> Sweep:
 
 
 def _sweep(value: Any, ck: _Checker) -> Sweep:
-    if value is None:
-        return _default_sweep()
-    body = ck.mapping(value, ("sweep",), SWEEP_KEYS) or {}
-    vals = {}
+    """The crank angles analysed, degrees (the model's defaults where absent; the defaults
+    throughout when the model refused any of it)."""
     defaults = _default_sweep()
-    for key in ("start", "stop", "step"):
-        default = getattr(defaults, key)
-        v = ck.number(body[key], ("sweep", key), positive=(key == "step")) if key in body \
-            else default
-        vals[key] = default if v is None else v
+    if value is None or ck.refused(("sweep",)):
+        return defaults
+    vals = {key: float(value.get(key, getattr(defaults, key)))
+            for key in ("start", "stop", "step")}
     if vals["stop"] <= vals["start"]:
         ck.error(("sweep", "stop"), f"must be greater than start ({vals['start']:g})")
         return defaults

@@ -851,7 +851,7 @@ class SpecFile(_Model):
                                                           "report.")
     units: Optional[Units] = Field(None, description="{length: m|cm|mm, mass: kg|g}, default "
                                                      "{length: m, mass: kg}.")
-    gravity: Pair = Field((0.0, -9.80665), description="[gx, gy] in m/s²; acts on every "
+    gravity: Annotated[Pair, Wording("a pair [gx, gy] in m/s^2")] = Field((0.0, -9.80665), description="[gx, gy] in m/s²; acts on every "
                                                        "moving link.")
     ground: Optional[dict[str, Point]] = Field(
         None, description="Named points of the frame, global [x, y] in the length unit.")
