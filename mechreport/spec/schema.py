@@ -72,6 +72,14 @@ class Refusal:
     text: str
 
 
+@dataclass(frozen=True)
+class DocRequired:
+    """What docs/spec.md's key table says in its "required" column for a key that is neither
+    plainly required nor plainly optional ("for random and lhs"). Metadata only."""
+
+    text: str
+
+
 @dataclass(frozen=True, eq=False)
 class _JsonExtra:
     """Keywords added to a type's JSON Schema (where pydantic has no constraint for them);
@@ -385,35 +393,46 @@ class Link(_Model):
     """A moving link: its named points in its own frame and its mass properties."""
 
     points: dict[str, Point] = Field(
-        min_length=1, description="Named points in the link's own frame: `NAME: [x, y]` in "
-                                  "the length unit (at least one).")
+        min_length=1, description="required, at least one: `NAME: [x, y]` in the link's own frame")
     mass: NonNegative = Field(
-        None, description="Mass, kg (or g with units.mass: g). Or give density with a shape. "
-                          "`mass: 0` alone is a massless link.")
+        None, description=(
+            "kg (or g with `units.mass: g`). Or give `density` and a `shape`: mass = density x "
+            "shape volume. `mass: 0` alone (no `density`, `shape`, `com` or `inertia`) is a "
+            "massless link: no weight, no inertia (a two-force member when it carries no load)"))
     density: Positive = Field(
-        None, description="kg/m³, with `shape`, when `mass` is absent (mass = density x "
-                          "shape volume).")
+        None, description="kg/m³, used with `shape` when `mass` is absent")
     com: Point = Field(
-        None, description="Centre of mass [x, y] in the link frame. Default: the shape's "
-                          "centroid.")
+        None, description=(
+            "centre of mass `[x, y]` in the link frame. Default: the shape's centroid"))
     inertia: NonNegative = Field(
-        None, description="kg·m² about the centre of mass. Default: from the shape. "
-                          "`inertia: 0` with a mass is a point mass.")
+        None, description=(
+            "kg·m² about the centre of mass, axis normal to the plane. Default: from the shape. "
+            "`inertia: 0` with a `mass` is a point mass"))
     shape: Shape = Field(
-        None, description="`{bar: {length, height, depth}}` or `{block: {width, height, "
-                          "depth}}`, sizes in the length unit.")
+        None, description=(
+            "`{bar: {length, height, depth}}` or `{block: {width, height, depth}}`, see below"))
     section: Section = Field(
-        None, description="The members' cross-section (format 1.1): {rect: {width, height}}, "
-                          "{round: {d}}, {tube: {d, t}} or {area, inertia, c}, in the "
-                          "length unit.")
+        None, description=(
+            "`{rect: {width, height}}`: `height` in the plane of motion (it resists in-plane "
+            "bending), `width` normal to it; A = width height, I = width height³ / 12, c = height"
+            " / 2. `{round: {d}}`: I = π d⁴ / 64, c = d / 2. `{tube: {d, t}}`: outer diameter and"
+            " wall (t at most d / 2). `{area, inertia, c}`: any section, area in length unit², "
+            "inertia (in-plane bending) in length unit⁴, c the distance from the neutral axis to "
+            "the outer fibre. Sizes are in the spec's length unit; all must be positive"))
     material: MaterialRef = Field(
-        None, description="With `section`: a name from `materials:`, or {E, yield, "
-                          "endurance, ultimate} in Pa.")
+        None, description=(
+            "a name from the top-level `materials:`, or inline `{E, yield, endurance, ultimate}`,"
+            " all in Pa (SI whatever `units` says). `endurance` is the fully corrected endurance "
+            "limit S_e (surface, size, load, reliability already applied). `yield` and "
+            "`endurance` may not exceed `ultimate`"))
     members: Annotated[list[Annotated[list[Name], Field(min_length=2, max_length=2)]],
                        Wording("a list of point pairs [[P, Q], ...]")] = Field(
-        None, min_length=1, description="With `section`: the straight members [[P, Q], ...] "
-                                        "(points of the link). Default: the segment between "
-                                        "the link's two joints.")
+        None, min_length=1, description=(
+            "`[[P, Q], ...]`, points of the link: the straight beams it is made of. Default: the "
+            "segment between the link's two joint points (the points of its R joints, and of T "
+            "joints where it is the slider); a link with more or fewer joint points must list "
+            "them. The members must join into one piece without a closed loop (a closed frame is "
+            "statically indeterminate); a member of zero length is an error"))
 
 
 class Line(_Model):
@@ -815,16 +834,19 @@ class Study(_Model):
 
     vary: Annotated[list[Vary], Wording("a list of {key, from, to, count} or {key, "
                                         "values}")] = Field(
-        min_length=1, description="The varied leaves.")
+        min_length=1, description=(
+            "a list of varied leaves, each `{key, from, to, count}` or `{key, values}`"))
     sample: Literal["grid", "random", "lhs"] = Field(
-        "grid", description="grid (every combination), random or lhs (Latin hypercube).")
-    count: _whole(1, MAX_STUDY_VARIANTS) = Field(
-        None, description="How many variants random and lhs draw.")
-    seed: _whole(0, MAX_SEED) = Field(0, description="The same spec and seed give the same "
-                                                     "variants.")
+        "grid", description="`grid` (default), `random` or `lhs` (Latin hypercube)")
+    count: Annotated[_whole(1, MAX_STUDY_VARIANTS), DocRequired("for `random` and `lhs`")] = Field(
+        None, description=(
+            "how many variants they draw, 1 to 1 000 000; `grid` does not use it (it may stay in "
+            "the file when you switch to `grid`: the study says it is not used)"))
+    seed: _whole(0, MAX_SEED) = Field(0, description=(
+            "a whole number from 0 to 2^63 - 1, default 0: the same spec and seed always give the"
+            " same variants"))
     keep: Annotated[list[CycleQuantity], Wording("a list of cycle quantities")] = Field(
-        min_length=1, description="The cycle quantities to tabulate (cycle.*, balance.*, "
-                                  "joint.J.f_max|f_mean|f_equivalent|life_h).")
+        min_length=1, description="the cycle quantities to tabulate (below)")
 
     @model_validator(mode="after")
     def _grid_ranges(self):
@@ -845,50 +867,55 @@ class SpecFile(_Model):
     mechreport: Annotated[Literal[1, 1.1], BeforeValidator(_not_true_or_false),
                           Refusal("format version must be 1, got {value} (or 1.1: the same "
                                   "format with its version 1.1 keys)")] = Field(
-        description="Format version: 1, or 1.1.")
-    name: Name = Field(description="The mechanism's name, used in report titles.")
-    description: Optional[Text] = Field(None, description="Markdown shown at the top of the "
-                                                          "report.")
-    units: Optional[Units] = Field(None, description="{length: m|cm|mm, mass: kg|g}, default "
-                                                     "{length: m, mass: kg}.")
-    gravity: Annotated[Pair, Wording("a pair [gx, gy] in m/s^2")] = Field((0.0, -9.80665), description="[gx, gy] in m/s²; acts on every "
-                                                       "moving link.")
-    ground: Optional[dict[str, Point]] = Field(
-        None, description="Named points of the frame, global [x, y] in the length unit.")
-    links: dict[str, Link] = Field(min_length=1, description="The moving links, numbered 1, "
-                                                             "2, 3 ... in the order written.")
-    joints: dict[str, Joint] = Field(min_length=1, description="The joints, by unique name.")
-    driver: Driver = Field(description="The driving joint and its speed.")
-    sweep: Optional[Sweep] = Field(None, description="Crank angles to analyse, default 0 to "
-                                                     "360 by 1 degree.")
+        description=(
+            "format version: `1`, or `1.1` (the same format; a file using the version 1.1 keys "
+            "may say so)"))
+    name: Name = Field(description="the mechanism's name, used in report titles")
+    description: Optional[Text] = Field(None, description=(
+            "Markdown text shown at the top of the report"))
+    units: Optional[Units] = Field(None, description=(
+            "`{length: m|cm|mm, mass: kg|g}`, default `{length: m, mass: kg}`; either key may be "
+            "left out"))
+    gravity: Annotated[Pair, Wording("a pair [gx, gy] in m/s^2")] = Field(
+        (0.0, -9.80665), description=(
+            "`[gx, gy]` in m/s², default `[0, -9.80665]`; acts on every moving link at its centre"
+            " of mass"))
+    ground: Annotated[Optional[dict[str, Point]], DocRequired("no*")] = Field(
+        None, description=(
+            "named points of the frame, global coordinates (*needed for every joint with "
+            "`ground`)"))
+    links: dict[str, Link] = Field(min_length=1, description="the moving links (section 4)")
+    joints: dict[str, Joint] = Field(min_length=1, description="the joints (section 5)")
+    driver: Driver = Field(description="the driving crank and its speed (section 6)")
+    sweep: Optional[Sweep] = Field(None, description=(
+            "crank angles to analyse, default 0 to 360 by 1 degree"))
     at: Annotated[list[Number], Wording("a list of crank angles in degrees")] = Field(
-        None, min_length=1, description="Reference angles, degrees; the first is where the "
-                                        "assembly branch is chosen. Default [sweep.start].")
+        None, min_length=1, description="reference angles, default `[sweep.start]`")
     assembly: Optional[dict[str, Point]] = Field(
-        None, description="Rough global [x, y] of points at the first reference angle: they "
-                          "choose the assembly branch.")
+        None, description="hints that choose the assembly branch (section 7)")
     loads: Optional[Annotated[list[Load], Wording("a list of loads")]] = Field(
-        None, description="External forces, moments, springs, dampers, torsion springs.")
+        None, description="external forces and moments (section 8)")
     materials: dict[str, Material] = Field(
-        None, min_length=1, description="Named materials for links' `material` (format 1.1): "
-                                        "{E, yield, endurance, ultimate} in Pa.")
+        None, min_length=1, description=(
+            "named materials for the links' `material` (section 19, format 1.1)"))
     friction: dict[str, Friction] = Field(
-        None, min_length=1, description="Coulomb friction by joint name: {mu, radius} (R), "
-                                        "{mu, length} (T) (format 1.1).")
-    dynamics: Dynamics = Field(None, description="The motion a motor and a flywheel give: "
-                                                 "{motor, flywheel, start, until, output_step} "
-                                                 "(format 1.1).")
+        None, min_length=1, description=(
+            "Coulomb friction in the joints, by joint name (section 8, format 1.1)"))
+    dynamics: Dynamics = Field(None, description=(
+            "the motion a motor and a flywheel give: motor, flywheel, start, until (section 18, "
+            "format 1.1)"))
     expect: Optional[Annotated[list[Expectation], Wording("a list of {angle, quantity, value, "
                                                           "tol}")]] = Field(
-        None, description="Values the results must reproduce.")
-    sheet: bool = Field(False, strict=True, description="true adds worked solution sheets to "
-                                                        "mechreport build.")
-    design: Design = Field(None, description="The design review: speed_fluctuation, motor, "
-                                             "bearings, limits (docs/spec.md, section 15).")
-    report: Optional[Report] = Field(None, description="Display units, first-page "
-                                                       "metadata, animation and DXF of the "
-                                                       "reports.")
-    study: Study = Field(None, description="The variants mechreport study runs.")
+        None, description="values the results must reproduce (section 9)")
+    sheet: bool = Field(False, strict=True, description=(
+            "`true` adds worked solution sheets to `mechreport build` (section 14); default "
+            "`false`"))
+    design: Design = Field(None, description="the design review's inputs (section 15)")
+    report: Optional[Report] = Field(None, description=(
+            "display units and first-page metadata of the reports (section 16)"))
+    study: Study = Field(None, description=(
+            "the variants `mechreport study` runs (section 17); every other command validates it "
+            "and otherwise ignores it"))
 
 
 # ------------------------------------------------------------------------- the key tables
