@@ -29,8 +29,8 @@ from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, MEMBE
                           is_cycle, is_member, joint_unit, unit_of, split as split_quantity)
 from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES
 import mechreport.spec.schema as schema   # the models (not `from . import`: spec/__init__)
-from .schema import (MAX_SEED, MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, REPORT_TEXT_MAX,
-                     choices_of, keys_of, required_of)
+from .schema import (MAX_SEED, MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, choices_of, keys_of,
+                     required_of)
 from .strength import strength_links
 from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Dynamics, Expectation, Friction, Joint,
@@ -74,14 +74,8 @@ LINEAR_MOTOR_KEYS = keys_of(schema.LinearMotor)
 START_KEYS = keys_of(schema.DynamicsStart)
 FRICTION_REQUIRED = {"R": required_of(schema.RFriction), "T": required_of(schema.TFriction)}
 EXPECT_KEYS, EXPECT_REQUIRED = keys_of(schema.Expectation), required_of(schema.Expectation)
-DESIGN_KEYS = keys_of(schema.Design)
-MOTOR_KEYS = keys_of(schema.Motor)
-LIMIT_KEYS = keys_of(schema.Limits)
-BEARING_KEYS, BEARING_REQUIRED = keys_of(schema.Bearing), required_of(schema.Bearing)
-REPORT_KEYS = keys_of(schema.Report)
-REPORT_UNIT_KEYS = keys_of(schema.ReportUnits)
-REPORT_SWITCH_KEYS = ("animation", "dxf")
-REPORT_TEXT_KEYS = tuple(k for k in REPORT_KEYS if k != "units" and k not in REPORT_SWITCH_KEYS)
+REPORT_TEXT_KEYS = tuple(k for k in keys_of(schema.Report) if k not in ("units", "animation",
+                                                                      "dxf"))
 STUDY_KEYS, STUDY_REQUIRED = keys_of(schema.Study), required_of(schema.Study)
 VARY_KEYS, VARY_REQUIRED = keys_of(schema.Vary), required_of(schema.Vary)
 SAMPLES = choices_of(schema.Study, "sample")
@@ -456,7 +450,7 @@ def _shape_problem(error: dict) -> tuple[tuple, str]:
     if kind in ("union_tag_invalid", "union_tag_not_found"):
         return _tag_problem(where, value)
     refusal = where.marker(schema.Refusal)
-    if refusal is not None:
+    if refusal is not None and refusal.says(kind):
         return where.path, refusal.text.format(value=_show(value))
     return where.path, _value_problem(where, kind, value, error.get("msg", ""))
 
@@ -798,46 +792,33 @@ def _dynamics_motor(value: Any, path: tuple, ck: _Checker) -> MotorCurve | None:
 
 
 def _design(value: Any, ck: _Checker, joints: list[Joint] | None, pins=()) -> Design:
+    """The design review's inputs, SI as written (their types and ranges are the models';
+    a part they refuse is left out); a bearing must name a joint."""
     path = ("design",)
-    body = ck.mapping(value, path, DESIGN_KEYS)
-    if body is None:
-        return Design()
-    cs = (ck.number(body["speed_fluctuation"], path + ("speed_fluctuation",), positive=True)
-          if "speed_fluctuation" in body else None)
-    motor = _positive_table(body.get("motor"), path + ("motor",), MOTOR_KEYS, ck) \
-        if "motor" in body else {}
-    limits = _positive_table(body.get("limits"), path + ("limits",), LIMIT_KEYS, ck) \
-        if "limits" in body else {}
-    if limits.get("efficiency", 0) > 1:
-        ck.error(path + ("limits", "efficiency"), "must be at most 1 (an efficiency is a "
-                 "fraction: 0.85, not 85)")
-    if limits.get("transmission_angle", 0) > 90:
-        ck.error(path + ("limits", "transmission_angle"), "must be at most 90 degrees (the "
-                 "transmission angle is folded into [0, 90])")
+    body = value if isinstance(value, dict) else {}
+
+    def numbers(key: str, model) -> dict[str, float]:
+        raw = body.get(key)
+        if not isinstance(raw, dict) or ck.refused(path + (key,)):
+            return {}
+        return {k: float(raw[k]) for k in keys_of(model) if k in raw}
+
+    cs = body.get("speed_fluctuation")
+    cs = None if cs is None or ck.refused(path + ("speed_fluctuation",)) else float(cs)
     bearings: dict[str, BearingSpec] = {}
     raw = body.get("bearings")
-    if "bearings" in body:
-        if not isinstance(raw, dict):
-            ck.error(path + ("bearings",), "must map joint names to {rating, life_h}")
-        else:
-            names = {j.name for j in joints or ()}
-            for jname, item in raw.items():
-                where = path + ("bearings", jname)
-                if joints is not None and jname not in names:
-                    if jname not in ck.invalid_joints:
-                        ck.error(where, _pin_hint(jname, pins, "bearing")
-                                 or f"no joint named '{jname}' (joints: "
-                                    f"{', '.join(sorted(names))})")
-                    continue
-                b = ck.mapping(item, where, BEARING_KEYS, required=BEARING_REQUIRED)
-                if b is None or any(k not in b for k in BEARING_REQUIRED):
-                    continue
-                rating = ck.number(b["rating"], where + ("rating",), positive=True)
-                life = (ck.number(b["life_h"], where + ("life_h",), positive=True)
-                        if "life_h" in b else None)
-                if rating is not None and ("life_h" not in b or life is not None):
-                    bearings[jname] = BearingSpec(rating, life)
-    return Design(cs, motor, bearings, limits)
+    names = {j.name for j in joints or ()}
+    for jname, item in (raw.items() if isinstance(raw, dict) else ()):
+        where = path + ("bearings", jname)
+        if joints is not None and jname not in names:
+            if jname not in ck.invalid_joints:
+                ck.error(where, _pin_hint(jname, pins, "bearing")
+                         or f"no joint named '{jname}' (joints: {', '.join(sorted(names))})")
+        elif not ck.refused(where):
+            life = item.get("life_h")
+            bearings[jname] = BearingSpec(float(item["rating"]),
+                                          None if life is None else float(life))
+    return Design(cs, numbers("motor", schema.Motor), bearings, numbers("limits", schema.Limits))
 
 
 def _pin_hint(name: str, pins, what: str) -> str | None:
@@ -850,18 +831,6 @@ def _pin_hint(name: str, pins, what: str) -> str | None:
                         for link in pin.others)
     return (f"'{name}' is a pin joining {', '.join(pin.links)}: a {what} sits between two of "
             f"them; name one of {choices}")
-
-
-def _positive_table(value: Any, path: tuple, keys: tuple[str, ...],
-                    ck: _Checker) -> dict[str, float]:
-    body = ck.mapping(value, path, keys)
-    out = {}
-    for key in keys:
-        if body is not None and key in body:
-            v = ck.number(body[key], path + (key,), positive=True)
-            if v is not None:
-                out[key] = v
-    return out
 
 
 def _cycle_requests(spec: Spec, ck: _Checker) -> None:
@@ -2017,38 +1986,20 @@ def _report(value: Any, ck: _Checker, units: dict[str, str],
             whole_turn: bool) -> ReportSettings:
     """The ``report`` section: display units (lengths default to the spec's ``units.length``,
     the rest to SI), first-page metadata, ``animation`` (default: ``whole_turn``, the sweep is
-    one whole turn of a crank) and ``dxf`` (docs/spec.md, section 16)."""
-    body = ck.mapping(value, ("report",), REPORT_KEYS) if value is not None else {}
-    if body is None:
-        return ReportSettings(animation=whole_turn)
+    one whole turn of a crank) and ``dxf`` (docs/spec.md, section 16). Types and lengths are
+    the models'; a key they refuse takes its default."""
+    path = ("report",)
+    body = value if isinstance(value, dict) else {}
+
+    def given(key: tuple, default: Any) -> Any:
+        where, node = path, body
+        for part in key:
+            where += (part,)
+            node = node.get(part) if isinstance(node, dict) else None
+        return default if node is None or ck.refused(where) else node
+
     shown = {"length": units.get("length", "m"), "force": "N", "moment": "N*m", "mass": "kg"}
-    if "units" in body:
-        given = ck.mapping(body["units"], ("report", "units"), REPORT_UNIT_KEYS) or {}
-        for key in REPORT_UNIT_KEYS:
-            if key in given:
-                shown[key] = ck.choice(given[key], ("report", "units", key),
-                                       choices_of(schema.ReportUnits, key)) or shown[key]
-    meta = {}
-    for key in REPORT_TEXT_KEYS:
-        text = body.get(key, "")
-        if _is_whole(text):
-            text = str(text)                     # revision: 2 (or 2.0)
-        if text is None:
-            text = ""
-        if not isinstance(text, str):
-            ck.error(("report", key), f"must be text, got {_show(text)} (quote it: '...')")
-            text = ""
-        elif len(text) > REPORT_TEXT_MAX or "\n" in text.strip():
-            ck.error(("report", key), f"must be one line of at most {REPORT_TEXT_MAX} "
-                                      "characters")
-            text = ""
-        meta[key] = " ".join(text.split())
-    switches = {"animation": whole_turn, "dxf": False}
-    for key, default in switches.items():
-        given = body.get(key, default)
-        if not isinstance(given, bool):
-            ck.error(("report", key), f"must be true or false, got {_show(given)}"
-                                      f"{_text_hint(given, boolean=True)}")
-            given = default
-        switches[key] = given
-    return ReportSettings(units=shown, **meta, **switches)
+    shown = {key: given(("units", key), default) for key, default in shown.items()}
+    meta = {key: " ".join(str(given((key,), "")).split()) for key in REPORT_TEXT_KEYS}
+    return ReportSettings(units=shown, **meta, animation=given(("animation",), whole_turn),
+                          dxf=given(("dxf",), schema.Report.model_fields["dxf"].default))

@@ -67,9 +67,15 @@ class Wording:
 @dataclass(frozen=True)
 class Refusal:
     """The whole message a wrong value of a key gets, ``{value}`` standing for the value as
-    written (the format version's: "format version must be 1, got 2"). Metadata only."""
+    written (the format version's: "format version must be 1, got 2"), for the pydantic
+    error types ``kinds`` (every type if none is given). Metadata only."""
 
     text: str
+    kinds: tuple[str, ...] = ()
+
+    def says(self, kind: str) -> bool:
+        """Whether this message is the one for an error of type ``kind``."""
+        return not self.kinds or kind in self.kinds
 
 
 @dataclass(frozen=True)
@@ -660,10 +666,14 @@ class Limits(_Model):
     """Limits the cycle must keep."""
 
     joint_force: Positive = Field(None, description="N, every joint over the cycle.")
-    transmission_angle: Annotated[Positive, Field(le=90)] = Field(
+    transmission_angle: Annotated[Positive, Field(le=90), Refusal(
+        "must be at most 90 degrees (the transmission angle is folded into [0, 90])",
+        ("less_than_equal",))] = Field(
         None, description="Degrees, the smallest allowed (at most 90).")
     shaking_force: Positive = Field(None, description="N, the largest allowed.")
-    efficiency: Annotated[Positive, Field(le=1)] = Field(
+    efficiency: Annotated[Positive, Field(le=1), Refusal(
+        "must be at most 1 (an efficiency is a fraction: 0.85, not 85)",
+        ("less_than_equal",))] = Field(
         None, description="The smallest cycle.efficiency allowed (at most 1; needs friction).")
     speed_fluctuation: Positive = Field(
         None, description="The largest dynamics.speed_fluctuation allowed (needs dynamics).")
@@ -745,7 +755,10 @@ class Design(_Model):
     speed_fluctuation: Positive = Field(None, description="Cs: enables "
                                                           "cycle.flywheel_inertia.")
     motor: Motor = Field(None, description="{rated_torque, peak_torque, rated_power}.")
-    bearings: dict[str, Bearing] = Field(None, description="Joint name -> {rating, life_h}.")
+    bearings: Annotated[dict[str, Bearing],
+                        Refusal("must map joint names to {{rating, life_h}}",
+                                ("dict_type",))] = Field(
+        None, description="Joint name -> {rating, life_h}.")
     limits: Limits = Field(None, description="{joint_force, transmission_angle, "
                                              "shaking_force, efficiency}.")
 
@@ -767,7 +780,8 @@ ReportText = Optional[Annotated[
     Union[Annotated[str, Field(strict=True, max_length=REPORT_TEXT_MAX,
                                pattern=r"^\s*[^\n]*\s*$"), Tag("text")],
           Annotated[int, Field(strict=True), BeforeValidator(_whole_value), Tag("number")]],
-    Discriminator(_text_tag), Wording("text")]]
+    Discriminator(_text_tag), Wording("text"),
+    Refusal("must be text, got {value} (quote it: '...')", ("string_type",))]]
 
 
 class Report(_Model):
