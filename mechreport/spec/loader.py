@@ -68,10 +68,7 @@ LOAD_REQUIRED = {kind: tuple(k for k in required_of(model) if k != "type")
 OPPOSE = {kind: choices_of(schema.LOAD_MODELS[kind], "oppose") for kind in ("force", "moment")}
 REACTS_ON = choices_of(schema.ForceLoad, "reacts_on")
 FRICTION_KEYS = {"R": keys_of(schema.RFriction), "T": keys_of(schema.TFriction)}
-DYNAMICS_KEYS, DYNAMICS_REQUIRED = keys_of(schema.Dynamics), required_of(schema.Dynamics)
 DYN_MOTOR_KEYS = schema.DYNAMICS_MOTOR_KINDS
-LINEAR_MOTOR_KEYS = keys_of(schema.LinearMotor)
-START_KEYS = keys_of(schema.DynamicsStart)
 FRICTION_REQUIRED = {"R": required_of(schema.RFriction), "T": required_of(schema.TFriction)}
 EXPECT_KEYS, EXPECT_REQUIRED = keys_of(schema.Expectation), required_of(schema.Expectation)
 REPORT_TEXT_KEYS = tuple(k for k in keys_of(schema.Report) if k not in ("units", "animation",
@@ -701,9 +698,9 @@ def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep
     """``dynamics:`` (docs/spec.md, "Machine dynamics"): the motor, flywheel, initial state,
     end and output step; the driver must be a crank (an R joint with ground)."""
     path = ("dynamics",)
-    body = ck.mapping(value, path, DYNAMICS_KEYS, required=DYNAMICS_REQUIRED)
-    if body is None or "motor" not in body:
-        return None
+    body = value if isinstance(value, dict) else {}
+    if "motor" not in body:
+        return None             # the models say what is wrong
     ok = True
     if driver is not None and not driver.crank:
         ck.error(path, "machine dynamics needs a crank: the driver an R joint with ground (the "
@@ -716,39 +713,14 @@ def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep
                        "mirrored, or leave dynamics out")
         ok = False
     motor = _dynamics_motor(body["motor"], path + ("motor",), ck)
-    flywheel = (ck.number(body["flywheel"], path + ("flywheel",)) if "flywheel" in body
-                else 0.0)
-    if flywheel is not None and flywheel < 0:
-        ck.error(path + ("flywheel",), f"must be 0 or more (kg·m²), got {_show(body['flywheel'])}")
-        flywheel = None
-    start_angle, start_rpm = sweep.start, 0.0
-    if "start" in body:
-        start = ck.mapping(body["start"], path + ("start",), START_KEYS)
-        if start is None:
-            ok = False
-        else:
-            if "angle" in start:
-                start_angle = ck.number(start["angle"], path + ("start", "angle"))
-            if "rpm" in start:
-                start_rpm = ck.number(start["rpm"], path + ("start", "rpm"))
-                if start_rpm is not None and start_rpm < 0:
-                    ck.error(path + ("start", "rpm"), "must be 0 or more: the crank starts at "
-                             "rest or turning the way the motor drives it")
-                    start_rpm = None
-    until = None
-    if "until" in body and body["until"] != "steady":
-        if isinstance(body["until"], str):
-            ck.error(path + ("until",), f"must be steady or a time in s, got {_show(body['until'])}")
-            ok = False
-        else:
-            until = ck.number(body["until"], path + ("until",), positive=True)
-            ok = ok and until is not None
-    step = (ck.number(body["output_step"], path + ("output_step",), positive=True)
-            if "output_step" in body else None)
-    if None in (motor, flywheel, start_angle, start_rpm) or not ok or \
-            ("output_step" in body and step is None):
+    if not ok or motor is None or ck.refused(path):
         return None
-    return Dynamics(motor, flywheel, start_angle, start_rpm, until, step)
+    start = body.get("start") or {}
+    until = body.get("until")
+    return Dynamics(motor, float(body.get("flywheel", 0.0)),
+                    float(start.get("angle", sweep.start)), float(start.get("rpm", 0.0)),
+                    None if until in (None, "steady") else float(until),
+                    None if body.get("output_step") is None else float(body["output_step"]))
 
 
 def _dynamics_motor(value: Any, path: tuple, ck: _Checker) -> MotorCurve | None:
@@ -762,33 +734,21 @@ def _dynamics_motor(value: Any, path: tuple, ck: _Checker) -> MotorCurve | None:
                        "({stall_torque, no_load_rpm})" + (f", not {' and '.join(given)}"
                                                           if given else ""))
         return None
+    if ck.refused(path):
+        return None
     kind = given[0]
     if kind == "torque":
-        torque = ck.number(body["torque"], path + ("torque",))
-        return None if torque is None else MotorCurve(constant=torque)
+        return MotorCurve(constant=float(body["torque"]))
     if kind == "linear":
-        lin = ck.mapping(body["linear"], path + ("linear",), LINEAR_MOTOR_KEYS,
-                         required=LINEAR_MOTOR_KEYS)
-        if lin is None or any(k not in lin for k in LINEAR_MOTOR_KEYS):
-            return None
-        stall = ck.number(lin["stall_torque"], path + ("linear", "stall_torque"), positive=True)
-        rpm = ck.number(lin["no_load_rpm"], path + ("linear", "no_load_rpm"), positive=True)
-        return None if stall is None or rpm is None else MotorCurve(stall_torque=stall,
-                                                                    no_load_rpm=rpm)
-    curve = body["curve"]
-    where = path + ("curve",)
-    if not isinstance(curve, list) or len(curve) < 2:
-        ck.error(where, f"must be a list of at least two [rpm, N·m] points, got {_show(curve)}")
-        return None
-    points = [ck.vec2(p, where + (i,), "[rpm, N·m]") for i, p in enumerate(curve)]
-    if any(p is None for p in points):
-        return None
+        return MotorCurve(stall_torque=float(body["linear"]["stall_torque"]),
+                          no_load_rpm=float(body["linear"]["no_load_rpm"]))
+    points = [(float(a), float(b)) for a, b in body["curve"]]
     for i in range(1, len(points)):
         if not points[i][0] > points[i - 1][0]:
-            ck.error(where + (i, 0), f"the speeds must increase: {points[i][0]:g} rpm follows "
-                                     f"{points[i - 1][0]:g} rpm")
+            ck.error(path + ("curve", i, 0), f"the speeds must increase: {points[i][0]:g} rpm "
+                                             f"follows {points[i - 1][0]:g} rpm")
             return None
-    return MotorCurve(curve=tuple((float(a), float(b)) for a, b in points))
+    return MotorCurve(curve=tuple(points))
 
 
 def _design(value: Any, ck: _Checker, joints: list[Joint] | None, pins=()) -> Design:

@@ -182,6 +182,11 @@ def _not_true_or_false(value: Any) -> Any:
     return value
 
 
+def _until_tag(value: Any) -> str:
+    """``dynamics.until``: text is ``steady`` (or wrong), anything else a time."""
+    return "steady" if isinstance(value, str) else "time"
+
+
 def _motor_tag(value: Any) -> str | None:
     """``dynamics.motor``: the one kind (torque, curve, linear) a mapping gives; None when it
     gives none or several."""
@@ -694,7 +699,7 @@ class LinearMotor(_Model):
     no_load_rpm: Positive = Field(description="rpm, where the torque is 0.")
 
 
-CurvePoint = Annotated[tuple[Number, Number], Wording("a pair [rpm, torque]")]
+CurvePoint = Annotated[tuple[Number, Number], Wording("a pair [rpm, N·m]")]
 
 
 class TorqueMotor(_Model):
@@ -708,7 +713,9 @@ class CurveMotor(_Model):
     """A motor whose torque follows a curve over speed."""
 
     model_config = ConfigDict(title="torque curve motor")
-    curve: Annotated[list[CurvePoint], Wording("a list of [rpm, torque] pairs")] = Field(
+    curve: Annotated[list[CurvePoint], Wording("a list of [rpm, torque] pairs"),
+                     Refusal("must be a list of at least two [rpm, N·m] points, got {value}",
+                             ("list_type", "too_short"))] = Field(
         min_length=2, description="[[rpm, N·m], ...], speeds increasing; linear between "
                                   "the points and along the end segments beyond them.")
 
@@ -733,17 +740,25 @@ class DynamicsStart(_Model):
     """The initial state of the crank."""
 
     angle: Number = Field(None, description="Crank angle, degrees (default sweep.start).")
-    rpm: NonNegative = Field(None, description="Crank speed, rpm (default 0: from rest).")
+    rpm: Annotated[NonNegative, Refusal(
+        "must be 0 or more: the crank starts at rest or turning the way the motor drives it",
+        ("greater_than_equal",))] = Field(
+        None, description="Crank speed, rpm (default 0: from rest).")
 
 
 class Dynamics(_Model):
     """Machine dynamics: the motion a motor and a flywheel give (format 1.1)."""
 
     motor: DynamicsMotor = Field(description="One of {torque}, {curve}, {linear}.")
-    flywheel: NonNegative = Field(None, description="Extra inertia on the crank shaft, kg·m² "
+    flywheel: Annotated[NonNegative, Refusal("must be 0 or more (kg·m²), got {value}",
+                                             ("greater_than_equal",))] = Field(None, description="Extra inertia on the crank shaft, kg·m² "
                                                     "(default 0).")
     start: DynamicsStart = Field(None, description="{angle, rpm}, default sweep.start at rest.")
-    until: Union[Literal["steady"], Positive] = Field(
+    until: Annotated[Union[Annotated[Literal["steady"], Tag("steady")],
+                           Annotated[Positive, Tag("time")]],
+                     Discriminator(_until_tag),
+                     Refusal("must be steady or a time in s, got {value}",
+                             ("literal_error",))] = Field(
         None, description="steady (default: until two cycles agree), or a time in s.")
     output_step: Positive = Field(None, description="s, the sampling of the time histories "
                                                     "(default 200 per steady cycle).")
