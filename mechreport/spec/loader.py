@@ -29,7 +29,7 @@ from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, MEMBE
                           is_cycle, is_member, joint_unit, unit_of, split as split_quantity)
 from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES
 import mechreport.spec.schema as schema   # the models (not `from . import`: spec/__init__)
-from .schema import (MAX_SEED, MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, choices_of, keys_of,
+from .schema import (MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, choices_of, keys_of,
                      required_of)
 from .strength import strength_links
 from .types import ReportSettings
@@ -73,7 +73,7 @@ FRICTION_REQUIRED = {"R": required_of(schema.RFriction), "T": required_of(schema
 EXPECT_KEYS, EXPECT_REQUIRED = keys_of(schema.Expectation), required_of(schema.Expectation)
 REPORT_TEXT_KEYS = tuple(k for k in keys_of(schema.Report) if k not in ("units", "animation",
                                                                       "dxf"))
-STUDY_KEYS, STUDY_REQUIRED = keys_of(schema.Study), required_of(schema.Study)
+STUDY_REQUIRED = required_of(schema.Study)
 VARY_KEYS, VARY_REQUIRED = keys_of(schema.Vary), required_of(schema.Vary)
 SAMPLES = choices_of(schema.Study, "sample")
 JOINT_TYPES = tuple(JOINT_KEYS)
@@ -890,39 +890,29 @@ def _cycle_need(spec: Spec, quantity: str) -> str | None:
 NOT_VARIED = ("mechreport", "study", "expect", "report")
 
 
-def _whole(value: Any, path: tuple, ck: _Checker, low: int, high: int) -> int | None:
-    """A whole number in [low, high] (reported otherwise)."""
-    problem = _whole_problem(value, low, high)
-    if problem is not None:
-        ck.error(path, problem)
-        return None
-    return int(value)
-
-
 def _study(value: Any, ck: _Checker, top: dict) -> Study | None:
     """The ``study`` section (docs/spec.md, section 17): every key path must lead to a number
     of this spec; values are kept as written (the spec's own units)."""
     path = ("study",)
-    body = ck.mapping(value, path, STUDY_KEYS, required=STUDY_REQUIRED)
-    if body is None or any(k not in body for k in STUDY_REQUIRED):
-        return None
-    ok = True
-    sample = "grid"
-    if "sample" in body:
-        sample = ck.choice(body["sample"], path + ("sample",), SAMPLES)
-        ok &= sample is not None
-    count = None
-    if "count" in body:
-        count = _whole(body["count"], path + ("count",), ck, 1, MAX_STUDY_VARIANTS)
-        ok &= count is not None
-    elif sample in ("random", "lhs"):
+    body = value if isinstance(value, dict) else {}
+    if any(k not in body for k in STUDY_REQUIRED):
+        return None             # the models say what is wrong
+
+    def given(key: str) -> Any:
+        """The value of ``key`` as validated (the model's default if absent), None if the
+        models refused it."""
+        if ck.refused(path + (key,)):
+            return None
+        return body.get(key, schema.Study.model_fields[key].default)
+
+    ok = not any(ck.refused(path + (key,)) for key in ("sample", "count", "seed"))
+    sample, count, seed = given("sample"), given("count"), given("seed")
+    count = None if count is None else int(count)
+    seed = None if seed is None else int(seed)
+    if "count" not in body and sample in ("random", "lhs"):
         ck.error(path, f"missing required key 'count' (how many variants {sample} sampling "
                        "draws)")
         ok = False
-    seed = 0
-    if "seed" in body:
-        seed = _whole(body["seed"], path + ("seed",), ck, 0, MAX_SEED)
-        ok &= seed is not None
     vary = _vary(body["vary"], path + ("vary",), ck, top, sample or "grid")
     keep = _keep(body["keep"], path + ("keep",), ck)
     if not ok or vary is None or keep is None:
@@ -939,17 +929,15 @@ def _study(value: Any, ck: _Checker, top: dict) -> Study | None:
 def _vary(value: Any, path: tuple, ck: _Checker, top: dict,
           sample: str) -> tuple[Vary, ...] | None:
     if not isinstance(value, list) or not value:
-        ck.error(path, "must be a list of {key, from, to, count} or {key, values}"
-                       + ("" if isinstance(value, list) else f", got {_show(value)}"))
-        return None
+        return None             # the models say what is wrong
     out: list[Vary] = []
     seen: dict[tuple, int] = {}
     ok = True
     for i, item in enumerate(value):
         where = path + (i,)
-        body = ck.mapping(item, where, VARY_KEYS, required=VARY_REQUIRED)
-        if body is None or any(k not in body for k in VARY_REQUIRED):
-            ok = False
+        body = item if isinstance(item, dict) else {}
+        if any(k not in body for k in VARY_REQUIRED):
+            ok = False          # the models say what is wrong
             continue
         leaf = _key_path(body["key"], where + ("key",), ck, top)
         if leaf is not None and leaf in seen:
@@ -958,7 +946,8 @@ def _vary(value: Any, path: tuple, ck: _Checker, top: dict,
             leaf = None
         if leaf is not None:
             seen[leaf] = i
-        entry = _vary_values(body, where, ck, sample)
+        # a mistake the models see (an unknown key, a value's type) is said by them alone
+        entry = None if ck.refused(where) else _vary_values(body, where, ck, sample)
         if leaf is None or entry is None:
             ok = False
             continue
@@ -979,27 +968,20 @@ def _vary_values(body: dict, where: tuple, ck: _Checker, sample: str) -> dict | 
             ck.error(where + ("count",), "'count' goes with 'from' and 'to'; with 'values' the "
                                          "grid takes every value")
             return None
-        raw = body["values"]
-        if not isinstance(raw, list) or not raw or len(raw) > MAX_STUDY_VARIANTS:
-            ck.error(where + ("values",), f"must be a list of 1 to {MAX_STUDY_VARIANTS} numbers"
-                                          f", got {_show(raw)}")
+        if ck.refused(where + ("values",)):
             return None
-        numbers = [ck.number(v, where + ("values", j)) for j, v in enumerate(raw)]
-        if any(v is None for v in numbers):
-            return None
-        return {"values": tuple(raw)}
+        return {"values": tuple(body["values"])}
     missing = [k for k in ("from", "to") if k not in body]
     if missing:
         ck.error(where, f"missing required key '{missing[0]}' (a range needs 'from' and 'to')")
         return None
-    start = ck.number(body["from"], where + ("from",))
-    stop = ck.number(body["to"], where + ("to",))
-    count = None
-    if "count" in body:
-        count = _whole(body["count"], where + ("count",), ck, 1, MAX_STUDY_VARIANTS)
-        if count is None:
-            return None
-    elif sample == "grid":
+    refused = any(ck.refused(where + (key,)) for key in ("from", "to", "count"))
+    start = None if refused else float(body["from"])
+    stop = None if refused else float(body["to"])
+    count = None if refused or "count" not in body else int(body["count"])
+    if refused:
+        return None
+    if count is None and sample == "grid":
         ck.error(where, "missing required key 'count' (how many grid values from 'from' to "
                         "'to', both included)")
         return None
