@@ -233,7 +233,13 @@ class _Checker:
         if nonzero and number == 0:
             self.error(path, "must not be zero")
             return None
-        si = number * scale
+        return self.si(value, path, scale=scale, unit=unit)
+
+    def si(self, value: Any, path: tuple, *, scale: float = 1.0,
+           unit: str = "") -> float | None:
+        """A number the models validated, times ``scale`` (to SI; ``unit`` names the written
+        unit); None (reported) when it leaves the range of numbers in SI units."""
+        si = float(value) * scale
         if not _in_range(si):
             self.error(path, f"{_show(value)} {unit} is {si:g} in SI units; numbers must lie "
                              f"{NUMBER_RANGE} in SI units too")
@@ -671,19 +677,14 @@ def _friction(value: Any, ck: _Checker, joints: list[Joint] | None, pins: list[P
         entry = ck.mapping(body, where, FRICTION_KEYS[jtype], required=required)
         if entry is None or any(k not in entry for k in required):
             continue
-        mu = ck.number(entry["mu"], where + ("mu",))
-        if mu is not None and mu < 0:
-            ck.error(where + ("mu",), f"must be 0 or more, got {_show(entry['mu'])}")
-            mu = None
+        if ck.refused(where):
+            continue            # the models say what is wrong
+        mu = float(entry["mu"])
         size_key = "radius" if jtype == "R" else "length"
-        size = (ck.number(entry[size_key], where + (size_key,), positive=True, scale=ls)
+        size = (ck.si(entry[size_key], where + (size_key,), scale=ls)
                 if size_key in entry else None)
         sense = entry.get("friction_sense")
-        if "friction_sense" in entry and (isinstance(sense, bool) or sense not in (1, -1)):
-            ck.error(where + ("friction_sense",), "must be +1 or -1 (the way the joint is "
-                     f"about to move in a static analysis), got {_show(sense)}")
-            sense = None
-        if mu is None or (size_key in entry and size is None) or mu == 0:
+        if (size_key in entry and size is None) or mu == 0:
             continue
         for joint in targets:
             out[joint.name] = Friction(joint.name, mu, size if jtype == "R" else None,

@@ -605,8 +605,9 @@ Load = Annotated[Union[tuple(Annotated[m, Tag(t)] for t, m in LOAD_MODELS.items(
                  Wording("a mapping like {type: force, link, point, value}")]
 
 
-FrictionSense = Annotated[Literal[1, -1], Field(
-    description="At rest: the sign of the relative motion the joint is about to have.")]
+FrictionSense = Annotated[Literal[1, -1], BeforeValidator(_not_true_or_false), Refusal(
+    "must be +1 or -1 (the way the joint is about to move in a static analysis), got {value}"),
+    Field(description="At rest: the sign of the relative motion the joint is about to have.")]
 
 
 class RFriction(_Model):
