@@ -61,7 +61,7 @@ LINK_KEYS, LINK_REQUIRED = keys_of(schema.Link), required_of(schema.Link)
 SHAPE_KEYS = {"bar": keys_of(schema.Bar), "block": keys_of(schema.Block)}
 JOINT_KEYS = {"R": keys_of(schema.RJoint), "T": keys_of(schema.TJoint)}
 LINE_KEYS, LINE_REQUIRED = keys_of(schema.Line), required_of(schema.Line)
-DRIVER_KEYS, DRIVER_REQUIRED = keys_of(schema.Driver), required_of(schema.Driver)
+DRIVER_REQUIRED = required_of(schema.Driver)
 LOAD_KEYS = {kind: keys_of(model) for kind, model in schema.LOAD_MODELS.items()}
 LOAD_REQUIRED = {kind: tuple(k for k in required_of(model) if k != "type")
                  for kind, model in schema.LOAD_MODELS.items()}
@@ -1378,10 +1378,12 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
     """Any joint may drive: an R joint its relative angle (``rpm`` or ``omega``, ``alpha``), a
     T joint its stroke (``speed``, ``accel`` in the length unit per s and s^2)."""
     path = ("driver",)
-    body = ck.mapping(value, path, DRIVER_KEYS, required=DRIVER_REQUIRED)
-    if body is None or any(k not in body for k in DRIVER_REQUIRED):
-        return None
-    jname = ck.name(body["joint"], path + ("joint",))
+    body = value if isinstance(value, dict) else {}
+    if any(k not in body for k in DRIVER_REQUIRED):
+        return None             # the models say what is wrong
+    jname = None if ck.refused(path + ("joint",)) else body["joint"]
+    numbers_refused = any(ck.refused(path + (k,))
+                          for k in ("rpm", "omega", "alpha", "speed", "accel"))
     pin = next((p for p in pins if p.name == jname), None)
     if pin is not None:        # a pin joining several links drives its first two links
         jname = pin.joint_name(pin.links[1])
@@ -1391,12 +1393,7 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
         if joints is not None and jname is not None and jname not in ck.invalid_joints:
             ck.error(path + ("joint",), f"unknown joint '{jname}' (joints: "
                                         f"{', '.join(j.name for j in joints)})")
-        # the joint is unknown or broken: its numbers are still checked, so that every
-        # problem of the file is listed at once
-        for k in ("rpm", "omega", "alpha", "speed", "accel"):
-            if k in body:
-                ck.number(body[k], path + (k,))
-        return None
+        return None             # (its numbers are the models' to check)
     a, b = joint.links
     link = (b if a == GROUND else a) if GROUND in joint.links else b
     if joint.type == "T":
@@ -1409,10 +1406,12 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
                 ck.error(path, "a T driver needs 'speed' (length unit per second; 0 for a "
                                "static analysis)")
             return None
-        speed = ck.number(body["speed"], path + ("speed",), scale=length_scale)
-        accel = (ck.number(body["accel"], path + ("accel",), scale=length_scale)
+        if wrong or numbers_refused:
+            return None
+        speed = ck.si(body["speed"], path + ("speed",), scale=length_scale)
+        accel = (ck.si(body["accel"], path + ("accel",), scale=length_scale)
                  if "accel" in body else 0.0)
-        if speed is None or accel is None or wrong:
+        if speed is None or accel is None:
             return None
         return Driver(jname, link, speed, accel, None, "T", (a, b), length_scale)
     for k in ("speed", "accel"):
@@ -1422,9 +1421,11 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
     if ("rpm" in body) == ("omega" in body):
         ck.error(path, "give exactly one of 'rpm' or 'omega' (rad/s)")
         return None
+    if numbers_refused:
+        return None
     rpm = None
     key = "rpm" if "rpm" in body else "omega"
-    speed = ck.number(body[key], path + (key,))
+    speed = float(body[key])
     if key == "rpm":
         rpm = speed
         omega = None if speed is None else speed * math.pi / 30.0
@@ -1434,8 +1435,8 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
             omega = None
     else:
         omega = speed
-    alpha = ck.number(body["alpha"], path + ("alpha",)) if "alpha" in body else 0.0
-    if omega is None or alpha is None or "speed" in body or "accel" in body:
+    alpha = float(body["alpha"]) if "alpha" in body else 0.0
+    if omega is None or "speed" in body or "accel" in body:
         return None
     return Driver(jname, link, omega, alpha, rpm, "R", (a, b))
 
