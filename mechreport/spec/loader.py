@@ -570,11 +570,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     _key_names(top, (), ck)
 
     name = ck.name(top.get("name"), ("name",)) if "name" in top else None
-    description = top.get("description", "")
-    if description is None:
-        description = ""
-    if not isinstance(description, str):
-        ck.error(("description",), f"must be text (Markdown), got {_show(description)}")
+    description = top.get("description")
+    if description is None or ck.refused(("description",)):
         description = ""
 
     length_scale, mass_scale, units = _units(top.get("units"), ck)
@@ -615,11 +612,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     report = (_report(top.get("report"), ck, units, sweep.whole_turn) if "report" in top
               else ReportSettings(animation=sweep.whole_turn))
     study = _study(top["study"], ck, top) if "study" in top else None
-    sheet = top.get("sheet", False)
-    if not isinstance(sheet, bool):
-        ck.error(("sheet",), f"must be true or false, got {_show(sheet)}"
-                             f"{_text_hint(sheet, boolean=True)}")
-        sheet = False
+    sheet = (schema.SpecFile.model_fields["sheet"].default if ck.refused(("sheet",))
+             else top.get("sheet", schema.SpecFile.model_fields["sheet"].default))
 
     if links and joints:
         _zero_length(ck, links, joints)

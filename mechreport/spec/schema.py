@@ -901,7 +901,8 @@ class SpecFile(_Model):
             "format version: `1`, or `1.1` (the same format; a file using the version 1.1 keys "
             "may say so)"))
     name: Name = Field(description="the mechanism's name, used in report titles")
-    description: Optional[Text] = Field(None, description=(
+    description: Annotated[Optional[Text],
+                           Refusal("must be text (Markdown), got {value}")] = Field(None, description=(
             "Markdown text shown at the top of the report"))
     units: Optional[Units] = Field(None, description=(
             "`{length: m|cm|mm, mass: kg|g}`, default `{length: m, mass: kg}`; either key may be "
