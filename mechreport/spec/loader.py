@@ -29,8 +29,8 @@ from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, MEMBE
                           is_cycle, is_member, joint_unit, unit_of, split as split_quantity)
 from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES
 import mechreport.spec.schema as schema   # the models (not `from . import`: spec/__init__)
-from .schema import (MAX_SEED, MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, REPORT_TEXT_MAX,
-                     choices_of, keys_of, required_of)
+from .schema import (MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, choices_of, keys_of,
+                     required_of)
 from .strength import strength_links
 from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Dynamics, Expectation, Friction, Joint,
@@ -41,7 +41,6 @@ from .yaml_source import (MAX_DEPTH, MAX_FILE_BYTES, HugeInteger, Source, check_
 #: the units a spec's numbers may be written in, to SI (factors from the one unit table)
 LENGTH_UNITS = {u: UNIT_TABLES["length"][u] for u in SPEC_UNITS["length"]}
 MASS_UNITS = {u: UNIT_TABLES["mass"][u] for u in SPEC_UNITS["mass"]}
-DEFAULT_GRAVITY = (0.0, -9.80665)
 
 # Every number in a spec is finite and, unless exactly zero, has a magnitude between
 # NUMBER_MIN and NUMBER_MAX (declared in .schema), as written and in SI.
@@ -57,35 +56,24 @@ __all__ = ["load_spec", "parse_spec", "load_source", "parse_source", "spec_from_
 # The key tables, from the models of .schema (the one place a key is declared): the keys a
 # mapping may have, in their order, and those it must have.
 TOP_KEYS, TOP_REQUIRED = keys_of(schema.SpecFile), required_of(schema.SpecFile)
-UNITS_KEYS = keys_of(schema.Units)
 POLAR_KEYS, POLAR_REQUIRED = keys_of(schema.Polar), required_of(schema.Polar)
 LINK_KEYS, LINK_REQUIRED = keys_of(schema.Link), required_of(schema.Link)
 SHAPE_KEYS = {"bar": keys_of(schema.Bar), "block": keys_of(schema.Block)}
 JOINT_KEYS = {"R": keys_of(schema.RJoint), "T": keys_of(schema.TJoint)}
 LINE_KEYS, LINE_REQUIRED = keys_of(schema.Line), required_of(schema.Line)
-DRIVER_KEYS, DRIVER_REQUIRED = keys_of(schema.Driver), required_of(schema.Driver)
-SWEEP_KEYS = keys_of(schema.Sweep)
+DRIVER_REQUIRED = required_of(schema.Driver)
 LOAD_KEYS = {kind: keys_of(model) for kind, model in schema.LOAD_MODELS.items()}
 LOAD_REQUIRED = {kind: tuple(k for k in required_of(model) if k != "type")
                  for kind, model in schema.LOAD_MODELS.items()}
 OPPOSE = {kind: choices_of(schema.LOAD_MODELS[kind], "oppose") for kind in ("force", "moment")}
 REACTS_ON = choices_of(schema.ForceLoad, "reacts_on")
 FRICTION_KEYS = {"R": keys_of(schema.RFriction), "T": keys_of(schema.TFriction)}
-DYNAMICS_KEYS, DYNAMICS_REQUIRED = keys_of(schema.Dynamics), required_of(schema.Dynamics)
-DYN_MOTOR_KEYS = keys_of(schema.DynamicsMotor)
-LINEAR_MOTOR_KEYS = keys_of(schema.LinearMotor)
-START_KEYS = keys_of(schema.DynamicsStart)
+DYN_MOTOR_KEYS = schema.DYNAMICS_MOTOR_KINDS
 FRICTION_REQUIRED = {"R": required_of(schema.RFriction), "T": required_of(schema.TFriction)}
-EXPECT_KEYS, EXPECT_REQUIRED = keys_of(schema.Expectation), required_of(schema.Expectation)
-DESIGN_KEYS = keys_of(schema.Design)
-MOTOR_KEYS = keys_of(schema.Motor)
-LIMIT_KEYS = keys_of(schema.Limits)
-BEARING_KEYS, BEARING_REQUIRED = keys_of(schema.Bearing), required_of(schema.Bearing)
-REPORT_KEYS = keys_of(schema.Report)
-REPORT_UNIT_KEYS = keys_of(schema.ReportUnits)
-REPORT_SWITCH_KEYS = ("animation", "dxf")
-REPORT_TEXT_KEYS = tuple(k for k in REPORT_KEYS if k != "units" and k not in REPORT_SWITCH_KEYS)
-STUDY_KEYS, STUDY_REQUIRED = keys_of(schema.Study), required_of(schema.Study)
+EXPECT_REQUIRED = required_of(schema.Expectation)
+REPORT_TEXT_KEYS = tuple(k for k in keys_of(schema.Report) if k not in ("units", "animation",
+                                                                      "dxf"))
+STUDY_REQUIRED = required_of(schema.Study)
 VARY_KEYS, VARY_REQUIRED = keys_of(schema.Vary), required_of(schema.Vary)
 SAMPLES = choices_of(schema.Study, "sample")
 JOINT_TYPES = tuple(JOINT_KEYS)
@@ -142,9 +130,15 @@ def _number_problem(value: Any, positive: bool = False) -> str | None:
     return None
 
 
+def _is_whole(value: Any) -> bool:
+    """An int, or a float with a whole value (``3.0``: the same number in JSON, as a YAML
+    language server checks it)."""
+    return type(value) is int or type(value) is float and value.is_integer()
+
+
 def _whole_problem(value: Any, low: int, high: int) -> str | None:
     """Why ``value`` is not a whole number in [low, high], or None."""
-    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+    if not _is_whole(value) or not low <= value <= high:
         return f"must be a whole number from {low} to {high}, got {_show(value)}" \
                f"{_text_hint(value)}"
     return None
@@ -188,6 +182,20 @@ class _Checker:
         self.invalid_links: set[str] = set()
         self.invalid_joints: set[str] = set()
         self.invalid_points: set[str] = set()
+        # the models' errors (pydantic's) and the key paths they are at, once validated
+        self.shape: list[dict] | None = None
+        self.refused_paths: list[tuple] = []
+
+    def validate(self, data: Any) -> None:
+        """Validate ``data`` with the models of :mod:`.schema` (their problems are reported
+        later, by :func:`_shape_check`): a section the models refuse is not converted."""
+        self.shape = schema.shape_errors(data) if isinstance(data, dict) else []
+        self.refused_paths = [schema.locate(tuple(e["loc"])).path for e in self.shape]
+
+    def refused(self, path: tuple) -> bool:
+        """Whether the models refused the value at ``path`` or something in it."""
+        n = len(path)
+        return any(tuple(p[:n]) == path for p in self.refused_paths)
 
     def error(self, path: tuple, message: str) -> None:
         if len(self.problems) >= MAX_PROBLEMS:
@@ -225,7 +233,13 @@ class _Checker:
         if nonzero and number == 0:
             self.error(path, "must not be zero")
             return None
-        si = number * scale
+        return self.si(value, path, scale=scale, unit=unit)
+
+    def si(self, value: Any, path: tuple, *, scale: float = 1.0,
+           unit: str = "") -> float | None:
+        """A number the models validated, times ``scale`` (to SI; ``unit`` names the written
+        unit); None (reported) when it leaves the range of numbers in SI units."""
+        si = float(value) * scale
         if not _in_range(si):
             self.error(path, f"{_show(value)} {unit} is {si:g} in SI units; numbers must lie "
                              f"{NUMBER_RANGE} in SI units too")
@@ -371,6 +385,7 @@ def _source(text: str | bytes, filename: str) -> Source:
 
 def _checked(data: Any, src: Source) -> Spec:
     ck = _Checker(src)
+    ck.validate(data)
     spec = _build(data, ck)
     _shape_check(data, ck)
     if spec is None or ck.problems:
@@ -390,9 +405,11 @@ def _shape_check(data: Any, ck: _Checker) -> None:
     below one (unless that one is only a missing key) or above one."""
     if not isinstance(data, dict) or len(ck.problems) >= MAX_PROBLEMS:
         return              # a document that is not a mapping is reported as it is
+    if ck.shape is None:
+        ck.validate(data)
     reported = [(p.path, p.message) for p in ck.problems]
     added: set[tuple[str, str]] = set()
-    for error in schema.shape_errors(data):
+    for error in ck.shape:
         path, message = _shape_problem(error)
         shown = format_path(path)
         if (shown, message) in added or _already_reported(shown, message, reported):
@@ -435,6 +452,9 @@ def _shape_problem(error: dict) -> tuple[tuple, str]:
         return where.path, _unknown_key(str(where.path[-1]), keys_of(where.owner))
     if kind in ("union_tag_invalid", "union_tag_not_found"):
         return _tag_problem(where, value)
+    refusal = where.marker(schema.Refusal)
+    if refusal is not None and refusal.says(kind):
+        return where.path, refusal.text.format(value=_show(value))
     return where.path, _value_problem(where, kind, value, error.get("msg", ""))
 
 
@@ -548,24 +568,16 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     if top is None:
         return None
     _key_names(top, (), ck)
-    version = top.get("mechreport")
-    if "mechreport" in top and not (type(version) is int and version == 1
-                                    or type(version) is float and version == 1.1):
-        ck.error(("mechreport",), f"format version must be 1, got {_show(top['mechreport'])}"
-                                  " (or 1.1: the same format with its version 1.1 keys)")
 
     name = ck.name(top.get("name"), ("name",)) if "name" in top else None
-    description = top.get("description", "")
-    if description is None:
-        description = ""
-    if not isinstance(description, str):
-        ck.error(("description",), f"must be text (Markdown), got {_show(description)}")
+    description = top.get("description")
+    if description is None or ck.refused(("description",)):
         description = ""
 
     length_scale, mass_scale, units = _units(top.get("units"), ck)
-    gravity = DEFAULT_GRAVITY
-    if "gravity" in top:
-        gravity = ck.vec2(top["gravity"], ("gravity",), "[gx, gy] in m/s^2") or DEFAULT_GRAVITY
+    gravity = _default_gravity()
+    if "gravity" in top and not ck.refused(("gravity",)):
+        gravity = (float(top["gravity"][0]), float(top["gravity"][1]))
 
     ground = _ground(top.get("ground", {}), ck, length_scale, units["length"])
     links = _links(top.get("links", _ABSENT), ck, length_scale, mass_scale, units)
@@ -600,11 +612,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     report = (_report(top.get("report"), ck, units, sweep.whole_turn) if "report" in top
               else ReportSettings(animation=sweep.whole_turn))
     study = _study(top["study"], ck, top) if "study" in top else None
-    sheet = top.get("sheet", False)
-    if not isinstance(sheet, bool):
-        ck.error(("sheet",), f"must be true or false, got {_show(sheet)}"
-                             f"{_text_hint(sheet, boolean=True)}")
-        sheet = False
+    sheet = (schema.SpecFile.model_fields["sheet"].default if ck.refused(("sheet",))
+             else top.get("sheet", schema.SpecFile.model_fields["sheet"].default))
 
     if links and joints:
         _zero_length(ck, links, joints)
@@ -662,19 +671,14 @@ def _friction(value: Any, ck: _Checker, joints: list[Joint] | None, pins: list[P
         entry = ck.mapping(body, where, FRICTION_KEYS[jtype], required=required)
         if entry is None or any(k not in entry for k in required):
             continue
-        mu = ck.number(entry["mu"], where + ("mu",))
-        if mu is not None and mu < 0:
-            ck.error(where + ("mu",), f"must be 0 or more, got {_show(entry['mu'])}")
-            mu = None
+        if ck.refused(where):
+            continue            # the models say what is wrong
+        mu = float(entry["mu"])
         size_key = "radius" if jtype == "R" else "length"
-        size = (ck.number(entry[size_key], where + (size_key,), positive=True, scale=ls)
+        size = (ck.si(entry[size_key], where + (size_key,), scale=ls)
                 if size_key in entry else None)
         sense = entry.get("friction_sense")
-        if "friction_sense" in entry and (isinstance(sense, bool) or sense not in (1, -1)):
-            ck.error(where + ("friction_sense",), "must be +1 or -1 (the way the joint is "
-                     f"about to move in a static analysis), got {_show(sense)}")
-            sense = None
-        if mu is None or (size_key in entry and size is None) or mu == 0:
+        if (size_key in entry and size is None) or mu == 0:
             continue
         for joint in targets:
             out[joint.name] = Friction(joint.name, mu, size if jtype == "R" else None,
@@ -689,9 +693,9 @@ def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep
     """``dynamics:`` (docs/spec.md, "Machine dynamics"): the motor, flywheel, initial state,
     end and output step; the driver must be a crank (an R joint with ground)."""
     path = ("dynamics",)
-    body = ck.mapping(value, path, DYNAMICS_KEYS, required=DYNAMICS_REQUIRED)
-    if body is None or "motor" not in body:
-        return None
+    body = value if isinstance(value, dict) else {}
+    if "motor" not in body:
+        return None             # the models say what is wrong
     ok = True
     if driver is not None and not driver.crank:
         ck.error(path, "machine dynamics needs a crank: the driver an R joint with ground (the "
@@ -704,39 +708,14 @@ def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep
                        "mirrored, or leave dynamics out")
         ok = False
     motor = _dynamics_motor(body["motor"], path + ("motor",), ck)
-    flywheel = (ck.number(body["flywheel"], path + ("flywheel",)) if "flywheel" in body
-                else 0.0)
-    if flywheel is not None and flywheel < 0:
-        ck.error(path + ("flywheel",), f"must be 0 or more (kg·m²), got {_show(body['flywheel'])}")
-        flywheel = None
-    start_angle, start_rpm = sweep.start, 0.0
-    if "start" in body:
-        start = ck.mapping(body["start"], path + ("start",), START_KEYS)
-        if start is None:
-            ok = False
-        else:
-            if "angle" in start:
-                start_angle = ck.number(start["angle"], path + ("start", "angle"))
-            if "rpm" in start:
-                start_rpm = ck.number(start["rpm"], path + ("start", "rpm"))
-                if start_rpm is not None and start_rpm < 0:
-                    ck.error(path + ("start", "rpm"), "must be 0 or more: the crank starts at "
-                             "rest or turning the way the motor drives it")
-                    start_rpm = None
-    until = None
-    if "until" in body and body["until"] != "steady":
-        if isinstance(body["until"], str):
-            ck.error(path + ("until",), f"must be steady or a time in s, got {_show(body['until'])}")
-            ok = False
-        else:
-            until = ck.number(body["until"], path + ("until",), positive=True)
-            ok = ok and until is not None
-    step = (ck.number(body["output_step"], path + ("output_step",), positive=True)
-            if "output_step" in body else None)
-    if None in (motor, flywheel, start_angle, start_rpm) or not ok or \
-            ("output_step" in body and step is None):
+    if not ok or motor is None or ck.refused(path):
         return None
-    return Dynamics(motor, flywheel, start_angle, start_rpm, until, step)
+    start = body.get("start") or {}
+    until = body.get("until")
+    return Dynamics(motor, float(body.get("flywheel", 0.0)),
+                    float(start.get("angle", sweep.start)), float(start.get("rpm", 0.0)),
+                    None if until in (None, "steady") else float(until),
+                    None if body.get("output_step") is None else float(body["output_step"]))
 
 
 def _dynamics_motor(value: Any, path: tuple, ck: _Checker) -> MotorCurve | None:
@@ -750,76 +729,51 @@ def _dynamics_motor(value: Any, path: tuple, ck: _Checker) -> MotorCurve | None:
                        "({stall_torque, no_load_rpm})" + (f", not {' and '.join(given)}"
                                                           if given else ""))
         return None
+    if ck.refused(path):
+        return None
     kind = given[0]
     if kind == "torque":
-        torque = ck.number(body["torque"], path + ("torque",))
-        return None if torque is None else MotorCurve(constant=torque)
+        return MotorCurve(constant=float(body["torque"]))
     if kind == "linear":
-        lin = ck.mapping(body["linear"], path + ("linear",), LINEAR_MOTOR_KEYS,
-                         required=LINEAR_MOTOR_KEYS)
-        if lin is None or any(k not in lin for k in LINEAR_MOTOR_KEYS):
-            return None
-        stall = ck.number(lin["stall_torque"], path + ("linear", "stall_torque"), positive=True)
-        rpm = ck.number(lin["no_load_rpm"], path + ("linear", "no_load_rpm"), positive=True)
-        return None if stall is None or rpm is None else MotorCurve(stall_torque=stall,
-                                                                    no_load_rpm=rpm)
-    curve = body["curve"]
-    where = path + ("curve",)
-    if not isinstance(curve, list) or len(curve) < 2:
-        ck.error(where, f"must be a list of at least two [rpm, N·m] points, got {_show(curve)}")
-        return None
-    points = [ck.vec2(p, where + (i,), "[rpm, N·m]") for i, p in enumerate(curve)]
-    if any(p is None for p in points):
-        return None
+        return MotorCurve(stall_torque=float(body["linear"]["stall_torque"]),
+                          no_load_rpm=float(body["linear"]["no_load_rpm"]))
+    points = [(float(a), float(b)) for a, b in body["curve"]]
     for i in range(1, len(points)):
         if not points[i][0] > points[i - 1][0]:
-            ck.error(where + (i, 0), f"the speeds must increase: {points[i][0]:g} rpm follows "
-                                     f"{points[i - 1][0]:g} rpm")
+            ck.error(path + ("curve", i, 0), f"the speeds must increase: {points[i][0]:g} rpm "
+                                             f"follows {points[i - 1][0]:g} rpm")
             return None
-    return MotorCurve(curve=tuple((float(a), float(b)) for a, b in points))
+    return MotorCurve(curve=tuple(points))
 
 
 def _design(value: Any, ck: _Checker, joints: list[Joint] | None, pins=()) -> Design:
+    """The design review's inputs, SI as written (their types and ranges are the models';
+    a part they refuse is left out); a bearing must name a joint."""
     path = ("design",)
-    body = ck.mapping(value, path, DESIGN_KEYS)
-    if body is None:
-        return Design()
-    cs = (ck.number(body["speed_fluctuation"], path + ("speed_fluctuation",), positive=True)
-          if "speed_fluctuation" in body else None)
-    motor = _positive_table(body.get("motor"), path + ("motor",), MOTOR_KEYS, ck) \
-        if "motor" in body else {}
-    limits = _positive_table(body.get("limits"), path + ("limits",), LIMIT_KEYS, ck) \
-        if "limits" in body else {}
-    if limits.get("efficiency", 0) > 1:
-        ck.error(path + ("limits", "efficiency"), "must be at most 1 (an efficiency is a "
-                 "fraction: 0.85, not 85)")
-    if limits.get("transmission_angle", 0) > 90:
-        ck.error(path + ("limits", "transmission_angle"), "must be at most 90 degrees (the "
-                 "transmission angle is folded into [0, 90])")
+    body = value if isinstance(value, dict) else {}
+
+    def numbers(key: str, model) -> dict[str, float]:
+        raw = body.get(key)
+        if not isinstance(raw, dict) or ck.refused(path + (key,)):
+            return {}
+        return {k: float(raw[k]) for k in keys_of(model) if k in raw}
+
+    cs = body.get("speed_fluctuation")
+    cs = None if cs is None or ck.refused(path + ("speed_fluctuation",)) else float(cs)
     bearings: dict[str, BearingSpec] = {}
     raw = body.get("bearings")
-    if "bearings" in body:
-        if not isinstance(raw, dict):
-            ck.error(path + ("bearings",), "must map joint names to {rating, life_h}")
-        else:
-            names = {j.name for j in joints or ()}
-            for jname, item in raw.items():
-                where = path + ("bearings", jname)
-                if joints is not None and jname not in names:
-                    if jname not in ck.invalid_joints:
-                        ck.error(where, _pin_hint(jname, pins, "bearing")
-                                 or f"no joint named '{jname}' (joints: "
-                                    f"{', '.join(sorted(names))})")
-                    continue
-                b = ck.mapping(item, where, BEARING_KEYS, required=BEARING_REQUIRED)
-                if b is None or any(k not in b for k in BEARING_REQUIRED):
-                    continue
-                rating = ck.number(b["rating"], where + ("rating",), positive=True)
-                life = (ck.number(b["life_h"], where + ("life_h",), positive=True)
-                        if "life_h" in b else None)
-                if rating is not None and ("life_h" not in b or life is not None):
-                    bearings[jname] = BearingSpec(rating, life)
-    return Design(cs, motor, bearings, limits)
+    names = {j.name for j in joints or ()}
+    for jname, item in (raw.items() if isinstance(raw, dict) else ()):
+        where = path + ("bearings", jname)
+        if joints is not None and jname not in names:
+            if jname not in ck.invalid_joints:
+                ck.error(where, _pin_hint(jname, pins, "bearing")
+                         or f"no joint named '{jname}' (joints: {', '.join(sorted(names))})")
+        elif not ck.refused(where):
+            life = item.get("life_h")
+            bearings[jname] = BearingSpec(float(item["rating"]),
+                                          None if life is None else float(life))
+    return Design(cs, numbers("motor", schema.Motor), bearings, numbers("limits", schema.Limits))
 
 
 def _pin_hint(name: str, pins, what: str) -> str | None:
@@ -832,18 +786,6 @@ def _pin_hint(name: str, pins, what: str) -> str | None:
                         for link in pin.others)
     return (f"'{name}' is a pin joining {', '.join(pin.links)}: a {what} sits between two of "
             f"them; name one of {choices}")
-
-
-def _positive_table(value: Any, path: tuple, keys: tuple[str, ...],
-                    ck: _Checker) -> dict[str, float]:
-    body = ck.mapping(value, path, keys)
-    out = {}
-    for key in keys:
-        if body is not None and key in body:
-            v = ck.number(body[key], path + (key,), positive=True)
-            if v is not None:
-                out[key] = v
-    return out
 
 
 def _cycle_requests(spec: Spec, ck: _Checker) -> None:
@@ -943,39 +885,29 @@ def _cycle_need(spec: Spec, quantity: str) -> str | None:
 NOT_VARIED = ("mechreport", "study", "expect", "report")
 
 
-def _whole(value: Any, path: tuple, ck: _Checker, low: int, high: int) -> int | None:
-    """A whole number in [low, high] (reported otherwise)."""
-    problem = _whole_problem(value, low, high)
-    if problem is not None:
-        ck.error(path, problem)
-        return None
-    return value
-
-
 def _study(value: Any, ck: _Checker, top: dict) -> Study | None:
     """The ``study`` section (docs/spec.md, section 17): every key path must lead to a number
     of this spec; values are kept as written (the spec's own units)."""
     path = ("study",)
-    body = ck.mapping(value, path, STUDY_KEYS, required=STUDY_REQUIRED)
-    if body is None or any(k not in body for k in STUDY_REQUIRED):
-        return None
-    ok = True
-    sample = "grid"
-    if "sample" in body:
-        sample = ck.choice(body["sample"], path + ("sample",), SAMPLES)
-        ok &= sample is not None
-    count = None
-    if "count" in body:
-        count = _whole(body["count"], path + ("count",), ck, 1, MAX_STUDY_VARIANTS)
-        ok &= count is not None
-    elif sample in ("random", "lhs"):
+    body = value if isinstance(value, dict) else {}
+    if any(k not in body for k in STUDY_REQUIRED):
+        return None             # the models say what is wrong
+
+    def given(key: str) -> Any:
+        """The value of ``key`` as validated (the model's default if absent), None if the
+        models refused it."""
+        if ck.refused(path + (key,)):
+            return None
+        return body.get(key, schema.Study.model_fields[key].default)
+
+    ok = not any(ck.refused(path + (key,)) for key in ("sample", "count", "seed"))
+    sample, count, seed = given("sample"), given("count"), given("seed")
+    count = None if count is None else int(count)
+    seed = None if seed is None else int(seed)
+    if "count" not in body and sample in ("random", "lhs"):
         ck.error(path, f"missing required key 'count' (how many variants {sample} sampling "
                        "draws)")
         ok = False
-    seed = 0
-    if "seed" in body:
-        seed = _whole(body["seed"], path + ("seed",), ck, 0, MAX_SEED)
-        ok &= seed is not None
     vary = _vary(body["vary"], path + ("vary",), ck, top, sample or "grid")
     keep = _keep(body["keep"], path + ("keep",), ck)
     if not ok or vary is None or keep is None:
@@ -992,17 +924,15 @@ def _study(value: Any, ck: _Checker, top: dict) -> Study | None:
 def _vary(value: Any, path: tuple, ck: _Checker, top: dict,
           sample: str) -> tuple[Vary, ...] | None:
     if not isinstance(value, list) or not value:
-        ck.error(path, "must be a list of {key, from, to, count} or {key, values}"
-                       + ("" if isinstance(value, list) else f", got {_show(value)}"))
-        return None
+        return None             # the models say what is wrong
     out: list[Vary] = []
     seen: dict[tuple, int] = {}
     ok = True
     for i, item in enumerate(value):
         where = path + (i,)
-        body = ck.mapping(item, where, VARY_KEYS, required=VARY_REQUIRED)
-        if body is None or any(k not in body for k in VARY_REQUIRED):
-            ok = False
+        body = item if isinstance(item, dict) else {}
+        if any(k not in body for k in VARY_REQUIRED):
+            ok = False          # the models say what is wrong
             continue
         leaf = _key_path(body["key"], where + ("key",), ck, top)
         if leaf is not None and leaf in seen:
@@ -1011,7 +941,8 @@ def _vary(value: Any, path: tuple, ck: _Checker, top: dict,
             leaf = None
         if leaf is not None:
             seen[leaf] = i
-        entry = _vary_values(body, where, ck, sample)
+        # a mistake the models see (an unknown key, a value's type) is said by them alone
+        entry = None if ck.refused(where) else _vary_values(body, where, ck, sample)
         if leaf is None or entry is None:
             ok = False
             continue
@@ -1032,27 +963,20 @@ def _vary_values(body: dict, where: tuple, ck: _Checker, sample: str) -> dict | 
             ck.error(where + ("count",), "'count' goes with 'from' and 'to'; with 'values' the "
                                          "grid takes every value")
             return None
-        raw = body["values"]
-        if not isinstance(raw, list) or not raw or len(raw) > MAX_STUDY_VARIANTS:
-            ck.error(where + ("values",), f"must be a list of 1 to {MAX_STUDY_VARIANTS} numbers"
-                                          f", got {_show(raw)}")
+        if ck.refused(where + ("values",)):
             return None
-        numbers = [ck.number(v, where + ("values", j)) for j, v in enumerate(raw)]
-        if any(v is None for v in numbers):
-            return None
-        return {"values": tuple(raw)}
+        return {"values": tuple(body["values"])}
     missing = [k for k in ("from", "to") if k not in body]
     if missing:
         ck.error(where, f"missing required key '{missing[0]}' (a range needs 'from' and 'to')")
         return None
-    start = ck.number(body["from"], where + ("from",))
-    stop = ck.number(body["to"], where + ("to",))
-    count = None
-    if "count" in body:
-        count = _whole(body["count"], where + ("count",), ck, 1, MAX_STUDY_VARIANTS)
-        if count is None:
-            return None
-    elif sample == "grid":
+    refused = any(ck.refused(where + (key,)) for key in ("from", "to", "count"))
+    start = None if refused else float(body["from"])
+    stop = None if refused else float(body["to"])
+    count = None if refused or "count" not in body else int(body["count"])
+    if refused:
+        return None
+    if count is None and sample == "grid":
         ck.error(where, "missing required key 'count' (how many grid values from 'from' to "
                         "'to', both included)")
         return None
@@ -1165,12 +1089,13 @@ def _study_requests(spec: Spec, ck: _Checker) -> None:
 
 
 def _units(value: Any, ck: _Checker) -> tuple[float, float, dict[str, str]]:
-    if value is None:
-        return 1.0, 1.0, {"length": "m", "mass": "kg"}
-    units = ck.mapping(value, ("units",), UNITS_KEYS) or {}
-    length = ck.choice(units.get("length", "m"), ("units", "length"), tuple(LENGTH_UNITS)) or "m"
-    mass = ck.choice(units.get("mass", "kg"), ("units", "mass"), tuple(MASS_UNITS)) or "kg"
-    return LENGTH_UNITS[length], MASS_UNITS[mass], {"length": length, "mass": mass}
+    """The factors of the spec's length and mass units to m and kg, and their names (the
+    model's defaults where absent or refused)."""
+    given = value if isinstance(value, dict) else {}
+    names = {key: (given[key] if key in given and not ck.refused(("units", key))
+                   else field.default)
+             for key, field in schema.Units.model_fields.items()}
+    return LENGTH_UNITS[names["length"]], MASS_UNITS[names["mass"]], names
 
 
 def _ground(value: Any, ck: _Checker, s: float, unit: str) -> dict[str, Vec]:
@@ -1447,10 +1372,12 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
     """Any joint may drive: an R joint its relative angle (``rpm`` or ``omega``, ``alpha``), a
     T joint its stroke (``speed``, ``accel`` in the length unit per s and s^2)."""
     path = ("driver",)
-    body = ck.mapping(value, path, DRIVER_KEYS, required=DRIVER_REQUIRED)
-    if body is None or any(k not in body for k in DRIVER_REQUIRED):
-        return None
-    jname = ck.name(body["joint"], path + ("joint",))
+    body = value if isinstance(value, dict) else {}
+    if any(k not in body for k in DRIVER_REQUIRED):
+        return None             # the models say what is wrong
+    jname = None if ck.refused(path + ("joint",)) else body["joint"]
+    numbers_refused = any(ck.refused(path + (k,))
+                          for k in ("rpm", "omega", "alpha", "speed", "accel"))
     pin = next((p for p in pins if p.name == jname), None)
     if pin is not None:        # a pin joining several links drives its first two links
         jname = pin.joint_name(pin.links[1])
@@ -1460,12 +1387,7 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
         if joints is not None and jname is not None and jname not in ck.invalid_joints:
             ck.error(path + ("joint",), f"unknown joint '{jname}' (joints: "
                                         f"{', '.join(j.name for j in joints)})")
-        # the joint is unknown or broken: its numbers are still checked, so that every
-        # problem of the file is listed at once
-        for k in ("rpm", "omega", "alpha", "speed", "accel"):
-            if k in body:
-                ck.number(body[k], path + (k,))
-        return None
+        return None             # (its numbers are the models' to check)
     a, b = joint.links
     link = (b if a == GROUND else a) if GROUND in joint.links else b
     if joint.type == "T":
@@ -1478,10 +1400,12 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
                 ck.error(path, "a T driver needs 'speed' (length unit per second; 0 for a "
                                "static analysis)")
             return None
-        speed = ck.number(body["speed"], path + ("speed",), scale=length_scale)
-        accel = (ck.number(body["accel"], path + ("accel",), scale=length_scale)
+        if wrong or numbers_refused:
+            return None
+        speed = ck.si(body["speed"], path + ("speed",), scale=length_scale)
+        accel = (ck.si(body["accel"], path + ("accel",), scale=length_scale)
                  if "accel" in body else 0.0)
-        if speed is None or accel is None or wrong:
+        if speed is None or accel is None:
             return None
         return Driver(jname, link, speed, accel, None, "T", (a, b), length_scale)
     for k in ("speed", "accel"):
@@ -1491,9 +1415,11 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
     if ("rpm" in body) == ("omega" in body):
         ck.error(path, "give exactly one of 'rpm' or 'omega' (rad/s)")
         return None
+    if numbers_refused:
+        return None
     rpm = None
     key = "rpm" if "rpm" in body else "omega"
-    speed = ck.number(body[key], path + (key,))
+    speed = float(body[key])
     if key == "rpm":
         rpm = speed
         omega = None if speed is None else speed * math.pi / 30.0
@@ -1503,33 +1429,44 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
             omega = None
     else:
         omega = speed
-    alpha = ck.number(body["alpha"], path + ("alpha",)) if "alpha" in body else 0.0
-    if omega is None or alpha is None or "speed" in body or "accel" in body:
+    alpha = float(body["alpha"]) if "alpha" in body else 0.0
+    if omega is None or "speed" in body or "accel" in body:
         return None
     return Driver(jname, link, omega, alpha, rpm, "R", (a, b))
 
 
+def _default_gravity() -> Vec:
+    """Gravity where a spec gives none, m/s² (the model's default)."""
+    gx, gy = schema.SpecFile.model_fields["gravity"].default
+    return (float(gx), float(gy))
+
+
+def _default_sweep() -> Sweep:
+    """The sweep of a spec without ``sweep:`` (the model's defaults), degrees."""
+    return Sweep(**{key: float(field.default)
+                    for key, field in schema.Sweep.model_fields.items()})
+
+
 def _sweep(value: Any, ck: _Checker) -> Sweep:
-    if value is None:
-        return Sweep()
-    body = ck.mapping(value, ("sweep",), SWEEP_KEYS) or {}
-    vals = {}
-    for key, default in (("start", 0.0), ("stop", 360.0), ("step", 1.0)):
-        v = ck.number(body[key], ("sweep", key), positive=(key == "step")) if key in body \
-            else default
-        vals[key] = default if v is None else v
+    """The crank angles analysed, degrees (the model's defaults where absent; the defaults
+    throughout when the model refused any of it)."""
+    defaults = _default_sweep()
+    if value is None or ck.refused(("sweep",)):
+        return defaults
+    vals = {key: float(value.get(key, getattr(defaults, key)))
+            for key in ("start", "stop", "step")}
     if vals["stop"] <= vals["start"]:
         ck.error(("sweep", "stop"), f"must be greater than start ({vals['start']:g})")
-        return Sweep()
+        return defaults
     if (vals["stop"] - vals["start"]) / vals["step"] > MAX_SWEEP_ANGLES:
         ck.error(("sweep", "step"), f"gives more than {MAX_SWEEP_ANGLES} angles; use a larger "
                                     "step")
-        return Sweep()
+        return defaults
     sweep = Sweep(**vals)
     if len(sweep.angles()) == 0:   # stop - start below 1e-9 deg reads as "zero whole turns"
         ck.error(("sweep", "stop"), f"gives no crank angle: stop must exceed start "
                                     f"({vals['start']:g}) by more than 1e-9 degrees")
-        return Sweep()
+        return defaults
     return sweep
 
 
@@ -1772,17 +1709,17 @@ def _element(kind: str, item: dict, i: int, path: tuple, ck: _Checker, links: di
 
 def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | None,
             src_lines: Source, driver: Driver | None = None, pins=()) -> list[Expectation]:
-    if value is None:
-        return []
+    """What the results must reproduce, SI; the entries' types and ranges are the models',
+    the loader checks what needs the mechanism (the quantity, its unit, the angle's
+    presence)."""
     if not isinstance(value, list):
-        ck.error(("expect",), "must be a list of {angle, quantity, value, tol}")
-        return []
+        return []               # absent, or the models say what is wrong
     out = []
     joint_types = {j.name: j.type for j in (joints or [])}
     for i, item in enumerate(value):
         path = ("expect", i)
-        body = ck.mapping(item, path, EXPECT_KEYS, required=EXPECT_REQUIRED)
-        if body is None or any(k not in body for k in EXPECT_REQUIRED):
+        body = item if isinstance(item, dict) else {}
+        if any(k not in body for k in EXPECT_REQUIRED):
             continue
         quantity = body["quantity"]
         problem = _quantity_problem(quantity, links, joint_types, joints is not None, ck,
@@ -1801,15 +1738,12 @@ def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | N
             continue
         unit, scale = (_expect_unit(body["unit"], quantity, path + ("unit",), ck, joint_types)
                        if "unit" in body else (None, 1.0))
-        if scale is None:                 # still checked, so every problem is listed at once
-            for key in ("angle", "value", "tol"):
-                if key in body and not (key == "angle" and cycle):
-                    ck.number(body[key], path + (key,), positive=key == "tol")
+        if scale is None or any(ck.refused(path + (key,)) for key in ("angle", "value", "tol")):
             continue
-        angle = ck.number(body["angle"], path + ("angle",)) if not cycle else None
-        target = ck.number(body["value"], path + ("value",), scale=scale, unit=unit or "")
-        tol = (ck.number(body["tol"], path + ("tol",), positive=True, scale=scale,
-                         unit=unit or "") if "tol" in body else None)
+        angle = float(body["angle"]) if not cycle else None
+        target = ck.si(body["value"], path + ("value",), scale=scale, unit=unit or "")
+        tol = (ck.si(body["tol"], path + ("tol",), scale=scale, unit=unit or "")
+               if "tol" in body else None)
         if (angle is None and not cycle) or target is None or ("tol" in body and tol is None):
             continue
         if tol is None:       # 1e-4 of the value as written (at least 1e-4 in its unit)
@@ -1987,38 +1921,20 @@ def _report(value: Any, ck: _Checker, units: dict[str, str],
             whole_turn: bool) -> ReportSettings:
     """The ``report`` section: display units (lengths default to the spec's ``units.length``,
     the rest to SI), first-page metadata, ``animation`` (default: ``whole_turn``, the sweep is
-    one whole turn of a crank) and ``dxf`` (docs/spec.md, section 16)."""
-    body = ck.mapping(value, ("report",), REPORT_KEYS) if value is not None else {}
-    if body is None:
-        return ReportSettings(animation=whole_turn)
+    one whole turn of a crank) and ``dxf`` (docs/spec.md, section 16). Types and lengths are
+    the models'; a key they refuse takes its default."""
+    path = ("report",)
+    body = value if isinstance(value, dict) else {}
+
+    def given(key: tuple, default: Any) -> Any:
+        where, node = path, body
+        for part in key:
+            where += (part,)
+            node = node.get(part) if isinstance(node, dict) else None
+        return default if node is None or ck.refused(where) else node
+
     shown = {"length": units.get("length", "m"), "force": "N", "moment": "N*m", "mass": "kg"}
-    if "units" in body:
-        given = ck.mapping(body["units"], ("report", "units"), REPORT_UNIT_KEYS) or {}
-        for key in REPORT_UNIT_KEYS:
-            if key in given:
-                shown[key] = ck.choice(given[key], ("report", "units", key),
-                                       choices_of(schema.ReportUnits, key)) or shown[key]
-    meta = {}
-    for key in REPORT_TEXT_KEYS:
-        text = body.get(key, "")
-        if isinstance(text, int) and not isinstance(text, bool):
-            text = str(text)                     # revision: 2
-        if text is None:
-            text = ""
-        if not isinstance(text, str):
-            ck.error(("report", key), f"must be text, got {_show(text)} (quote it: '...')")
-            text = ""
-        elif len(text) > REPORT_TEXT_MAX or "\n" in text.strip():
-            ck.error(("report", key), f"must be one line of at most {REPORT_TEXT_MAX} "
-                                      "characters")
-            text = ""
-        meta[key] = " ".join(text.split())
-    switches = {"animation": whole_turn, "dxf": False}
-    for key, default in switches.items():
-        given = body.get(key, default)
-        if not isinstance(given, bool):
-            ck.error(("report", key), f"must be true or false, got {_show(given)}"
-                                      f"{_text_hint(given, boolean=True)}")
-            given = default
-        switches[key] = given
-    return ReportSettings(units=shown, **meta, **switches)
+    shown = {key: given(("units", key), default) for key, default in shown.items()}
+    meta = {key: " ".join(str(given((key,), "")).split()) for key in REPORT_TEXT_KEYS}
+    return ReportSettings(units=shown, **meta, animation=given(("animation",), whole_turn),
+                          dxf=given(("dxf",), schema.Report.model_fields["dxf"].default))

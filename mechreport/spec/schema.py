@@ -21,22 +21,25 @@ JSON Schema on request.
 """
 import functools
 import json
+import re
 import typing
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal, Optional, Union
 
-from pydantic import (AfterValidator, BaseModel, ConfigDict, Discriminator, Field, Tag,
+from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Discriminator,
+                      Field, Tag, model_validator,
                       ValidationError)
 from pydantic.fields import FieldInfo
 from pydantic.json_schema import GenerateJsonSchema
 from pydantic_core import PydanticCustomError
 
+from ..quantities import CYCLE_UNITS, JOINT_CYCLE_UNITS, MEMBER_UNITS
 from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES
 from .types import GROUND
 
 __all__ = ["SpecFile", "LOAD_MODELS", "NUMBER_MAX", "NUMBER_MIN", "MAX_STUDY_VARIANTS",
            "MAX_SEED", "REPORT_TEXT_MAX", "SCHEMA_ID", "keys_of", "required_of", "choices_of",
-           "literal_values", "shape_errors", "locate", "Located", "Wording", "ByKey",
+           "literal_values", "shape_errors", "locate", "Located", "Wording", "Refusal", "ByKey",
            "json_schema"]
 
 # Every number in a spec is finite and, unless exactly zero, has a magnitude between
@@ -57,6 +60,28 @@ SCHEMA_DIALECT = "https://json-schema.org/draft/2020-12/schema"
 class Wording:
     """What a value must be, in the loader's words ("a pair [x, y]"): how a type error on it
     is reported (``must be <text>, got ...``). Metadata only: it changes no validation."""
+
+    text: str
+
+
+@dataclass(frozen=True)
+class Refusal:
+    """The whole message a wrong value of a key gets, ``{value}`` standing for the value as
+    written (the format version's: "format version must be 1, got 2"), for the pydantic
+    error types ``kinds`` (every type if none is given). Metadata only."""
+
+    text: str
+    kinds: tuple[str, ...] = ()
+
+    def says(self, kind: str) -> bool:
+        """Whether this message is the one for an error of type ``kind``."""
+        return not self.kinds or kind in self.kinds
+
+
+@dataclass(frozen=True)
+class DocRequired:
+    """What docs/spec.md's key table says in its "required" column for a key that is neither
+    plainly required nor plainly optional ("for random and lhs"). Metadata only."""
 
     text: str
 
@@ -136,7 +161,39 @@ def _direction_tag(value: Any) -> str:
 
 def _text_tag(value: Any) -> str:
     """Report metadata: text, or a whole number read as its text (``revision: 2``)."""
-    return "number" if isinstance(value, int) and not isinstance(value, bool) else "text"
+    return "number" if _is_whole(value) else "text"
+
+
+def _is_whole(value: Any) -> bool:
+    """An int, or a float with a whole value: ``3.0`` is the number 3 in JSON, as a YAML
+    language server checks a spec (never true/false)."""
+    return type(value) is int or type(value) is float and value.is_integer()
+
+
+def _whole_value(value: Any) -> Any:
+    """A whole float as its int (``3.0`` -> 3); any other value as it is."""
+    return int(value) if type(value) is float and value.is_integer() else value
+
+
+def _not_true_or_false(value: Any) -> Any:
+    """``value``, unless it is true or false (which pydantic reads as 1 and 0)."""
+    if isinstance(value, bool):
+        raise PydanticCustomError("bool_refused", "must not be true or false")
+    return value
+
+
+def _until_tag(value: Any) -> str:
+    """``dynamics.until``: text is ``steady`` (or wrong), anything else a time."""
+    return "steady" if isinstance(value, str) else "time"
+
+
+def _motor_tag(value: Any) -> str | None:
+    """``dynamics.motor``: the one kind (torque, curve, linear) a mapping gives; None when it
+    gives none or several."""
+    if not isinstance(value, dict):
+        return None
+    given = [kind for kind in DYNAMICS_MOTOR_KINDS if kind in value]
+    return given[0] if len(given) == 1 else None
 
 
 def _friction_tag(value: Any) -> str:
@@ -186,8 +243,8 @@ Text = Annotated[str, Field(strict=True), Wording("text")]
 
 
 def _whole(low: int, high: int) -> Any:
-    """A whole number (an int, not 2.0) from ``low`` to ``high``."""
-    return Annotated[int, Field(strict=True, ge=low, le=high),
+    """A whole number (3, or 3.0: the same number in JSON) from ``low`` to ``high``."""
+    return Annotated[int, Field(strict=True, ge=low, le=high), BeforeValidator(_whole_value),
                      Wording(f"a whole number from {low} to {high}")]
 
 
@@ -347,35 +404,46 @@ class Link(_Model):
     """A moving link: its named points in its own frame and its mass properties."""
 
     points: dict[str, Point] = Field(
-        min_length=1, description="Named points in the link's own frame: `NAME: [x, y]` in "
-                                  "the length unit (at least one).")
+        min_length=1, description="required, at least one: `NAME: [x, y]` in the link's own frame")
     mass: NonNegative = Field(
-        None, description="Mass, kg (or g with units.mass: g). Or give density with a shape. "
-                          "`mass: 0` alone is a massless link.")
+        None, description=(
+            "kg (or g with `units.mass: g`). Or give `density` and a `shape`: mass = density x "
+            "shape volume. `mass: 0` alone (no `density`, `shape`, `com` or `inertia`) is a "
+            "massless link: no weight, no inertia (a two-force member when it carries no load)"))
     density: Positive = Field(
-        None, description="kg/m³, with `shape`, when `mass` is absent (mass = density x "
-                          "shape volume).")
+        None, description="kg/m³, used with `shape` when `mass` is absent")
     com: Point = Field(
-        None, description="Centre of mass [x, y] in the link frame. Default: the shape's "
-                          "centroid.")
+        None, description=(
+            "centre of mass `[x, y]` in the link frame. Default: the shape's centroid"))
     inertia: NonNegative = Field(
-        None, description="kg·m² about the centre of mass. Default: from the shape. "
-                          "`inertia: 0` with a mass is a point mass.")
+        None, description=(
+            "kg·m² about the centre of mass, axis normal to the plane. Default: from the shape. "
+            "`inertia: 0` with a `mass` is a point mass"))
     shape: Shape = Field(
-        None, description="`{bar: {length, height, depth}}` or `{block: {width, height, "
-                          "depth}}`, sizes in the length unit.")
+        None, description=(
+            "`{bar: {length, height, depth}}` or `{block: {width, height, depth}}`, see below"))
     section: Section = Field(
-        None, description="The members' cross-section (format 1.1): {rect: {width, height}}, "
-                          "{round: {d}}, {tube: {d, t}} or {area, inertia, c}, in the "
-                          "length unit.")
+        None, description=(
+            "`{rect: {width, height}}`: `height` in the plane of motion (it resists in-plane "
+            "bending), `width` normal to it; A = width height, I = width height³ / 12, c = height"
+            " / 2. `{round: {d}}`: I = π d⁴ / 64, c = d / 2. `{tube: {d, t}}`: outer diameter and"
+            " wall (t at most d / 2). `{area, inertia, c}`: any section, area in length unit², "
+            "inertia (in-plane bending) in length unit⁴, c the distance from the neutral axis to "
+            "the outer fibre. Sizes are in the spec's length unit; all must be positive"))
     material: MaterialRef = Field(
-        None, description="With `section`: a name from `materials:`, or {E, yield, "
-                          "endurance, ultimate} in Pa.")
+        None, description=(
+            "a name from the top-level `materials:`, or inline `{E, yield, endurance, ultimate}`,"
+            " all in Pa (SI whatever `units` says). `endurance` is the fully corrected endurance "
+            "limit S_e (surface, size, load, reliability already applied). `yield` and "
+            "`endurance` may not exceed `ultimate`"))
     members: Annotated[list[Annotated[list[Name], Field(min_length=2, max_length=2)]],
                        Wording("a list of point pairs [[P, Q], ...]")] = Field(
-        None, min_length=1, description="With `section`: the straight members [[P, Q], ...] "
-                                        "(points of the link). Default: the segment between "
-                                        "the link's two joints.")
+        None, min_length=1, description=(
+            "`[[P, Q], ...]`, points of the link: the straight beams it is made of. Default: the "
+            "segment between the link's two joint points (the points of its R joints, and of T "
+            "joints where it is the slider); a link with more or fewer joint points must list "
+            "them. The members must join into one piece without a closed loop (a closed frame is "
+            "statically indeterminate); a member of zero length is an error"))
 
 
 class Line(_Model):
@@ -445,7 +513,12 @@ class Sweep(_Model):
     step: Positive = Field(1, description="Step, degrees (positive).")
 
 
-Profile = Annotated[list[Annotated[Pair, Wording("a pair [crank_angle_deg, magnitude]")]],
+#: a profile's crank angle, degrees: in [0, 360)
+ProfileAngle = Annotated[float, Field(strict=True, ge=0, lt=360, allow_inf_nan=False),
+                         AfterValidator(_magnitude), _NOT_TINY,
+                         Wording("an angle in [0, 360)")]
+Profile = Annotated[list[Annotated[tuple[ProfileAngle, Number],
+                                   Wording("a pair [crank_angle_deg, magnitude]")]],
                     Field(min_length=1), Wording("a list of [crank_angle_deg, magnitude] pairs")]
 End = Annotated[tuple[Name, Name], Wording("an end [link, point]"),
                 _shared("end", "[link, point]: a point of a link (or of ground).")]
@@ -532,8 +605,9 @@ Load = Annotated[Union[tuple(Annotated[m, Tag(t)] for t, m in LOAD_MODELS.items(
                  Wording("a mapping like {type: force, link, point, value}")]
 
 
-FrictionSense = Annotated[Literal[1, -1], Field(
-    description="At rest: the sign of the relative motion the joint is about to have.")]
+FrictionSense = Annotated[Literal[1, -1], BeforeValidator(_not_true_or_false), Refusal(
+    "must be +1 or -1 (the way the joint is about to move in a static analysis), got {value}"),
+    Field(description="At rest: the sign of the relative motion the joint is about to have.")]
 
 
 class RFriction(_Model):
@@ -598,10 +672,14 @@ class Limits(_Model):
     """Limits the cycle must keep."""
 
     joint_force: Positive = Field(None, description="N, every joint over the cycle.")
-    transmission_angle: Annotated[Positive, Field(le=90)] = Field(
+    transmission_angle: Annotated[Positive, Field(le=90), Refusal(
+        "must be at most 90 degrees (the transmission angle is folded into [0, 90])",
+        ("less_than_equal",))] = Field(
         None, description="Degrees, the smallest allowed (at most 90).")
     shaking_force: Positive = Field(None, description="N, the largest allowed.")
-    efficiency: Annotated[Positive, Field(le=1)] = Field(
+    efficiency: Annotated[Positive, Field(le=1), Refusal(
+        "must be at most 1 (an efficiency is a fraction: 0.85, not 85)",
+        ("less_than_equal",))] = Field(
         None, description="The smallest cycle.efficiency allowed (at most 1; needs friction).")
     speed_fluctuation: Positive = Field(
         None, description="The largest dynamics.speed_fluctuation allowed (needs dynamics).")
@@ -622,34 +700,66 @@ class LinearMotor(_Model):
     no_load_rpm: Positive = Field(description="rpm, where the torque is 0.")
 
 
-CurvePoint = Annotated[tuple[Number, Number], Wording("a pair [rpm, torque]")]
+CurvePoint = Annotated[tuple[Number, Number], Wording("a pair [rpm, N·m]")]
 
 
-class DynamicsMotor(_Model):
-    """The motor on the crank shaft: exactly one of torque, curve, linear."""
+class TorqueMotor(_Model):
+    """A motor of constant torque."""
 
-    torque: Number = Field(None, description="A constant torque, N·m.")
-    curve: Annotated[list[CurvePoint], Wording("a list of [rpm, torque] pairs")] = Field(
-        None, min_length=2, description="[[rpm, N·m], ...], speeds increasing; linear between "
-                                        "the points and along the end segments beyond them.")
-    linear: LinearMotor = Field(None, description="{stall_torque, no_load_rpm}.")
+    model_config = ConfigDict(title="constant torque motor")
+    torque: Number = Field(description="A constant torque, N·m.")
+
+
+class CurveMotor(_Model):
+    """A motor whose torque follows a curve over speed."""
+
+    model_config = ConfigDict(title="torque curve motor")
+    curve: Annotated[list[CurvePoint], Wording("a list of [rpm, torque] pairs"),
+                     Refusal("must be a list of at least two [rpm, N·m] points, got {value}",
+                             ("list_type", "too_short"))] = Field(
+        min_length=2, description="[[rpm, N·m], ...], speeds increasing; linear between "
+                                  "the points and along the end segments beyond them.")
+
+
+class LinearCurveMotor(_Model):
+    """A motor whose torque falls linearly with speed."""
+
+    model_config = ConfigDict(title="linear motor")
+    linear: LinearMotor = Field(description="{stall_torque, no_load_rpm}.")
+
+
+#: the kinds of dynamics.motor, one key each (a motor gives exactly one)
+DYNAMICS_MOTOR_KINDS = ("torque", "curve", "linear")
+DynamicsMotor = Annotated[Union[Annotated[TorqueMotor, Tag("torque")],
+                                Annotated[CurveMotor, Tag("curve")],
+                                Annotated[LinearCurveMotor, Tag("linear")]],
+                          Discriminator(_motor_tag),
+                          Wording("exactly one of {torque}, {curve} or {linear}")]
 
 
 class DynamicsStart(_Model):
     """The initial state of the crank."""
 
     angle: Number = Field(None, description="Crank angle, degrees (default sweep.start).")
-    rpm: NonNegative = Field(None, description="Crank speed, rpm (default 0: from rest).")
+    rpm: Annotated[NonNegative, Refusal(
+        "must be 0 or more: the crank starts at rest or turning the way the motor drives it",
+        ("greater_than_equal",))] = Field(
+        None, description="Crank speed, rpm (default 0: from rest).")
 
 
 class Dynamics(_Model):
     """Machine dynamics: the motion a motor and a flywheel give (format 1.1)."""
 
     motor: DynamicsMotor = Field(description="One of {torque}, {curve}, {linear}.")
-    flywheel: NonNegative = Field(None, description="Extra inertia on the crank shaft, kg·m² "
+    flywheel: Annotated[NonNegative, Refusal("must be 0 or more (kg·m²), got {value}",
+                                             ("greater_than_equal",))] = Field(None, description="Extra inertia on the crank shaft, kg·m² "
                                                     "(default 0).")
     start: DynamicsStart = Field(None, description="{angle, rpm}, default sweep.start at rest.")
-    until: Union[Literal["steady"], Positive] = Field(
+    until: Annotated[Union[Annotated[Literal["steady"], Tag("steady")],
+                           Annotated[Positive, Tag("time")]],
+                     Discriminator(_until_tag),
+                     Refusal("must be steady or a time in s, got {value}",
+                             ("literal_error",))] = Field(
         None, description="steady (default: until two cycles agree), or a time in s.")
     output_step: Positive = Field(None, description="s, the sampling of the time histories "
                                                     "(default 200 per steady cycle).")
@@ -661,7 +771,10 @@ class Design(_Model):
     speed_fluctuation: Positive = Field(None, description="Cs: enables "
                                                           "cycle.flywheel_inertia.")
     motor: Motor = Field(None, description="{rated_torque, peak_torque, rated_power}.")
-    bearings: dict[str, Bearing] = Field(None, description="Joint name -> {rating, life_h}.")
+    bearings: Annotated[dict[str, Bearing],
+                        Refusal("must map joint names to {{rating, life_h}}",
+                                ("dict_type",))] = Field(
+        None, description="Joint name -> {rating, life_h}.")
     limits: Limits = Field(None, description="{joint_force, transmission_angle, "
                                              "shaking_force, efficiency}.")
 
@@ -682,8 +795,9 @@ REPORT_TEXT_MAX = 200
 ReportText = Optional[Annotated[
     Union[Annotated[str, Field(strict=True, max_length=REPORT_TEXT_MAX,
                                pattern=r"^\s*[^\n]*\s*$"), Tag("text")],
-          Annotated[int, Field(strict=True), Tag("number")]],
-    Discriminator(_text_tag), Wording("text")]]
+          Annotated[int, Field(strict=True), BeforeValidator(_whole_value), Tag("number")]],
+    Discriminator(_text_tag), Wording("text"),
+    Refusal("must be text, got {value} (quote it: '...')", ("string_type",))]]
 
 
 class Report(_Model):
@@ -722,71 +836,117 @@ class Vary(_Model):
         description="The values the key takes, instead of a range.")
 
 
+def _cycle_pattern() -> str:
+    """What :func:`mechreport.quantities.is_cycle` accepts, as a regular expression."""
+    named = "|".join(re.escape(q) for q in CYCLE_UNITS)
+    joint = "|".join(map(re.escape, JOINT_CYCLE_UNITS))
+    member = "|".join(map(re.escape, MEMBER_UNITS))
+    return (f"^(?:{named}|joint\\.[\\s\\S]+\\.(?:{joint})"
+            f"|member\\.[\\s\\S]+\\.(?:{member}))$")
+
+
+#: a quantity with one value per sweep (cycle.*, balance.*, joint.J.f_max, member.L.*)
+CycleQuantity = Annotated[str, Field(strict=True, pattern=_cycle_pattern()),
+                          Wording("a cycle quantity")]
+
+#: in JSON Schema, what :meth:`Study._grid_ranges` checks
+_GRID_RANGES = {
+    "if": {"properties": {"sample": {"enum": ["random", "lhs"]}}, "required": ["sample"]},
+    "else": {"properties": {"vary": {"items": {
+        "if": {"anyOf": [{"required": ["from"]}, {"required": ["to"]}]},
+        "then": {"properties": {"count": {"minimum": 2}}}}}}}}
+
+
 class Study(_Model):
     """The variants `mechreport study` runs."""
 
+    model_config = ConfigDict(json_schema_extra=_GRID_RANGES)
+
     vary: Annotated[list[Vary], Wording("a list of {key, from, to, count} or {key, "
                                         "values}")] = Field(
-        min_length=1, description="The varied leaves.")
+        min_length=1, description=(
+            "a list of varied leaves, each `{key, from, to, count}` or `{key, values}`"))
     sample: Literal["grid", "random", "lhs"] = Field(
-        "grid", description="grid (every combination), random or lhs (Latin hypercube).")
-    count: _whole(1, MAX_STUDY_VARIANTS) = Field(
-        None, description="How many variants random and lhs draw.")
-    seed: _whole(0, MAX_SEED) = Field(0, description="The same spec and seed give the same "
-                                                     "variants.")
-    keep: Annotated[list[Name], Wording("a list of cycle quantities")] = Field(
-        min_length=1, description="The cycle quantities to tabulate (cycle.*, balance.*, "
-                                  "joint.J.f_max|f_mean|f_equivalent|life_h).")
+        "grid", description="`grid` (default), `random` or `lhs` (Latin hypercube)")
+    count: Annotated[_whole(1, MAX_STUDY_VARIANTS), DocRequired("for `random` and `lhs`")] = Field(
+        None, description=(
+            "how many variants they draw, 1 to 1 000 000; `grid` does not use it (it may stay in "
+            "the file when you switch to `grid`: the study says it is not used)"))
+    seed: _whole(0, MAX_SEED) = Field(0, description=(
+            "a whole number from 0 to 2^63 - 1, default 0: the same spec and seed always give the"
+            " same variants"))
+    keep: Annotated[list[CycleQuantity], Wording("a list of cycle quantities")] = Field(
+        min_length=1, description="the cycle quantities to tabulate (below)")
+
+    @model_validator(mode="after")
+    def _grid_ranges(self):
+        """A grid takes ``count`` values of a range, both ends included: at least 2."""
+        if self.sample == "grid":
+            for i, vary in enumerate(self.vary):
+                if (vary.from_ is not None or vary.to is not None) and vary.count == 1:
+                    raise PydanticCustomError(
+                        "grid_range_count", "vary[{i}].count must be at least 2 for a range",
+                        {"i": i})
+        return self
 
 
 class SpecFile(_Model):
     """A mechreport spec: one planar linkage (docs/spec.md)."""
 
     model_config = ConfigDict(title="mechreport spec")
-    mechreport: Literal[1, 1.1] = Field(description="Format version: 1, or 1.1.")
-    name: Name = Field(description="The mechanism's name, used in report titles.")
-    description: Optional[Text] = Field(None, description="Markdown shown at the top of the "
-                                                          "report.")
-    units: Optional[Units] = Field(None, description="{length: m|cm|mm, mass: kg|g}, default "
-                                                     "{length: m, mass: kg}.")
-    gravity: Pair = Field((0.0, -9.80665), description="[gx, gy] in m/s²; acts on every "
-                                                       "moving link.")
-    ground: Optional[dict[str, Point]] = Field(
-        None, description="Named points of the frame, global [x, y] in the length unit.")
-    links: dict[str, Link] = Field(min_length=1, description="The moving links, numbered 1, "
-                                                             "2, 3 ... in the order written.")
-    joints: dict[str, Joint] = Field(min_length=1, description="The joints, by unique name.")
-    driver: Driver = Field(description="The driving joint and its speed.")
-    sweep: Optional[Sweep] = Field(None, description="Crank angles to analyse, default 0 to "
-                                                     "360 by 1 degree.")
+    mechreport: Annotated[Literal[1, 1.1], BeforeValidator(_not_true_or_false),
+                          Refusal("format version must be 1, got {value} (or 1.1: the same "
+                                  "format with its version 1.1 keys)")] = Field(
+        description=(
+            "format version: `1`, or `1.1` (the same format; a file using the version 1.1 keys "
+            "may say so)"))
+    name: Name = Field(description="the mechanism's name, used in report titles")
+    description: Annotated[Optional[Text],
+                           Refusal("must be text (Markdown), got {value}")] = Field(None, description=(
+            "Markdown text shown at the top of the report"))
+    units: Optional[Units] = Field(None, description=(
+            "`{length: m|cm|mm, mass: kg|g}`, default `{length: m, mass: kg}`; either key may be "
+            "left out"))
+    gravity: Annotated[Pair, Wording("a pair [gx, gy] in m/s^2")] = Field(
+        (0.0, -9.80665), description=(
+            "`[gx, gy]` in m/s², default `[0, -9.80665]`; acts on every moving link at its centre"
+            " of mass"))
+    ground: Annotated[Optional[dict[str, Point]], DocRequired("no*")] = Field(
+        None, description=(
+            "named points of the frame, global coordinates (*needed for every joint with "
+            "`ground`)"))
+    links: dict[str, Link] = Field(min_length=1, description="the moving links (section 4)")
+    joints: dict[str, Joint] = Field(min_length=1, description="the joints (section 5)")
+    driver: Driver = Field(description="the driving crank and its speed (section 6)")
+    sweep: Optional[Sweep] = Field(None, description=(
+            "crank angles to analyse, default 0 to 360 by 1 degree"))
     at: Annotated[list[Number], Wording("a list of crank angles in degrees")] = Field(
-        None, min_length=1, description="Reference angles, degrees; the first is where the "
-                                        "assembly branch is chosen. Default [sweep.start].")
+        None, min_length=1, description="reference angles, default `[sweep.start]`")
     assembly: Optional[dict[str, Point]] = Field(
-        None, description="Rough global [x, y] of points at the first reference angle: they "
-                          "choose the assembly branch.")
+        None, description="hints that choose the assembly branch (section 7)")
     loads: Optional[Annotated[list[Load], Wording("a list of loads")]] = Field(
-        None, description="External forces, moments, springs, dampers, torsion springs.")
+        None, description="external forces and moments (section 8)")
     materials: dict[str, Material] = Field(
-        None, min_length=1, description="Named materials for links' `material` (format 1.1): "
-                                        "{E, yield, endurance, ultimate} in Pa.")
+        None, min_length=1, description=(
+            "named materials for the links' `material` (section 19, format 1.1)"))
     friction: dict[str, Friction] = Field(
-        None, min_length=1, description="Coulomb friction by joint name: {mu, radius} (R), "
-                                        "{mu, length} (T) (format 1.1).")
-    dynamics: Dynamics = Field(None, description="The motion a motor and a flywheel give: "
-                                                 "{motor, flywheel, start, until, output_step} "
-                                                 "(format 1.1).")
+        None, min_length=1, description=(
+            "Coulomb friction in the joints, by joint name (section 8, format 1.1)"))
+    dynamics: Dynamics = Field(None, description=(
+            "the motion a motor and a flywheel give: motor, flywheel, start, until (section 18, "
+            "format 1.1)"))
     expect: Optional[Annotated[list[Expectation], Wording("a list of {angle, quantity, value, "
                                                           "tol}")]] = Field(
-        None, description="Values the results must reproduce.")
-    sheet: bool = Field(False, strict=True, description="true adds worked solution sheets to "
-                                                        "mechreport build.")
-    design: Design = Field(None, description="The design review: speed_fluctuation, motor, "
-                                             "bearings, limits (docs/spec.md, section 15).")
-    report: Optional[Report] = Field(None, description="Display units, first-page "
-                                                       "metadata, animation and DXF of the "
-                                                       "reports.")
-    study: Study = Field(None, description="The variants mechreport study runs.")
+        None, description="values the results must reproduce (section 9)")
+    sheet: bool = Field(False, strict=True, description=(
+            "`true` adds worked solution sheets to `mechreport build` (section 14); default "
+            "`false`"))
+    design: Design = Field(None, description="the design review's inputs (section 15)")
+    report: Optional[Report] = Field(None, description=(
+            "display units and first-page metadata of the reports (section 16)"))
+    study: Study = Field(None, description=(
+            "the variants `mechreport study` runs (section 17); every other command validates it "
+            "and otherwise ignores it"))
 
 
 # ------------------------------------------------------------------------- the key tables

@@ -217,11 +217,12 @@ class Driver:
 
 @dataclass(frozen=True)
 class Sweep:
-    """Crank angles start, start+step, ... up to stop [deg]; a whole turn leaves stop out."""
+    """Crank angles start, start+step, ... up to stop [deg]; a whole turn leaves stop out.
+    (A spec without ``sweep:`` has the defaults of the format's model, spec/schema.py.)"""
 
-    start: float = 0.0
-    stop: float = 360.0
-    step: float = 1.0
+    start: float
+    stop: float
+    step: float
     wraps: bool = True     # an angle (False for a T driver's stroke: a plain range)
 
     @property
