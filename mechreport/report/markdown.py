@@ -3,7 +3,7 @@ paths, error messages) and the link-target encoder; the Markdown writer of the d
 (:mod:`mechreport.report.write_markdown`) uses them for every string it writes.
 
 ``md_inline`` makes a string plain inline text in CommonMark / GitHub Markdown, wherever a
-template puts it (a heading, a table cell, a list item, a paragraph):
+writer puts it (a heading, a table cell, a list item, a paragraph):
 
 - line breaks (and the whitespace around them) become one space, so a string never starts a
   new block and a table row never splits; blanks at either end are dropped;

@@ -1,6 +1,6 @@
 """The report result model: every number a report prints, built once from an Analysis.
 
-Markdown and Typst templates, results.csv, summary.json, the plots and the drawings all read a
+report document (its Markdown and Typst writers), results.csv, summary.json, the plots and the drawings all read a
 :class:`ReportModel`; none of them computes mechanics. Printed values are strings already
 formatted by the one formatter (:mod:`mechreport.units`) in the spec's display units
 (``report.units``; undefined values print as "—"); the plot data are float arrays (n,) over

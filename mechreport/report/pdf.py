@@ -14,7 +14,7 @@ from .files import atomic_write_bytes
 
 
 class RenderError(MechreportError):
-    """The Typst compiler rejected a generated document (a bug in a template)."""
+    """The Typst compiler rejected a generated document (a bug in its writer)."""
 
 
 def figure_fonts() -> list[str]:

@@ -38,7 +38,7 @@ class StrengthPlot:
 @dataclass(frozen=True)
 class StrengthSection:
     """``intro`` (the model and the rules), ``links`` one line per link with a section
-    (its section and material), ``rows`` one per member (see the templates' headings),
+    (its section and material), ``rows`` one per member (see the report document's headings),
     ``worst`` a sentence on the most loaded member, ``notes`` where a link's mass spreading
     differs from its own com and inertia, ``plot``."""
 
