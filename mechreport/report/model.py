@@ -1,8 +1,8 @@
 """The report result model: every number a report prints, built once from an Analysis.
 
 The report document (its Markdown and Typst writers), results.csv, summary.json, the plots
-and the drawings all read a :class:`ReportModel`; none of them computes mechanics. Printed values are strings already
-formatted by the one formatter (:mod:`mechreport.units`) in the spec's display units
+and the drawings all read a :class:`ReportModel`; none of them computes mechanics. Printed
+values are strings already formatted by the one formatter (:mod:`mechreport.units`) in the spec's display units
 (``report.units``; undefined values print as "—"); the plot data are float arrays (n,) over
 the analysed crank angles [deg], in SI, converted by the plots through ``model.display``.
 results.csv and summary.json are SI, with the unit in every column name or field.
