@@ -144,6 +144,7 @@ def builds(tmp_path_factory) -> _Builds:
     return _Builds(tmp_path_factory.mktemp("stops"))
 
 
+@pytest.mark.slow                   # ten builds in subprocesses
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 def test_sigterm_and_ctrl_c_stop_a_build_at_any_moment(builds):
     """Ten moments spread over the build, from taking the lock to its end."""
