@@ -20,6 +20,6 @@ def test_the_cases_issue_42_found_are_judged_alike(case):
     assert schema_ok == loader_ok, where
 
 
-@pytest.mark.slow                   # a few thousand mutated specs, each by both
+@pytest.mark.slow                   # every mutated spec, judged by the schema and the loader
 def test_no_mutation_is_judged_differently():
     assert list(disagreements(values=SHORT)) == []
