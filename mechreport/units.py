@@ -34,6 +34,8 @@ LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254}
 FORCE_UNITS = {"N": 1.0, "kN": 1000.0, "lbf": 4.4482216152605}
 MOMENT_UNITS = {"N*m": 1.0, "N*mm": 0.001, "kN*m": 1000.0, "lbf*in": 4.4482216152605 * 0.0254}
 MASS_UNITS = {"kg": 1.0, "g": 0.001, "lb": 0.45359237}
+#: rad/s in one rpm (pi / 30): ``rpm * RPM`` is in rad/s, ``omega / RPM`` in rpm
+RPM = math.pi / 30.0
 #: units an ``expect`` entry may be written in, by the SI unit of its quantity (those of
 #: ``report.units`` for its kind, and the SI unit itself): name -> size in SI
 EXPECT_UNITS = {
@@ -43,12 +45,9 @@ EXPECT_UNITS = {
     "m/s": {"m/s": 1.0, "mm/s": 0.001},
     "m/s^2": {"m/s^2": 1.0},
     "deg": {"deg": 1.0, "rad": 57.29577951308232},
-    "rad/s": {"rad/s": 1.0, "rpm": math.pi / 30.0},
+    "rad/s": {"rad/s": 1.0, "rpm": RPM},
     "Pa": {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9},
 }
-
-#: rad/s in one rpm (pi / 30): ``rpm * RPM`` is in rad/s, ``omega / RPM`` in rpm
-RPM = math.pi / 30.0
 
 
 # The rpm conversion, in the two orders of operations the project uses. They agree to the

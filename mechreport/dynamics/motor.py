@@ -2,13 +2,12 @@
 from __future__ import annotations
 
 import bisect
-import math
 
 import numpy as np
 
 from ..spec.types import MotorCurve
+from ..units import RPM
 
-RPM = math.pi / 30.0          # rad/s per rpm
 
 
 def motor_torque(motor: MotorCurve, omega: np.ndarray) -> np.ndarray:

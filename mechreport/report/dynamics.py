@@ -4,15 +4,13 @@
 computed there once; this module only arranges them."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from ..units import Display, deg, fmt
+from ..units import RPM, Display, deg, fmt
 
-RPM = math.pi / 30.0
 #: the columns of dynamics.csv / dynamics.parquet, in order, as the format names them
 HISTORY_COLUMNS = ("time [s]", "crank.angle [deg]", "crank.omega [rad/s]",
                    "crank.alpha [rad/s^2]", "motor.torque [N·m]")

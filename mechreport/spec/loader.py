@@ -27,7 +27,7 @@ from typing import Any
 from ..errors import Problem, SpecError
 from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, MEMBER_UNITS,
                           is_cycle, is_member, joint_unit, unit_of, split as split_quantity)
-from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES
+from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES, rpm_to_rad_s
 import mechreport.spec.schema as schema   # the models (not `from . import`: spec/__init__)
 from .schema import (MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, choices_of, keys_of,
                      required_of)
@@ -1422,7 +1422,7 @@ def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
     speed = float(body[key])
     if key == "rpm":
         rpm = speed
-        omega = None if speed is None else speed * math.pi / 30.0
+        omega = None if speed is None else rpm_to_rad_s(speed)
         if omega is not None and not _in_range(omega):
             ck.error(path + (key,), f"{_show(speed)} rpm is {omega:g} rad/s; numbers must lie "
                                     f"{NUMBER_RANGE} in SI units too")

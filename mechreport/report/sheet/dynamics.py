@@ -4,11 +4,10 @@ generalized force of the motor and the loads at the steady turn's speed there, a
 crank's acceleration they give, as paragraphs of text with their numbers."""
 from __future__ import annotations
 
-import math
 
 import numpy as np
 
-from ...units import fmt
+from ...units import fmt, rad_s_to_rpm
 
 
 def equation_of_motion_text(analysis, k: int) -> list[str]:
@@ -64,7 +63,7 @@ def equation_of_motion_text(analysis, k: int) -> list[str]:
             alpha = float(cycle.alpha[hit[0]])       # the simulation's, from these terms
             out.append(
                 f"In the steady turn the crank passes φ = {fmt(angle)}° at ω = {fmt(w)} rad/s "
-                f"({fmt(w * 30 / math.pi)} rpm): the motor gives M_m = {fmt(m)} N·m, the loads' "
+                f"({fmt(rad_s_to_rpm(w))} rpm): the motor gives M_m = {fmt(m)} N·m, the loads' "
                 f"generalized force is −(C ω + D) = {fmt(q, scale=scale)} N·m, "
                 f"B ω² = {fmt(b * w * w)} N·m, so "
                 + (f"with the joints' friction α = {fmt(alpha)} rad/s². The " if spec.friction
