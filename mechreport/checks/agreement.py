@@ -13,7 +13,8 @@ is then judged as zero, never as a disagreement.
 
 The driver's effort is the exception where its value is not zero by construction: where any
 known action requires a resolvable share of it (``resolvable`` [N m or N], from
-:func:`mechreport.forces.power.resolvable_effort`), that share sets its floor instead. A
+:func:`mechreport.forces.power.resolvable_effort`), its floor is taken from that share and the
+largest quantity of its own unit, not from the load scale. A
 torque of 13 N m from a piston's load, lost in the rounding of a 1e20 kg crank's 1e19 N
 inertia forces, is then a disagreement (its value cannot be trusted), not round-off.
 """
@@ -153,7 +154,10 @@ def finish(parts: Spreads, size: float = 0.0, resolvable: float = 0.0) -> list[A
     for q, s in parts.items():
         if s.n_methods < 2:
             continue
-        load = resolvable if q in DRIVER_QUANTITIES and resolvable > 0 else kind_scale[kinds[q]]
+        if q in DRIVER_QUANTITIES and resolvable > 0:   # a real effort: no load-scale floor
+            load = max(tops[kinds[q]], resolvable)
+        else:
+            load = kind_scale[kinds[q]]
         scale = max(s.top, SCALE_FLOOR * load)
         if not (math.isfinite(s.spread) and math.isfinite(scale)):   # Python floats
             rel = float("inf")
