@@ -407,16 +407,23 @@ class Extremes:
                         c.compression, c.compression_angle, max(self.scale, other.scale))
 
 
+def stress(N, M, sec: Section):
+    """The largest normal stress [Pa] in a section ``sec`` that carries the axial force ``N``
+    [N] and the bending moment ``M`` [N m] (numbers or arrays): |N| / A + |M| c / I, at the
+    fibre where the two add."""
+    return np.abs(N) / sec.area + np.abs(M) * sec.c / sec.inertia
+
+
 def extremes(angles: np.ndarray, dia: Diagram, sec: Section) -> Extremes:
     """The :class:`Extremes` of the diagrams ``dia`` over ``angles`` (n,) [deg]."""
     axial, bending = dia.N / sec.area, dia.M * sec.c / sec.inertia
-    stress = np.abs(axial) + np.abs(bending)
-    a, j = np.unravel_index(int(np.argmax(stress)), stress.shape)
+    sigma = stress(dia.N, dia.M, sec)
+    a, j = np.unravel_index(int(np.argmax(sigma)), sigma.shape)
     fibres = np.stack([axial - bending, axial + bending])               # (2, n, K)
     comp = -dia.N.min(axis=1)                                           # (n,)
     ac = int(np.argmax(comp))
     scale = float(max(np.max(np.abs(dia.N)), np.max(np.abs(dia.V))))
-    return Extremes(float(stress[a, j]), float(angles[a]), int(j), fibres.max(axis=1),
+    return Extremes(float(sigma[a, j]), float(angles[a]), int(j), fibres.max(axis=1),
                     fibres.min(axis=1), float(comp[ac]), float(angles[ac]), scale)
 
 
@@ -533,11 +540,10 @@ def _link_parts(ctx: ForceContext, res: ForceResult, link: Link, g: np.ndarray,
         m = members[i]
         s = np.linspace(0.0, m.L, positions)
         dia = internal_forces(members, acts, mu, k2, g, w, al, i, s, side_sets)
-        stress = (np.abs(dia.N) / sec.area + np.abs(dia.M) * sec.c / sec.inertia
-                  if keep else None)
+        sigma = stress(dia.N, dia.M, sec) if keep else None
         p, q = st.members[i]
         out[name] = MemberPart(name, link, p, q, m.L, s, note,
-                               extremes(kin.angles, dia, sec), dia if keep else None, stress)
+                               extremes(kin.angles, dia, sec), dia if keep else None, sigma)
     return out
 
 

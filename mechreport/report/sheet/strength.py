@@ -13,7 +13,7 @@ import numpy as np
 
 from ...kinematics.frames import cross
 from ...post.strength import (_Member, _segment, link_members, member_names, point_actions,
-                              sides)
+                              sides, stress)
 from .expr import fmt
 from .symbols import R, scalar_sym, vec_sym
 
@@ -104,7 +104,7 @@ def _cut(analysis, k, link, name, i, members, acts, mu, k2, g, w, al, side_sets)
     e, n = m.e[k], m.n[k]
     N, V, M = float(F @ e), float(F @ n), Mo
     sec = link.strength.section
-    sigma = abs(N) / sec.area + abs(M) * sec.c / sec.inertia
+    sigma = float(stress(N, M, sec))
     beyond_names = [f"{a}–{b}" for j, (a, b) in enumerate(link.strength.members)
                     if j in beyond]
     intro = [f"Member {name} ({p}–{q}, L = {_v(m.L)} m) cut at its middle, s = {_v(s[0])} m "
