@@ -250,7 +250,7 @@ def _nearest(at: np.ndarray, geometry) -> tuple[np.ndarray, np.ndarray]:
 # ------------------------------------------------------------------- internal forces
 
 @dataclass(frozen=True)
-class _Member:
+class Member:
     """A member's state over the angles: P's position ``rP`` and acceleration ``aP``
     (n, 2), its unit vectors ``e`` and ``n`` (n, 2), its length ``L`` [m]."""
 
@@ -261,7 +261,7 @@ class _Member:
     L: float
 
 
-def _segment(m: _Member, mu: float, k2: float, g: np.ndarray, w: np.ndarray,
+def segment(m: Member, mu: float, k2: float, g: np.ndarray, w: np.ndarray,
              al: np.ndarray, a, b, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Resultant force (n, K, 2) and moment about ``X`` (n, K, 2) -> (n, K) of the weight
     and d'Alembert load of the stretch a <= t <= b of member ``m`` (a, b scalars or (K,)
@@ -280,7 +280,7 @@ def _segment(m: _Member, mu: float, k2: float, g: np.ndarray, w: np.ndarray,
     return F, moment
 
 
-def internal_forces(members: list[_Member], actions: list[PointAction], mu: float, k2: float,
+def internal_forces(members: list[Member], actions: list[PointAction], mu: float, k2: float,
                     g: np.ndarray, w: np.ndarray, al: np.ndarray, which: int,
                     s: np.ndarray, side_sets, from_end: bool = True) -> Diagram:
     """N, V, M (n, K) along member ``which`` at positions ``s`` (K,) [m], from the part of
@@ -290,9 +290,9 @@ def internal_forces(members: list[_Member], actions: list[PointAction], mu: floa
     X = m.rP[:, None, :] + s[None, :, None] * m.e[:, None, :]           # (n, K, 2)
     behind, beyond = side_sets[which]
     others = beyond if from_end else behind
-    F, Mo = _segment(m, mu, k2, g, w, al, s if from_end else 0.0, m.L if from_end else s, X)
+    F, Mo = segment(m, mu, k2, g, w, al, s if from_end else 0.0, m.L if from_end else s, X)
     for k in others:
-        f, mo = _segment(members[k], mu, k2, g, w, al, 0.0, members[k].L, X)
+        f, mo = segment(members[k], mu, k2, g, w, al, 0.0, members[k].L, X)
         F, Mo = F + f, Mo + mo
     for act in actions:
         on = act.member == which                                         # (n,)
@@ -310,6 +310,85 @@ def internal_forces(members: list[_Member], actions: list[PointAction], mu: floa
     sign = 1.0 if from_end else -1.0
     e, n = m.e[:, None, :], m.n[:, None, :]
     return Diagram(s, sign * dot(F, e), sign * dot(F, n), sign * Mo)
+
+
+@dataclass(frozen=True)
+class CutAction:
+    """One action on the free part beyond a cut, at one angle: the :class:`PointAction`
+    ``action`` (None for the part's distributed loads), its ``force`` (2,) [N, global] and
+    its ``moment`` about the cut [N m] (its couple included); ``load`` names a distributed
+    load: ``weight`` or ``inertia`` ("" for a point action)."""
+
+    action: PointAction | None
+    force: np.ndarray
+    moment: float
+    load: str = ""
+
+
+@dataclass(frozen=True)
+class MemberCut:
+    """Member ``which`` of a link cut at ``s`` [m] from its first point, at angle index
+    ``k``: where the cut is, ``at`` (2,) [m], the member's unit vectors ``e`` and ``n`` (2,),
+    the members beyond it ``beyond`` (indices), the ``actions`` on the free part beyond the
+    cut (point actions first, then its weight and its d'Alembert load), and the section's
+    resultant: ``F`` (2,) [N], ``N``, ``V`` [N], ``M`` [N m] and the stress [Pa]."""
+
+    which: int
+    s: float
+    at: np.ndarray
+    e: np.ndarray
+    n: np.ndarray
+    beyond: set
+    actions: list[CutAction]
+    F: np.ndarray
+    N: float
+    V: float
+    M: float
+    stress: float
+
+
+def member_cut(members: list[Member], actions: list[PointAction], mu: float, k2: float,
+               g: np.ndarray, w: np.ndarray, al: np.ndarray, which: int, s: float,
+               side_sets, k: int, section: Section) -> MemberCut:
+    """The equilibrium of the free part beyond a cut of member ``which`` at ``s`` [m], at
+    angle index ``k``, action by action (what :func:`internal_forces` sums over every angle
+    and position at once): every point action on the member beyond the cut or on the
+    members beyond it, then the part's weight (mu g per unit length) and its d'Alembert load
+    (-mu a per unit length and the sections' rotary couple -mu k2 alpha)."""
+    m = members[which]
+    ss = np.array([s])
+    X = m.rP[:, None, :] + ss[None, :, None] * m.e[:, None, :]
+    beyond = side_sets[which][1]
+    xk = X[k, 0]
+    out = []
+    F, Mo = np.zeros(2), 0.0
+    for act in actions:
+        inside = (act.member[k] == which and (act.s[k] > ss[0] or act.s[k] == m.L)) \
+            or int(act.member[k]) in beyond
+        if not inside:
+            continue
+        f = act.force[k] if act.force is not None else np.zeros(2)
+        c = float(act.couple[k]) if act.couple is not None else 0.0
+        moment = float(cross(act.at[k] - xk, f)) + c
+        F, Mo = F + f, Mo + moment
+        out.append(CutAction(act, f, moment))
+    zero = np.zeros_like(w)
+    still = [Member(mm.rP, np.zeros_like(mm.aP), mm.e, mm.n, mm.L) for mm in members]
+    for load, parts in (
+            ("weight", [(still[which], ss, m.L, g, zero, zero, 0.0)]
+             + [(still[j], 0.0, members[j].L, g, zero, zero, 0.0) for j in beyond]),
+            ("inertia", [(members[which], ss, m.L, np.zeros(2), w, al, k2)]
+             + [(members[j], 0.0, members[j].L, np.zeros(2), w, al, k2) for j in beyond])):
+        f_sum, m_sum = np.zeros(2), 0.0
+        for mem, a, b, gg, ww, aa, kk in parts:
+            f, mo = segment(mem, mu, kk, gg, ww, aa, a, b, X)
+            f_sum, m_sum = f_sum + f[k, 0], m_sum + float(mo[k, 0])
+        F, Mo = F + f_sum, Mo + m_sum
+        out.append(CutAction(None, f_sum, m_sum, load))
+    e, n = m.e[k], m.n[k]
+    N, V = float(F @ e), float(F @ n)
+    return MemberCut(which, float(ss[0]), xk, e, n, set(beyond), out, F, N, V, Mo,
+                     float(stress(N, Mo, section)))
 
 
 # ------------------------------------------------------------------------- safety
@@ -505,7 +584,7 @@ def member_strength(part: MemberPart) -> MemberStrength:
         pcr / ext.compression if compressed else None, part.note)
 
 
-def link_members(ctx: ForceContext, link: Link) -> list[_Member]:
+def link_members(ctx: ForceContext, link: Link) -> list[Member]:
     """The state of each member of ``link`` over the angles."""
     kin = ctx.kin
     pts = link.points
@@ -515,7 +594,7 @@ def link_members(ctx: ForceContext, link: Link) -> list[_Member]:
         L = float(np.hypot(*d))
         e = kin.frames.rotate(link.name, d / L)
         P = kin.named_point(p, link.name)
-        out.append(_Member(P.r, P.a, e, perp(e), L))
+        out.append(Member(P.r, P.a, e, perp(e), L))
     return out
 
 

@@ -4,16 +4,15 @@ rest of the member up to its second point, and the members hanging from it), wri
 the chapter writes free bodies: every action on the part with its point and its moment
 about the cut, the part's own weight and d'Alembert load, then N, V, M and the stress.
 
-The numbers are those of :mod:`mechreport.post.strength` (the same functions); SI units."""
+The numbers are :func:`mechreport.post.strength.member_cut`'s: the cut's equilibrium is
+computed there, once, and only written out here; SI units."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...kinematics.frames import cross
-from ...post.strength import (_Member, _segment, link_members, member_names, point_actions,
-                              sides, stress)
+from ...post.strength import link_members, member_cut, member_names, point_actions, sides
 from .expr import fmt
 from .symbols import R, scalar_sym, vec_sym
 
@@ -62,49 +61,34 @@ def cuts(analysis, k: int) -> list[Cut]:
     return out
 
 
+#: how the sheet writes a cut's distributed loads: (symbol in TeX, in Typst, meaning)
+DISTRIBUTED = {
+    "weight": (r"\mathbf{G}'", "bold(G)'", "weight of the free part, μ g per unit length"),
+    "inertia": (r"\mathbf{F}_{in}'", "bold(F)_(i n)'",
+                "d'Alembert load of the free part, −μ a(s) per unit length and the sections' "
+                "rotary couple −μ (I/A) α"),
+}
+
+
 def _cut(analysis, k, link, name, i, members, acts, mu, k2, g, w, al, side_sets) -> Cut:
     p, q = link.strength.members[i]
     m = members[i]
-    s = np.array([m.L / 2])
-    X = m.rP[:, None, :] + s[None, :, None] * m.e[:, None, :]
-    beyond = side_sets[i][1]
-    rows = []
-    F = np.zeros(2)
-    Mo = 0.0
-    xk = X[k, 0]
-    for act in acts:
-        inside = (act.member[k] == i and (act.s[k] > s[0] or act.s[k] == m.L)) \
-            or int(act.member[k]) in beyond
-        if not inside:
-            continue
-        f = act.force[k] if act.force is not None else np.zeros(2)
-        c = float(act.couple[k]) if act.couple is not None else 0.0
-        moment = float(cross(act.at[k] - xk, f)) + c
-        F, Mo = F + f, Mo + moment
-        sym = scalar_sym(act.symbol) if act.force is None else vec_sym(act.symbol)
-        rows.append([[sym], _where(analysis, act, k), _v(f[0]) if act.force is not None
-                     else "", _v(f[1]) if act.force is not None else "", _v(moment)])
-    zero = np.zeros_like(w)
-    still = [_Member(mm.rP, np.zeros_like(mm.aP), mm.e, mm.n, mm.L) for mm in members]
-    for label, tex, typ, parts in (
-            ("weight of the free part, μ g per unit length", r"\mathbf{G}'", "bold(G)'",
-             [(still[i], s, m.L, g, zero, zero, 0.0)]
-             + [(still[j], 0.0, members[j].L, g, zero, zero, 0.0) for j in beyond]),
-            ("d'Alembert load of the free part, −μ a(s) per unit length and the sections' "
-             "rotary couple −μ (I/A) α", r"\mathbf{F}_{in}'", "bold(F)_(i n)'",
-             [(members[i], s, m.L, np.zeros(2), w, al, k2)]
-             + [(members[j], 0.0, members[j].L, np.zeros(2), w, al, k2) for j in beyond])):
-        f_sum, m_sum = np.zeros(2), 0.0
-        for mem, a, b, gg, ww, aa, kk in parts:
-            f, mo = _segment(mem, mu, kk, gg, ww, aa, a, b, X)
-            f_sum, m_sum = f_sum + f[k, 0], m_sum + float(mo[k, 0])
-        F, Mo = F + f_sum, Mo + m_sum
-        rows.append([[R(tex, typ), f" ({label})"], "distributed", _v(f_sum[0]), _v(f_sum[1]),
-                     _v(m_sum)])
-    e, n = m.e[k], m.n[k]
-    N, V, M = float(F @ e), float(F @ n), Mo
     sec = link.strength.section
-    sigma = float(stress(N, M, sec))
+    cut = member_cut(members, acts, mu, k2, g, w, al, i, m.L / 2, side_sets, k, sec)
+    rows = []
+    for ca in cut.actions:
+        if ca.action is None:
+            tex, typ, label = DISTRIBUTED[ca.load]
+            rows.append([[R(tex, typ), f" ({label})"], "distributed", _v(ca.force[0]),
+                         _v(ca.force[1]), _v(ca.moment)])
+            continue
+        act = ca.action
+        sym = scalar_sym(act.symbol) if act.force is None else vec_sym(act.symbol)
+        rows.append([[sym], _where(analysis, act, k), _v(ca.force[0]) if act.force is not None
+                     else "", _v(ca.force[1]) if act.force is not None else "",
+                     _v(ca.moment)])
+    s, xk, e, n, beyond = [cut.s], cut.at, cut.e, cut.n, cut.beyond
+    F, N, V, M, sigma = cut.F, cut.N, cut.V, cut.M, cut.stress
     beyond_names = [f"{a}–{b}" for j, (a, b) in enumerate(link.strength.members)
                     if j in beyond]
     intro = [f"Member {name} ({p}–{q}, L = {_v(m.L)} m) cut at its middle, s = {_v(s[0])} m "
