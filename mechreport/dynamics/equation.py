@@ -189,14 +189,44 @@ def generalized_inertia(kin: Kinematics) -> np.ndarray:
     return out
 
 
+@dataclass(frozen=True)
+class InertiaTerm:
+    """One link's share of the reduced inertia J(phi) at one angle: link ``number``,
+    ``kind`` ``mass`` (m |v_G / omega|^2) or ``inertia`` (I_G (omega_link / omega)^2),
+    ``value`` the mass [kg] or the inertia [kg m^2], ``coefficient`` |v_G / omega|^2 [m^2]
+    or (omega_link / omega)^2 [-]."""
+
+    number: int
+    kind: str
+    value: float
+    coefficient: float
+
+
+def inertia_terms(kin: Kinematics, k: int) -> list[InertiaTerm]:
+    """J(phi)'s terms at angle index ``k`` of ``kin``, link by link (what
+    :func:`generalized_inertia` sums), from the velocity coefficients there."""
+    unit = at_unit_rate(kin.take(np.array([k]), ()))
+    spec = kin.mechanism.spec
+    out = []
+    for link in spec.links:
+        i = spec.number(link.name)
+        if link.mass:
+            v = unit.com(link.name).v[0]
+            out.append(InertiaTerm(i, "mass", link.mass, float(v @ v)))
+        if link.inertia:
+            w = float(unit.omega[0, i])
+            out.append(InertiaTerm(i, "inertia", link.inertia, w * w))
+    return out
+
+
 def spec_at_speed(spec: Spec, omega: float) -> Spec:
     """``spec`` with its driver turning at ``omega`` [rad/s] and no angular acceleration."""
     return replace(spec, driver=replace(spec.driver, omega=omega, alpha=0.0,
                                         rpm_given=omega / RPM))
 
 
-__all__ = ["EquationOfMotion", "STATES", "equation_of_motion", "flywheel_estimate",
-           "generalized_inertia", "spec_at_speed"]
+__all__ = ["EquationOfMotion", "InertiaTerm", "STATES", "equation_of_motion",
+           "flywheel_estimate", "generalized_inertia", "inertia_terms", "spec_at_speed"]
 
 
 def flywheel_estimate(eom: EquationOfMotion, omega: float) -> tuple[float, float, float]:

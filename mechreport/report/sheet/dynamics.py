@@ -17,7 +17,7 @@ def equation_of_motion_text(analysis, k: int) -> list[str]:
     if dyn is None or analysis.spec.dynamics is None:
         return []
     from ...dynamics import motor_torque
-    from ...kinematics import at_unit_rate
+    from ...dynamics.equation import inertia_terms
     spec, kin = analysis.spec, analysis.kinematics
     angle = float(kin.angles[k])
     phi = np.radians([angle])
@@ -28,18 +28,11 @@ def equation_of_motion_text(analysis, k: int) -> list[str]:
     speed = cycle.mean_omega if cycle is not None else 1.0
     # round-off of C and D (sums of the method's solves) prints as 0 on the scale of both
     scale = float(np.max(np.abs(eom.C)) * speed + np.max(np.abs(eom.D)))
-    unit = at_unit_rate(kin.take(np.array([k]), ()))
     terms, numbers = [], []
-    for link in spec.links:
-        i = spec.number(link.name)
-        if link.mass:
-            v = unit.com(link.name).v[0]
-            terms.append(f"m{i} |vG{i}/ω|²")
-            numbers.append(f"{fmt(link.mass)} · {fmt(float(v @ v))}")
-        if link.inertia:
-            w = float(unit.omega[0, i])
-            terms.append(f"IG{i} (ω{i}/ω)²")
-            numbers.append(f"{fmt(link.inertia)} · {fmt(w * w)}")
+    for term in inertia_terms(kin, k):
+        i = term.number
+        terms.append(f"m{i} |vG{i}/ω|²" if term.kind == "mass" else f"IG{i} (ω{i}/ω)²")
+        numbers.append(f"{fmt(term.value)} · {fmt(term.coefficient)}")
     out = [
         "Equation of motion of the crank (machine dynamics): the velocities are the velocity "
         "coefficients (velocities per unit crank speed, the kinematics above divided by ω) "
