@@ -117,3 +117,34 @@ def test_nothing_below_the_application_prints_exits_or_changes_the_process():
             if isinstance(node, ast.Global):
                 offenders.append(f"{rel}:{node.lineno}: global {', '.join(node.names)}")
     assert offenders == []
+
+
+SOLVERS = {"solve_kinematics", "at_unit_rate", "with_rates", "solve_forces", "worked_steps",
+           "split_by_source", "solve_friction", "simulate", "equation_of_motion"}
+
+
+def _imported_names(path: Path):
+    """(module as written, name) of every ``from X import name`` in ``path``."""
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.ImportFrom):
+            for alias in node.names:
+                yield "." * node.level + (node.module or ""), alias.name
+
+
+def test_the_report_reads_results_and_solves_nothing():
+    """Nothing under mechreport/report imports a kinematics, force or dynamics solver: the
+    report and the sheets read results (issue 42, item 3)."""
+    found = [(str(p.relative_to(ROOT)), name) for p in (PACKAGE / "report").rglob("*.py")
+             for _, name in _imported_names(p) if name in SOLVERS]
+    assert found == []
+
+
+def test_no_private_name_is_imported_from_another_package():
+    """A name starting with _ is imported only within its own package (issue 42)."""
+    found = []
+    for p in PACKAGE.rglob("*.py"):
+        for module, name in _imported_names(p):
+            if name.startswith("_") and not name.startswith("__") and \
+                    module.startswith("..") and "mechreport" not in module:
+                found.append((str(p.relative_to(ROOT)), module, name))
+    assert found == []
