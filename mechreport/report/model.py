@@ -30,7 +30,7 @@ from ..forces import METHODS
 from ..quantities import unit_of
 from ..spec import GROUND
 from ..checks.failures import failed_expectations
-from ..units import DASH, SIG_DIGITS, Display, clean, deg, fmt, kind_of, rad_s_to_rpm
+from ..units import DASH, SIG_DIGITS, Display, clean, deg, fmt, kind_of
 from .check_text import failure_rows, summary_line
 from .dynamics import dynamics_json, dynamics_section
 from .frames import Animation, animation_data
@@ -506,7 +506,7 @@ def _driver_text(spec) -> str:
                 f"{'accel' if d.kind == 'T' else 'α'} = {fmt(d.alpha)} {unit}")
     if getattr(d, "kind", "R") != "R":
         return f"joint {joint} drives {d.link} along its line at {fmt(d.omega)} m/s"
-    rpm = d.rpm_given if d.rpm_given is not None else rad_s_to_rpm(d.omega)
+    rpm = d.rpm
     return (f"joint {joint} turns {d.link} at ω = {fmt(d.omega)} rad/s ({fmt(rpm)} rpm), "
             f"α = {fmt(d.alpha)} rad/s²")
 

@@ -12,6 +12,7 @@ import numpy as np
 
 from ..quantities import joint_unit, unit_of
 from ..quantities import split as split_quantity
+from ..units import rad_s_to_rpm
 
 Vec = tuple[float, float]
 GROUND = "ground"
@@ -190,6 +191,12 @@ class Driver:
     kind: str = "R"
     links: tuple[str, str] = (GROUND, "")
     unit: float = math.pi / 180.0
+
+    @property
+    def rpm(self) -> float:
+        """An R driver's speed in rpm: as the spec wrote it (``rpm_given``), or ``omega``
+        converted; what every output prints beside omega."""
+        return self.rpm_given if self.rpm_given is not None else rad_s_to_rpm(self.omega)
 
     @property
     def at_rest(self) -> bool:

@@ -20,7 +20,6 @@ from ...forces import METHODS
 from ...forces.equations import Equation as FEquation
 from ...forces.equations import Step
 from ...spec import GROUND
-from ...units import rad_s_to_rpm
 from ...kinematics.frames import perp
 from .expr import (ZERO, Equation, Expr, Num, Op, Paren, Point, Raw, Sym, fmt, round_off,
                    sheet_zero)
@@ -902,7 +901,7 @@ def _driver_text(spec) -> list:
                 f"accelerating at {fmt(d.alpha)} {unit}: at this instant every velocity is "
                 "zero, and the inertia forces come from the accelerations alone."]
     if d.kind == "R":
-        rpm = rad_s_to_rpm(d.omega)
+        rpm = d.rpm
         return [f"Driver: joint {joint}, link {link.number} ({link.name}) turns at ",
                 Equation([Expr().add(1, omega(link.number)), scalar(d.omega, Raw(
                     r"\mathrm{rad/s}", '"rad/s"', "rad/s"))]),
