@@ -7,6 +7,7 @@ import numpy as np
 
 from ..model import Mechanism
 from ..spec import GROUND
+from ..units import deg
 from .frames import LinkFrames, perp
 from .position import BranchChoice
 
@@ -120,7 +121,7 @@ def angle_ranges(angles, step: float) -> str:
             runs[-1].append(a)
         else:
             runs.append([a])
-    return ", ".join(f"{r[0]:g}" if len(r) == 1 else f"{r[0]:g}–{r[-1]:g}" for r in runs)
+    return ", ".join(deg(r[0]) if len(r) == 1 else f"{deg(r[0])}–{deg(r[-1])}" for r in runs)
 
 
 def reversal_note(angles, spec) -> str:
@@ -128,6 +129,12 @@ def reversal_note(angles, spec) -> str:
     return (f"self-locking at {angle_ranges(angles, spec.sweep.step)} {spec.axis_unit}: "
             f"friction alone reverses the sign of {spec.driver.quantity} (without friction "
             "the loads would drive the mechanism there; with it they cannot)")
+
+
+def friction_notes(flags, spec) -> list[str]:
+    """The notes on friction that a reader must see before the numbers: where it jams the
+    mechanism (:func:`jam_note`) and entries that act nowhere (``Spec.idle_friction_note``)."""
+    return [n for n in (jam_note(flags, spec), spec.idle_friction_note()) if n]
 
 
 def jam_note(flags, spec) -> str:
@@ -319,9 +326,7 @@ class Kinematics:
             out.append(self.turn_problem)
         if self.reversed_by_friction:
             out.append(reversal_note(self.reversed_by_friction, self.mechanism.spec))
-        spec = self.mechanism.spec
-        out += [n for n in (jam_note(self.flags, spec), spec.idle_friction_note()) if n]
-        return out
+        return out + friction_notes(self.flags, self.mechanism.spec)
 
     @property
     def turn_problem(self) -> str:

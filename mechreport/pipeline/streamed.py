@@ -32,7 +32,7 @@ from ..forces import METHODS, PROBES, ForceContext, sweep_choices
 from ..forces.power import resolvable_effort
 from ..forces.result import slider_point
 from ..kinematics import Flag
-from ..kinematics.result import jam_note, reversal_note
+from ..kinematics.result import friction_notes, jam_note, reversal_note
 from ..kinematics.stream import kinematic_chunks, streamable
 from ..model import build_mechanism
 from ..quantities import split as split_quantity
@@ -174,7 +174,7 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
                       values, why, tuple(verdicts(spec.design, values, why, members,
                                          undefined_reasons(spec))),
                       chunks.notes() + ([reversal_note(reversed_at, spec)] if reversed_at
-                                        else []) + [n for n in (jam_note(flags, spec), spec.idle_friction_note()) if n],
+                                        else []) + friction_notes(flags, spec),
                       untrusted, members)
 
 

@@ -21,6 +21,7 @@ import numpy as np
 
 from ..version import __version__
 from .. import post as q
+from ..kinematics.result import angle_ranges
 from ..post.balance import NOTICEABLE
 from ..post.bearings import bearing_carrier
 from ..post.friction import efficiency_undefined
@@ -1240,24 +1241,13 @@ def _largest(values: np.ndarray | None, angles: np.ndarray) -> tuple[float, floa
     return float(mag[k]), float(angles[k])
 
 
-def _runs(angles, step: float) -> str:
-    """Angles [deg] as runs of neighbours: ``96–97, 229``."""
-    runs: list[list[float]] = []
-    for a in sorted(map(float, angles)):
-        if runs and a - runs[-1][-1] <= step * 1.000001:
-            runs[-1].append(a)
-        else:
-            runs.append([a])
-    return ", ".join(deg(r[0]) if len(r) == 1 else f"{deg(r[0])}–{deg(r[-1])}" for r in runs)
-
-
 def _friction_remarks(analysis, effort_name: str, unit: str) -> list[str]:
     """Sentences on where friction self-locks: the angles where it alone reverses the
     driver's effort, and those left out because it is undetermined there."""
     out = []
     kin, spec = analysis.kinematics, analysis.spec
     if kin.reversed_by_friction:
-        out.append(f"At {_runs(kin.reversed_by_friction, spec.sweep.step)}{unit}, friction "
+        out.append(f"At {angle_ranges(kin.reversed_by_friction, spec.sweep.step)}{unit}, friction "
                    f"alone reverses the sign of the {effort_name}: without friction the loads "
                    "would drive the mechanism there; with it they cannot, and the driver has "
                    "to (self-locking: marked × on the zero line of the plot below).")
