@@ -602,16 +602,18 @@ class Spec:
                 out.setdefault(name, link.name)
         return list(out.items())
 
+    def _extra_angles(self) -> list[float]:
+        """The reference angles and the expectations' angles [deg], as written."""
+        return list(self.at) + [e.angle for e in self.expect if e.angle is not None]
+
     def off_sweep_angles(self) -> np.ndarray:
         """The reference and expectation angles that are not angles of the sweep [deg],
         sorted, unique, rounded as :meth:`analysed_angles` rounds them."""
-        extra = list(self.at) + [e.angle for e in self.expect if e.angle is not None]
-        extra = np.unique(np.round(np.asarray(extra, float), 9))
+        extra = np.unique(np.round(np.asarray(self._extra_angles(), float), 9))
         return extra[~np.isin(extra, np.round(self.sweep.angles(), 9))]
 
     def analysed_angles(self) -> np.ndarray:
         """Sweep angles plus the reference and expectation angles, sorted, unique [deg]."""
-        extra = list(self.at) + [e.angle for e in self.expect if e.angle is not None]
-        angles = np.concatenate([self.sweep.angles(), np.asarray(extra, float)])
+        angles = np.concatenate([self.sweep.angles(), np.asarray(self._extra_angles(), float)])
         angles = np.unique(np.round(angles, 9))
         return angles
