@@ -292,17 +292,24 @@ def test_flywheel_motor_limit_near_the_torque_stays_a_line():
     assert not [t for t in ax.texts if "motor" in t.get_text()]
 
 
-@pytest.mark.parametrize("spec", ["r_rtr_rtr", "scotch_yoke", "slider_crank"])
-def test_delta_e_label_is_not_crossed_by_the_energy_curve(spec):
-    """The ΔE label sits beside its arrow where the energy curve does not run through it
-    (r_rtr_rtr's crossed it halfway up the arrow)."""
-    m = model_of(ROOT / "specs" / f"{spec}.yaml")
+def _delta_e_label(spec_path):
+    """The flywheel figure of a spec drawn: (its cycle data, the figure, the energy panel,
+    the renderer, the ΔE label)."""
+    m = model_of(spec_path)
     cd = m.design.data
     with plots.style():
         fig = plots.flywheel_figure(cd, m.display)
         ax2 = fig.axes[1]
         r = draw(fig)
     (label,) = [t for t in ax2.texts if t.get_text().startswith("ΔE = ")]
+    return cd, fig, ax2, r, label
+
+
+@pytest.mark.parametrize("spec", ["r_rtr_rtr", "scotch_yoke", "slider_crank"])
+def test_delta_e_label_is_not_crossed_by_the_energy_curve(spec):
+    """The ΔE label sits beside its arrow where the energy curve does not run through it
+    (r_rtr_rtr's crossed it halfway up the arrow)."""
+    cd, fig, ax2, r, label = _delta_e_label(ROOT / "specs" / f"{spec}.yaml")
     assert not curve_crosses(ax2, cd.angles, cd.energy, label.get_window_extent(r))
     assert layout_problems(fig) == []
 
@@ -525,13 +532,7 @@ def test_no_label_crosses_a_guide_wall_or_its_hatching():
 def test_delta_e_label_is_clear_of_the_zero_line_the_grid_and_the_left_out_bands():
     """crank_press_friction: "ΔE = 126.1 J" sat on the energy panel's zero line and across
     the grey band of the left-out 270°."""
-    m = model_of(FRICTION_PRESS)
-    cd = m.design.data
-    with plots.style():
-        fig = plots.flywheel_figure(cd, m.display)
-        ax2 = fig.axes[1]
-        r = draw(fig)
-    (label,) = [t for t in ax2.texts if t.get_text().startswith("ΔE = ")]
+    cd, fig, ax2, r, label = _delta_e_label(FRICTION_PRESS)
     box = label.get_window_extent(r)
     lo, hi = ax2.get_ylim()
     for y in {0.0} | {float(t) for t in ax2.get_yticks() if lo <= t <= hi}:
