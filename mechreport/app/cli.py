@@ -330,6 +330,8 @@ def _main(argv: list[str] | None) -> int:
     p.set_defaults(func=_cmd_diff)
 
     _add_study_parser(sub)
+    from .tolerance import add_parser as _add_tolerance_parser
+    _add_tolerance_parser(sub, _filled, _int_at_least_1, _seconds)
 
     p = sub.add_parser("dynamics", help="simulate the motion a motor and flywheel give "
                        "(a spec's dynamics: section)",

@@ -278,9 +278,12 @@ def remove(path: Path) -> None:
 STUDY_ENTRIES = ("study.parquet", "study.csv", "study.md", "study.pdf", "study-figures",
                  "study-reports")   # what `mechreport study` writes beside a spec's report
 DYNAMICS_ENTRIES = ("dynamics.csv", "dynamics.parquet")   # what `mechreport dynamics` writes
+#: what `mechreport tolerance` writes beside a spec's report (it also adds to summary.json)
+TOLERANCE_ENTRIES = ("tolerance.parquet", "tolerance.csv", "tolerance.md", "tolerance.pdf",
+                     "tolerance.json", "tolerance-figures")
 #: the entries that make a folder one of mechreport's (besides an empty one): one each of
 #: ``build``, ``study`` and ``dynamics``
-OWN_ENTRIES = {"summary.json", "study.parquet", "dynamics.parquet"}
+OWN_ENTRIES = {"summary.json", "study.parquet", "dynamics.parquet", "tolerance.parquet"}
 
 
 def occupied(out: Path, name: str) -> str | None:
@@ -319,7 +322,8 @@ def link_tree(src: Path, dst: Path) -> None:
         link(src, dst)
 
 
-def swap_in(out: Path, tmp: Path, name: str, carry=lambda entry: entry in STUDY_ENTRIES) -> Path:
+def swap_in(out: Path, tmp: Path, name: str,
+            carry=lambda entry: entry in STUDY_ENTRIES or entry in TOLERANCE_ENTRIES) -> Path:
     """Replace ``OUT/name`` by the complete folder ``tmp`` (two renames; the old folder, if
     any, is deleted afterwards). Entries of the old folder for which ``carry(name)`` holds and
     that ``tmp`` lacks are carried over as hard links (a report keeps the study beside it, and

@@ -28,8 +28,9 @@ class StudyProgress:
 
     WIDTH = 20
 
-    def __init__(self, total: int, stream=None, quiet: bool = False):
+    def __init__(self, total: int, stream=None, quiet: bool = False, item: str = "variants"):
         self.total = max(int(total), 1)
+        self.item = item
         self.stream = stream or sys.stderr
         self.quiet = quiet
         self.tty = (not quiet) and hasattr(self.stream, "isatty") and self.stream.isatty()
@@ -51,7 +52,7 @@ class StudyProgress:
             when = f"{duration(elapsed)}, ETA {duration(elapsed * (1 - frac) / frac)}"
         else:
             when = f"{duration(elapsed)}, ETA unknown"
-        return f"[{bar}] {self.done}/{self.total} variants {int(100 * frac)}%{failed}  {when}"
+        return f"[{bar}] {self.done}/{self.total} {self.item} {int(100 * frac)}%{failed}  {when}"
 
     def update(self, done: int, failed: int = 0) -> None:
         self.done, self.failed = done, failed

@@ -35,6 +35,7 @@ from .strength import strength_links
 from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Dynamics, Expectation, Friction, Joint,
                     Line, Link, Load, MotorCurve, Pin, Shape, Spec, Study, Sweep, Vary, Vec)
+from .types import TolVary, Tolerances
 from .yaml_source import (MAX_DEPTH, MAX_FILE_BYTES, HugeInteger, Source, check_text, decode,
                           format_path, too_big)
 
@@ -485,6 +486,8 @@ def _value_problem(where: schema.Located, kind: str, value: Any, fallback: str) 
         return f"must be true or false, got {_show(value)}{_text_hint(value, boolean=True)}"
     if kind in ("string_too_long", "string_pattern_mismatch"):
         return f"must be one line of at most {where.constraint('max_length')} characters"
+    if kind.startswith(schema.RULE_PREFIX):  # a model's own rule: its message says it all
+        return fallback
     if where.is_model():
         keys = ", ".join(keys_of(where.annotation))
         return f"must be a mapping of keys ({keys}), got {_show(value)}"
@@ -612,6 +615,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     report = (_report(top.get("report"), ck, units, sweep.whole_turn) if "report" in top
               else ReportSettings(animation=sweep.whole_turn))
     study = _study(top["study"], ck, top) if "study" in top else None
+    tolerances = _tolerances(top["tolerances"], ck, top) if "tolerances" in top else None
     sheet = (schema.SpecFile.model_fields["sheet"].default if ck.refused(("sheet",))
              else top.get("sheet", schema.SpecFile.model_fields["sheet"].default))
 
@@ -634,10 +638,12 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
                 expect=tuple(expect), sheet=sheet, units=units, design=design,
                 report=report, study=study, pins=tuple(pins), friction=friction,
-                dynamics=dynamics)
+                dynamics=dynamics, tolerances=tolerances)
     _cycle_requests(spec, ck)
     if study is not None:
         _study_requests(spec, ck)
+    if tolerances is not None:
+        _study_requests(spec, ck, "tolerances", tolerances.keep)
     return None if ck.problems else spec
 
 
@@ -882,7 +888,7 @@ def _cycle_need(spec: Spec, quantity: str) -> str | None:
 # --------------------------------------------------------------------------------- study
 
 #: top-level keys whose numbers a study does not vary: they describe the file, not the machine
-NOT_VARIED = ("mechreport", "study", "expect", "report")
+NOT_VARIED = ("mechreport", "study", "expect", "report", "tolerances")
 
 
 def _study(value: Any, ck: _Checker, top: dict) -> Study | None:
@@ -1062,30 +1068,92 @@ def _keep(value: Any, path: tuple, ck: _Checker) -> tuple[str, ...] | None:
     return tuple(out) if ok else None
 
 
-def _study_requests(spec: Spec, ck: _Checker) -> None:
-    """A study tabulates cycle quantities: they must be defined for the spec, and each kept
-    one must name a joint of the mechanism and have the design inputs it needs."""
+def _study_requests(spec: Spec, ck: _Checker, section: str = "study",
+                    keep: tuple[str, ...] | None = None) -> None:
+    """A study (or the ``section`` keeping ``keep``: ``tolerances``) tabulates cycle
+    quantities: they must be defined for the spec, and each kept one must name a joint of the
+    mechanism and have the design inputs it needs."""
+    keep = spec.study.keep if keep is None else keep
     why = spec.cycle_problem()
-    if why is not None and not (all(is_member(q) for q in spec.study.keep)
+    if why is not None and not (all(is_member(q) for q in keep)
                                 and cycle_design(spec.design).empty):
-        ck.error(("study",), f"a study tabulates cycle quantities, which are undefined here: "
-                             f"{why}")
+        what = "a study tabulates" if section == "study" else f"{section} keeps"
+        ck.error((section,), f"{what} cycle quantities, which are undefined here: {why}")
         return
     joints = set(spec.reported_reactions())
-    for i, q in enumerate(spec.study.keep):
+    for i, q in enumerate(keep):
         kind, name, attr = split_quantity(q) or ("", "", "")
         if kind == "member":
             problem = _member_quantity_problem(q, name, attr, list(spec.links), ck)
             if problem:
-                ck.error(("study", "keep", i), problem)
+                ck.error((section, "keep", i), problem)
             continue
         if kind == "joint" and name not in joints:
-            ck.error(("study", "keep", i), f"'{q}': no joint named '{name}' (joints: "
+            ck.error((section, "keep", i), f"'{q}': no joint named '{name}' (joints: "
                                            f"{', '.join(sorted(joints))})")
             continue
         need = _cycle_need(spec, q)
         if need:
-            ck.error(("study", "keep", i), need)
+            ck.error((section, "keep", i), need)
+
+
+# ---------------------------------------------------------------------------- tolerances
+
+def _tolerances(value: Any, ck: _Checker, top: dict) -> Tolerances | None:
+    """The ``tolerances`` section (docs/spec.md, section 21): the models check its shape;
+    each key path must lead to a number of this spec (as a study's), each once; values stay
+    in the spec's own units, each leaf's distribution resolved about the spec's value."""
+    path = ("tolerances",)
+    body = value if isinstance(value, dict) else {}
+    if not isinstance(body.get("vary"), list):
+        return None             # the models say what is wrong
+    model = schema.Tolerances.model_fields
+    out, seen = [], {}
+    for i, item in enumerate(body["vary"]):
+        where = path + ("vary", i)
+        if not isinstance(item, dict) or not isinstance(item.get("key"), str) \
+                or ck.refused(where + ("key",)):
+            continue            # the models say what is wrong
+        leaf = _key_path(item["key"], where + ("key",), ck, top)
+        if leaf is None:
+            continue
+        if leaf in seen:
+            ck.error(where + ("key",), f"'{item['key']}' is varied by tolerances.vary"
+                                       f"[{seen[leaf]}] too: give each key once")
+            continue
+        seen[leaf] = i
+        if not ck.refused(where):
+            out.append(_tol_vary(item, leaf, _leaf_value(top, leaf), ck.src.line(where)))
+    keep = None if ck.refused(path + ("keep",)) or "keep" not in body else _keep(
+        body["keep"], path + ("keep",), ck)
+    if ck.refused(path) or len(out) < len(body["vary"]) or keep is None:
+        return None
+    return Tolerances(tuple(out), keep, int(body.get("count", model["count"].default)),
+                      body.get("sample", model["sample"].default),
+                      int(body.get("seed", model["seed"].default)), ck.src.line(path))
+
+
+def _leaf_value(top: dict, leaf: tuple) -> float:
+    node: Any = top
+    for part in leaf:
+        node = node[part]
+    return float(node)
+
+
+def _tol_vary(item: dict, leaf: tuple, nominal: float, line: int | None) -> TolVary:
+    """One ``tolerances.vary`` entry (its shape checked by the models) as a TolVary."""
+    if "sigma" in item:
+        s = float(item["sigma"])
+        return TolVary(item["key"], leaf, nominal, "normal", nominal - 3 * s, nominal + 3 * s,
+                       nominal, s, "sigma", line)
+    if "tol" in item:
+        low, high, given = nominal - float(item["tol"]), nominal + float(item["tol"]), "tol"
+    else:
+        a, b = float(item["from"]), float(item["to"])
+        low, high, given = min(a, b), max(a, b), "range"
+    dist = item.get("dist", "uniform")
+    return TolVary(item["key"], leaf, nominal, dist, low, high, (low + high) / 2,
+                   (high - low) / 6 if dist == "normal" else 0.0, given, line)
 
 
 def _units(value: Any, ck: _Checker) -> tuple[float, float, dict[str, str]]:

@@ -890,6 +890,73 @@ class Study(_Model):
         return self
 
 
+#: the error type prefix of a rule a model checks on several of its keys at once (a
+#: ``model_validator``): the loader reports such an error by its own message
+RULE_PREFIX = "rule_"
+
+
+class TolVary(_Model):
+    """One uncertain leaf of the spec: {key, tol}, {key, sigma} or {key, from, to}, with
+    `dist`."""
+
+    key: Name = Field(description="A key path into this spec, as in `study.vary` "
+                                  "(links.coupler.points.C.0).")
+    tol: Positive = Field(None, description=(
+        "Plus or minus this much about the spec's value, in the spec's unit of the key."))
+    sigma: Positive = Field(None, description=(
+        "The standard deviation of a normal distribution about the spec's value, in the "
+        "spec's unit of the key."))
+    from_: Number = Field(None, alias="from", description="One end of a range of values.")
+    to: Number = Field(None, description="The other end of the range.")
+    dist: Literal["uniform", "normal"] = Field(None, description=(
+        "`uniform` (the default for `tol` and `from`/`to`) or `normal` (the default for "
+        "`sigma`); a normal `tol` or range spans plus or minus 3 standard deviations about "
+        "its middle."))
+
+    @model_validator(mode="after")
+    def _one_spread(self):
+        """Exactly one of ``tol``, ``sigma`` and a ``from``/``to`` range; ``sigma`` is
+        normal."""
+        given = [k for k, v in (("tol", self.tol), ("sigma", self.sigma)) if v is not None]
+        if self.from_ is not None or self.to is not None:
+            given.append("from/to")
+        if len(given) != 1:
+            raise PydanticCustomError(
+                RULE_PREFIX + "tolerance_spread", "give one of 'tol', 'sigma' or 'from' and 'to', got {got}",
+                {"got": " and ".join(given) if given else "none"})
+        if given == ["from/to"] and (self.from_ is None or self.to is None
+                                     or self.from_ == self.to):
+            raise PydanticCustomError(
+                RULE_PREFIX + "tolerance_range", "a range needs 'from' and 'to', two different numbers")
+        if self.sigma is not None and self.dist == "uniform":
+            raise PydanticCustomError(
+                RULE_PREFIX + "tolerance_sigma", "'sigma' is the standard deviation of a normal "
+                "distribution; for a uniform one give 'tol' or 'from' and 'to'")
+        return self
+
+
+MAX_TOLERANCE_SAMPLES = 1_000_000
+
+
+class Tolerances(_Model):
+    """The samples `mechreport tolerance` draws."""
+
+    vary: Annotated[list[TolVary], Wording("a list of {key, tol}, {key, sigma, dist: normal} "
+                                           "or {key, from, to}")] = Field(
+        min_length=1, description=(
+            "the uncertain leaves, each `{key, tol}` (uniform, plus or minus `tol`), `{key, "
+            "sigma, dist: normal}` or `{key, from, to}` (uniform over the range)"))
+    count: _whole(2, MAX_TOLERANCE_SAMPLES) = Field(1000, description=(
+        "how many samples, 2 to 1 000 000, default 1000"))
+    sample: Literal["lhs", "random"] = Field(
+        "lhs", description="`lhs` (Latin hypercube, the default) or `random`")
+    seed: _whole(0, MAX_SEED) = Field(0, description=(
+        "a whole number from 0 to 2^63 - 1, default 0: the same spec and seed always give the "
+        "same samples"))
+    keep: Annotated[list[CycleQuantity], Wording("a list of cycle quantities")] = Field(
+        min_length=1, description="the cycle quantities to report (as `study.keep`)")
+
+
 class SpecFile(_Model):
     """A mechreport spec: one planar linkage (docs/spec.md)."""
 
@@ -947,6 +1014,10 @@ class SpecFile(_Model):
     study: Study = Field(None, description=(
             "the variants `mechreport study` runs (section 17); every other command validates it "
             "and otherwise ignores it"))
+    tolerances: Tolerances = Field(None, description=(
+            "the manufacturing and parameter uncertainty `mechreport tolerance` samples "
+            "(section 21, format 1.2); every other command validates it and otherwise ignores "
+            "it"))
 
 
 # ------------------------------------------------------------------------- the key tables

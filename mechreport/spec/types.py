@@ -418,6 +418,47 @@ class Study:
 
 
 @dataclass(frozen=True)
+class TolVary:
+    """One uncertain leaf (``tolerances.vary``): ``key`` as written, ``path`` its keys and
+    list indices, ``nominal`` the spec's value there (the spec's own units). ``dist``
+    ``uniform`` over [``low``, ``high``] or ``normal`` with mean ``mean`` and standard
+    deviation ``sigma`` (a ``tol`` or range given as normal: ``low``..``high`` is plus or minus
+    3 sigma); ``given`` says how it was written (``tol``, ``sigma`` or ``range``)."""
+
+    key: str
+    path: tuple
+    nominal: float
+    dist: str
+    low: float
+    high: float
+    mean: float
+    sigma: float
+    given: str
+    line: int | None = None
+
+    @property
+    def std(self) -> float:
+        """The distribution's standard deviation [the key's unit]."""
+        if self.dist == "normal":
+            return self.sigma
+        return (self.high - self.low) / (2.0 * 3.0 ** 0.5)
+
+
+@dataclass(frozen=True)
+class Tolerances:
+    """The ``tolerances`` section: the uncertain leaves, how many samples are drawn
+    (``count``, by ``sample`` lhs or random, ``seed``) and the cycle quantities reported
+    (``keep``). Only ``mechreport tolerance`` uses it."""
+
+    vary: tuple[TolVary, ...]
+    keep: tuple[str, ...]
+    count: int = 1000
+    sample: str = "lhs"
+    seed: int = 0
+    line: int | None = None
+
+
+@dataclass(frozen=True)
 class ReportSettings:
     """The spec's ``report`` section: display ``units`` (``length`` m|cm|mm|in, ``force``
     N|kN|lbf, ``moment`` N*m|N*mm|kN*m|lbf*in, ``mass`` kg|g|lb; lengths default to the spec's
@@ -459,6 +500,7 @@ class Spec:
     pins: tuple[Pin, ...] = ()        # pins joining three or more links (solved as joints)
     friction: tuple[Friction, ...] = ()   # by solved joint, in spec order
     dynamics: Dynamics | None = None      # machine dynamics (format 1.1 ``dynamics:``)
+    tolerances: Tolerances | None = None  # only `mechreport tolerance` uses it
 
     @property
     def axis_unit(self) -> str:

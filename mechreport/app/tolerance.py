@@ -1,0 +1,239 @@
+"""``mechreport tolerance SPEC``: load, sample the spec's ``tolerances:``, run the samples,
+write the outputs.
+
+Exit status: 0 when the analysis ran and was written (whatever its samples' outcomes:
+samples that cannot be assembled or analysed are counted, reported and are rows with their
+reason); 1 when it cannot run (the spec or its tolerances section is invalid, the spec as
+written cannot be analysed, the scheduler cannot be used, the output folder cannot be
+written) or when samples could not be computed because a worker process or the Dask cluster
+was lost (they are written as failed rows saying why; one line on stderr says how many). 130
+when interrupted (nothing is written then).
+
+The files, written into ``OUT/<spec>/`` safely (as ``mechreport study`` writes its own: a
+private folder swapped in, a report or study there kept):
+
+    OUT/<spec>/tolerance.parquet, tolerance.csv   one row per sample (study.tolerance_outputs)
+    OUT/<spec>/tolerance.md, tolerance.pdf        the report (study.tolerance_report)
+    OUT/<spec>/tolerance-figures/*.svg            its histograms
+    OUT/<spec>/tolerance.json                     the tolerance.* quantities
+    OUT/<spec>/summary.json                       a report's, with the tolerance.* quantities
+                                                  added (only where a report is there)
+"""
+from __future__ import annotations
+
+import json
+import os
+import sys
+import time
+from pathlib import Path
+
+from . import outdir as od
+
+EPILOG = """\
+exit status: 0 when the analysis ran and its files were written (samples that cannot be
+assembled or analysed are counted, reported and written with their reason); 1 when it cannot
+run (a spec problem, no tolerances: section, a spec that cannot be analysed as written, a
+malformed or unreachable --scheduler, an unusable output folder) or when samples could not be
+computed because a worker process or the Dask cluster was lost (written as failed rows,
+stderr says how many); 2 on a usage error; 130 if interrupted (nothing is written then).
+
+Writes OUT/<name>/tolerance.parquet, tolerance.csv (one row per sample), tolerance.md,
+tolerance.pdf and tolerance.json, and adds the tolerance.* quantities to a report's
+summary.json there; a report or study there is kept. Progress and an ETA go to stderr."""
+
+
+def add_parser(sub, filled, at_least_1, seconds) -> None:
+    """The ``tolerance`` subcommand's parser (``filled``, ``at_least_1``, ``seconds``: the
+    command line's text and argument helpers)."""
+    import argparse
+    import textwrap
+
+    from ..forces import METHODS
+    p = sub.add_parser("tolerance", help="sample a spec's tolerances (its tolerances: section) "
+                       "and report the chance that the built machine passes",
+                       description=textwrap.fill(
+                           "Sample the uncertain values of the spec's tolerances: section, "
+                           "analyse every sample as a whole machine (one force method each, "
+                           "with the study's trust test), and report the kept quantities' "
+                           "statistics, each design verdict's probability of passing, the "
+                           "probability of assembly and which tolerance matters.", 79),
+                       epilog=filled(EPILOG), formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("spec", metavar="SPEC")
+    p.add_argument("-o", "--out", default="out", help="output folder (default: out)")
+    p.add_argument("--method", choices=list(METHODS), default=None,
+                   help="the force method for every sample (default: the fastest that gives "
+                   "every kept quantity and design verdict)")
+    p.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                   help="run on an existing Dask cluster at tcp://HOST:PORT or HOST:PORT "
+                   "(needs mechreport[dask]); default: a local process pool")
+    p.add_argument("--jobs", type=at_least_1, default=None,
+                   help="local processes, >= 1 (default: cores; ignored with --scheduler)")
+    p.add_argument("--chunk", type=at_least_1, default=None, metavar="N",
+                   help="samples per task, >= 1 (default: about 8 tasks per worker, at most "
+                   "100 samples each)")
+    p.add_argument("--wait", type=seconds, default=120.0, metavar="SECONDS",
+                   help="how long to wait for another command writing to the same output "
+                   "folder (default 120)")
+    p.set_defaults(func=_cmd)
+
+
+def _cmd(ns) -> int:
+    return tolerance_command(Path(ns.spec), Path(ns.out), method=ns.method,
+                             scheduler=ns.scheduler, jobs=ns.jobs, chunk=ns.chunk,
+                             wait=ns.wait)
+
+
+def tolerance_command(path, out="out", method: str | None = None,
+                      scheduler: str | None = None, jobs: int | None = None,
+                      chunk: int | None = None, wait: float = 120.0, stream=None) -> int:
+    """Run the tolerance analysis of the spec at ``path`` into ``out``; the exit status (see
+    the module docstring). Raises ``SpecError``/``MechreportError`` when it cannot run and
+    KeyboardInterrupt when interrupted."""
+    from functools import partial
+
+    from ..report.model import build_time, spec_sha256
+    from ..study.cluster import close_client, connect, dask_workers
+    from ..study.methods import choose_method
+    from ..study.run import auto_chunk, local_jobs
+    from ..study.tolerance import (checked_nominal, load_tolerance_base, run_samples,
+                                   tolerance_plan)
+    from ..study.tolerance_stats import analyse_samples
+    from .process import check_stop, stop_requests
+    from .progress import StudyProgress, duration
+    from .study import lost_line
+    from .workers import worker_init
+
+    err = stream or sys.stderr
+    path = Path(path)
+    base = load_tolerance_base(path)
+    tol = base.spec.tolerances
+    method, why = choose_method(method, tol.keep, base.spec.design)
+    nominal, verdicts = checked_nominal(base, method, tol.keep)
+    plan = tolerance_plan(tol)
+    out = od.prepare(Path(out))            # fail early on an unusable -o
+    name = od.safe_stem(path)
+    lost: list = []
+    with stop_requests():
+        client = connect(scheduler) if scheduler is not None else None
+        try:
+            if client is not None:
+                workers = dask_workers(client)
+                size = chunk or auto_chunk(plan.n, workers)
+                where = f"the Dask cluster at {scheduler} ({workers} worker thread(s))"
+            else:
+                workers, size, lowered = local_jobs(plan.n, jobs, chunk)
+                if lowered:
+                    print(f"--jobs {jobs}: using {workers} process(es), because {lowered}",
+                          file=err, flush=True)
+                where = "this process" if workers == 1 else f"{workers} local processes"
+            kind = "Latin hypercube" if plan.sample == "lhs" else "random"
+            print(f"tolerance {path}: {plan.n} sample(s) of {len(plan.keys)} uncertain "
+                  f"value(s), {kind} sampling; method {method} ({why}); on {where}, chunks "
+                  f"of {size}", file=err, flush=True)
+            progress = StudyProgress(plan.n, err, item="samples")
+
+            def notify(line: str) -> None:
+                progress.close()
+                print(line, file=err, flush=True)
+            start = time.perf_counter()
+            try:
+                table = run_samples(base, plan, method, tol.keep, [v.item for v in verdicts],
+                                    jobs=workers, chunk=size, client=client,
+                                    progress=progress.update, lost=lost, notify=notify,
+                                    stop_check=check_stop,
+                                    setup=partial(worker_init, os.getpid()))
+                progress.close()
+            except KeyboardInterrupt as exc:
+                progress.close()
+                print(f"interrupted after {progress.done} of {plan.n} sample(s); nothing "
+                      "was written", file=err)
+                exc.reported = True
+                raise
+        finally:
+            trouble = close_client(client)
+            if trouble:
+                print(f"warning: {trouble}", file=err, flush=True)
+        seconds = time.perf_counter() - start
+        result = analyse_samples(base, table, nominal, verdicts, method, why, seconds, lost)
+        print(f"{plan.n} sample(s) in {duration(seconds)}: "
+              + ", ".join(f"{n} {s}" for s, n in result.counts.items() if s == "ok" or n),
+              file=err, flush=True)
+        date = build_time().strftime("%Y-%m-%d %H:%M UTC")
+        sha = spec_sha256(path)
+        print(f"writing {out / name}/ ...", file=err, flush=True)
+        try:
+            final = write_tolerance(result, out, name, wait, date=date, sha256=sha,
+                                    where=where, chunk=size)
+        except KeyboardInterrupt as exc:
+            print(f"interrupted while writing; {out / name} was left as it was", file=err)
+            exc.reported = True
+            raise
+    print(result_line(result) + f"; written to {final}/ (tolerance.parquet, tolerance.csv, "
+          "tolerance.md, tolerance.pdf, tolerance.json)")
+    if lost:
+        print(f"error: {lost_line(lost, plan.n).replace('variant', 'sample')}", file=err)
+    return 1 if lost else 0
+
+
+def result_line(result) -> str:
+    """One line: the samples, the probability of assembly and of passing every verdict."""
+    a, d = result.assembly, result.design
+    text = (f"{result.spec.file}: {result.table.n} sample(s): assembles "
+            f"{100 * a.p:.1f} % (95 % interval {100 * a.low:.1f}-{100 * a.high:.1f} %)")
+    if result.verdicts:
+        text += (f"; passes every design verdict {100 * d.p:.1f} % "
+                 f"({100 * d.low:.1f}-{100 * d.high:.1f} %)")
+    return text
+
+
+def write_tolerance(result, out: Path, name: str, wait: float = 120.0, *, date: str = "",
+                    sha256: str = "", where: str = "", chunk: int | None = None) -> Path:
+    """Write every file of ``result`` into ``OUT/name``; the folder."""
+    from ..report.files import atomic_write_text
+    from ..report.pdf import compile_typst
+    from ..report.write_markdown import markdown
+    from ..report.write_typst import typst
+    from ..study.tolerance_outputs import write_csv, write_parquet
+    from ..study.tolerance_report import FIGURES, build_document, write_figures
+    from ..version import __version__
+
+    quantities = result.summary()
+
+    def write(tmp: Path) -> None:
+        t = result.table
+        meta = {"spec": result.base.file, "spec_sha256": sha256, "method": result.method,
+                "sample": t.plan.sample, "seed": t.plan.seed, "samples": t.n,
+                "version": __version__}
+        write_parquet(t, tmp / "tolerance.parquet", meta)
+        write_csv(t, tmp / "tolerance.csv")
+        figures = write_figures(result, tmp / FIGURES)
+        doc = build_document(result, figures, date=date, sha256=sha256, where=where,
+                             chunk=chunk)
+        atomic_write_text(tmp / "tolerance.md", markdown(doc))
+        compile_typst(typst(doc), tmp / "tolerance.pdf", tmp)
+        record = {"mechreport_version": __version__, "spec": result.base.file,
+                  "spec_sha256": sha256, "date": date, "quantities": quantities}
+        atomic_write_text(tmp / "tolerance.json", json.dumps(record, indent=2,
+                                                             allow_nan=False) + "\n")
+        report = out / name / "summary.json"
+        if report.is_file() and not report.is_symlink():
+            merged = with_tolerance(json.loads(report.read_text(encoding="utf-8")),
+                                    quantities)
+            atomic_write_text(tmp / "summary.json", json.dumps(merged, indent=2,
+                                                               allow_nan=False) + "\n")
+
+    with od.writing(out, wait) as out:
+        return od.write_folder(out, name, write, carry=_not_the_tolerance)
+
+
+def with_tolerance(summary: dict, quantities: dict) -> dict:
+    """A report's summary.json with its ``tolerance.*`` quantities replaced by
+    ``quantities``."""
+    old = summary.get("quantities") if isinstance(summary.get("quantities"), dict) else {}
+    kept = {k: v for k, v in old.items() if not k.startswith("tolerance.")}
+    return {**summary, "quantities": {**kept, **quantities}}
+
+
+def _not_the_tolerance(entry: str) -> bool:
+    """The entries of an old folder a new tolerance analysis keeps: all but its own."""
+    return entry not in od.TOLERANCE_ENTRIES
