@@ -20,9 +20,11 @@ TABLES = {
     "link": (schema.Link, False, ("points", "mass", "density", "com", "inertia", "shape")),
     "strength": (schema.Link, False, ("section", "material", "members")),
     "study": (schema.Study, True, None),
+    "tolerances": (schema.Tolerances, True, None),
+    "tolerance vary": (schema.TolVary, False, None),
 }
 
-_REGION = re.compile(r"(<!-- key table (\w+) -->\n)(.*?)(<!-- end key table -->)", re.S)
+_REGION = re.compile(r"(<!-- key table (\w+(?: \w+)*) -->\n)(.*?)(<!-- end key table -->)", re.S)
 
 
 def _cell(text: str) -> str:

@@ -895,9 +895,22 @@ class Study(_Model):
 RULE_PREFIX = "rule_"
 
 
+#: in JSON Schema, what :meth:`TolVary._one_spread` checks
+_ONE_SPREAD = {
+    "oneOf": [{"required": ["tol"], "not": {"anyOf": [{"required": [k]}
+                                                      for k in ("sigma", "from", "to")]}},
+              {"required": ["sigma"], "not": {"anyOf": [{"required": [k]}
+                                                        for k in ("tol", "from", "to")]},
+               "properties": {"dist": {"const": "normal"}}},
+              {"required": ["from", "to"], "not": {"anyOf": [{"required": [k]}
+                                                             for k in ("tol", "sigma")]}}]}
+
+
 class TolVary(_Model):
     """One uncertain leaf of the spec: {key, tol}, {key, sigma} or {key, from, to}, with
     `dist`."""
+
+    model_config = ConfigDict(json_schema_extra=_ONE_SPREAD)
 
     key: Name = Field(description="A key path into this spec, as in `study.vary` "
                                   "(links.coupler.points.C.0).")

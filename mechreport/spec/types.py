@@ -500,7 +500,9 @@ class Spec:
     pins: tuple[Pin, ...] = ()        # pins joining three or more links (solved as joints)
     friction: tuple[Friction, ...] = ()   # by solved joint, in spec order
     dynamics: Dynamics | None = None      # machine dynamics (format 1.1 ``dynamics:``)
-    tolerances: Tolerances | None = None  # only `mechreport tolerance` uses it
+    # only `mechreport tolerance` uses it (not in the repr: the shipped specs' reference
+    # reprs stay as they were)
+    tolerances: Tolerances | None = field(default=None, repr=False)
 
     @property
     def axis_unit(self) -> str:
