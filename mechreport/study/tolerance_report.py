@@ -18,6 +18,7 @@ from ..report.plots import styled
 from ..units import fmt
 from .report import METHOD_TITLES, StudyDoc, key_units, robust_limits
 from .table import column_name, with_unit
+from .tolerance_stats import varies
 
 FIGURES = "tolerance-figures"
 PERCENT = 100.0
@@ -58,14 +59,22 @@ def draw_histogram(ax, h: HistData) -> None:
     if not len(v):
         ax.text(0.5, 0.5, "no sample with a value", transform=ax.transAxes, ha="center")
         return
+    unit = f" {h.unit}" if h.unit else ""
+    if not varies(float(np.std(v)), v):
+        ax.text(0.5, 0.5, f"every sample: {fmt(float(np.mean(v)))}{unit} (the tolerances do "
+                "not move it)", transform=ax.transAxes, ha="center", va="center")
+        ax.set_xticks([])
+        ax.set_yticks([])
+        ax.grid(False)
+        ax.set_xlabel(literal(column_name(h.quantity)))
+        return
     limits = robust_limits(v)
     shown = v if limits is None else v[(v >= limits[0]) & (v <= limits[1])]
     bins = int(np.clip(np.sqrt(len(shown)), 10, 50))
-    ax.hist(shown, bins=bins, color=OKABE_ITO[0], alpha=0.75, lw=0)
+    ax.hist(shown, bins=bins, color=OKABE_ITO[0], alpha=0.75, edgecolor="white", lw=0.4)
     lo, hi = (float(np.min(shown)), float(np.max(shown))) if limits is None else limits
-    span = (hi - lo) or max(abs(hi), 1.0) * 1e-3
+    span = hi - lo
     ax.set_xlim(lo - 0.05 * span, hi + 0.05 * span)
-    unit = f" {h.unit}" if h.unit else ""
     ax.axvline(h.nominal, color=INK, lw=1.3, label=f"nominal {fmt(h.nominal)}{unit}")
     for x, name in ((h.p5, "5th"), (h.p95, "95th")):
         ax.axvline(x, color=GREY, lw=1.0, ls=(0, (1.5, 1.5)),
@@ -197,7 +206,8 @@ def build_document(result, figures: dict[str, str], date: str = "", sha256: str 
     rows = []
     for s in result.quantities:
         lim = "—" if s.limit is None else ("≥ " if s.at_least else "≤ ") + fmt(s.limit)
-        rows.append([column_name(s.quantity), fmt(s.nominal), fmt(s.mean), fmt(s.std, 3),
+        rows.append([column_name(s.quantity), fmt(s.nominal), fmt(s.mean),
+                     fmt(s.std, 3, scale=max(abs(s.low), abs(s.high))),
                      fmt(s.p5), fmt(s.p95), fmt(s.p99), lim])
     doc.table(["quantity", "nominal", "mean", "std. dev.", "5th pct", "95th pct",
                "99th pct", "limit"], rows, right={1, 2, 3, 4, 5, 6, 7})

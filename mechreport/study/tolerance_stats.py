@@ -13,7 +13,8 @@ report, the files and summary.json say, each computed once here.
 - **Ranking**, per kept quantity: the share of its variance each tolerance explains, by
   squared standardised regression coefficients: ``y`` regressed linearly on every varied
   value (least squares, with an intercept, over the ``ok`` samples), ``SRC_i = b_i s_i /
-  s_y``, share ``SRC_i^2``. Tolerances are small next to the dimensions, so a quantity is
+  s_y``, share ``SRC_i^2`` (scaled so that the shares add up to R^2 exactly: the sampled
+  values are independent only to within their sampling correlations). Tolerances are small next to the dimensions, so a quantity is
   close to linear in them over the tolerance box; then ``SRC_i^2`` is tolerance i's
   first-order variance share, the shares add up to the regression's R^2 (reported: how much
   of the variance the linear ranking accounts for) and the estimate converges at the rate of
@@ -22,6 +23,7 @@ report, the files and summary.json say, each computed once here.
 from __future__ import annotations
 
 import math
+import re
 from collections import Counter
 from dataclasses import dataclass, field
 from fnmatch import fnmatchcase
@@ -32,9 +34,13 @@ from ..quantities import unit_of
 from .table import badness
 
 CONFIDENCE = 0.95
+_GOT = re.compile(r"got [-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 #: a sample's status (see :mod:`.tolerance`)
 STATUSES = ("ok", "invalid", "no assembly", "untrusted", "failed")
 PERCENTILES = (5, 95, 99)
+#: a quantity whose standard deviation is below this fraction of its magnitude does not vary
+#: with the tolerances (its spread is round-off): it is not ranked
+VARIES_RTOL = 1e-9
 
 __all__ = ["ToleranceResult", "QuantityStats", "Probability", "Ranking", "analyse_samples",
            "clopper_pearson", "src_shares", "CONFIDENCE"]
@@ -146,7 +152,7 @@ def src_shares(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, float | None]:
     m, d = x.shape
     out = np.zeros(d)
     sy = float(np.std(y, ddof=1)) if m > 1 else 0.0
-    if m < d + 2 or not sy > 0:
+    if m < d + 2 or not varies(sy, y):
         return out, None
     sx = np.std(x, axis=0, ddof=1)
     use = sx > 0
@@ -154,9 +160,20 @@ def src_shares(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, float | None]:
     ys = (y - y.mean()) / sy
     coef, *_ = np.linalg.lstsq(xs, ys, rcond=None)
     resid = ys - xs @ coef
-    r2 = 1.0 - float(resid @ resid) / float(ys @ ys)
-    out[use] = coef ** 2
-    return out, max(0.0, min(1.0, r2))
+    r2 = max(0.0, min(1.0, 1.0 - float(resid @ resid) / float(ys @ ys)))
+    src2 = coef ** 2
+    total = float(src2.sum())
+    # the sampled values are independent only to within sampling correlations (of order
+    # 1/sqrt(m)), so the raw SRC^2 add up to R^2 only nearly: scaled to add up to it exactly
+    out[use] = src2 * (r2 / total) if total > 0 else src2
+    return out, r2
+
+
+def varies(std: float, values: np.ndarray) -> bool:
+    """Whether values with standard deviation ``std`` vary by more than round-off (1e-9 of
+    their magnitude)."""
+    scale = float(np.max(np.abs(values))) if len(values) else 0.0
+    return std > VARIES_RTOL * scale and std > 0
 
 
 def limit_of(quantity: str, verdicts) -> tuple[float | None, bool, str]:
@@ -223,6 +240,7 @@ def _reasons(table) -> list[tuple[str, str, int, list[int]]]:
     for i, (s, why) in enumerate(zip(table.status, table.reason)):
         if s == "ok":
             continue
+        why = _GOT.sub("got …", why)       # one reason per kind, whatever the value drawn
         groups[(s, why)] += 1
         lst = first.setdefault((s, why), [])
         if len(lst) < 3:
