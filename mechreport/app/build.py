@@ -100,6 +100,9 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
     row = write_report_folder(analysis, folder, path, key["spec_sha256"], name=name,
                               build_key=key, sheet=do_sheet, sheet_options=options,
                               sheet_source=sheet_source, stage=stage, animation=animation)
+    from .tolerance import carry_into_report         # a tolerance analysis there stays
+    carry_into_report(folder / "summary.json", out / name / "tolerance.json",
+                      key["spec_sha256"])
     for written in folder.rglob("*"):                   # nothing escaped the folder
         od.inside(folder, written)
     return dict(row, folder=name)

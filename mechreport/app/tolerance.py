@@ -17,7 +17,9 @@ private folder swapped in, a report or study there kept):
     OUT/<spec>/tolerance-figures/*.svg            its histograms
     OUT/<spec>/tolerance.json                     the tolerance.* quantities
     OUT/<spec>/summary.json                       a report's, with the tolerance.* quantities
-                                                  added (only where a report is there)
+                                                  added (only where a report is there; a
+                                                  later build of the same spec content
+                                                  adds them again: carry_into_report)
 """
 from __future__ import annotations
 
@@ -232,6 +234,26 @@ def with_tolerance(summary: dict, quantities: dict) -> dict:
     old = summary.get("quantities") if isinstance(summary.get("quantities"), dict) else {}
     kept = {k: v for k, v in old.items() if not k.startswith("tolerance.")}
     return {**summary, "quantities": {**kept, **quantities}}
+
+
+def carry_into_report(summary: Path, record: Path, sha256: str) -> None:
+    """A build's new ``summary`` (summary.json) gains the ``tolerance.*`` quantities of the
+    folder's ``record`` (tolerance.json) when that was computed from the same spec content
+    (``sha256``): a rebuild keeps them; a changed spec drops them (they were of another
+    design). Nothing happens when there is no record, or it cannot be read."""
+    try:
+        if record.is_symlink() or not record.is_file():
+            return
+        data = json.loads(record.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return
+    if not isinstance(data, dict) or data.get("spec_sha256") != sha256 \
+            or not isinstance(data.get("quantities"), dict):
+        return
+    quantities = data["quantities"]
+    from ..report.files import atomic_write_text
+    merged = with_tolerance(json.loads(summary.read_text(encoding="utf-8")), quantities)
+    atomic_write_text(summary, json.dumps(merged, indent=2, allow_nan=False) + "\n")
 
 
 def _not_the_tolerance(entry: str) -> bool:

@@ -92,3 +92,22 @@ def test_bad_options_are_usage_errors(tmp_path, args, capsys):
     with pytest.raises(SystemExit) as info:
         main(["tolerance", "x.yaml", *args])
     assert info.value.code == 2
+
+
+def test_a_rebuild_keeps_the_tolerance_quantities_of_the_same_spec_only(tmp_path):
+    from mechreport.app.tolerance import carry_into_report
+    summary = tmp_path / "summary.json"
+    record = tmp_path / "tolerance.json"
+    record.write_text(json.dumps({"spec_sha256": "abc", "quantities": {
+        "tolerance.cycle.torque.rms.p95": {"value": 2.5, "unit": "N·m"}}}), encoding="utf-8")
+    summary.write_text(json.dumps({"quantities": {"x": {"value": 1, "unit": ""}}}),
+                       encoding="utf-8")
+    carry_into_report(summary, record, "other")            # the spec changed: not carried
+    assert json.loads(summary.read_text(encoding="utf-8"))["quantities"] == {
+        "x": {"value": 1, "unit": ""}}
+    carry_into_report(summary, record, "abc")
+    assert json.loads(summary.read_text(encoding="utf-8"))["quantities"][
+        "tolerance.cycle.torque.rms.p95"] == {"value": 2.5, "unit": "N·m"}
+    record.write_text("not json", encoding="utf-8")        # unreadable: left alone
+    carry_into_report(summary, record, "abc")
+    carry_into_report(summary, tmp_path / "missing.json", "abc")
