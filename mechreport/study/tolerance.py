@@ -2,7 +2,7 @@
 sampled and carried through the whole analysis, on the study engine.
 
     from mechreport import tolerance
-    result = tolerance("specs/four_bar_tolerances.yaml", jobs=2)
+    result = tolerance("spec.yaml", jobs=2)       # a spec with a tolerances: section
     result.quantities[0].p95          # the 95th percentile of the first kept quantity [SI]
     result.verdicts[0].p, result.verdicts[0].low, result.verdicts[0].high
 
