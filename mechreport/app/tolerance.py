@@ -51,8 +51,8 @@ def add_parser(sub, filled, at_least_1, seconds) -> None:
     import textwrap
 
     from ..forces import METHODS
-    p = sub.add_parser("tolerance", help="sample a spec's tolerances (its tolerances: section) "
-                       "and report the chance that the built machine passes",
+    p = sub.add_parser("tolerance", help="the chance the built machine passes (a spec's "
+                       "tolerances: section)",
                        description=textwrap.fill(
                            "Sample the uncertain values of the spec's tolerances: section, "
                            "analyse every sample as a whole machine (one force method each, "

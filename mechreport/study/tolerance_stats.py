@@ -34,7 +34,8 @@ from ..quantities import unit_of
 from .table import badness
 
 CONFIDENCE = 0.95
-_GOT = re.compile(r"got [-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+_NUMBER = re.compile(r"\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
+_DIFFER = "; its numbers differ from sample to sample)"
 #: a sample's status (see :mod:`.tolerance`)
 STATUSES = ("ok", "invalid", "no assembly", "untrusted", "failed")
 PERCENTILES = (5, 95, 99)
@@ -237,15 +238,20 @@ def _reasons(table) -> list[tuple[str, str, int, list[int]]]:
     frequent first."""
     groups: Counter = Counter()
     first: dict[tuple[str, str], list[int]] = {}
+    text: dict[tuple[str, str], str] = {}
     for i, (s, why) in enumerate(zip(table.status, table.reason)):
         if s == "ok":
             continue
-        why = _GOT.sub("got …", why)       # one reason per kind, whatever the value drawn
-        groups[(s, why)] += 1
-        lst = first.setdefault((s, why), [])
+        key = (s, _NUMBER.sub("#", why))    # one reason per kind, whatever the values drawn
+        groups[key] += 1
+        lst = first.setdefault(key, [])
         if len(lst) < 3:
             lst.append(i + 1)
-    return [(s, why, c, first[(s, why)]) for (s, why), c in groups.most_common()]
+        if key not in text:
+            text[key] = why
+        elif text[key] != why and not text[key].endswith(_DIFFER):
+            text[key] = f"{text[key]} (sample {lst[0]}{_DIFFER}"
+    return [(key[0], text[key], c, first[key]) for key, c in groups.most_common()]
 
 
 def _worst(table, verdicts) -> tuple[int | None, str]:
