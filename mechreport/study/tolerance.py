@@ -345,13 +345,23 @@ def run_tolerance(spec, *, jobs: int | None = None, scheduler: str | None = None
 
 def checked_nominal(base: BaseSpec, method: str, keep) -> tuple[Sample, list]:
     """The nominal sample and verdicts; ``MechreportError`` when the spec as written cannot
-    be analysed (its tolerances would have nothing to be measured against)."""
+    be analysed (its tolerances would have nothing to be measured against), or when its
+    force methods disagree as ``mechreport check`` judges them (every method solves the
+    nominal design once: the samples' one method is vouched for there)."""
     from ..errors import MechreportError
+    from ..pipeline import analyse
     nominal, verdicts = nominal_sample(base, method, keep)
     if nominal.status != "ok":
         raise MechreportError(f"{base.file}: the spec as written cannot be analysed "
                               f"({nominal.status}: {nominal.reason}); a tolerance analysis "
                               "needs the nominal design to work")
+    full = analyse(variant_spec(base, {}))
+    worst = full.worst
+    if worst is not None and worst.relative > full.tol:
+        raise MechreportError(f"{base.file}: the force methods disagree on the spec as "
+                              f"written ({worst.quantity}: {worst.relative:.1e} relative, "
+                              f"{worst.methods[0]} against {worst.methods[1]}, more than "
+                              f"{full.tol:g}); see mechreport check before sampling it")
     return nominal, verdicts
 
 

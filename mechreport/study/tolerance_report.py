@@ -176,7 +176,8 @@ def build_document(result, figures: dict[str, str], date: str = "", sha256: str 
           Strong(METHOD_TITLES.get(result.method, result.method)),
           f" ({result.method}: {result.method_why}){ran}, in {result.seconds:.1f} s, each "
           "with the trust test of a study (a sample whose one method cannot vouch for its "
-          "numbers is counted as untrusted, not used).")
+          "numbers is counted as untrusted, not used). The spec as written was solved by "
+          "every method too, and they agree as mechreport check requires.")
     c = result.counts
     a = result.assembly
     doc.table(["samples", "count", "share"],
