@@ -258,3 +258,29 @@ def test_files_and_report_hold_every_sample_and_every_figure(tmp_path):
     assert f"| cannot be assembled over the sweep | {locked} |" in md
     assert "## Samples without a result" in md and "no assembly" in md
     assert f"{result.design.k / 12 * 100:.1f} %" in md or result.design.k in (0, 12)
+
+
+def test_a_nominal_design_that_cannot_be_analysed_is_refused_before_sampling():
+    from mechreport.errors import MechreportError
+    locked = COARSE.replace("rocker:\n    points: {D: [0, 0], C: [120, 0]}",
+                            "rocker:\n    points: {D: [0, 0], C: [60, 0]}")
+    assert locked != COARSE
+    text = with_tolerances("  vary: [{key: links.coupler.mass, tol: 5}]\n  keep: "
+                           "[cycle.torque.max]\n", locked)
+    with pytest.raises(MechreportError, match="the spec as written cannot be analysed "
+                                              r"\(no assembly: .*locks"):
+        mechreport.tolerance(text, jobs=1)
+
+
+def test_the_limit_of_a_quantity_is_the_verdict_judged_on_it():
+    from mechreport.post.verdicts import Verdict
+    from mechreport.study.tolerance_stats import limit_of
+    verdicts = [Verdict("limits.joint_force", "joint.*.f_max", 90.0, 100.0, "N"),
+                Verdict("limits.fatigue_safety", "member.*.fatigue_safety", 2.0, 1.5, "",
+                        True),
+                Verdict("motor.rated_torque", "cycle.torque.rms", 3.0, 4.0, "N·m")]
+    assert limit_of("joint.B.f_max", verdicts) == (100.0, False, "limits.joint_force")
+    assert limit_of("member.rod.fatigue_safety", verdicts) == (1.5, True,
+                                                               "limits.fatigue_safety")
+    assert limit_of("cycle.torque.rms", verdicts) == (4.0, False, "motor.rated_torque")
+    assert limit_of("cycle.torque.max", verdicts) == (None, False, "")
