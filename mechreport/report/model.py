@@ -469,18 +469,35 @@ def _load_texts(spec, d: Display) -> list[str]:
         if ld.value is not None:
             val = (f"({d.num(ld.value[0], kind)}, {d.num(ld.value[1], kind)}) {unit}"
                    if ld.kind == "force" else f"{d.num(ld.value, kind)} {unit}")
+        elif ld.pressure is not None:
+            val = _pressure_text(ld, d)
         elif ld.profile is not None:
             prof = ", ".join(f"{deg(a)}°: {d.num(v, kind)}" for a, v in ld.profile)
             u = (f" along ({fmt(ld.direction[0])}, {fmt(ld.direction[1])})"
                  if ld.direction else "")
-            val = f"profile [{prof}] {unit}{u}"
+            shift = f", shifted by {deg(ld.shift)}°" if ld.shift else ""
+            val = f"profile [{prof}] {unit}{u}{shift}"
         else:
             val = _element_text(ld, d)
         at = f" at {ld.point}" if ld.point else ""
         opp = f", opposing its {ld.oppose}" if ld.oppose else ""
         name = f"{ld.label}: " if getattr(ld, "label", "") else ""
-        out.append(f"{name}{ld.kind.replace('_', ' ')} on {ld.link}{at}: {val}{opp}")
+        kind_name = "pressure" if ld.pressure is not None else ld.kind.replace('_', ' ')
+        out.append(f"{name}{kind_name} on {ld.link}{at}: {val}{opp}")
     return out
+
+
+def _pressure_text(ld, d: Display) -> str:
+    """A pressure load as written: its profile in its unit, the ambient, the bore or area,
+    the direction and the shift."""
+    pr = ld.pressure
+    prof = ", ".join(f"{deg(a)}°: {fmt(p)}" for a, p in pr.profile)
+    size = (f"bore {d.q(pr.bore, 'length')}" if pr.bore is not None
+            else f"area {fmt(pr.area)} m²")
+    shift = f", shifted by {deg(ld.shift)}°" if ld.shift else ""
+    return (f"profile [{prof}] {pr.unit} less the ambient {fmt(pr.ambient)} {pr.unit}, on "
+            f"{size}, along ({fmt(ld.direction[0])}, {fmt(ld.direction[1])}){shift}; its "
+            "reaction on the frame (the cylinder head)")
 
 
 def _element_text(ld, d: Display) -> str:
