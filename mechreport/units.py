@@ -34,6 +34,9 @@ LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254}
 FORCE_UNITS = {"N": 1.0, "kN": 1000.0, "lbf": 4.4482216152605}
 MOMENT_UNITS = {"N*m": 1.0, "N*mm": 0.001, "kN*m": 1000.0, "lbf*in": 4.4482216152605 * 0.0254}
 MASS_UNITS = {"kg": 1.0, "g": 0.001, "lb": 0.45359237}
+#: a pressure load's units (format 1.2 ``type: pressure``): name -> Pa (psi = lbf / in^2)
+PRESSURE_UNITS = {"Pa": 1.0, "kPa": 1e3, "bar": 1e5, "MPa": 1e6,
+                  "psi": 4.4482216152605 / 0.0254 ** 2}
 #: rad/s in one rpm (pi / 30): ``rpm * RPM`` is in rad/s, ``omega / RPM`` in rpm
 RPM = math.pi / 30.0
 #: units an ``expect`` entry may be written in, by the SI unit of its quantity (those of

@@ -5,8 +5,9 @@
 - spring: tension k (L - L0) pulls its two ends together; damper: c dL/dt along the line,
   resisting extension; torsion spring: k (theta_rel - a0), wrapped to [-180, 180) deg, resists
   the second link's rotation relative to the first, equal and opposite on the two links.
-Profiles interpolate linearly in the crank angle mod 360, wrapping from the last point to the
-first point plus 360 (textbook: F_ext = -sign(v_C) 100 i, M_5ext = -sign(omega_5) 100 k).
+Profiles interpolate linearly in the crank angle mod the spec's ``cycle`` (360 unless longer),
+phased by the load's ``shift``, wrapping from the last point to the first point plus ``cycle``
+(a pressure load is a force whose profile is (p - ambient) A; textbook: F_ext = -sign(v_C) 100 i, M_5ext = -sign(omega_5) 100 k).
 """
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kinematics import EPS, TRUST_RTOL, Kinematics
-from ..spec import Load
+from ..spec import Load, profile_at
 
 SPEED_EPS = 1e-9   # [m/s] and [rad/s]
 
@@ -40,12 +41,10 @@ class AppliedLoad:
         return self.load.label
 
 
-def _profile(profile, angles_deg: np.ndarray) -> np.ndarray:
-    xp = np.array([p[0] for p in profile])
-    fp = np.array([p[1] for p in profile])
-    if len(xp) == 1:
-        return np.full(angles_deg.shape, fp[0])
-    return np.interp(np.mod(angles_deg, 360.0), xp, fp, period=360.0)
+def _profile(load: Load, angles_deg: np.ndarray, cycle: float) -> np.ndarray:
+    """``load``'s profile at the crank angles, phased by its ``shift``, repeating every
+    ``cycle`` degrees (:func:`mechreport.spec.profiles.profile_at`)."""
+    return profile_at(load.profile, angles_deg, cycle, load.shift)
 
 
 BASES = {"force": "F{}ext", "moment": "M{}ext", "spring": "Fk{}", "damper": "Fc{}",
@@ -128,7 +127,8 @@ def _evaluate(kin: Kinematics, load: Load):
         if load.value is not None:
             f0 = np.broadcast_to(np.asarray(load.value, float), (kin.n, 2)).copy()
         else:
-            f0 = _profile(load.profile, kin.angles)[:, None] * np.asarray(load.direction)
+            f0 = (_profile(load, kin.angles, spec.cycle)[:, None]
+                  * np.asarray(load.direction))
         if load.oppose == "velocity":
             v = kin.named_point(load.point, load.link).v
             mag = np.hypot(f0[:, 0], f0[:, 1])
@@ -138,7 +138,7 @@ def _evaluate(kin: Kinematics, load: Load):
         return [(load, load.link, load.point, f0, None)]
     m0 = (np.broadcast_to(np.asarray(load.value, float), (kin.n,)).copy()
           if load.value is not None
-          else _profile(load.profile, kin.angles))
+          else _profile(load, kin.angles, spec.cycle))
     if load.oppose == "rotation":
         w = kin.omega[:, num]
         m0 = np.where(np.abs(w) < SPEED_EPS, 0.0, -np.sign(w)) * np.abs(m0)

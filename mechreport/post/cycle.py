@@ -1,6 +1,9 @@
-"""One turn of the crank on the sweep's grid, with left-out angles filled in.
+"""One cycle of the crank on the sweep's grid, with left-out angles filled in.
 
-Cycle quantities (integrals, means, extremes over a turn) need every angle of the turn. They
+A cycle is one turn, or the spec's ``cycle`` when it is longer (a four-stroke engine's 720
+crank degrees: its loads repeat every two turns, and every cycle quantity is taken over the
+whole cycle). Cycle quantities (integrals, means, extremes over a cycle) need every angle of
+the cycle. They
 use the sweep's own grid (``at`` angles off it are not part of the cycle); angles left out of
 the results (singular, near-singular) are filled by periodic linear interpolation of their
 neighbours, and ``interpolated`` says which. Means and integrals are periodic trapezoids (the
@@ -23,19 +26,25 @@ class CycleUndefined(MechreportError):
 
 @dataclass(frozen=True)
 class Cycle:
-    """``angles`` (N,) the sweep grid over one turn [deg]; ``rows`` (N,) the row of each in
+    """``angles`` (N,) the sweep grid over one cycle [deg]; ``rows`` (N,) the row of each in
     the analysed results (-1 where left out); ``interpolated`` (K,) the grid angles filled in
-    [deg]; ``omega`` the driver speed [rad/s]."""
+    [deg]; ``omega`` the driver speed [rad/s]; ``period`` the cycle [deg] (360: one turn)."""
 
     angles: np.ndarray
     rows: np.ndarray
     interpolated: np.ndarray
     omega: float
+    period: float = 360.0
 
     @property
     def step(self) -> float:
         """Grid spacing [rad]."""
-        return float(np.radians(360.0 / len(self.angles)))
+        return float(np.radians(self.period / len(self.angles)))
+
+    @property
+    def turns(self) -> float:
+        """Crank turns per cycle (2 for a four-stroke engine's 720 degrees)."""
+        return self.period / 360.0
 
     def sample(self, values: np.ndarray, analysed: np.ndarray) -> np.ndarray:
         """``values`` (n, ...) over the analysed angles -> (N, ...) over the cycle grid, left-out
@@ -49,7 +58,8 @@ class Cycle:
         if (~have).any():
             x = self.angles[have]
             flat = out[have].reshape(have.sum(), -1)
-            filled = np.stack([np.interp(self.angles[~have], x, flat[:, c], period=360.0)
+            filled = np.stack([np.interp(self.angles[~have], x, flat[:, c],
+                                         period=self.period)
                                for c in range(flat.shape[1])], axis=1)
             out[~have] = filled.reshape((-1,) + values.shape[1:])
         return out
@@ -96,4 +106,4 @@ def cycle_of(spec: Spec, analysed_angles: np.ndarray, reachable: bool = True,
     if not hit.any():
         raise CycleUndefined(f"{spec.file}: no angle of the cycle could be analysed")
     rows = np.where(hit, pos, -1)
-    return Cycle(grid, rows, grid[~hit], spec.driver.omega)
+    return Cycle(grid, rows, grid[~hit], spec.driver.omega, spec.sweep.cycle)

@@ -13,10 +13,12 @@ from .mpl import (BLUE, GREEN, INK, ORANGE, PALETTE, PURPLE, SKY, STYLES, VERMIL
                   figure, fit_y_labels, layout, legend_top, literal, pt_to_px, text_renderer,
                   text_size)
 
-def _cycle_axis(ax, cd, label: bool = True) -> None:
-    """0-360 deg over one turn, interpolated (left-out) angles marked."""
-    ax.set_xlim(0, 360)
-    ax.set_xticks(np.arange(0, 361, 45))
+def cycle_axis(ax, cd, label: bool = True) -> None:
+    """0-360 deg over one turn (0 to the cycle, ticks every 90 deg, over a longer cycle),
+    interpolated (left-out) angles marked."""
+    period = getattr(cd, "period", 360.0)
+    ax.set_xlim(0, period)
+    ax.set_xticks(np.arange(0, period + 1, 45 if period == 360.0 else 90))
     if label:
         ax.set_xlabel("crank angle φ [deg]")
     for a in cd.interpolated:
@@ -73,7 +75,7 @@ def draw_flywheel(ax, cd, d, label: bool = True, renderer=None) -> None:
                     off["hi" if v > hi else "lo"].append(f"{name} {d.num(value, 'moment')} {M}")
     ax.set_ylabel(f"torque [{M}]")
     legend_top(ax, 3)
-    _cycle_axis(ax, cd, label=label)
+    cycle_axis(ax, cd, label=label)
     r = renderer or text_renderer(ax.figure)
     for side, names in off.items():
         if names:
@@ -97,7 +99,7 @@ def draw_energy(ax, cd, renderer=None) -> None:
                         ha="right" if right else "left")
     ax.axhline(0, color="0.3", lw=0.5)
     ax.set_ylabel("∫(M − mean) dφ [J]")
-    _cycle_axis(ax, cd)
+    cycle_axis(ax, cd)
     _place_delta_e(ax, delta, a, e, i_hi, i_lo, right, renderer or text_renderer(ax.figure),
                    cd.interpolated)
 
@@ -185,7 +187,7 @@ def draw_breakdown(ax, cd, d, ncol: int = 5) -> None:
     ax.axhline(0, color="0.3", lw=0.6)
     ax.set_ylabel(f"torque [{M}]")
     legend_top(ax, ncol, handles=shown)
-    _cycle_axis(ax, cd)
+    cycle_axis(ax, cd)
 
 
 def transmission_figure(cd, d):
@@ -209,7 +211,7 @@ def draw_transmission(ax, cd, d=None) -> None:
     ax.set_yticks(np.arange(0, 91, 15))
     ax.set_ylabel("transmission angle [deg]")
     legend_top(ax, 3)
-    _cycle_axis(ax, cd)
+    cycle_axis(ax, cd)
 
 
 def balance_figure(cd, d):

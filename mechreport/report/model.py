@@ -29,7 +29,7 @@ from ..post.columns import sweep_rows
 from ..post.sweep import PowerCheck, SweepSummary
 from ..forces import METHODS
 from ..quantities import unit_of
-from ..spec import GROUND
+from ..spec import GROUND, profile_at
 from ..checks.failures import failed_expectations
 from ..units import DASH, SIG_DIGITS, Display, clean, deg, fmt, kind_of
 from .check_text import failure_rows, summary_line
@@ -155,6 +155,16 @@ class CycleData:
     balanced: np.ndarray
     interpolated: list[float]
     silent: list[str] = field(default_factory=list)
+    period: float = 360.0        # the cycle [deg]: 720 for a four-stroke engine
+    # an engine's pressure loads (format 1.2): each one's pressure (N,) over the cycle grid,
+    # as written (absolute or gauge, in ``pressure_unit``), by load name
+    pressures: dict[str, np.ndarray] = field(default_factory=dict)
+    pressure_unit: str = "Pa"
+
+    @property
+    def span(self) -> str:
+        """What the figures run over: ``one turn``, or ``the 720° cycle``."""
+        return "one turn" if self.period == 360.0 else f"the {self.period:g}° cycle"
 
 
 @dataclass
@@ -459,18 +469,35 @@ def _load_texts(spec, d: Display) -> list[str]:
         if ld.value is not None:
             val = (f"({d.num(ld.value[0], kind)}, {d.num(ld.value[1], kind)}) {unit}"
                    if ld.kind == "force" else f"{d.num(ld.value, kind)} {unit}")
+        elif ld.pressure is not None:
+            val = _pressure_text(ld, d)
         elif ld.profile is not None:
             prof = ", ".join(f"{deg(a)}°: {d.num(v, kind)}" for a, v in ld.profile)
             u = (f" along ({fmt(ld.direction[0])}, {fmt(ld.direction[1])})"
                  if ld.direction else "")
-            val = f"profile [{prof}] {unit}{u}"
+            shift = f", shifted by {deg(ld.shift)}°" if ld.shift else ""
+            val = f"profile [{prof}] {unit}{u}{shift}"
         else:
             val = _element_text(ld, d)
         at = f" at {ld.point}" if ld.point else ""
         opp = f", opposing its {ld.oppose}" if ld.oppose else ""
         name = f"{ld.label}: " if getattr(ld, "label", "") else ""
-        out.append(f"{name}{ld.kind.replace('_', ' ')} on {ld.link}{at}: {val}{opp}")
+        kind_name = "pressure" if ld.pressure is not None else ld.kind.replace('_', ' ')
+        out.append(f"{name}{kind_name} on {ld.link}{at}: {val}{opp}")
     return out
+
+
+def _pressure_text(ld, d: Display) -> str:
+    """A pressure load as written: its profile in its unit, the ambient, the bore or area,
+    the direction and the shift."""
+    pr = ld.pressure
+    prof = ", ".join(f"{deg(a)}°: {fmt(p)}" for a, p in pr.profile)
+    size = (f"bore {d.q(pr.bore, 'length')}" if pr.bore is not None
+            else f"area {fmt(pr.area)} m²")
+    shift = f", shifted by {deg(ld.shift)}°" if ld.shift else ""
+    return (f"profile [{prof}] {pr.unit} less the ambient {fmt(pr.ambient)} {pr.unit}, on "
+            f"{size}, along ({fmt(ld.direction[0])}, {fmt(ld.direction[1])}){shift}; its "
+            "reaction on the frame (the cylinder head)")
 
 
 def _element_text(ld, d: Display) -> str:
@@ -1124,9 +1151,21 @@ def _design(analysis, d: Display) -> DesignSummary:
                      spec.design.limits.get("transmission_angle"),
                      rev.inertial, rev.shaking_balanced,
                      [float(a) for a in rev.cycle.interpolated],
-                     [name for name, part in sources.items() if d.zero(part, "moment")])
+                     [name for name, part in sources.items() if d.zero(part, "moment")],
+                     rev.cycle.period, *_pressures(spec, rev.cycle.angles))
     return DesignSummary(verdict_rows, values, counter, interp, "", passed, data,
                          list(bearings.values()), _absent_figures(spec, rev, d))
+
+
+def _pressures(spec, angles: np.ndarray) -> tuple[dict[str, np.ndarray], str]:
+    """Each pressure load's pressure at ``angles`` [deg] as written (the profile's values,
+    phased by its shift), in the first pressure load's unit, and that unit."""
+    loads = [ld for ld in spec.loads if ld.pressure is not None]
+    if not loads:
+        return {}, "Pa"
+    unit, scale = loads[0].pressure.unit, loads[0].pressure.scale
+    return ({ld.label: profile_at(ld.pressure.profile, angles, spec.cycle, ld.shift)
+             * (ld.pressure.scale / scale) for ld in loads}, unit)
 
 
 def _absent_figures(spec, rev, d: Display) -> dict[str, str]:
@@ -1436,20 +1475,34 @@ def _design_figures(design: DesignSummary, d: Display) -> dict[str, Figure]:
                        f"torque is {d.q(0.0, 'moment')} at every angle).")
     else:
         silent_text = ""
-    figs = {"flywheel": Figure("flywheel", "Driver torque over one turn against its mean: the "
+    span = cd.span
+    figs = {"flywheel": Figure("flywheel", f"Driver torque over {span} against its mean: the "
                                "areas above (energy taken in) and below (given back) the mean "
                                "line; the largest energy fluctuation ΔE, which the flywheel "
                                "absorbs, lies between the two marked angles.", "flywheel"),
-            "breakdown": Figure("breakdown", "Driver torque by source over one turn: each "
+            "breakdown": Figure("breakdown", f"Driver torque by source over {span}: each "
                                 "source's share stacked (positive above zero, negative below); "
                                 f"the line is the total.{silent_text}", "breakdown"),
-            "balance": Figure("balance", "Inertial shaking force (sum of m a_C) over one turn, "
+            "balance": Figure("balance", f"Inertial shaking force (sum of m a_C) over {span}, "
                               "without and with the best point counterweight on the crank.",
                               "balance")}
+    if cd.pressures:
+        several = len(cd.pressures) > 1
+        figs["pressure"] = Figure("pressure", f"Pressure diagram: the pressure on "
+                                  f"{'each piston' if several else 'the piston'} against the "
+                                  f"crank angle over {span}, as the spec gives it "
+                                  f"({cd.pressure_unit}).", "pressure")
+        figs["turning_moment"] = Figure(
+            "turning_moment", f"Turning-moment diagram: the crank effort (what the "
+            f"{'cylinders give' if several else 'cylinder gives'} the shaft, minus the driver "
+            f"torque) over {span} against its mean; each area between two crossings is "
+            "labelled with its energy, + in excess of the mean, − short of it."
+            + (" Below: each cylinder's share (its gas force's part of the torque)."
+               if several else ""), "turning_moment")
     if cd.transmission:
         limit = (", with the design limit" if cd.transmission_limit is not None else "")
         figs["transmission"] = Figure("transmission", "Transmission angle of each group over "
-                                      f"one turn (folded into 0-90°){limit}.", "transmission")
+                                      f"{span} (folded into 0-90°){limit}.", "transmission")
     return {k: f for k, f in figs.items() if k not in design.absent}
 
 

@@ -20,6 +20,8 @@ from pathlib import Path
 from .cycle_plots import (LIMIT_COLOR, LIMIT_REACH, balance_figure, breakdown_figure,  # noqa: F401
                           draw_balance, draw_breakdown, draw_energy, draw_flywheel,
                           draw_transmission, flywheel_figure, transmission_figure)
+from .engine_plots import (draw_pressure, draw_shares, draw_turning_moment,  # noqa: F401
+                           pressure_figure, turning_moment_figure)
 from .dynamics_plots import draw_startup, draw_steady_turn, dynamics_figure  # noqa: F401
 from .friction_plots import (FRICTION_COLOR, FRICTIONLESS_COLOR, LEGEND_SLACK,  # noqa: F401
                              draw_friction, friction_figure)
@@ -46,7 +48,9 @@ def write_plots(model, outdir: Path) -> list[Path]:
     out = []
     cd = model.design.data
     if cd is not None:
-        for key, make in (("flywheel", flywheel_figure), ("breakdown", breakdown_figure),
+        for key, make in (("pressure", pressure_figure),
+                          ("turning_moment", turning_moment_figure),
+                          ("flywheel", flywheel_figure), ("breakdown", breakdown_figure),
                           ("transmission", transmission_figure), ("balance", balance_figure)):
             if key in figs:
                 out += save(make(cd, d), outdir, figs[key].stem)
@@ -210,6 +214,36 @@ def plot_energy(analysis, ax=None):
     return ax
 
 
+def _engine(analysis):
+    """The report's cycle records of an engine (a spec with pressure loads) and its display
+    units; ValueError for a spec without pressure loads."""
+    cd, d = _cycle(analysis)
+    if not cd.pressures:
+        raise _nothing(analysis, "pressure load (type: pressure)")
+    return cd, d
+
+
+@styled
+def plot_pressure(analysis, ax=None):
+    """The pressure diagram of the engine ``analysis``: each pressure load's pressure over
+    the cycle, on ``ax`` (default: a new figure's); returns the Axes."""
+    cd, d = _engine(analysis)
+    ax = _axes(ax, 2.7)
+    draw_pressure(ax, cd, d)
+    return ax
+
+
+@styled
+def plot_turning_moment(analysis, ax=None):
+    """The turning-moment diagram of the engine ``analysis``: its crank effort over the
+    cycle against its mean, each area between crossings labelled with its energy, on ``ax``
+    (default: a new figure's); returns the Axes."""
+    cd, d = _engine(analysis)
+    ax = _axes(ax, 2.9)
+    draw_turning_moment(ax, cd, d)
+    return ax
+
+
 @styled
 def plot_breakdown(analysis, ax=None):
     """The driver's torque over the steady turn of ``analysis`` by source, stacked, on
@@ -322,4 +356,5 @@ def plot_steady_turn(analysis, ax=None):
 PLOT_FUNCTIONS = {f.__name__[5:]: f for f in (
     plot_torque, plot_reactions, plot_couples, plot_shaking_force, plot_shaking_moment,
     plot_polar, plot_flywheel, plot_energy, plot_breakdown, plot_transmission, plot_balance,
-    plot_friction, plot_internal_force, plot_stress, plot_startup, plot_steady_turn)}
+    plot_friction, plot_internal_force, plot_stress, plot_startup, plot_steady_turn,
+    plot_pressure, plot_turning_moment)}

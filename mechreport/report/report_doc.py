@@ -16,7 +16,8 @@ LAYOUT = Layout(margin=(1.8, 1.9, 1.8), size=10, title_size=17, heading_sizes=()
                 level_spaces=((1, 1.3, 0.7), (2, 1.1, 0.6)), figures_whole=True,
                 title_center=True)
 #: the design summary's figures of the cycle, in order (the balance one narrower)
-CYCLE_FIGURES = ("flywheel", "breakdown", "transmission", "balance")
+CYCLE_FIGURES = ("pressure", "turning_moment", "flywheel", "breakdown", "transmission",
+                 "balance")
 
 
 def _u(label: str, unit: str) -> Wording:

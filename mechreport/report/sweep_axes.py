@@ -4,6 +4,8 @@ scale), values off the scale marked at the edge with their value (one label for 
 same angle), and the names of the reference angles' lines. ``sw`` is a report's SweepData."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..units import fmt
@@ -29,12 +31,17 @@ def _near_spans(angles, near) -> list[tuple[float, float]]:
 
 def crank_axis(ax, sw, label: bool = True) -> None:
     """0-360 deg, ticks every 45 deg (or the sweep's range, for a sweep that is not one whole
-    turn), left-out angles shaded grey, near-singular hatched."""
+    turn: ticks every 90 deg over whole turns of a longer cycle), left-out angles shaded
+    grey, near-singular hatched."""
     if sw.xrange is None:
         ax.set_xlim(0, 360)
         ax.set_xticks(np.arange(0, 361, 45))
     else:
         ax.set_xlim(*sw.xrange)
+        lo, hi = sw.xrange
+        span = hi - lo
+        if span >= 720 and span % 360 == 0 and sw.xlabel.startswith("crank angle"):
+            ax.set_xticks(np.arange(math.ceil(lo / 90) * 90, hi + 1e-9, 90))   # a long cycle
     if label:
         ax.set_xlabel(sw.xlabel)
     step = float(np.median(np.diff(sw.angles))) if len(sw.angles) > 2 else 1.0

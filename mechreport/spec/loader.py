@@ -27,14 +27,15 @@ from typing import Any
 from ..errors import Problem, SpecError
 from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, MEMBER_UNITS,
                           is_cycle, is_member, joint_unit, unit_of, split as split_quantity)
-from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES, rpm_to_rad_s
+from ..units import EXPECT_UNITS, PRESSURE_UNITS, SPEC_UNITS, UNIT_TABLES, rpm_to_rad_s
 import mechreport.spec.schema as schema   # the models (not `from . import`: spec/__init__)
 from .schema import (MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, choices_of, keys_of,
                      required_of)
 from .strength import strength_links
 from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Dynamics, Expectation, Friction, Joint,
-                    Line, Link, Load, MotorCurve, Pin, Shape, Spec, Study, Sweep, Vary, Vec)
+                    Line, Link, Load, MotorCurve, Pin, Pressure, Shape, Spec, Study, Sweep,
+                    Vary, Vec)
 from .types import TolVary, Tolerances
 from .yaml_source import (MAX_DEPTH, MAX_FILE_BYTES, HugeInteger, Source, check_text, decode,
                           format_path, too_big)
@@ -591,7 +592,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                            length_scale, units["length"])
     driver = (_driver(top.get("driver"), ck, joints, length_scale, pins) if "driver" in top
               else None)
-    sweep = _sweep(top.get("sweep"), ck)
+    cycle = _cycle(top, ck)
+    sweep = _sweep(top.get("sweep"), ck, cycle)
     at = _angle_list(top.get("at"), ("at",), ck) if "at" in top else (sweep.start,)
     assembly = _assembly(top.get("assembly"), ck, links, length_scale, units["length"])
     loads = _loads(top.get("loads"), ck, {l.name: l for l in links}, joints, ground,
@@ -638,7 +640,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
                 expect=tuple(expect), sheet=sheet, units=units, design=design,
                 report=report, study=study, pins=tuple(pins), friction=friction,
-                dynamics=dynamics, tolerances=tolerances)
+                dynamics=dynamics, cycle=cycle, tolerances=tolerances)
     _cycle_requests(spec, ck)
     if study is not None:
         _study_requests(spec, ck)
@@ -1509,16 +1511,26 @@ def _default_gravity() -> Vec:
     return (float(gx), float(gy))
 
 
-def _default_sweep() -> Sweep:
-    """The sweep of a spec without ``sweep:`` (the model's defaults), degrees."""
-    return Sweep(**{key: float(field.default)
-                    for key, field in schema.Sweep.model_fields.items()})
+def _cycle(top: dict, ck: _Checker) -> float:
+    """``cycle``: the loads' period in crank degrees (the model's default where absent or
+    refused)."""
+    default = float(schema.SpecFile.model_fields["cycle"].default)
+    if "cycle" not in top or ck.refused(("cycle",)):
+        return default
+    return float(top["cycle"])
 
 
-def _sweep(value: Any, ck: _Checker) -> Sweep:
-    """The crank angles analysed, degrees (the model's defaults where absent; the defaults
-    throughout when the model refused any of it)."""
-    defaults = _default_sweep()
+def _default_sweep(cycle: float = 360.0) -> Sweep:
+    """The sweep of a spec without ``sweep:`` (the model's defaults), degrees: one cycle
+    (``stop`` defaults to ``cycle``)."""
+    values = {key: float(field.default) for key, field in schema.Sweep.model_fields.items()}
+    return Sweep(**{**values, "stop": cycle}, cycle=cycle)
+
+
+def _sweep(value: Any, ck: _Checker, cycle: float = 360.0) -> Sweep:
+    """The crank angles analysed, degrees (the model's defaults where absent, ``stop``
+    defaulting to one cycle; the defaults throughout when the model refused any of it)."""
+    defaults = _default_sweep(cycle)
     if value is None or ck.refused(("sweep",)):
         return defaults
     vals = {key: float(value.get(key, getattr(defaults, key)))
@@ -1530,7 +1542,7 @@ def _sweep(value: Any, ck: _Checker) -> Sweep:
         ck.error(("sweep", "step"), f"gives more than {MAX_SWEEP_ANGLES} angles; use a larger "
                                     "step")
         return defaults
-    sweep = Sweep(**vals)
+    sweep = Sweep(**vals, cycle=cycle)
     if len(sweep.angles()) == 0:   # stop - start below 1e-9 deg reads as "zero whole turns"
         ck.error(("sweep", "stop"), f"gives no crank angle: stop must exceed start "
                                     f"({vals['start']:g}) by more than 1e-9 degrees")
@@ -1594,10 +1606,7 @@ def _profile(value: Any, path: tuple, ck: _Checker) -> tuple[tuple[float, float]
              for i, item in enumerate(value)]
     if any(p is None for p in pairs):
         return None
-    angles = [p[0] for p in pairs]
-    if any(a < 0 or a >= 360 for a in angles):
-        ck.error(path, "angles must lie in [0, 360)")
-        return None
+    angles = [p[0] for p in pairs]     # each in [0, cycle]: the models' (SpecFile)
     if any(b <= a for a, b in zip(angles, angles[1:])):
         ck.error(path, "angles must be strictly increasing")
         return None
@@ -1621,6 +1630,12 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link], joints: list[Joint]
             continue
         kind = ck.choice(item.get("type"), path + ("type",), LOAD_TYPES)
         if kind is None:
+            continue
+        if kind == "pressure":
+            load = _pressure(item, i, path, ck, links, names, ls)
+            if load is not None:
+                names[load.label] = i
+                loads.append(load)
             continue
         if kind in ("spring", "damper", "torsion_spring"):
             load = _element(kind, item, i, path, ck, links, joints, ground, names, ls, pins)
@@ -1694,9 +1709,54 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link], joints: list[Joint]
         if label is None or ("reacts_on" in item and reacts is None):
             continue
         names[label] = i
+        shift = float(item.get("shift", 0.0)) if not ck.refused(path + ("shift",)) else 0.0
         loads.append(Load(kind, lname, i, point, value_, direction, profile, oppose,
-                          item.get("name"), reacts))
+                          item.get("name"), reacts, shift=shift))
     return loads
+
+
+def _pressure(item: dict, i: int, path: tuple, ck: _Checker, links: dict[str, Link],
+              names: dict[str, int], ls: float) -> Load | None:
+    """A ``type: pressure`` load (format 1.2) as the force it is: the profile (p - ambient)
+    x area [N] along the unit ``direction``, at ``point`` of ``link``, reacting on the frame
+    (the cylinder head). The models checked its keys; here only what needs the rest of the
+    spec (the link and its point, the load's name) and the conversion to SI."""
+    if ck.refused(path):
+        return None
+    lname, point = item["link"], item["point"]
+    if lname not in links:
+        if lname not in ck.invalid_links:
+            ck.error(path + ("link",), f"unknown link '{lname}' (loads act on moving links: "
+                                       f"{', '.join(links)})")
+        return None
+    if point not in links[lname].points:
+        ck.error(path + ("point",), f"'{point}' is not a point of link '{lname}'")
+        return None
+    label = item.get("name", f"load {i + 1}")
+    if label in names:
+        ck.error(path + ("name",), f"'{label}' is the name of loads[{names[label]}] too: load "
+                                   "names must differ (they label the torque breakdown)")
+        return None
+    model = schema.PressureLoad.model_fields
+    unit = item.get("unit", model["unit"].default)
+    ambient = float(item.get("ambient", model["ambient"].default))
+    bore = ck.si(item["bore"], path + ("bore",), scale=ls) if "bore" in item else None
+    area = (math.pi * bore ** 2 / 4.0 if bore is not None
+            else ck.si(item["area"], path + ("area",), scale=ls * ls))
+    if area is None or ("bore" in item and bore is None):
+        return None
+    pressure = Pressure(area, unit, PRESSURE_UNITS[unit], ambient,
+                        tuple((float(a), float(p)) for a, p in item["profile"]), bore)
+    force = tuple((a, pressure.pressure_pa(p) * area) for a, p in pressure.profile)
+    if not all(_in_range(f) for _, f in force):
+        ck.error(path + ("profile",), "gives forces (p - ambient) x area beyond the range of "
+                                      f"numbers ({NUMBER_RANGE}) in SI units")
+        return None
+    dx, dy = (float(v) for v in item["direction"])
+    norm = math.hypot(dx, dy)
+    return Load("force", lname, i, point, None, (dx / norm, dy / norm), force, None,
+                item.get("name"), item.get("reacts_on", GROUND),
+                shift=float(item.get("shift", 0.0)), pressure=pressure)
 
 
 def _element(kind: str, item: dict, i: int, path: tuple, ck: _Checker, links: dict[str, Link],

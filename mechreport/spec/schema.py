@@ -31,10 +31,10 @@ from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Di
                       ValidationError)
 from pydantic.fields import FieldInfo
 from pydantic.json_schema import GenerateJsonSchema
-from pydantic_core import PydanticCustomError
+from pydantic_core import InitErrorDetails, PydanticCustomError
 
 from ..quantities import CYCLE_UNITS, JOINT_CYCLE_UNITS, MEMBER_UNITS
-from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES
+from ..units import EXPECT_UNITS, PRESSURE_UNITS, SPEC_UNITS, UNIT_TABLES
 from .types import GROUND
 
 __all__ = ["SpecFile", "LOAD_MODELS", "NUMBER_MAX", "NUMBER_MIN", "MAX_STUDY_VARIANTS",
@@ -509,14 +509,25 @@ class Sweep(_Model):
     """The crank angles analysed: start, start + step, ... up to stop (degrees)."""
 
     start: Number = Field(0, description="First angle, degrees (stroke for a T driver).")
-    stop: Number = Field(360, description="Last angle, degrees; greater than start.")
+    stop: Number = Field(360, description="Last angle, degrees; greater than start (default "
+                                          "`cycle`: one cycle).")
     step: Positive = Field(1, description="Step, degrees (positive).")
 
 
-#: a profile's crank angle, degrees: in [0, 360)
-ProfileAngle = Annotated[float, Field(strict=True, ge=0, lt=360, allow_inf_nan=False),
+#: the largest ``cycle``, crank degrees (a hundred turns)
+CYCLE_MAX = 36000
+#: ``cycle``: the loads' period in crank degrees, a positive whole multiple of 360
+Cycle = Annotated[int, Field(strict=True, ge=360, le=CYCLE_MAX, multiple_of=360),
+                  BeforeValidator(_not_true_or_false), BeforeValidator(_whole_value),
+                  Refusal("must be a whole multiple of 360 crank degrees (360, 720, ...) up to "
+                          f"{CYCLE_MAX}, got {{value}}")]
+
+
+#: a profile's crank angle, degrees: in [0, cycle] (the spec's ``cycle``, checked by
+#: :meth:`SpecFile._profiles_within_cycle`)
+ProfileAngle = Annotated[float, Field(strict=True, ge=0, le=CYCLE_MAX, allow_inf_nan=False),
                          AfterValidator(_magnitude), _NOT_TINY,
-                         Wording("an angle in [0, 360)")]
+                         Wording("an angle in [0, cycle]")]
 Profile = Annotated[list[Annotated[tuple[ProfileAngle, Number],
                                    Wording("a pair [crank_angle_deg, magnitude]")]],
                     Field(min_length=1), Wording("a list of [crank_angle_deg, magnitude] pairs")]
@@ -525,6 +536,8 @@ End = Annotated[tuple[Name, Name], Wording("an end [link, point]"),
 Ends = Annotated[tuple[End, End], Wording("two ends [[link, point], [link, point]]")]
 LOAD_NAME = ("Labels the load in the torque breakdown, the plots and summary.json (names "
              "must differ).")
+SHIFT = ("Degrees, with `profile`: the value at crank angle phi is profile(phi - shift) "
+         "(format 1.2; default 0).")
 
 
 class ForceLoad(_Model):
@@ -538,7 +551,8 @@ class ForceLoad(_Model):
     direction: Pair = Field(None, description="[dx, dy], with `profile`.")
     profile: Profile = Field(
         None, description="[[crank_angle_deg, magnitude_N], ...], angles strictly increasing "
-                          "within [0, 360).")
+                          "within [0, cycle] (a point at `cycle` repeats the one at 0).")
+    shift: Number = Field(None, description=SHIFT)
     oppose: Literal["velocity"] = Field(
         None, description="velocity: the force opposes the motion of its point.")
     name: Name = Field(None, description=LOAD_NAME)
@@ -555,12 +569,65 @@ class MomentLoad(_Model):
     value: Number = Field(None, description="M in N·m, counter-clockwise positive.")
     profile: Profile = Field(
         None, description="[[crank_angle_deg, M], ...], angles strictly increasing within "
-                          "[0, 360).")
+                          "[0, cycle] (a point at `cycle` repeats the one at 0).")
+    shift: Number = Field(None, description=SHIFT)
     oppose: Literal["rotation"] = Field(
         None, description="rotation: M = -sign(omega) |M0|.")
     name: Name = Field(None, description=LOAD_NAME)
     reacts_on: Literal[GROUND] = Field(
         None, description="ground: the load's reaction acts on the frame.")
+
+
+def _not_zero(pair: tuple) -> tuple:
+    """A direction: not the zero vector."""
+    if pair[0] == 0 and pair[1] == 0:
+        raise PydanticCustomError("zero_direction", "must not be the zero vector")
+    return pair
+
+
+_BORE_OR_AREA = Refusal("give exactly one of 'bore' (the cylinder's diameter) or 'area' (the "
+                        "piston's)", ("bore_or_area",))
+
+
+class PressureLoad(_Model):
+    """A gas pressure on a piston (format 1.2): (p - ambient) times the area, along
+    ``direction``; its reaction acts on the cylinder head (the frame)."""
+
+    model_config = ConfigDict(title="pressure")
+    type: Literal["pressure"] = Field(description="A pressure on a piston's crown.")
+    link: Name = Field(description="The moving link it acts on (the piston).")
+    point: Name = Field(description="The point of the link where the force acts.")
+    bore: Annotated[Positive, _BORE_OR_AREA] = Field(
+        None, description="Cylinder diameter, in the length unit (or `area`).")
+    area: Annotated[Positive, _BORE_OR_AREA] = Field(
+        None, description="Piston area, in the length unit squared (or `bore`).")
+    direction: Annotated[Pair, AfterValidator(_not_zero),
+                         Wording("a direction [dx, dy], not zero")] = Field(
+        description="[dx, dy]: the way the gas pushes the piston (need not be a unit vector; "
+                    "not zero).")
+    unit: Literal[tuple(PRESSURE_UNITS)] = Field(
+        "Pa", description="The profile's and ambient's pressure unit (default Pa).")
+    ambient: Number = Field(0, description="The pressure on the other side, in `unit` "
+                                           "(default 0).")
+    profile: Profile = Field(
+        description="[[crank_angle_deg, p], ...] over one cycle, p in `unit`; angles strictly "
+                    "increasing within [0, cycle] (a point at `cycle` repeats the one at 0).")
+    shift: Number = Field(None, description=SHIFT)
+    name: Name = Field(None, description=LOAD_NAME)
+    reacts_on: Literal[GROUND] = Field(
+        None, description="ground (the default for a pressure load): the reaction acts on the "
+                          "cylinder head, part of the frame.")
+
+    @model_validator(mode="after")
+    def _bore_or_area(self):
+        """Exactly one of ``bore`` and ``area`` (the problem is put on ``area`` when both
+        are given, else on the missing ``bore``)."""
+        if (self.bore is None) == (self.area is None):
+            key = "area" if self.area is not None else "bore"
+            raise ValidationError.from_exception_data("PressureLoad", [InitErrorDetails(
+                type=PydanticCustomError("bore_or_area", "give exactly one of bore or area"),
+                loc=(key,), input=getattr(self, key))])
+        return self
 
 
 class SpringLoad(_Model):
@@ -599,7 +666,8 @@ class TorsionSpringLoad(_Model):
 
 #: the load models by their ``type``, in the spec's order
 LOAD_MODELS = {"force": ForceLoad, "moment": MomentLoad, "spring": SpringLoad,
-               "damper": DamperLoad, "torsion_spring": TorsionSpringLoad}
+               "damper": DamperLoad, "torsion_spring": TorsionSpringLoad,
+               "pressure": PressureLoad}
 Load = Annotated[Union[tuple(Annotated[m, Tag(t)] for t, m in LOAD_MODELS.items())],
                  Discriminator(ByKey("type", tuple(LOAD_MODELS))),
                  Wording("a mapping like {type: force, link, point, value}")]
@@ -974,12 +1042,12 @@ class SpecFile(_Model):
     """A mechreport spec: one planar linkage (docs/spec.md)."""
 
     model_config = ConfigDict(title="mechreport spec")
-    mechreport: Annotated[Literal[1, 1.1], BeforeValidator(_not_true_or_false),
-                          Refusal("format version must be 1, got {value} (or 1.1: the same "
-                                  "format with its version 1.1 keys)")] = Field(
+    mechreport: Annotated[Literal[1, 1.1, 1.2], BeforeValidator(_not_true_or_false),
+                          Refusal("format version must be 1, got {value} (or 1.1 or 1.2: the "
+                                  "same format with its version 1.1 or 1.2 keys)")] = Field(
         description=(
-            "format version: `1`, or `1.1` (the same format; a file using the version 1.1 keys "
-            "may say so)"))
+            "format version: `1`, or `1.1` or `1.2` (the same format; a file using the version "
+            "1.1 or 1.2 keys may say so)"))
     name: Name = Field(description="the mechanism's name, used in report titles")
     description: Annotated[Optional[Text],
                            Refusal("must be text (Markdown), got {value}")] = Field(None, description=(
@@ -998,8 +1066,11 @@ class SpecFile(_Model):
     links: dict[str, Link] = Field(min_length=1, description="the moving links (section 4)")
     joints: dict[str, Joint] = Field(min_length=1, description="the joints (section 5)")
     driver: Driver = Field(description="the driving crank and its speed (section 6)")
+    cycle: Cycle = Field(360, description=(
+            "crank degrees after which the loads repeat, a whole multiple of 360 (`720`: a "
+            "four-stroke engine); default 360 (format 1.2)"))
     sweep: Optional[Sweep] = Field(None, description=(
-            "crank angles to analyse, default 0 to 360 by 1 degree"))
+            "crank angles to analyse, default one cycle: 0 to `cycle` by 1 degree"))
     at: Annotated[list[Number], Wording("a list of crank angles in degrees")] = Field(
         None, min_length=1, description="reference angles, default `[sweep.start]`")
     assembly: Optional[dict[str, Point]] = Field(
@@ -1031,6 +1102,30 @@ class SpecFile(_Model):
             "the manufacturing and parameter uncertainty `mechreport tolerance` samples "
             "(section 21, format 1.2); every other command validates it and otherwise ignores "
             "it"))
+
+    @model_validator(mode="after")
+    def _profiles_within_cycle(self):
+        """A load's profile is given over one cycle: its angles lie in [0, cycle], and a
+        point at exactly ``cycle`` closes the diagram, repeating the point at 0."""
+        errors = []
+        for i, load in enumerate(self.loads or ()):
+            for j, (angle, value) in enumerate(getattr(load, "profile", None) or ()):
+                loc = ("loads", i, "profile", j, 0)
+                first = load.profile[0]
+                if angle > self.cycle:
+                    errors.append(InitErrorDetails(type=PydanticCustomError(
+                        "profile_beyond_cycle", "lies beyond the cycle, {cycle} crank degrees "
+                        "(a profile is given over one cycle and repeats every cycle)",
+                        {"cycle": self.cycle}),
+                        loc=loc, input=angle))
+                elif angle == self.cycle and j > 0 and (first[0] != 0 or first[1] != value):
+                    errors.append(InitErrorDetails(type=PydanticCustomError(
+                        "profile_not_closed", f"a point at the cycle's end ({self.cycle} deg) "
+                        "closes the profile: it must repeat the point at 0 (the first point "
+                        f"is [{first[0]:g}, {first[1]:g}])"), loc=loc[:-1], input=[angle, value]))
+        if errors:
+            raise ValidationError.from_exception_data("SpecFile", errors)
+        return self
 
 
 # ------------------------------------------------------------------------- the key tables

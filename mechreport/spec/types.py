@@ -231,6 +231,8 @@ class Sweep:
     stop: float
     step: float
     wraps: bool = True     # an angle (False for a T driver's stroke: a plain range)
+    # the spec's ``cycle`` [deg], the period of its loads (out of the repr: see Spec.cycle)
+    cycle: float = field(default=360.0, repr=False)
 
     @property
     def whole_turn(self) -> bool:
@@ -238,16 +240,31 @@ class Sweep:
         span = self.stop - self.start
         return self.wraps and abs(span - 360.0) < 1e-9
 
+    @property
+    def whole_cycle(self) -> bool:
+        """One whole cycle: stop - start is ``cycle`` degrees (one turn unless the spec's
+        ``cycle`` is longer); stop itself then repeats start."""
+        span = self.stop - self.start
+        return self.wraps and abs(span - self.cycle) < 1e-9
+
+    @property
+    def cycle_name(self) -> str:
+        """What one cycle is called in messages: ``turn``, or ``cycle`` (720 deg ...)."""
+        return "turn" if self.cycle == 360.0 else f"cycle ({self.cycle:g} deg)"
+
     def cycle_problem(self) -> str | None:
-        """Why this sweep of a crank has no cycle quantities (None when it is one whole turn
-        in steps that divide it evenly)."""
-        if not self.whole_turn:
-            return (f"cycle quantities need a sweep over one whole turn of the crank; this one "
+        """Why this sweep of a crank has no cycle quantities (None when it is one whole
+        cycle, a turn unless ``cycle`` is longer, in steps that divide it evenly)."""
+        whole = "whole turn of the crank" if self.cycle == 360.0 else \
+            f"whole cycle of {self.cycle:g} crank degrees"
+        if not self.whole_cycle:
+            return (f"cycle quantities need a sweep over one {whole}; this one "
                     f"runs from {self.start:g} to {self.stop:g} deg")
-        per_turn = 360.0 / self.step
-        if abs(per_turn - round(per_turn)) > 1e-6:
-            return (f"cycle quantities need a sweep step that divides the turn evenly; "
-                    f"{self.step:g} deg gives {per_turn:.4g} steps per turn")
+        per_cycle = self.cycle / self.step
+        if abs(per_cycle - round(per_cycle)) > 1e-6:
+            what = "turn" if self.cycle == 360.0 else "cycle"
+            return (f"cycle quantities need a sweep step that divides the {what} evenly; "
+                    f"{self.step:g} deg gives {per_cycle:.4g} steps per {what}")
         return None
 
     def angles(self) -> np.ndarray:
@@ -259,6 +276,25 @@ class Sweep:
         if whole_turns and abs(values[-1] - self.stop) < 1e-9:
             values = values[:-1]
         return values
+
+
+@dataclass(frozen=True)
+class Pressure:
+    """A ``type: pressure`` load as written (format 1.2): the piston's ``area`` [m^2] (from
+    ``bore`` when ``bore`` [m] is given), the pressure ``unit`` (Pa, kPa, bar, MPa, psi) and
+    its size ``scale`` [Pa per unit], ``ambient`` and the ``profile`` of (crank angle [deg],
+    pressure) pairs, both in ``unit``. The load's force profile is (p - ambient) scale area."""
+
+    area: float
+    unit: str
+    scale: float
+    ambient: float
+    profile: tuple[tuple[float, float], ...]
+    bore: float | None = None
+
+    def pressure_pa(self, p):
+        """Gauge pressure over ambient, p - ambient, in Pa (``p`` in ``unit``)."""
+        return (p - self.ambient) * self.scale
 
 
 @dataclass(frozen=True)
@@ -288,6 +324,11 @@ class Load:
     damping: float | None = None    # damper [N s/m]
     joint: str | None = None        # torsion spring: its R joint
     free_angle: float | None = None  # torsion spring [deg]
+    # format 1.2 (out of the repr, so that the loads written before keep their reference
+    # reprs): the profile's phase [deg], value at phi = profile(phi - shift), and a
+    # pressure load's data (its ``profile`` then holds the force (p - ambient) A [N])
+    shift: float = field(default=0.0, repr=False)
+    pressure: "Pressure | None" = field(default=None, repr=False)
 
     @property
     def label(self) -> str:
@@ -503,6 +544,9 @@ class Spec:
     # only `mechreport tolerance` uses it (not in the repr: the shipped specs' reference
     # reprs stay as they were)
     tolerances: Tolerances | None = field(default=None, repr=False)
+    # the loads' period, crank degrees (format 1.2 ``cycle:``); out of the repr, so that the
+    # specs written before 1.2 (all 360) keep their reference reprs (tests/spec)
+    cycle: float = field(default=360.0, repr=False)
 
     @property
     def axis_unit(self) -> str:

@@ -12,7 +12,7 @@ from mechreport.report.plots import PLOT_FUNCTIONS
 
 ROOT = Path(__file__).resolve().parents[2]
 SPECS = ["four_bar", "crank_press_strength", "crank_press_friction", "four_bar_motor",
-         "slider_crank"]
+         "slider_crank", "single_cylinder_engine"]
 _analyses: dict = {}
 
 

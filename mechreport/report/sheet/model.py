@@ -929,27 +929,41 @@ def _load_text(spec, load) -> str:
     if load.kind == "force":
         if load.value is not None:
             what = f"a force {_vec(load.value)} N"
+        elif load.pressure is not None:      # format 1.2: (p - ambient) x area
+            pr = load.pressure
+            size = (f"bore {fmt(pr.bore)} m" if pr.bore is not None
+                    else f"area {fmt(pr.area)} m²")
+            what = (f"a gas pressure [{pr.unit}] following "
+                    f"{_profile_text(pr.profile, spec, load.shift)}, less the ambient "
+                    f"{fmt(pr.ambient)} {pr.unit}, on a piston of {size} (the force "
+                    f"(p − ambient) × area along {_vec(load.direction)}, its reaction on the "
+                    "frame)")
         else:
             what = (f"a force along {_vec(load.direction)} whose magnitude [N] follows "
-                    f"{_profile_text(load.profile, spec)}")
+                    f"{_profile_text(load.profile, spec, load.shift)}")
         rule = " opposing the velocity of its point" if load.oppose == "velocity" else ""
         return f"{what} on {where(load.link, load.point)}{rule}"
     what = f"a moment {fmt(load.value)} N·m" if load.value is not None else \
-        f"a moment [N·m] following {_profile_text(load.profile, spec)}"
+        f"a moment [N·m] following {_profile_text(load.profile, spec, load.shift)}"
     rule = " opposing the link's rotation" if load.oppose == "rotation" else ""
     return f"{what} on {where(load.link, None)}{rule}"
 
 
-def _profile_text(profile, spec) -> str:
+def _profile_text(profile, spec, shift: float = 0.0) -> str:
     """A load's profile as the problem states it: every point, and how values between them
-    are read (as :func:`mechreport.forces.loads.evaluate_loads` reads them)."""
+    are read (as :func:`mechreport.forces.loads.evaluate_loads` reads them: repeating every
+    cycle, phased by the load's ``shift``)."""
     unit = "°" if spec.axis_unit == "deg" else f" {spec.axis_unit}"
     points = ", ".join(f"{fmt(a)}{unit}: {fmt(v)}" for a, v in profile)
     if len(profile) == 1:
         return f"the profile {points} (constant)"
-    turn = ", repeating every turn" if spec.axis_unit == "deg" else ""
+    cycle = getattr(spec, "cycle", 360.0)
+    turn = ("" if spec.axis_unit != "deg" else ", repeating every turn" if cycle == 360.0
+            else f", repeating every {fmt(cycle)}° cycle")
+    phase = (f"; shifted by {fmt(shift)}°: the value at φ is the profile's at φ − {fmt(shift)}°"
+             if shift else "")
     return (f"the profile {points} over the {spec.driver.coordinate} (linear between these "
-            f"points{turn})")
+            f"points{turn}{phase})")
 
 
 def build_problem(analysis, options: SheetOptions | None = None,
