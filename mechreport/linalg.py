@@ -44,12 +44,13 @@ class Equilibrated:
     solve rather than an SVD): inf where exactly singular, NaN where A or b is not finite (an
     input that overflowed, or a pose that could not be solved). Singular angles get NaN."""
 
-    def __init__(self, At: np.ndarray):
+    def __init__(self, At: np.ndarray, members: int = 1):
         At = np.asarray(At, np.float64)
         m, _, n = At.shape
         self.m, self.n = m, n
         absA = np.abs(At)
         rs = absA.max(axis=1)                  # (m, n); NaN or inf where a row is not finite
+        self.vanishing = vanishing_lines(rs, absA.max(axis=0), members)
         rs[rs == 0] = 1.0
         with np.errstate(invalid="ignore"):    # inf / inf: an overflow angle, replaced below
             absA /= rs[:, None, :]
@@ -84,6 +85,7 @@ class Equilibrated:
         part.m, part.n = self.m, here.stop - here.start
         part.rs, part.cs = self.rs[:, here], self.cs[:, here]
         part.overflow, part.fro, part.exact = self.overflow[here], self.fro[here], self.exact[here]
+        part.vanishing = self.vanishing[here]
         part.schur = None if self.schur is None else self.schur._part(here)
         part.As = None if self.As is None else self.As[:, :, here]
         return part
@@ -140,6 +142,7 @@ class Equilibrated:
         y = self._solve(rhs)
         y[:, :, overflow] = np.inf
         cond = self._probed_cond(y[:, 1:])
+        cond[self.vanishing] = np.inf
         with np.errstate(over="ignore", invalid="ignore"):
             x = y[:, 0, :] / self.cs
         cond[overflow] = np.nan
@@ -395,20 +398,23 @@ class _SmallGroup:
     and solved for :class:`Equilibrated`'s probes at once: per angle the very operations of
     :func:`solve_cond`, so each slice's condition number is the one it would get alone."""
 
-    def __init__(self, At: np.ndarray):
+    def __init__(self, At: np.ndarray, members: int = 1):
         self.m = m = At.shape[0]
         if m == 1:              # the equilibrated matrix is +-1: no probe to solve
             a = At[0, 0]
             rs = np.abs(a)
+            vanishing = vanishing_lines(rs[None, :], rs[None, :], members)
             rs[rs == 0] = 1.0
             with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
                 self.unit = a / rs
             self.rs = rs[None, :]
-            self.cond = np.where(np.isfinite(rs), np.where(a == 0, np.inf, 1.0), np.nan)
+            self.cond = np.where(np.isfinite(rs), np.where((a == 0) | vanishing, np.inf, 1.0),
+                                 np.nan)
             return
-        eq = Equilibrated(At)
+        eq = Equilibrated(At, members)
         cond = eq._probed_cond(eq._solve(np.broadcast_to(PROBES[:m, :, None],
                                                           (m, 2, At.shape[2]))))
+        cond[eq.vanishing] = np.inf
         cond[eq.overflow] = np.nan
         self.cond, self.rs, self.cs, self.As = cond, eq.rs, eq.cs, eq.As
         with np.errstate(over="ignore", invalid="ignore"):
@@ -474,7 +480,7 @@ def prepare_joined(At: np.ndarray, count: int) -> list[SmallSystem]:
     than for several (the condition number's last bit)."""
     n = At.shape[2] // count
     if n > 1:
-        group = _SmallGroup(At)
+        group = _SmallGroup(At, count)
         return [SmallSystem(group, slice(i * n, (i + 1) * n)) for i in range(count)]
     return [SmallSystem(_SmallGroup(At[:, :, i * n:(i + 1) * n]), slice(0, n))
             for i in range(count)]
@@ -509,11 +515,34 @@ def prepare_large(systems: list[np.ndarray]) -> list[Equilibrated]:
                 groups.setdefault(tuple((r, tuple(hi[r])) for r in rows), []).append(i)
         for members in (g for g in groups.values() if len(g) > 1):
             whole = Equilibrated(joined if len(members) == len(ks) else np.concatenate(
-                [systems[ks[i]] for i in members], axis=2))
+                [systems[ks[i]] for i in members], axis=2), len(members))
             for j, i in enumerate(members):
                 out[ks[i]] = whole._part(slice(j * n, (j + 1) * n))
     return [Equilibrated(At) if system is None else system
             for system, At in zip(out, systems)]
+
+
+def vanishing_lines(row_max: np.ndarray, col_max: np.ndarray, members: int = 1) -> np.ndarray:
+    """Angles (N,) bool at which a row or a column of a system nearly vanishes: its largest
+    coefficient |A| there (``row_max``, ``col_max``: (m, N), before any scaling) below
+    1 / ``SINGULAR_COND`` of its largest over the system's angles. ``members`` systems of
+    N / members angles each may be joined along the angle axis; each is judged on its own.
+
+    Why: the equilibration scales every row and column at each angle to a largest entry of
+    1, so a column that is only rounding at one angle (an unknown that drops out of every
+    equation there: a lever arm of cos 90 deg = 6e-17) is scaled up to look like any other,
+    and the condition number misses the singularity; the unknown is then rounding divided by
+    rounding. Judged against the same line at the other angles (the same quantity, the same
+    unit), such a line is as singular as a condition number of ``SINGULAR_COND``. A line
+    that is zero at every angle is left to the exact test (a zero pivot)."""
+    m, total = row_max.shape
+    n = total // members
+    lines = np.concatenate([row_max, col_max]).reshape(2 * m, members, n)
+    finite = np.isfinite(lines)
+    top = (lines if finite.all() else np.where(finite, lines, 0.0)).max(axis=2, keepdims=True)
+    with np.errstate(invalid="ignore"):         # NaN lines: never "small" (judged elsewhere)
+        small = (lines < top / SINGULAR_COND) & (top > 0)
+    return small.any(axis=0).reshape(total)
 
 
 def angle_last(A: np.ndarray) -> np.ndarray:

@@ -592,3 +592,32 @@ def test_chain_levels_follow_what_each_block_needs():
     assert all(np.array_equal(got[u], values[u]) for u in values)
     with pytest.raises(ValueError, match="needs a, which is neither solved here nor known"):
         solve_chains([[block("c", ("a",), ("a",)), block("a")]], n)
+
+
+def test_a_column_that_is_only_rounding_at_one_angle_is_flagged_singular():
+    """An unknown that drops out of every equation at one angle (its lever arm cos 90 deg =
+    6e-17) is undetermined there: the per-angle equilibration must not scale the rounding up
+    into a well-conditioned matrix (the contour method's B1 of an in-line engine at 90 deg
+    gave rounding / rounding as a reaction before)."""
+    phi = np.radians(np.arange(0.0, 181.0, 15.0))            # 90 deg among them
+    n = phi.size
+    for m in (1, 2, 3):
+        At = np.zeros((m, m, n))
+        for i in range(m):
+            At[i, i] = 1.0 + i
+        At[m - 1, m - 1] = np.cos(phi)                          # column m-1 vanishes at 90
+        x, cond = linalg.solve_cond(At, np.ones((n, m)))
+        at90 = int(np.argmin(np.abs(phi - np.pi / 2)))
+        assert not cond[at90] < linalg.SINGULAR_COND, m
+        assert np.isnan(x[at90]).all(), m
+        assert (cond[np.arange(n) != at90] < linalg.SINGULAR_COND).all(), m
+
+
+def test_rows_that_only_shrink_are_not_flagged():
+    """A system whose every coefficient scales down together (units) is as regular as
+    before: the test compares each line with itself at the other angles."""
+    n = 5
+    At = np.zeros((2, 2, n))
+    At[0, 0], At[1, 1], At[0, 1] = 1e-12, 2e-12, 0.5e-12
+    x, cond = linalg.solve_cond(At, np.ones((n, 2)))
+    assert (cond < linalg.SINGULAR_COND).all() and np.isfinite(x).all()
