@@ -4,6 +4,7 @@
     a = mechreport.analyse("specs/slider_crank.yaml")     # a path, or the YAML text
     a.forces["dyad"].reactions["B"].fx                     # (n,) [N] over a.angles [deg]
     t = mechreport.run_study("specs/four_bar.yaml")        # its study: section, as a Table
+    o = mechreport.optimize("specs/four_bar_optimize.yaml")  # its optimize: section, proven
 
 The pipeline, one package per stage, data flowing one way: ``spec`` (load, validate) ->
 ``model`` (graph, dyads, loops) -> ``kinematics`` -> ``forces`` (one module per method) ->
@@ -15,7 +16,7 @@ are imported on first use.
 """
 from .version import __version__
 
-__all__ = ["analyse", "Analysis", "run_study", "__version__"]
+__all__ = ["analyse", "Analysis", "run_study", "optimize", "__version__"]
 
 
 def __getattr__(name: str):
@@ -27,4 +28,7 @@ def __getattr__(name: str):
     if name == "run_study":
         from .study.run import run_study
         return run_study
+    if name == "optimize":
+        from .study.optimize import optimize
+        return optimize
     raise AttributeError(f"module 'mechreport' has no attribute {name!r}")

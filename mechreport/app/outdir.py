@@ -278,9 +278,11 @@ def remove(path: Path) -> None:
 STUDY_ENTRIES = ("study.parquet", "study.csv", "study.md", "study.pdf", "study-figures",
                  "study-reports")   # what `mechreport study` writes beside a spec's report
 DYNAMICS_ENTRIES = ("dynamics.csv", "dynamics.parquet")   # what `mechreport dynamics` writes
+OPTIMIZE_ENTRIES = ("optimum.yaml", "history.csv", "optimize.md", "optimize.pdf",
+                    "optimize-figures", "optimum")   # what `mechreport optimize` writes
 #: the entries that make a folder one of mechreport's (besides an empty one): one each of
 #: ``build``, ``study`` and ``dynamics``
-OWN_ENTRIES = {"summary.json", "study.parquet", "dynamics.parquet"}
+OWN_ENTRIES = {"summary.json", "study.parquet", "dynamics.parquet", "optimize.md"}
 
 
 def occupied(out: Path, name: str) -> str | None:
