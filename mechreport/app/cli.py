@@ -227,8 +227,9 @@ def _add_optimize_parser(sub) -> None:
                    "(needs mechreport[dask]); default: a local process pool")
     p.add_argument("--jobs", type=_int_at_least_1, default=None,
                    help="local processes, >= 1 (default: cores; ignored with --scheduler)")
-    p.add_argument("--budget", type=_int_at_least_1, default=None, metavar="N",
-                   help="evaluations at most (default: the spec's optimize.budget)")
+    p.add_argument("--budget", type=_checked(int, lambda v: v >= 10, "a whole number >= 10"),
+                   default=None, metavar="N",
+                   help="evaluations at most, >= 10 (default: the spec's optimize.budget)")
     p.add_argument("--seed", type=_int_at_least_0, default=None, metavar="S",
                    help="the search's seed (default: the spec's optimize.seed)")
     p.add_argument("--wait", type=_seconds, default=120.0, metavar="SECONDS",

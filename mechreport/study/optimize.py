@@ -295,15 +295,23 @@ def run_optimize(base: BaseSpec, *, method: str | None = None, jobs: int = 1, cl
     de_budget = budget - polish_budget
     pop = max(2, min(15, de_budget // (8 * d)), math.ceil(5 / d))
     size_pop = pop * d
+    init = "latinhypercube"
+    if size_pop > de_budget:          # many keys, a small budget: a smaller first population
+        size_pop = max(5, de_budget)
+        init = _latin_hypercube(size_pop, d, seed)
     maxiter = max(0, de_budget // size_pop - 1)
+    if client is not None:
+        from .cluster import dask_workers
+        parts = dask_workers(client)
+    else:
+        parts = max(1, jobs)
     kept: list = []
     t0 = time.perf_counter()
 
     def evaluate(values: np.ndarray, phase: str) -> list[Judged]:
         n = len(values)
         out: list = [None] * n
-        workers = 1 if client is None else max(1, jobs)
-        size = chunk or max(1, math.ceil(n / max(jobs if client is None else workers, 1)))
+        size = chunk or max(1, math.ceil(n / parts))      # one chunk per worker
 
         def on_done(_chunk, result):
             start, rows = result
@@ -340,7 +348,7 @@ def run_optimize(base: BaseSpec, *, method: str | None = None, jobs: int = 1, cl
             res = differential_evolution(
                 population, [(0.0, 1.0)] * d, popsize=pop, maxiter=maxiter, tol=DE_TOL,
                 rng=np.random.default_rng(seed), polish=False, vectorized=True,
-                updating="deferred", init="latinhypercube")
+                updating="deferred", init=init)
             message = str(res.message)
         except _Stop:
             pass
@@ -354,6 +362,12 @@ def run_optimize(base: BaseSpec, *, method: str | None = None, jobs: int = 1, cl
     prove(result)
     result.seconds = time.perf_counter() - t0
     return result
+
+
+def _latin_hypercube(n: int, d: int, seed: int) -> np.ndarray:
+    """``n`` points of a Latin hypercube in [0, 1]^d drawn from ``seed``."""
+    from scipy.stats import qmc
+    return qmc.LatinHypercube(d=d, rng=np.random.default_rng([seed, 1])).random(n)
 
 
 def _polish(problem: Problem, history: History, lo, hi, budget: int, evaluate) -> bool:

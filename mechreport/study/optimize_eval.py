@@ -56,6 +56,14 @@ class Constraint:
     scale: float = 1.0
     unit: str | None = None
 
+    def show(self, value: float) -> str:
+        """``value`` [SI] in the bound's unit: ``59.07 deg``."""
+        from ..units import EXPECT_UNITS
+        si = unit_of(self.quantity) or ""
+        unit = self.unit or si
+        f = EXPECT_UNITS.get(si, {}).get(unit, 1.0) if self.unit else 1.0
+        return f"{value / f:.6g}{' ' + unit if unit else ''}"
+
     @property
     def name(self) -> str:
         """``design limits.transmission_angle`` or ``cycle.transmission_angle.min >= 40 deg``."""
@@ -128,10 +136,18 @@ class Judged:
     def missed(self, problem: Problem) -> list[str]:
         """What it misses, one line each: the faults, then each constraint not met."""
         out = list(self.faults)
+        values = dict(zip(problem.quantities, self.values))
         for c, m in zip(problem.constraints, self.margins):
-            if not m >= 0:
-                out.append(f"{c.name}: " + ("undefined" if math.isnan(m) else
-                                            f"missed by {-m:.3g} (relative)"))
+            if m >= 0:
+                continue
+            if math.isnan(m):
+                out.append(f"{c.name}: undefined")
+                continue
+            got = ""
+            if c.kind == "bound" and math.isfinite(values.get(c.quantity, math.nan)):
+                got = f"{c.show(values[c.quantity])}, "
+            out.append(f"{c.name}: {got}missed by {100 * -m:.3g} % of the "
+                       + ("limit" if c.kind == "design" else "bound"))
         return out
 
 

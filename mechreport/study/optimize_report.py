@@ -74,6 +74,20 @@ def write_figures(result: OptimizeResult, folder: Path, profs: list[Profile]) ->
     sign = -1.0 if p.maximize else 1.0
     fig, axes = figure(3.2, 1, 1, margins=(0.8, 0.2, 0.5, 0.65))
     ax = axes[0][0]
+    if not feas.any():                  # nothing feasible: how far each design missed
+        viol = np.array([j.violation for j in h.judged])
+        ax.scatter(n, viol, s=5, color=GREY, lw=0, label="violation of each evaluation")
+        ax.plot(n, np.minimum.accumulate(viol), color=OKABE_ITO[0], lw=1.4,
+                label="least violation so far")
+        pos = viol[np.isfinite(viol) & (viol > 0)]
+        if pos.size and pos.max() > 20 * pos.min():    # decades apart: a log scale
+            ax.set_yscale("log")
+        ax.set_xlabel("evaluation")
+        ax.set_ylabel("violation (relative)")
+        legend_top(ax, 2)
+        save(fig, folder, "convergence")
+        out["convergence"] = f"{FIGURES}/convergence.svg"
+        return out | _profiles_figure(result, folder, profs)
     shown = feas & np.isfinite(obj)
     ax.scatter(n[shown], obj[shown], s=5, color=GREY, lw=0, label="feasible evaluation")
     best = np.full(h.n, np.nan)
@@ -101,6 +115,15 @@ def write_figures(result: OptimizeResult, folder: Path, profs: list[Profile]) ->
     legend_top(ax, 2)
     save(fig, folder, "convergence")
     out["convergence"] = f"{FIGURES}/convergence.svg"
+    return out | _profiles_figure(result, folder, profs)
+
+
+def _profiles_figure(result: OptimizeResult, folder: Path, profs: list[Profile]
+                     ) -> dict[str, str]:
+    """profiles.svg: the objective along each varied key through the optimum."""
+    from ..report.plots import GREY, OKABE_ITO, figure, literal, save
+    p, h = result.problem, result.history
+    out: dict[str, str] = {}
     if profs:
         units = key_units(p.base)
         d = len(profs)
@@ -190,7 +213,7 @@ def build_document(result: OptimizeResult, figures: dict[str, str], *, sha256: s
           "the whole population evaluated as one batch, each candidate analysed by ",
           Strong(METHOD_TITLES.get(p.method, p.method)),
           f" with the study's trust test){'' if not n_pol else f', then {n_pol} evaluations of an SLSQP polish' + (' (kept)' if result.polished else ' (no better feasible design)')}. "
-          f"scipy says: {result.message or '—'}.")
+          f"scipy says: {(result.message or '—').rstrip('.')}.")
     rows = []
     for pr in result.proofs:
         rows.append([str(pr.index + 1), "proven" if pr.ok else "refused", pr.why or "—"])
@@ -237,7 +260,8 @@ def build_document(result: OptimizeResult, figures: dict[str, str], *, sha256: s
         m1 = h.judged[i].margins[c_i] if i is not None else math.nan
         rows.append([c.name, _margin(j0.margins[c_i]), _margin(m1),
                      "active" if c.name in active else ""])
-    doc.table(["constraint", "original margin", "margin at the optimum", ""], rows,
+    doc.table(["constraint", "original margin", "margin at the optimum" if result.feasible
+               else "margin at the least violating", ""], rows,
               right={1, 2})
     if result.feasible:
         box = result.at_box()
@@ -247,8 +271,11 @@ def build_document(result: OptimizeResult, figures: dict[str, str], *, sha256: s
 
     doc.h("Convergence")
     if "convergence" in figures:
-        doc.image(figures["convergence"], f"{p.objective} at each evaluation (feasible ones) "
-                  "and the best feasible so far", height=3.0)
+        doc.image(figures["convergence"], (
+            f"{p.objective} at each evaluation (feasible ones) and the best feasible so far"
+            if result.feasible or h.feasible().any() else
+            "how far each evaluation missed (its violation) and the least so far"),
+            height=3.2)
     doc.h("The objective along each varied key")
     if "profiles" in figures:
         doc.p(f"{p.objective} with one key moved over 20 % of its range on either side of the "
