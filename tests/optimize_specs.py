@@ -42,18 +42,18 @@ optimize:
 
 #: a box holding the crossed branch (assembly hint below the frame line), whose energy
 #: fluctuation is smaller than the open branch's
-TRAP = four_bar() + """
+TRAP = four_bar(step=8) + """
 optimize:
   vary:
     - {key: assembly.C.1, from: -150, to: 150}
     - {key: links.coupler.points.C.0, from: 170, to: 190}
   minimize: cycle.energy_fluctuation
-  budget: 200
+  budget: 120
   seed: 1
 """
 
 #: nothing in the box reaches a transmission angle of 85 deg
-INFEASIBLE = four_bar() + """
+INFEASIBLE = four_bar(step=8) + """
 optimize:
   vary:
     - {key: links.coupler.points.C.0, from: 170, to: 190}

@@ -218,7 +218,7 @@ def load_optimize_base(spec) -> BaseSpec:
         raise SpecError([SpecProblem(src.filename, None, "", (
             "this spec has no 'optimize:' section; `mechreport optimize` needs one saying "
             "what to vary, what to minimize or maximize and subject to what (docs/spec.md, "
-            "section 'Design optimisation'"))])
+            "section 'Design optimisation')"))])
     return optimize_base(s, src)
 
 

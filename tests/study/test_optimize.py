@@ -51,7 +51,7 @@ def test_infeasible_box_exits_1_with_the_least_violating_design(tmp_path, capsys
 
 def test_optimum_yaml_is_the_users_text_and_check_passes(tmp_path, capsys):
     spec = tmp_path / "trap.yaml"
-    written = TRAP.replace("budget: 200", "budget: 40")
+    written = TRAP.replace("budget: 120", "budget: 40")
     spec.write_text(written, encoding="utf-8")
     assert main(["optimize", str(spec), "-o", str(tmp_path / "out"), "--jobs", "1"]) == 0
     folder = tmp_path / "out" / "trap"

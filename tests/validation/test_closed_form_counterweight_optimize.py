@@ -19,7 +19,7 @@ CRANK = """    points: {A: [0, 0], B: [50, 0]}
 
 
 def test_counterweight_closed_form_by_optimisation():
-    text = four_bar(step=4).replace("""    points: {A: [0, 0], B: [50, 0]}
+    text = four_bar(step=8).replace("""    points: {A: [0, 0], B: [50, 0]}
     density: 7850                 # kg/m^3 (always SI)
     shape: {bar: {length: 50, height: 20, depth: 10}}""", CRANK)
     review = mechreport.analyse(text).review.values
@@ -30,7 +30,7 @@ optimize:
     - {key: links.crank.com.0, from: -40, to: 40}
     - {key: links.crank.com.1, from: -20, to: 20}
   minimize: cycle.inertia_shaking.force_rms
-  budget: 400
+  budget: 300
   seed: 1
 """
     r = optimize(spec)
