@@ -127,3 +127,25 @@ def test_local_pool_and_dask_give_the_in_process_optimum():
     for other in (pool, dask):
         assert np.array_equal(np.array(here.history.values), np.array(other.history.values))
         assert other.values == here.values
+
+
+def test_a_candidate_that_loses_angles_or_its_branch_is_infeasible():
+    from dataclasses import replace
+
+    from mechreport.pipeline.batch import analyse_variants
+    from mechreport.study.optimize import load_optimize_base, problem_of
+    from mechreport.study.optimize_eval import OTHER_BRANCH, judge_outcome, score
+    from mechreport.study.variants import variant_spec
+    base = load_optimize_base(TRAP)
+    problem, _, _ = problem_of(base)
+    spec = variant_spec(base, {"assembly.C.1": 120, "links.coupler.points.C.0": 180})
+    outcome, = analyse_variants([spec], problem.method)
+    good = judge_outcome(problem, outcome)
+    assert good.feasible and score(problem, good) < 1
+    lost = judge_outcome(problem, replace(outcome, left_out=(16.0, 24.0)))
+    assert not lost.feasible and score(problem, lost) > 1
+    assert lost.faults == ("leaves out 2 angle(s) that the original analyses (16, 24)",)
+    other = replace(outcome, branches=tuple(replace(b, sign=-b.sign)
+                                            for b in outcome.branches))
+    flipped = judge_outcome(problem, other)
+    assert flipped.violation == OTHER_BRANCH and "assembly branch" in flipped.faults[0]
