@@ -154,7 +154,7 @@ def write_optimize(result, path: Path, out: Path, name: str, wait: float = 120.0
             where.mkdir(parents=True)
             atomic_write_text(where / "optimum.yaml", result.text)
             print("report: the optimum", file=err, flush=True)
-            write_report_folder(result.analysis, where, "optimum/optimum.yaml",
+            write_report_folder(_described(result), where, "optimum/optimum.yaml",
                                 spec_sha256(where / "optimum.yaml"))
             report = "optimum/report.pdf"
         figures = write_figures(result, tmp / FIGURES, profs)
@@ -165,6 +165,21 @@ def write_optimize(result, path: Path, out: Path, name: str, wait: float = 120.0
 
     with od.writing(out, wait) as out:
         return od.write_folder(out, name, write, carry=_not_ours)
+
+
+def _described(result):
+    """The optimum's analysis, its report's description saying what it is first (the spec's
+    own description follows, whose numbers are the original design's)."""
+    from dataclasses import replace
+    a = result.analysis
+    changed = ", ".join(f"{k} = {v:.10g} (was {result.start[k]:.10g})"
+                        for k, v in result.values.items())
+    sense = "maximize" if result.problem.maximize else "minimize"
+    about = (f"The optimum found by mechreport optimize ({sense} {result.problem.objective}): "
+             f"{changed}. The spec's own description follows; its numbers are the original "
+             "design's.")
+    text = about + ("\n\n" + a.spec.description if a.spec.description else "")
+    return replace(a, spec=replace(a.spec, description=text))
 
 
 def _not_ours(entry: str) -> bool:
