@@ -1099,6 +1099,11 @@ def _optimize(value: Any, ck: _Checker, top: dict, spec: Spec) -> Optimize | Non
     if not isinstance(value, dict) or ck.refused(path) or "vary" not in value:
         return None             # the models say what is wrong
     vary = _vary(value["vary"], path + ("vary",), ck, top, "random")
+    for i, v in enumerate(vary or ()):
+        if v.path[0] == "design":      # the verdicts are the constraints: never relaxed
+            ck.error(path + ("vary", i, "key"), f"'{v.key}': an optimisation varies the "
+                                                "mechanism, not the limits it is judged by")
+            vary = None
     objective = value.get("minimize", value.get("maximize"))
     bounds = []
     for i, body in enumerate(value.get("subject_to") or ()):

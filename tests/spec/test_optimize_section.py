@@ -60,9 +60,12 @@ optimize:
     ("budget: 300", "budget: 5", "optimize.budget: must be a whole number from 10"),
     ("from: 200, to: 400", "from: 200, to: 200", "equals 'from'"),
     ("{key: driver.rpm,", "{key: report.units.length,", "a study varies the mechanism"),
+    ("{key: driver.rpm, from: 200, to: 400}",
+     "{key: design.limits.transmission_angle, from: 20, to: 40}",
+     "an optimisation varies the mechanism, not the limits it is judged by"),
 ])
 def test_mistakes_are_told_with_their_key_path(old, new, message):
-    text = four_bar() + SECTION
+    text = four_bar(design=True) + SECTION
     assert old in text
     with pytest.raises(SpecError) as err:
         parse_spec(text.replace(old, new), "f.yaml")
