@@ -321,11 +321,12 @@ def link_tree(src: Path, dst: Path) -> None:
         link(src, dst)
 
 
-def swap_in(out: Path, tmp: Path, name: str, carry=lambda entry: entry in STUDY_ENTRIES) -> Path:
+def swap_in(out: Path, tmp: Path, name: str,
+            carry=lambda entry: entry in STUDY_ENTRIES + OPTIMIZE_ENTRIES) -> Path:
     """Replace ``OUT/name`` by the complete folder ``tmp`` (two renames; the old folder, if
     any, is deleted afterwards). Entries of the old folder for which ``carry(name)`` holds and
-    that ``tmp`` lacks are carried over as hard links (a report keeps the study beside it, and
-    a study the report). Once a stop (Ctrl-C, SIGTERM) is requested, it raises it instead;
+    that ``tmp`` lacks are carried over as hard links (a report keeps the study and the
+    optimisation beside it, and they the report). Once a stop (Ctrl-C, SIGTERM) is requested, it raises it instead;
     one that comes during the renames is raised after them. Returns the final folder."""
     out = Path(out)
     if _UNSAFE.search(name) is not None or name.strip(".") == "" or name.startswith("."):

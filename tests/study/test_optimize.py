@@ -149,3 +149,16 @@ def test_a_candidate_that_loses_angles_or_its_branch_is_infeasible():
                                             for b in outcome.branches))
     flipped = judge_outcome(problem, other)
     assert flipped.violation == OTHER_BRANCH and "assembly branch" in flipped.faults[0]
+
+
+@pytest.mark.slow
+def test_a_build_and_an_optimisation_into_one_folder_keep_each_other(tmp_path, capsys):
+    spec = tmp_path / "trap.yaml"
+    spec.write_text(TRAP.replace("budget: 120", "budget: 20"), encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["optimize", str(spec), "-o", str(out), "--jobs", "1"]) == 0
+    assert main(["build", str(spec), "-o", str(out), "-q"]) == 0
+    folder = out / "trap"
+    assert (folder / "optimize.md").is_file() and (folder / "optimum" / "report.md").is_file()
+    assert main(["optimize", str(spec), "-o", str(out), "--jobs", "1"]) == 0
+    assert (folder / "report.md").is_file() and (folder / "summary.json").is_file()
