@@ -121,6 +121,8 @@ def write_figures(result: OptimizeResult, folder: Path, profs: list[Profile]) ->
 def _profiles_figure(result: OptimizeResult, folder: Path, profs: list[Profile]
                      ) -> dict[str, str]:
     """profiles.svg: the objective along each varied key through the optimum."""
+    from matplotlib.ticker import MaxNLocator
+
     from ..report.plots import GREY, OKABE_ITO, figure, literal, save
     p, h = result.problem, result.history
     out: dict[str, str] = {}
@@ -143,6 +145,7 @@ def _profiles_figure(result: OptimizeResult, folder: Path, profs: list[Profile]
             ax.axvline(centre[k], color=GREY, lw=0.8, ls="--",
                        label="optimum" if result.feasible else "least violating")
             ax.set_xlabel(literal(with_unit(pr.key, units.get(pr.key, ""))), fontsize=7.5)
+            ax.xaxis.set_major_locator(MaxNLocator(5))     # long tick labels stay apart
             if k % cols == 0:
                 ax.set_ylabel(literal(column_name(p.objective)), fontsize=7.5)
         for k in range(d, rows * cols):
