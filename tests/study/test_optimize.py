@@ -162,3 +162,27 @@ def test_a_build_and_an_optimisation_into_one_folder_keep_each_other(tmp_path, c
     assert (folder / "optimize.md").is_file() and (folder / "optimum" / "report.md").is_file()
     assert main(["optimize", str(spec), "-o", str(out), "--jobs", "1"]) == 0
     assert (folder / "report.md").is_file() and (folder / "summary.json").is_file()
+
+
+def test_a_design_that_fails_its_proof_is_not_the_optimum(monkeypatch):
+    """The proof refuses the best design (as if its methods disagreed): the next best
+    feasible design is proven and reported instead."""
+    import dataclasses
+
+    import mechreport.study.optimize as opt
+    real = opt.judge_outcome
+    calls = {"n": 0}
+
+    def judge(problem, outcome):
+        judged = real(problem, outcome)
+        calls["n"] += 1
+        if calls["n"] == 2:                  # 1: the original; 2: the first proof
+            return dataclasses.replace(judged, faults=("the methods disagree",),
+                                       violation=1.0)
+        return judged
+    monkeypatch.setattr(opt, "judge_outcome", judge)
+    r = optimize(TRAP, budget=40)
+    first, second = r.proofs[:2]
+    assert not first.ok and "the methods disagree" in first.why
+    assert second.ok and r.optimum == second.index != first.index
+    assert r.objective >= r.history.judged[first.index].objective
