@@ -345,10 +345,16 @@ def run_optimize(base: BaseSpec, *, method: str | None = None, jobs: int = 1, cl
     polished = False
     try:
         try:
-            res = differential_evolution(
-                population, [(0.0, 1.0)] * d, popsize=pop, maxiter=maxiter, tol=DE_TOL,
-                rng=np.random.default_rng(seed), polish=False, vectorized=True,
-                updating="deferred", init=init)
+            how = dict(popsize=pop, maxiter=maxiter, tol=DE_TOL, polish=False,
+                       vectorized=True, updating="deferred", init=init)
+            try:
+                res = differential_evolution(population, [(0.0, 1.0)] * d,
+                                             rng=np.random.default_rng(seed), **how)
+            except TypeError:               # scipy < 1.15 names it ``seed``
+                if history.n:
+                    raise
+                res = differential_evolution(population, [(0.0, 1.0)] * d,
+                                             seed=np.random.default_rng(seed), **how)
             message = str(res.message)
         except _Stop:
             pass
@@ -367,7 +373,12 @@ def run_optimize(base: BaseSpec, *, method: str | None = None, jobs: int = 1, cl
 def _latin_hypercube(n: int, d: int, seed: int) -> np.ndarray:
     """``n`` points of a Latin hypercube in [0, 1]^d drawn from ``seed``."""
     from scipy.stats import qmc
-    return qmc.LatinHypercube(d=d, rng=np.random.default_rng([seed, 1])).random(n)
+    rng = np.random.default_rng([seed, 1])
+    try:
+        sampler = qmc.LatinHypercube(d=d, rng=rng)
+    except TypeError:                       # scipy < 1.15 names it ``seed``
+        sampler = qmc.LatinHypercube(d=d, seed=rng)
+    return sampler.random(n)
 
 
 def _polish(problem: Problem, history: History, lo, hi, budget: int, evaluate) -> bool:
