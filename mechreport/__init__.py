@@ -5,6 +5,7 @@
     a.forces["dyad"].reactions["B"].fx                     # (n,) [N] over a.angles [deg]
     t = mechreport.run_study("specs/four_bar.yaml")        # its study: section, as a Table
     r = mechreport.tolerance("spec.yaml")                  # its tolerances: section
+    o = mechreport.optimize("specs/four_bar_optimize.yaml")  # its optimize: section, proven
 
 The pipeline, one package per stage, data flowing one way: ``spec`` (load, validate) ->
 ``model`` (graph, dyads, loops) -> ``kinematics`` -> ``forces`` (one module per method) ->
@@ -16,7 +17,7 @@ are imported on first use.
 """
 from .version import __version__
 
-__all__ = ["analyse", "Analysis", "run_study", "tolerance", "__version__"]
+__all__ = ["analyse", "Analysis", "run_study", "tolerance", "optimize", "__version__"]
 
 
 def __getattr__(name: str):
@@ -31,4 +32,7 @@ def __getattr__(name: str):
     if name == "tolerance":
         from .study.tolerance import run_tolerance
         return run_tolerance
+    if name == "optimize":
+        from .study.optimize import optimize
+        return optimize
     raise AttributeError(f"module 'mechreport' has no attribute {name!r}")

@@ -192,6 +192,52 @@ def _add_study_parser(sub) -> None:
     p.set_defaults(func=_cmd_study)
 
 
+OPTIMIZE_EPILOG = """\
+exit status: 0 when a feasible optimum was found and proven (re-analysed by every method
+and checked as `mechreport check` does); 1 when no feasible design was found (the files are
+written all the same and stderr names the least violating design and the constraints it
+misses), or when it cannot run (a spec problem, no optimize: section, an unreachable
+--scheduler, an unusable output folder); 2 on a usage error; 130 if interrupted.
+
+Writes OUT/<name>/optimum.yaml, history.csv, optimize.md, optimize.pdf and the optimum's
+full report in OUT/<name>/optimum/; a report built there by `mechreport build` is kept.
+Progress goes to stderr."""
+
+
+def _cmd_optimize(ns: argparse.Namespace) -> int:
+    from pathlib import Path
+    from .optimize import optimize_command
+    return optimize_command(Path(ns.spec), Path(ns.out), scheduler=ns.scheduler,
+                            jobs=ns.jobs, budget=ns.budget, seed=ns.seed, wait=ns.wait)
+
+
+def _add_optimize_parser(sub) -> None:
+    p = sub.add_parser("optimize", help="search the optimize: box for the best feasible "
+                       "design", description=textwrap.fill(
+                           "Search the box of the spec's optimize: section for the feasible "
+                           "design (every design verdict, every subject_to bound, the spec's "
+                           "assembly branch, no angle left out) with the best objective, "
+                           "prove it with every force method, and write it and a report.", 79),
+                       epilog=_filled(OPTIMIZE_EPILOG),
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("spec", metavar="SPEC")
+    p.add_argument("-o", "--out", default="out", help="output folder (default: out)")
+    p.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                   help="evaluate on an existing Dask cluster at tcp://HOST:PORT or HOST:PORT "
+                   "(needs mechreport[dask]); default: a local process pool")
+    p.add_argument("--jobs", type=_int_at_least_1, default=None,
+                   help="local processes, >= 1 (default: cores; ignored with --scheduler)")
+    p.add_argument("--budget", type=_checked(int, lambda v: v >= 10, "a whole number >= 10"),
+                   default=None, metavar="N",
+                   help="evaluations at most, >= 10 (default: the spec's optimize.budget)")
+    p.add_argument("--seed", type=_int_at_least_0, default=None, metavar="S",
+                   help="the search's seed (default: the spec's optimize.seed)")
+    p.add_argument("--wait", type=_seconds, default=120.0, metavar="SECONDS",
+                   help="how long to wait for a build writing to the same output folder "
+                   "(default 120)")
+    p.set_defaults(func=_cmd_optimize)
+
+
 def main(argv: list[str] | None = None) -> int:
     """``mechreport`` with ``argv`` (default: the command line's, and then the process ends
     with the command); the exit status."""
@@ -332,6 +378,7 @@ def _main(argv: list[str] | None) -> int:
     _add_study_parser(sub)
     from .tolerance import add_parser as _add_tolerance_parser
     _add_tolerance_parser(sub, _filled, _int_at_least_1, _seconds)
+    _add_optimize_parser(sub)
 
     p = sub.add_parser("dynamics", help="simulate the motion a motor and flywheel give "
                        "(a spec's dynamics: section)",

@@ -281,9 +281,12 @@ DYNAMICS_ENTRIES = ("dynamics.csv", "dynamics.parquet")   # what `mechreport dyn
 #: what `mechreport tolerance` writes beside a spec's report (it also adds to summary.json)
 TOLERANCE_ENTRIES = ("tolerance.parquet", "tolerance.csv", "tolerance.md", "tolerance.pdf",
                      "tolerance.json", "tolerance-figures")
+OPTIMIZE_ENTRIES = ("optimum.yaml", "history.csv", "optimize.md", "optimize.pdf",
+                    "optimize-figures", "optimum")   # what `mechreport optimize` writes
 #: the entries that make a folder one of mechreport's (besides an empty one): one each of
-#: ``build``, ``study`` and ``dynamics``
-OWN_ENTRIES = {"summary.json", "study.parquet", "dynamics.parquet", "tolerance.parquet"}
+#: ``build``, ``study``, ``dynamics``, ``tolerance`` and ``optimize``
+OWN_ENTRIES = {"summary.json", "study.parquet", "dynamics.parquet", "tolerance.parquet",
+               "optimize.md"}
 
 
 def occupied(out: Path, name: str) -> str | None:
@@ -323,11 +326,12 @@ def link_tree(src: Path, dst: Path) -> None:
 
 
 def swap_in(out: Path, tmp: Path, name: str,
-            carry=lambda entry: entry in STUDY_ENTRIES or entry in TOLERANCE_ENTRIES) -> Path:
+            carry=lambda entry: entry in STUDY_ENTRIES + TOLERANCE_ENTRIES + OPTIMIZE_ENTRIES
+            ) -> Path:
     """Replace ``OUT/name`` by the complete folder ``tmp`` (two renames; the old folder, if
     any, is deleted afterwards). Entries of the old folder for which ``carry(name)`` holds and
-    that ``tmp`` lacks are carried over as hard links (a report keeps the study beside it, and
-    a study the report). Once a stop (Ctrl-C, SIGTERM) is requested, it raises it instead;
+    that ``tmp`` lacks are carried over as hard links (a report keeps the study and the
+    optimisation beside it, and they the report). Once a stop (Ctrl-C, SIGTERM) is requested, it raises it instead;
     one that comes during the renames is raised after them. Returns the final folder."""
     out = Path(out)
     if _UNSAFE.search(name) is not None or name.strip(".") == "" or name.startswith("."):

@@ -28,9 +28,10 @@ class StudyProgress:
 
     WIDTH = 20
 
-    def __init__(self, total: int, stream=None, quiet: bool = False, item: str = "variants"):
+    def __init__(self, total: int, stream=None, quiet: bool = False, items: str = "variants",
+                 bad: str = "failed"):
+        self.items, self.bad = items, bad      # what is counted, what the second count is
         self.total = max(int(total), 1)
-        self.item = item
         self.stream = stream or sys.stderr
         self.quiet = quiet
         self.tty = (not quiet) and hasattr(self.stream, "isatty") and self.stream.isatty()
@@ -45,14 +46,15 @@ class StudyProgress:
         frac = self.done / self.total
         fill = int(self.WIDTH * frac)
         bar = "#" * fill + "." * (self.WIDTH - fill)
-        failed = f"  ({self.failed} failed)" if self.failed else ""
+        failed = f"  ({self.failed} {self.bad})" if self.failed else ""
         if self.done >= self.total:
             when = f"{duration(elapsed)}"
         elif self.done:
             when = f"{duration(elapsed)}, ETA {duration(elapsed * (1 - frac) / frac)}"
         else:
             when = f"{duration(elapsed)}, ETA unknown"
-        return f"[{bar}] {self.done}/{self.total} {self.item} {int(100 * frac)}%{failed}  {when}"
+        return (f"[{bar}] {self.done}/{self.total} {self.items} {int(100 * frac)}%{failed}  "
+                f"{when}")
 
     def update(self, done: int, failed: int = 0) -> None:
         self.done, self.failed = done, failed

@@ -132,7 +132,7 @@ def tolerance_command(path, out="out", method: str | None = None,
             print(f"tolerance {path}: {plan.n} sample(s) of {len(plan.keys)} uncertain "
                   f"value(s), {kind} sampling; method {method} ({why}); on {where}, chunks "
                   f"of {size}", file=err, flush=True)
-            progress = StudyProgress(plan.n, err, item="samples")
+            progress = StudyProgress(plan.n, err, items="samples")
 
             def notify(line: str) -> None:
                 progress.close()

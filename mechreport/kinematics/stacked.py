@@ -32,12 +32,14 @@ from .result import Kinematics, Motion, motion_of
 class StackedKinematics:
     """``kin``: every variant's kinematics, rows variant-major (``per`` rows each) over the
     stacked spec; ``clean`` (V,) the variants whose every angle was solved and trusted;
-    ``motions`` each variant's range of motion."""
+    ``motions`` each variant's range of motion; ``branches`` each variant's assembly branch
+    choices (one per two-branch dyad, as ``Kinematics.branches``)."""
 
     kin: Kinematics
     per: int
     clean: np.ndarray
     motions: tuple[Motion | None, ...]
+    branches: tuple[tuple, ...] = ()
 
     def rows(self, v: int) -> slice:
         return slice(v * self.per, (v + 1) * self.per)
@@ -70,6 +72,7 @@ def solve_stacked(mech: Mechanism, specs: list[Spec]) -> StackedKinematics | Non
     th = {GROUND: np.zeros(V * n_path)}
     clean = np.ones(V, bool)
     runs = [list(path.runs) for _ in range(V)]
+    choices: list[list] = [[] for _ in range(V)]
     own = [mech.with_spec(s) for s in specs]     # each variant's joints, for its bookkeeping
     for g, group in enumerate(mech.groups):
         if group.dyad is None:
@@ -87,6 +90,7 @@ def solve_stacked(mech: Mechanism, specs: list[Spec]) -> StackedKinematics | Non
                     continue
                 poses, choice, runs[v] = track_branches(specs[v], own[v].groups[g].dyad, mine,
                                                         path, runs[v], [s[cut] for s in sigs])
+                choices[v].append(choice)
                 if not choice.closes:
                     clean[v] = False         # analysed alone: its review says why it has none
                 for l, (rr, tt) in poses.items():
@@ -113,7 +117,7 @@ def solve_stacked(mech: Mechanism, specs: list[Spec]) -> StackedKinematics | Non
 
     kin = Kinematics(flat, np.tile(phi, V), by_link(r), by_link(th), by_link(v_), by_link(w_),
                      by_link(acc), by_link(al), (), (), None, error)
-    return StackedKinematics(kin, per, clean, motions)
+    return StackedKinematics(kin, per, clean, motions, tuple(map(tuple, choices)))
 
 
 def _closed(mech: Mechanism, r: dict, th: dict) -> np.ndarray:
@@ -135,6 +139,7 @@ def _closed(mech: Mechanism, r: dict, th: dict) -> np.ndarray:
 def variant_kinematics(stacked: StackedKinematics, v: int, mech: Mechanism) -> Kinematics:
     """Variant ``v``'s own kinematics (its rows, its spec in ``mech``)."""
     kin = replace(stacked.kin.take(stacked.rows(v), ()), mechanism=mech,
-                  motion=stacked.motions[v])
+                  motion=stacked.motions[v],
+                  branches=stacked.branches[v] if stacked.branches else ())
     kin.carry_points(stacked.kin, stacked.rows(v))
     return kin

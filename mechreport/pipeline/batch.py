@@ -50,6 +50,8 @@ class Outcome:
     untrusted: str = ""
     streamed: dict[str, float] | None = None
     members: dict[str, float] | None = None   # the members' quantities (links with a section)
+    left_out: tuple[float, ...] = ()    # the angles left out (flagged) [deg or length unit]
+    branches: tuple = ()                # the assembly branch choices (``Kinematics.branches``)
 
     @property
     def cycle_values(self) -> dict[str, float] | None:
@@ -132,7 +134,7 @@ def _batched(stacked, mech, specs: list[Spec], method: str, plans) -> list[Outco
                                          undefined_reasons(spec))),
                          batched=True, untrusted=untrusted(forces[method], DEFAULT_TOL,
                                                             spec.axis_unit, inputs.take(rows)),
-                         members=members)
+                         members=members, branches=kin_v.branches)
     return out
 
 
@@ -170,7 +172,9 @@ def _alone(spec: Spec, method: str, plans) -> Outcome:
     return Outcome(spec, a.review, a.review_problem, a.verdicts,
                    untrusted=untrusted(a.forces[method], a.tol, spec.axis_unit,
                                        a.trust_inputs()),
-                   members=a.strength.values if a.strength is not None else None)
+                   members=a.strength.values if a.strength is not None else None,
+                   left_out=tuple(f.angle for f in a.kinematics.flags),
+                   branches=a.kinematics.branches)
 
 
 __all__ = ["Outcome", "analyse_variants"]

@@ -22,6 +22,8 @@ TABLES = {
     "study": (schema.Study, True, None),
     "tolerances": (schema.Tolerances, True, None),
     "tolerance vary": (schema.TolVary, False, None),
+    "optimize": (schema.Optimize, True, None),
+    "optimize_bound": (schema.OptimizeBound, True, None),
 }
 
 _REGION = re.compile(r"(<!-- key table (\w+(?: \w+)*) -->\n)(.*?)(<!-- end key table -->)", re.S)

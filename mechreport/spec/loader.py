@@ -36,7 +36,7 @@ from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Dynamics, Expectation, Friction, Joint,
                     Line, Link, Load, MotorCurve, Pin, Pressure, Shape, Spec, Study, Sweep,
                     Vary, Vec)
-from .types import TolVary, Tolerances
+from .types import Bound, Optimize, TolVary, Tolerances
 from .yaml_source import (MAX_DEPTH, MAX_FILE_BYTES, HugeInteger, Source, check_text, decode,
                           format_path, too_big)
 
@@ -646,6 +646,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
         _study_requests(spec, ck)
     if tolerances is not None:
         _study_requests(spec, ck, "tolerances", tolerances.keep)
+    if "optimize" in top:
+        spec = replace(spec, optimize=_optimize(top["optimize"], ck, top, spec))
     return None if ck.problems else spec
 
 
@@ -890,7 +892,7 @@ def _cycle_need(spec: Spec, quantity: str) -> str | None:
 # --------------------------------------------------------------------------------- study
 
 #: top-level keys whose numbers a study does not vary: they describe the file, not the machine
-NOT_VARIED = ("mechreport", "study", "expect", "report", "tolerances")
+NOT_VARIED = ("mechreport", "study", "expect", "report", "tolerances", "optimize")
 
 
 def _study(value: Any, ck: _Checker, top: dict) -> Study | None:
@@ -944,7 +946,7 @@ def _vary(value: Any, path: tuple, ck: _Checker, top: dict,
             continue
         leaf = _key_path(body["key"], where + ("key",), ck, top)
         if leaf is not None and leaf in seen:
-            ck.error(where + ("key",), f"'{body['key']}' is varied by study.vary[{seen[leaf]}] "
+            ck.error(where + ("key",), f"'{body['key']}' is varied by {format_path(path)}[{seen[leaf]}] "
                                        "too: vary each key once")
             leaf = None
         if leaf is not None:
@@ -1156,6 +1158,73 @@ def _tol_vary(item: dict, leaf: tuple, nominal: float, line: int | None) -> TolV
     dist = item.get("dist", "uniform")
     return TolVary(item["key"], leaf, nominal, dist, low, high, (low + high) / 2,
                    (high - low) / 6 if dist == "normal" else 0.0, given, line)
+
+
+def _optimize(value: Any, ck: _Checker, top: dict, spec: Spec) -> Optimize | None:
+    """The ``optimize`` section (format 1.2): its key paths checked as ``study.vary``'s, its
+    quantities as ``study.keep``'s, its bounds converted to SI (``unit``); values of ``vary``
+    kept as written (the spec's own units). None (reported) when it is not valid."""
+    path = ("optimize",)
+    if not isinstance(value, dict) or ck.refused(path) or "vary" not in value:
+        return None             # the models say what is wrong
+    vary = _vary(value["vary"], path + ("vary",), ck, top, "random")
+    for i, v in enumerate(vary or ()):
+        if v.path[0] == "design":      # the verdicts are the constraints: never relaxed
+            ck.error(path + ("vary", i, "key"), f"'{v.key}': an optimisation varies the "
+                                                "mechanism, not the limits it is judged by")
+            vary = None
+    objective = value.get("minimize", value.get("maximize"))
+    bounds = []
+    for i, body in enumerate(value.get("subject_to") or ()):
+        where = path + ("subject_to", i)
+        unit, scale = (_expect_unit(body["unit"], body["quantity"], where + ("unit",), ck)
+                       if "unit" in body else (None, 1.0))
+        if scale is None:
+            continue
+        low, high = ((None if body.get(k) is None else
+                      ck.si(body[k], where + (k,), scale=scale, unit=unit or ""))
+                     for k in ("min", "max"))
+        bounds.append(Bound(body["quantity"], low, high, unit, ck.src.line(where)))
+    if vary is None or not isinstance(objective, str) or ck.problems:
+        return None
+    where = {"minimize" if "minimize" in value else "maximize": objective}
+    for i, b in enumerate(bounds):
+        where[("subject_to", i, "quantity")] = b.quantity
+    _kept_requests(spec, ck, [(path + ((k,) if isinstance(k, str) else k), q)
+                              for k, q in where.items()], "an optimisation")
+    if ck.problems:
+        return None
+    default = schema.Optimize.model_fields
+    return Optimize(vary, objective, "maximize" in value, tuple(bounds),
+                    int(value.get("budget", default["budget"].default)),
+                    int(value.get("seed", default["seed"].default)), ck.src.line(path))
+
+
+def _kept_requests(spec: Spec, ck: _Checker, quantities: list[tuple[tuple, str]],
+                   who: str) -> None:
+    """Cycle quantities (each with its key path) that ``who`` reads must be defined for the
+    spec, name a joint of the mechanism and have the design inputs they need."""
+    why = spec.cycle_problem()
+    if why is not None and not (all(is_member(q) for _, q in quantities)
+                                and cycle_design(spec.design).empty):
+        ck.error(quantities[0][0][:1], f"{who} reads cycle quantities, which are undefined "
+                                       f"here: {why}")
+        return
+    joints = set(spec.reported_reactions())
+    for where, q in quantities:
+        kind, name, attr = split_quantity(q) or ("", "", "")
+        if kind == "member":
+            problem = _member_quantity_problem(q, name, attr, list(spec.links), ck)
+            if problem:
+                ck.error(where, problem)
+            continue
+        if kind == "joint" and name not in joints:
+            ck.error(where, f"'{q}': no joint named '{name}' (joints: "
+                            f"{', '.join(sorted(joints))})")
+            continue
+        need = _cycle_need(spec, q)
+        if need:
+            ck.error(where, need)
 
 
 def _units(value: Any, ck: _Checker) -> tuple[float, float, dict[str, str]]:

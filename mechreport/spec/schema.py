@@ -1036,6 +1036,65 @@ class Tolerances(_Model):
         "same samples"))
     keep: Annotated[list[CycleQuantity], Wording("a list of cycle quantities")] = Field(
         min_length=1, description="the cycle quantities to report (as `study.keep`)")
+class OptimizeVary(_Model):
+    """A varied leaf of an optimisation: {key, from, to} (format 1.2)."""
+
+    model_config = ConfigDict(title="optimize vary")
+    key: Name = Field(description="A key path into this spec, as in study.vary "
+                                  "(links.coupler.points.C.0).")
+    from_: Number = Field(alias="from", description="One end of the range, in the spec's "
+                                                    "units.")
+    to: Number = Field(description="The other end of the range.")
+
+
+class OptimizeBound(_Model):
+    """A bound on a cycle quantity that the optimum must keep (format 1.2)."""
+
+    model_config = ConfigDict(title="optimize bound")
+    quantity: CycleQuantity = Field(description="Any study.keep quantity (cycle.*, "
+                                                "joint.J.*, member.L.*).")
+    min: Number = Field(None, description="The smallest allowed value (SI, or in `unit`).")
+    max: Number = Field(None, description="The largest allowed value (SI, or in `unit`).")
+    unit: Literal[EXPECT_UNIT_NAMES] = Field(
+        None, description="The unit min and max are written in (one of the quantity's kind).")
+
+    @model_validator(mode="after")
+    def _one_bound(self):
+        if self.min is None and self.max is None:
+            raise PydanticCustomError("bound_missing", "give 'min', 'max' or both")
+        if self.min is not None and self.max is not None and self.min > self.max:
+            raise PydanticCustomError("bound_order", "'min' must not exceed 'max'")
+        return self
+
+
+class Optimize(_Model):
+    """The search `mechreport optimize` runs (format 1.2)."""
+
+    vary: Annotated[list[OptimizeVary], Wording("a list of {key, from, to}")] = Field(
+        min_length=1, description="the varied leaves, each `{key, from, to}` (key paths as in "
+                                  "`study.vary`)")
+    minimize: CycleQuantity = Field(None, description=(
+        "the cycle quantity to make smallest (any `study.keep` quantity); or `maximize`"))
+    maximize: CycleQuantity = Field(None, description=(
+        "the cycle quantity to make largest; give exactly one of `minimize` and `maximize`"))
+    subject_to: Annotated[list[Annotated[OptimizeBound, Refusal(
+        "needs 'min', 'max' or both (min not above max), got {value}",
+        ("bound_missing", "bound_order"))]],
+                          Wording("a list of {quantity, min, max, unit}")] = Field(
+        None, description=("bounds `{quantity, min, max, unit}` the optimum must keep, besides "
+                           "every verdict of `design:`"))
+    budget: _whole(10, MAX_STUDY_VARIANTS) = Field(1000, description=(
+        "evaluations at most, 10 to 1 000 000 (default 1000)"))
+    seed: _whole(0, MAX_SEED) = Field(0, description=(
+        "a whole number from 0 to 2^63 - 1, default 0: the same spec and seed give the same "
+        "search and the same optimum"))
+
+    @model_validator(mode="after")
+    def _one_objective(self):
+        if (self.minimize is None) == (self.maximize is None):
+            raise PydanticCustomError("objective", "give exactly one of 'minimize' and "
+                                                   "'maximize'")
+        return self
 
 
 class SpecFile(_Model):
@@ -1126,6 +1185,10 @@ class SpecFile(_Model):
         if errors:
             raise ValidationError.from_exception_data("SpecFile", errors)
         return self
+    optimize: Annotated[Optimize, Refusal("needs exactly one of 'minimize' and 'maximize', "
+                                          "got {value}", ("objective",))] = Field(None, description=(
+            "the search `mechreport optimize` runs (format 1.2); every other command validates "
+            "it and otherwise ignores it"))
 
 
 # ------------------------------------------------------------------------- the key tables

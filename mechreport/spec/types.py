@@ -500,6 +500,36 @@ class Tolerances:
 
 
 @dataclass(frozen=True)
+class Bound:
+    """A ``subject_to`` bound of an optimisation: ``quantity`` (a cycle quantity) kept at
+    least ``low`` and at most ``high`` [SI; None: no such bound]; ``unit`` the unit they were
+    written in (None: SI)."""
+
+    quantity: str
+    low: float | None = None
+    high: float | None = None
+    unit: str | None = None
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class Optimize:
+    """The ``optimize`` section (format 1.2): the varied leaves (each a :class:`Vary` with a
+    range ``start`` .. ``stop`` in the spec's own units), the ``objective`` cycle quantity
+    (made largest when ``maximize``, else smallest), the ``bounds`` besides every design
+    verdict, the ``budget`` of evaluations and the ``seed``. Only ``mechreport optimize``
+    uses it."""
+
+    vary: tuple[Vary, ...]
+    objective: str
+    maximize: bool = False
+    bounds: tuple[Bound, ...] = ()
+    budget: int = 1000
+    seed: int = 0
+    line: int | None = None
+
+
+@dataclass(frozen=True)
 class ReportSettings:
     """The spec's ``report`` section: display ``units`` (``length`` m|cm|mm|in, ``force``
     N|kN|lbf, ``moment`` N*m|N*mm|kN*m|lbf*in, ``mass`` kg|g|lb; lengths default to the spec's
@@ -547,6 +577,9 @@ class Spec:
     # the loads' period, crank degrees (format 1.2 ``cycle:``); out of the repr, so that the
     # specs written before 1.2 (all 360) keep their reference reprs (tests/spec)
     cycle: float = field(default=360.0, repr=False)
+    # only `mechreport optimize` uses it (format 1.2); out of the repr, which stays the
+    # loaded specs' reference (tests/spec/data/loaded_reprs.json)
+    optimize: Optimize | None = field(default=None, repr=False)
 
     @property
     def axis_unit(self) -> str:

@@ -185,10 +185,14 @@ def _pool_call(task, args: tuple):
 
 
 def run_pool(task, shared, todo: list[Chunk], args_of, jobs: int, on_done, on_lost=None,
-             notify=None, stop_check=None, setup=None, words: Words = STUDY_WORDS) -> None:
+             notify=None, stop_check=None, setup=None, words: Words = STUDY_WORDS,
+             kept: list | None = None) -> None:
     """The chunks of ``todo`` on ``jobs`` worker processes, each a one-process pool computing
     one chunk at a time, so that a process that dies loses exactly its chunk (see the module
-    docstring). ``setup()``: called first in each worker process (picklable)."""
+    docstring). ``setup()``: called first in each worker process (picklable). ``kept``: a
+    list holding the worker pools from one run to the next (an optimisation's generations,
+    with the same ``shared``): they are taken from it and left running in it; the caller
+    ends them with :func:`stop_pools`."""
     from concurrent.futures.process import BrokenProcessPool
 
     # fresh interpreters: forking a process whose BLAS or Typst threads are running can
@@ -196,7 +200,8 @@ def run_pool(task, shared, todo: list[Chunk], args_of, jobs: int, on_done, on_lo
     ctx = multiprocessing.get_context("spawn")
     todo = deque(todo)
     losses = Losses(on_lost, notify, words)
-    pools: list[ProcessPoolExecutor | None] = [None] * jobs
+    pools: list[ProcessPoolExecutor | None] = kept if kept is not None else []
+    pools.extend([None] * (jobs - len(pools)))
     running: dict = {}                      # future -> (slot, chunk)
 
     def start(slot: int) -> None:
@@ -247,13 +252,20 @@ def run_pool(task, shared, todo: list[Chunk], args_of, jobs: int, on_done, on_lo
                 losses.done()
                 on_done(chunk, result)
     except BaseException:
+        stop_pools(pools)
+        raise
+    if kept is None:
         for pool in pools:
             if pool is not None:
-                stop_pool(pool)
-        raise
+                pool.shutdown(wait=True)
+
+
+def stop_pools(pools: list) -> None:
+    """Stop every pool of ``pools`` (see :func:`stop_pool`) and empty the list."""
     for pool in pools:
         if pool is not None:
-            pool.shutdown(wait=True)
+            stop_pool(pool)
+    pools.clear()
 
 
 def stop_pool(pool) -> None:

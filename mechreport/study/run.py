@@ -69,12 +69,13 @@ def chunk_task(base: BaseSpec, start: int, keys, values: np.ndarray, method: str
 
 def run_chunks(task, shared, n: int, size: int, args_of, on_done, *, jobs: int = 1,
                client=None, on_lost=None, notify=None, stop_check=None, setup=None,
-               words=STUDY_WORDS) -> None:
+               words=STUDY_WORDS, kept: list | None = None) -> None:
     """The executor: items ``0 .. n-1`` in chunks of ``size``, ``task(shared,
     *args_of(chunk))`` each, on the Dask cluster of ``client``, else on ``jobs`` local
     processes (1: in this process); ``on_done(chunk, result)`` as each finishes. Retries,
     lost chunks (``on_lost(start, stop, reason)``), ``notify``, ``stop_check`` and
-    ``setup``: :mod:`.executor`."""
+    ``setup``: :mod:`.executor`; ``kept``: local pools kept between runs
+    (:func:`~.executor.run_pool`)."""
     todo = chunks(n, size)
     if client is not None:
         from .cluster import run_dask
@@ -84,7 +85,7 @@ def run_chunks(task, shared, n: int, size: int, args_of, on_done, *, jobs: int =
         run_serial(task, shared, todo, args_of, on_done, stop_check)
     else:
         run_pool(task, shared, todo, args_of, jobs, on_done, on_lost, notify, stop_check,
-                 setup, words)
+                 setup, words, kept)
 
 
 def run_variants(base: BaseSpec, plan: Plan, method: str, keep, *, jobs: int | None = None,
