@@ -1,0 +1,102 @@
+"""The data of report.html's interactive parts, as one JSON-ready dict: the mechanism at every
+analysed angle (each link's points, each joint's point, the applied forces), the reference
+method's joint reactions and the driver's effort there, read from the analysis' result
+records (the kinematics' point paths, the report model's sweep series), never recomputed.
+
+Values are in the report's display units; the numbers the page shows beside the slider are
+formatted here by the report's one formatter (so they read as report.md's), the plotted ones
+are floats of 5 significant digits, and positions are whole numbers of 1/10 000 of the
+drawing's size (the JSON of a 360-angle spec stays well under its 1 MB budget). Left-out
+angles are not among the analysed ones: the page steps over them."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..spec import GROUND
+from ..units import deg
+
+#: positions are stored as whole numbers of extent / GRID
+GRID = 10000
+#: an arrow of the reference force is this fraction of the drawing's size (as animation.gif)
+ARROW_LEN = 0.26
+
+
+def _floats(a) -> list:
+    """A float array as a JSON list: 5 significant digits, None where not finite."""
+    a = np.asarray(a, float)
+    return [None if not np.isfinite(v) else float(f"{v:.5g}") for v in a.tolist()]
+
+
+def _texts(a, kind: str, d) -> list[str]:
+    """Each value of ``a`` [SI] as the report prints it (without its unit)."""
+    return [d.num(v if np.isfinite(v) else None, kind) for v in np.asarray(a, float).tolist()]
+
+
+def html_data(analysis, model) -> dict:
+    """The interactive data of the report of ``model`` (a
+    :class:`~mechreport.report.model.ReportModel` built from ``analysis``)."""
+    kin, spec, d, sw = analysis.kinematics, analysis.spec, model.display, model.sweep
+    n = len(sw.angles)
+    paths: dict[tuple[str, str], np.ndarray] = {}
+    for link in spec.links:
+        for name in link.points:
+            paths[(link.name, name)] = np.asarray(kin.named_point(name, link.name).r, float)
+    ground = {name: np.tile(np.asarray(xy, float), (n, 1)) for name, xy in spec.ground.items()}
+    at = {name: np.asarray(xy, float) for name, xy in analysis.joint_points().items()}
+    loads = [ld for ld in analysis.loads if ld.link != GROUND and ld.force is not None]
+    load_at = {ld.symbol: np.asarray(kin.named_point(ld.point, ld.link).r, float)
+               for ld in loads}
+
+    every = [*paths.values(), *ground.values(), *at.values()]
+    stack = np.concatenate([p[np.isfinite(p).all(axis=1)] for p in every]) if every else \
+        np.zeros((1, 2))
+    lo, hi = stack.min(axis=0), stack.max(axis=0)
+    extent = float(max((hi - lo).max(), 1e-9))
+    origin = lo - 0.05 * extent
+
+    def grid(p: np.ndarray) -> list:
+        q = np.rint((p - origin) / extent * GRID)
+        return [[int(x), int(y)] if np.isfinite([x, y]).all() else None for x, y in q.tolist()]
+
+    effort_kind = "force" if sw.effort == "force" else "moment"
+    joints = [{"name": j.name, "symbol": j.symbol, "color": j.color,
+               "at": grid(at[j.name]),
+               "fx": _floats(j.fx), "fy": _floats(j.fy),
+               "f": _floats(d.value(np.asarray(j.f, float), "force")),
+               "text": {"f": _texts(j.f, "force", d), "fx": _texts(j.fx, "force", d),
+                        "fy": _texts(j.fy, "force", d)}}
+              for j in sw.joints]
+    largest = np.nanmax(np.vstack([np.hypot(j.fx, j.fy) for j in sw.joints]
+                                  + [np.hypot(*np.asarray(ld.force, float).T) for ld in loads]
+                                  + [np.zeros(n)]), axis=0)
+    away = ~np.asarray(sw.near, bool) if len(sw.near) == n and (~sw.near).any() else \
+        np.ones(n, bool)
+    force_ref = (model.animation.force_ref if model.animation is not None
+                 else float(np.nanmax(np.where(np.isfinite(largest), largest, 0)[away],
+                                      initial=0.0)))
+    return {
+        "title": model.name,
+        "coord": model.coord, "unit": model.coord_unit,
+        "angles": [float(deg(a)) for a in np.asarray(sw.angles, float)],
+        "near": [bool(x) for x in (sw.near if len(sw.near) == n else np.zeros(n, bool))],
+        "flagged": [float(a) for a in sw.flagged],
+        "refs": [float(a) for a in sw.ref_angles],
+        "method": sw.method_title,
+        "units": {"force": d.unit("force"), "effort": d.unit(effort_kind),
+                  "length": d.unit("length")},
+        "effort": {"label": model.effort, "kind": effort_kind,
+                   "values": _floats(d.value(np.asarray(sw.torque, float), effort_kind)),
+                   "text": _texts(sw.torque, effort_kind, d)},
+        "geometry": {"grid": GRID, "extent": extent, "force_ref": force_ref,
+                     "arrow": ARROW_LEN,
+                     "links": [{"name": link.name,
+                                "points": [grid(paths[(link.name, p)]) for p in link.points]}
+                               for link in spec.links],
+                     "ground": [grid(g[:1])[0] for g in ground.values()],
+                     "loads": [{"symbol": ld.symbol, "at": grid(load_at[ld.symbol]),
+                                "fx": _floats(np.asarray(ld.force, float)[:, 0]),
+                                "fy": _floats(np.asarray(ld.force, float)[:, 1])}
+                               for ld in loads],
+                     "driver": spec.driver.joint},
+        "joints": joints,
+    }
