@@ -32,6 +32,16 @@ def _texts(a, kind: str, d) -> list[str]:
     return [d.num(v if np.isfinite(v) else None, kind) for v in np.asarray(a, float).tolist()]
 
 
+def _where(joint: str, at: dict) -> np.ndarray:
+    """Where joint ``joint``'s reaction acts (n, 2) [m]: its point, or for a pin joining
+    several links (``C.on.hub``: the pin's force on its hub) the pin's, which all its
+    joints share."""
+    if joint in at:
+        return at[joint]
+    pin = joint.split(".on.")[0]
+    return next(xy for name, xy in at.items() if name.split(".on.")[0] == pin)
+
+
 def html_data(analysis, model) -> dict:
     """The interactive data of the report of ``model`` (a
     :class:`~mechreport.report.model.ReportModel` built from ``analysis``)."""
@@ -60,7 +70,7 @@ def html_data(analysis, model) -> dict:
 
     effort_kind = "force" if sw.effort == "force" else "moment"
     joints = [{"name": j.name, "symbol": j.symbol, "color": j.color,
-               "at": grid(at[j.name]),
+               "at": grid(_where(j.name, at)),
                "fx": _floats(j.fx), "fy": _floats(j.fy),
                "f": _floats(d.value(np.asarray(j.f, float), "force")),
                "text": {"f": _texts(j.f, "force", d), "fx": _texts(j.fx, "force", d),

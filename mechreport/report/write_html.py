@@ -31,12 +31,22 @@ def html_body(doc: d.Doc, before_sections: str = "", figure_class=None) -> str:
     if doc.subtitle:
         out.append(f"<p class=\"subtitle\"><strong>{w.inline(doc.subtitle)}</strong></p>\n")
     for b in doc.blocks:
-        if before_sections and isinstance(b, d.Heading):
+        if before_sections and _opens_section(b):
             out.append(before_sections)
             before_sections = ""
         out.append(w.block(b))
     out.append(before_sections)
     return "".join(out)
+
+
+def _opens_section(b) -> bool:
+    """Whether block ``b`` starts with a heading (a heading, or a group of blocks that the
+    text formats show, starting with one)."""
+    if isinstance(b, d.Heading):
+        return True
+    if isinstance(b, (d.Only, d.Box)) and not getattr(b, "print", False) and b.blocks:
+        return _opens_section(b.blocks[0])
+    return False
 
 
 def heading_id(text: str) -> str:

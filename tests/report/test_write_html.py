@@ -130,3 +130,20 @@ def test_the_slider_shows_the_report_s_numbers(four_bar):
     k = data["angles"].index(big["angle_deg"])
     joint = next(j for j in data["joints"] if j["name"] == big["joint"])
     assert joint["text"]["f"][k] == m.display.num(big["value"], "force")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("spec", sorted(p.name for p in (ROOT / "specs").glob("*.yaml")))
+def test_every_shipped_spec_has_its_page(spec):
+    """Every shipped spec's page data (pins joining three links, T drivers, short sweeps):
+    one position per joint and angle, under the size budget."""
+    from mechreport.report.html_data import html_data
+    from mechreport.report.html_page import report_html
+    from mechreport.report.model import build_model
+    from mechreport.report.report_doc import report_document
+    a = mechreport.analyse(ROOT / "specs" / spec)
+    m = build_model(a, spec)
+    data = html_data(a, m)
+    n = len(data["angles"])
+    assert n and all(len(j["at"]) == len(j["text"]["f"]) == n for j in data["joints"])
+    assert len(report_html(report_document(m), data).encode()) <= 1_000_000

@@ -93,7 +93,7 @@
     g.links.forEach(function (l) { l.points.forEach(function (path) { path.forEach(seen); }); });
     g.ground.forEach(seen);
     data.joints.forEach(function (j) { j.at.forEach(seen); });
-    var pad = 0.32 * G;
+    var pad = 0.28 * G;
     var x0 = Math.min.apply(null, xs) - pad, x1 = Math.max.apply(null, xs) + pad;
     var y0 = Math.min.apply(null, ys) - pad, y1 = Math.max.apply(null, ys) + pad;
     root.setAttribute("viewBox", [x0, -y1, x1 - x0, y1 - y0].join(" "));
@@ -203,6 +203,8 @@
         }
       });
       if (!isFinite(lo)) { lo = 0; hi = 1; }
+      var margin = 0.04 * (hi - lo);          // the curves clear the frame
+      lo -= margin; hi += margin;
       var yt = nice(lo, hi, 5), xt = nice(view[0], view[1], 8);
       var y0 = Math.min(yt[0], lo), y1 = Math.max(yt[yt.length - 1], hi);
       sx = function (x) { return L + (x - view[0]) / (view[1] - view[0] || 1) * (W - L - R); };
