@@ -495,9 +495,16 @@ def html(changes: list[Change], old: Path, new: Path, rtol: float, n_specs: int)
         specs = len({c.spec for c in changes})
         doc.add(Paragraph([*intro, f": {len(changes)} change(s) in {specs} spec(s)."]))
         doc.add(Table(["spec", "quantity", "old", "new", "change"],
-                      [[c.spec, c.what, c.old, c.new, c.change] for c in changes],
+                      [[c.spec, c.what, _badge(c.old), _badge(c.new), c.change]
+                       for c in changes],
                       right={2, 3, 4}))
     return table_page(doc)
+
+
+def _badge(value: str):
+    """A PASS or FAIL as a badge on the page; any other value as it is."""
+    from ..report.document import Verdict
+    return Verdict(value) if value in ("PASS", "FAIL") else value
 
 
 def diff_command(old: Path, new: Path, rtol: float, as_html: bool = False) -> int:

@@ -27,6 +27,7 @@ def test_the_diff_page_has_the_markdown_table_escaped_and_nothing_to_run():
     csp = re.search(r'http-equiv="Content-Security-Policy" content="([^"]+)"', page).group(1)
     assert csp.startswith("default-src 'none'; style-src 'sha256-" + digest + "'")
     assert "2 change(s) in 2 spec(s)" in page
+    assert '<span class="badge fail">FAIL</span>' in page
 
 
 def test_no_change_is_a_sentence():

@@ -180,3 +180,36 @@ def test_the_index_sorts_and_filters(site, browser):
     box = browser.find_element("css selector", "input.filter")
     box.send_keys("four")
     assert first_column() == [n for n in names if "four" in n.lower()] != names
+
+
+def test_the_plots_zoom_show_values_on_hover_and_move_the_slider(site, browser):
+    from selenium.webdriver.common.action_chains import ActionChains
+    out, _ = site
+    _open(browser, out / "four_bar" / "report.html")
+    chart = browser.find_elements("css selector", "#charts svg")[1]
+    width = chart.size["width"]
+
+    def ticks():
+        return [t.text for t in chart.find_elements("css selector", "text")
+                if t.get_attribute("text-anchor") == "middle" and t.text.isdigit()]
+
+    def tip():
+        return chart.find_element("css selector", "text.tip").text
+
+    whole = ticks()
+    ActionChains(browser).move_to_element_with_offset(chart, int(-0.25 * width), 0) \
+        .click_and_hold().move_by_offset(int(0.3 * width), 0).release().perform()
+    zoomed = ticks()
+    assert zoomed != whole and int(zoomed[0]) > int(whole[0])
+    ActionChains(browser).double_click(chart).perform()
+    assert ticks() == whole
+    before = tip()
+    ActionChains(browser).move_to_element_with_offset(chart, int(0.3 * width), 0).perform()
+    assert tip() != before and tip().endswith(" N")
+    ActionChains(browser).click().perform()                 # a click moves the slider there
+    assert browser.find_element("id", "angle").get_attribute("value") != "0"
+    assert _errors(browser) == []
+
+
+def _errors(browser) -> list[dict]:
+    return [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
