@@ -76,14 +76,16 @@ def html_data(analysis, model) -> dict:
                "text": {"f": _texts(j.f, "force", d), "fx": _texts(j.fx, "force", d),
                         "fy": _texts(j.fy, "force", d)}}
               for j in sw.joints]
-    largest = np.nanmax(np.vstack([np.hypot(j.fx, j.fy) for j in sw.joints]
-                                  + [np.hypot(*np.asarray(ld.force, float).T) for ld in loads]
-                                  + [np.zeros(n)]), axis=0)
+    mags = np.vstack([np.hypot(j.fx, j.fy) for j in sw.joints]
+                     + [np.hypot(*np.asarray(ld.force, float).T) for ld in loads]
+                     + [np.zeros(n)])
+    largest = np.where(np.isfinite(mags), mags, 0.0).max(axis=0)
     away = ~np.asarray(sw.near, bool) if len(sw.near) == n and (~sw.near).any() else \
         np.ones(n, bool)
     force_ref = (model.animation.force_ref if model.animation is not None
-                 else float(np.nanmax(np.where(np.isfinite(largest), largest, 0)[away],
-                                      initial=0.0)))
+                 else float(largest[away].max(initial=0.0)))
+    force_ref = force_ref if np.isfinite(force_ref) else 0.0        # no arrows then
+    shaking = np.asarray(sw.shaking.f, float) if sw.shaking is not None else None
     return {
         "title": model.name,
         "coord": model.coord, "unit": model.coord_unit,
@@ -109,4 +111,7 @@ def html_data(analysis, model) -> dict:
                                for ld in loads],
                      "driver": spec.driver.joint},
         "joints": joints,
+        "shaking": None if shaking is None or len(shaking) != n else {
+            "label": "shaking force on the frame |F|",
+            "values": _floats(d.value(shaking, "force")), "text": _texts(shaking, "force", d)},
     }

@@ -76,9 +76,11 @@ def write_index(rows: list[dict], out: Path, title: str = "mechreport batch") ->
 
 def write_index_html(doc, out: Path) -> list[Path]:
     """OUT/index.html (its table sorts and filters) and the folder's scripts, when a report
-    folder of ``out`` has a report.html (none asked for one: no index.html)."""
+    folder of ``out`` has a report.html (none has one: no index.html, an earlier one
+    removed)."""
     from .html_page import index_html, write_assets
     if not any(Path(out).glob("*/report.html")):
+        (Path(out) / "index.html").unlink(missing_ok=True)       # no stale page left
         return []
     return [atomic_write_text(Path(out) / "index.html", index_html(doc)), *write_assets(out)]
 

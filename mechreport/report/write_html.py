@@ -7,7 +7,8 @@ Markdown (a spec's ``description``) is rendered by markdown-it with raw HTML and
 markdown-it does not refuse (``javascript:`` and the like are refused) open as plain links.
 
 Headings get the ids GitHub gives report.md's headings, so :class:`~.document.Ref` links work
-the same; a verdict is a PASS/FAIL badge; math is written in its plain-text form."""
+the same; a verdict (a :class:`~.document.Verdict`, or a table cell that reads just PASS or
+FAIL: a design verdict) is a PASS/FAIL badge; math is written in its plain-text form."""
 from __future__ import annotations
 
 import html as _html
@@ -153,6 +154,9 @@ class _Writer:
                     cells.append(f"<td colspan=\"{cell.span}\" class=\"span{small}\">"
                                  f"{self.inline(cell.text)}</td>")
                     i += cell.span
+                elif isinstance(cell, str) and cell.strip() in ("PASS", "FAIL"):
+                    cells.append(f"<td{cls(i)}>{badge(cell.strip())}</td>")   # a verdict
+                    i += 1
                 else:
                     cells.append(f"<td{cls(i)}>{self.inline(cell)}</td>")
                     i += 1

@@ -106,7 +106,7 @@ def test_the_report_runs_offline_without_errors(site, browser):
     # the script ran: the mechanism is drawn, one plot per sweep quantity with its cursor
     assert browser.execute_script("return document.querySelectorAll('#mech line').length") > 0
     assert browser.execute_script("return document.querySelectorAll('#charts line.cursor')"
-                                  ".length") == 2
+                                  ".length") == 3
 
 
 def _shown(browser, css: str) -> float:

@@ -10,6 +10,8 @@ from collections import Counter
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import mechreport
 from mechreport.report.document import (Aside, Blank, Box, Cell, Code, Columns, Doc, Either,
@@ -33,6 +35,7 @@ def _every_block() -> Doc:
     doc.add(Only([Paragraph("print only")], print=True))
     doc.add(Heading(HOSTILE))
     doc.add(Table(["a", "b", "c"], [[[HOSTILE, Aside(HOSTILE)], Blank(), Key(HOSTILE)],
+                                     ["x", "y", "PASS"],
                                      [Cell(HOSTILE, span=3, small=True)]],
                   right={1}, note=HOSTILE, print=Print()))
     doc.add(Items([Item(HOSTILE, [HOSTILE]), [Code(HOSTILE), NewLine()]], intro=HOSTILE))
@@ -62,6 +65,7 @@ def test_every_block_is_written_and_user_text_is_escaped():
     assert "<em>kept</em>" in out                                       # the user's Markdown
     assert "print only" not in out
     assert "<span class=\"badge fail\">FAIL</span>" in out
+    assert "<td><span class=\"badge pass\">PASS</span></td>" in out       # a verdict cell
     assert "colspan=\"3\"" in out and "href=\"a%20b.csv\"" in out
     assert "<h2 id=\"scriptalert1script-q-a--bxb\">" in out             # GitHub's anchor
 
@@ -147,3 +151,22 @@ def test_every_shipped_spec_has_its_page(spec):
     n = len(data["angles"])
     assert n and all(len(j["at"]) == len(j["text"]["f"]) == n for j in data["joints"])
     assert len(report_html(report_document(m), data).encode()) <= 1_000_000
+
+
+ALLOWED = {"p", "em", "strong", "code", "a", "ul", "ol", "li", "pre", "blockquote", "hr",
+           "br", "h1", "h2", "h3", "h4", "h5", "h6"}
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.lists(st.sampled_from(["<script>", "</p>", "<img src=x onerror=a()>", "[l](",
+                                 "javascript:alert(1)", ")", "![i](http://x/i.png)", "*",
+                                 "`", "\n\n", "- ", "# ", "&", "\"", "'", "a", " ",
+                                 "<a href='javascript:x'>", "vbscript:", "data:text/html,"]),
+                max_size=25).map("".join))
+def test_any_description_is_harmless_html(text):
+    from mechreport.report.write_html import description_html
+    out = description_html(text)
+    assert {t.lower() for t in re.findall(r"<\s*/?\s*([A-Za-z0-9]+)", out)} <= ALLOWED
+    for href in re.findall(r"href=\"([^\"]*)\"", out):
+        assert not re.match(r"\s*(javascript|vbscript|data):", href, re.I), href
+    assert " on" not in re.sub(r">[^<]*<", "><", out)     # no event attribute in a tag

@@ -76,8 +76,16 @@
       rows.push([j, el("td", { "class": "num f" }, tr), el("td", { "class": "num fx" }, tr),
                  el("td", { "class": "num fy" }, tr)]);
     });
+    var sv = null;
+    if (data.shaking) {
+      var sr = el("tr", { "data-joint": "", "class": "shaking" }, body);
+      text(el("th", {}, sr), data.shaking.label + " [" + data.units.force + "]");
+      sv = el("td", { "class": "num f" }, sr);
+      el("td", { "class": "num" }, sr); el("td", { "class": "num" }, sr);
+    }
     listeners.push(function (k) {
       text(ev, data.effort.text[k]);
+      if (sv) text(sv, data.shaking.text[k]);
       rows.forEach(function (r) {
         text(r[1], r[0].text.f[k]); text(r[2], r[0].text.fx[k]); text(r[3], r[0].text.fy[k]);
       });
@@ -169,6 +177,10 @@
                    series: [{ name: data.effort.label.split(" ").pop(), color: "#7b1f3a", values: data.effort.values }] },
                  { title: "Joint reactions (magnitude) over the sweep", unit: data.units.force,
                    series: data.joints.map(function (j) { return { name: j.symbol, color: j.color, values: j.f }; }) }];
+    if (data.shaking) {
+      plots.push({ title: "Shaking force on the frame (magnitude) over the sweep", unit: data.units.force,
+                   series: [{ name: "|F|", color: "#444", values: data.shaking.values }] });
+    }
     plots.forEach(function (p) { if (p.series.length) chart(box, data, p, listeners, setIndex, nearestIndex); });
   }
 
