@@ -12,8 +12,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..kinematics.frames import rotate
 from ..spec import GROUND
 from ..units import deg
+from .mpl import MOMENT_COLOR
 
 #: positions are stored as whole numbers of extent / GRID
 GRID = 10000
@@ -30,6 +32,16 @@ def _floats(a) -> list:
 def _texts(a, kind: str, d) -> list[str]:
     """Each value of ``a`` [SI] as the report prints it (without its unit)."""
     return [d.num(v if np.isfinite(v) else None, kind) for v in np.asarray(a, float).tolist()]
+
+
+def _push(analysis, effort) -> np.ndarray:
+    """A T driver's push (n, 2) [N]: its force ``effort`` (n,) [N] along its joint's line,
+    which turns with the guide (as the animation draws it)."""
+    spec, kin = analysis.spec, analysis.kinematics
+    joint = spec.joint(spec.driver.joint)
+    theta = np.asarray(kin.theta, float)[:, spec.number(joint.guide)]
+    u = rotate(np.asarray(joint.line.direction, float), theta)
+    return np.asarray(effort, float)[:, None] * u
 
 
 def _where(joint: str, at: dict) -> np.ndarray:
@@ -69,6 +81,7 @@ def html_data(analysis, model) -> dict:
         return [[int(x), int(y)] if np.isfinite([x, y]).all() else None for x, y in q.tolist()]
 
     effort_kind = "force" if sw.effort == "force" else "moment"
+    push = _push(analysis, sw.torque) if effort_kind == "force" else None
     joints = [{"name": j.name, "symbol": j.symbol, "color": j.color,
                "at": grid(_where(j.name, at)),
                "fx": _floats(j.fx), "fy": _floats(j.fy),
@@ -108,7 +121,11 @@ def html_data(analysis, model) -> dict:
                      "loads": [{"symbol": ld.symbol, "at": grid(load_at[ld.symbol]),
                                 "fx": _floats(np.asarray(ld.force, float)[:, 0]),
                                 "fy": _floats(np.asarray(ld.force, float)[:, 1])}
-                               for ld in loads],
+                               for ld in loads]
+                              + ([] if push is None else [
+                                  {"symbol": "Fd", "at": grid(_where(spec.driver.joint, at)),
+                                   "fx": _floats(push[:, 0]), "fy": _floats(push[:, 1]),
+                                   "color": MOMENT_COLOR}]),
                      "driver": spec.driver.joint},
         "joints": joints,
         "shaking": None if shaking is None or len(shaking) != n else {

@@ -151,7 +151,7 @@
         if (p) svg("circle", { cx: p[0], cy: -p[1], r: 0.012 * G, fill: "#fff", stroke: "#222", "stroke-width": 1.5 * w }, layer);
       });
       data.joints.forEach(function (j) { arrow(layer, j.at[k], j.fx[k], j.fy[k], j.color, j.symbol); });
-      g.loads.forEach(function (l) { arrow(layer, l.at[k], l.fx[k], l.fy[k], "#111", l.symbol); });
+      g.loads.forEach(function (l) { arrow(layer, l.at[k], l.fx[k], l.fy[k], l.color || "#111", l.symbol); });
     });
   }
 
