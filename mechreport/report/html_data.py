@@ -6,8 +6,9 @@ records (the kinematics' point paths, the report model's sweep series), never re
 Values are in the report's display units; the numbers the page shows beside the slider are
 formatted here by the report's one formatter (so they read as report.md's), the plotted ones
 are floats of 5 significant digits, and positions are whole numbers of 1/10 000 of the
-drawing's size (the JSON of a 360-angle spec stays well under its 1 MB budget). Left-out
-angles are not among the analysed ones: the page steps over them."""
+drawing's size (the JSON of a 360-angle spec stays well under its 1 MB budget; a sweep of
+more than MAX_ANGLES angles is thinned, keeping its peaks). Left-out angles are not among
+the analysed ones: the page steps over them."""
 from __future__ import annotations
 
 import numpy as np
@@ -21,6 +22,32 @@ from .mpl import MOMENT_COLOR
 GRID = 10000
 #: an arrow of the reference force is this fraction of the drawing's size (as animation.gif)
 ARROW_LEN = 0.26
+#: a finer sweep is thinned to about this many angles (the page stays under 1 MB; a 0.25
+#: degree sweep keeps every angle), keeping every peak and reference angle
+MAX_ANGLES = 1441
+
+
+def kept_angles(n: int, peaks: list, refs: list[int]) -> list[int]:
+    """The analysed indices a page of ``n`` > MAX_ANGLES angles keeps: evenly spaced ones,
+    the largest of each of ``peaks`` (arrays (n,)) and the reference angles ``refs``."""
+    step = -(-n // MAX_ANGLES)
+    keep = set(range(0, n, step)) | set(refs) | {n - 1}
+    for values in peaks:
+        finite = np.where(np.isfinite(values), values, -np.inf)
+        if np.isfinite(finite).any():
+            keep.add(int(np.argmax(finite)))
+    return sorted(keep)
+
+
+def _thin(node, n: int, keep: list[int]):
+    """``node`` with each list of ``n`` items (one per analysed angle) cut to ``keep``."""
+    if isinstance(node, dict):
+        return {k: _thin(v, n, keep) for k, v in node.items()}
+    if isinstance(node, list):
+        if len(node) == n:
+            return [node[i] for i in keep]
+        return [_thin(v, n, keep) for v in node]
+    return node
 
 
 def _floats(a) -> list:
@@ -99,7 +126,7 @@ def html_data(analysis, model) -> dict:
                  else float(largest[away].max(initial=0.0)))
     force_ref = force_ref if np.isfinite(force_ref) else 0.0        # no arrows then
     shaking = np.asarray(sw.shaking.f, float) if sw.shaking is not None else None
-    return {
+    data = {
         "title": model.name,
         "coord": model.coord, "unit": model.coord_unit,
         "angles": [float(deg(a)) for a in np.asarray(sw.angles, float)],
@@ -132,3 +159,11 @@ def html_data(analysis, model) -> dict:
             "label": "shaking force on the frame |F|",
             "values": _floats(d.value(shaking, "force")), "text": _texts(shaking, "force", d)},
     }
+    if n <= MAX_ANGLES:
+        return data
+    peaks = [np.asarray(j.f, float) for j in sw.joints] + [np.asarray(sw.torque, float),
+                                                           -np.asarray(sw.torque, float)]
+    if shaking is not None and len(shaking) == n:
+        peaks.append(shaking)
+    refs = [int(np.argmin(np.abs(np.asarray(sw.angles, float) - a))) for a in sw.ref_angles]
+    return _thin(data, n, kept_angles(n, peaks, refs))

@@ -170,3 +170,27 @@ def test_any_description_is_harmless_html(text):
     for href in re.findall(r"href=\"([^\"]*)\"", out):
         assert not re.match(r"\s*(javascript|vbscript|data):", href, re.I), href
     assert " on" not in re.sub(r">[^<]*<", "><", out)     # no event attribute in a tag
+
+
+@pytest.mark.slow                 # 3600 angles: about 1.5 s
+def test_a_fine_sweep_is_thinned_keeping_its_peaks(tmp_path):
+    """A 0.1-degree sweep (3600 angles) makes a page under 1 MB that still holds the peak
+    bearing load's angle, with the report's value there."""
+    from mechreport.report.html_data import MAX_ANGLES, html_data
+    from mechreport.report.html_page import report_html
+    from mechreport.report.model import build_model
+    from mechreport.report.report_doc import report_document
+    text = (ROOT / "specs" / "four_bar.yaml").read_text(encoding="utf-8")
+    assert "step: 1}" in text
+    spec = tmp_path / "fine.yaml"
+    spec.write_text(text.replace("step: 1}", "step: 0.1}"), encoding="utf-8")
+    a = mechreport.analyse(spec)
+    m = build_model(a, "fine.yaml")
+    data = html_data(a, m)
+    assert a.kinematics.n == 3600 and len(data["angles"]) <= MAX_ANGLES + 20
+    big = m.summary["largest_bearing_load"]
+    k = data["angles"].index(big["angle_deg"])
+    joint = next(j for j in data["joints"] if j["name"] == big["joint"])
+    assert joint["text"]["f"][k] == m.display.num(big["value"], "force")
+    assert all(len(j["at"]) == len(data["angles"]) for j in data["joints"])
+    assert len(report_html(report_document(m), data).encode()) <= 1_000_000
