@@ -92,7 +92,8 @@ def live_section(data: dict) -> str:
             f"<input id=\"angle\" type=\"range\" min=\"0\" max=\"{max(n - 1, 0)}\" value=\"0\" "
             f"step=\"1\" aria-label=\"{esc(data['coord'])}\"> "
             "<output id=\"angle-out\" for=\"angle\"></output></div>\n"
-            "<table id=\"values\"><thead><tr><th>at this angle</th><th class=\"num\">"
+            f"<table id=\"values\"><thead><tr><th>at this {esc(data['coord'])}</th>"
+            "<th class=\"num\">"
             "value</th><th class=\"num\">x</th><th class=\"num\">y</th></tr></thead>"
             "<tbody></tbody></table>\n</div>\n</div>\n"
             "<div id=\"charts\"></div>\n</section>\n")
