@@ -50,7 +50,7 @@ def _cmd_build(ns: argparse.Namespace) -> int:
 def _cmd_diff(ns: argparse.Namespace) -> int:
     from pathlib import Path
     from .diff import diff_command
-    return diff_command(Path(ns.old), Path(ns.new), ns.rtol)
+    return diff_command(Path(ns.old), Path(ns.new), ns.rtol, ns.html)
 
 
 def _cmd_study(ns: argparse.Namespace) -> int:
@@ -373,6 +373,9 @@ def _main(argv: list[str] | None) -> int:
     p.add_argument("new", metavar="NEW_OUT")
     p.add_argument("--rtol", type=_number_above_0, default=1e-6,
                    help="relative tolerance (default 1e-6: what every printed value promises)")
+    p.add_argument("--html", action="store_true",
+                   help="print the table as an HTML page of its own (no script, works "
+                   "offline) instead of Markdown: mechreport diff A B --html > diff.html")
     p.set_defaults(func=_cmd_diff)
 
     _add_study_parser(sub)

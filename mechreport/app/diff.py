@@ -481,12 +481,39 @@ def markdown(changes: list[Change], old: Path, new: Path, rtol: float, n_specs: 
     return "\n".join(lines) + "\n"
 
 
-def diff_command(old: Path, new: Path, rtol: float) -> int:
+def html(changes: list[Change], old: Path, new: Path, rtol: float, n_specs: int) -> str:
+    """The same table as a page of its own (``--html``): the document model's HTML writer,
+    its style inline (allowed by its hash), no script; every string escaped."""
+    from ..report.document import Code, Doc, Paragraph, Table
+    from ..report.html_page import table_page
+    doc = Doc("mechreport diff")
+    intro = [Code(str(old)), " → ", Code(str(new)), f" (relative tolerance {rtol:g}, "
+             f"{n_specs} spec(s))"]
+    if not changes:
+        doc.add(Paragraph([*intro, ": nothing changed."]))
+    else:
+        specs = len({c.spec for c in changes})
+        doc.add(Paragraph([*intro, f": {len(changes)} change(s) in {specs} spec(s)."]))
+        doc.add(Table(["spec", "quantity", "old", "new", "change"],
+                      [[c.spec, c.what, _badge(c.old), _badge(c.new), c.change]
+                       for c in changes],
+                      right={2, 3, 4}))
+    return table_page(doc)
+
+
+def _badge(value: str):
+    """A PASS or FAIL as a badge on the page; any other value as it is."""
+    from ..report.document import Verdict
+    return Verdict(value) if value in ("PASS", "FAIL") else value
+
+
+def diff_command(old: Path, new: Path, rtol: float, as_html: bool = False) -> int:
     try:
         a, b = read_build(old), read_build(new)
     except MechreportError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return EXIT_USAGE
     changes = compare(a, b, rtol)
-    sys.stdout.write(markdown(changes, old, new, rtol, len(set(a) | set(b))))
+    write = html if as_html else markdown
+    sys.stdout.write(write(changes, old, new, rtol, len(set(a) | set(b))))
     return EXIT_CHANGED if changes else 0

@@ -1,6 +1,7 @@
 """One spec's report folder from its analysis: the one way a report is written.
 
     folder/report.md, report.pdf, results.csv, summary.json, figures/*.svg
+    folder/report.html, ../.mechreport-html/*       (report.html, default true)
     folder/dynamics.csv, dynamics.parquet           (with dynamics:)
     folder/animation.gif                            (report.animation, unless left out)
     folder/mechanism.dxf                            (report.dxf)
@@ -53,6 +54,9 @@ def write_report_folder(analysis, folder: Path, source: str | Path, sha256: str,
     write_dxf(model, folder)
     stage(3, n, "report (Markdown, PDF, CSV, JSON)")
     write_report(model, folder)
+    if analysis.spec.report.html:
+        from .html_page import write_html_report
+        write_html_report(analysis, model, folder)
     if model.dynamics is not None:
         write_histories(model.dynamics.histories, folder)
     if sheet:

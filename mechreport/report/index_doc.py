@@ -40,6 +40,8 @@ def _links(r: dict) -> list:
     """The report's files, its animation and its sheets, each a link (the PDF index shows only
     the report's PDF)."""
     links = [Link("md", r["report_md"]), Link("pdf", r["report_pdf"])]
+    if r.get("report_html"):
+        links.append(Link("html", r["report_html"]))
     if r.get("animation"):
         links.append(Link("animation", r["animation"]))
     links += [Link(label, path) for label, path in r["sheets"]]

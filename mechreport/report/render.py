@@ -64,10 +64,25 @@ def write_index(rows: list[dict], out: Path, title: str = "mechreport batch") ->
              atomic_write_text(out / "index.json", json.dumps(
                  {"mechreport_version": __version__, "date": when, "specs": records},
                  indent=2, allow_nan=False) + "\n")]
+    for r in rows:                  # the reports written as HTML link their page
+        if r.get("ok") and r.get("stem") and (out / str(r["stem"]) / "report.html").is_file():
+            r.setdefault("report_html", f"{r['stem']}/report.html")
     doc = index_document(rows, title, __version__, when)
     files.append(atomic_write_text(out / "index.md", markdown(doc)))
     files.append(compile_typst(typst(doc), out / "index.pdf", out))
+    files += write_index_html(doc, out)
     return files
+
+
+def write_index_html(doc, out: Path) -> list[Path]:
+    """OUT/index.html (its table sorts and filters) and the folder's scripts, when a report
+    folder of ``out`` has a report.html (none has one: no index.html, an earlier one
+    removed)."""
+    from .html_page import index_html, write_assets
+    if not any(Path(out).glob("*/report.html")):
+        (Path(out) / "index.html").unlink(missing_ok=True)       # no stale page left
+        return []
+    return [atomic_write_text(Path(out) / "index.html", index_html(doc)), *write_assets(out)]
 
 
 def _csv_cell(value) -> str:

@@ -24,6 +24,7 @@ TABLES = {
     "tolerance vary": (schema.TolVary, False, None),
     "optimize": (schema.Optimize, True, None),
     "optimize_bound": (schema.OptimizeBound, True, None),
+    "report": (schema.Report, False, None),
 }
 
 _REGION = re.compile(r"(<!-- key table (\w+(?: \w+)*) -->\n)(.*?)(<!-- end key table -->)", re.S)

@@ -74,7 +74,7 @@ DYN_MOTOR_KEYS = schema.DYNAMICS_MOTOR_KINDS
 FRICTION_REQUIRED = {"R": required_of(schema.RFriction), "T": required_of(schema.TFriction)}
 EXPECT_REQUIRED = required_of(schema.Expectation)
 REPORT_TEXT_KEYS = tuple(k for k in keys_of(schema.Report) if k not in ("units", "animation",
-                                                                      "dxf"))
+                                                                      "dxf", "html"))
 STUDY_REQUIRED = required_of(schema.Study)
 VARY_KEYS, VARY_REQUIRED = keys_of(schema.Vary), required_of(schema.Vary)
 SAMPLES = choices_of(schema.Study, "sample")
@@ -2134,4 +2134,5 @@ def _report(value: Any, ck: _Checker, units: dict[str, str],
     shown = {key: given(("units", key), default) for key, default in shown.items()}
     meta = {key: " ".join(str(given((key,), "")).split()) for key in REPORT_TEXT_KEYS}
     return ReportSettings(units=shown, **meta, animation=given(("animation",), whole_turn),
-                          dxf=given(("dxf",), schema.Report.model_fields["dxf"].default))
+                          dxf=given(("dxf",), schema.Report.model_fields["dxf"].default),
+                          html=given(("html",), schema.Report.model_fields["html"].default))

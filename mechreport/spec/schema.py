@@ -887,6 +887,11 @@ class Report(_Model):
                                                       "mechanism at each reference angle on "
                                                       "its own layer, in the spec's length "
                                                       "unit.")
+    html: bool = Field(True, strict=True, description="report.html beside report.md (and "
+                                                      "index.html beside index.md): the "
+                                                      "report in a browser, offline, with "
+                                                      "an angle slider moving the mechanism "
+                                                      "and its forces.")
 
 
 class Vary(_Model):

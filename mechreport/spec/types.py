@@ -544,6 +544,8 @@ class ReportSettings:
     revision: str = ""
     animation: bool = False
     dxf: bool = False
+    #: report.html (default true); out of the repr, which the loaded-spec reference holds
+    html: bool = field(default=True, repr=False)
 
 
 @dataclass(frozen=True)

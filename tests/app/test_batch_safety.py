@@ -243,10 +243,10 @@ def test_swap_leaves_only_this_runs_files(batch):
     assert not (out / "x" / "figures" / "stale.png").exists()
     assert {p.name for p in (out / "x").iterdir()} == {"figures", "report.md", "report.pdf",
                                                        "results.csv", "summary.json",
-                                                       "animation.gif",
+                                                       "animation.gif", "report.html",
                                                        "FAILED.json"}   # build 3 failed
     assert sorted(p.name for p in out.iterdir() if p.name.startswith(".")) == \
-        [".mechreport.lock"]                                  # no .tmp-* / .old-* left
+        [".mechreport-html", ".mechreport.lock"]   # report.html's script; no .tmp-* / .old-*
 
 
 def test_files_and_folders_follow_the_umask(batch):

@@ -130,3 +130,25 @@ def test_a_worker_that_dies_while_building_a_spec_costs_only_a_retry(tmp_path, m
     assert "a worker process died" in err and "computing them again (try 2 of 3)" in err
     for k in (1, 2):
         assert (tmp_path / "out" / f"s{k}" / "report.pdf").is_file()
+
+
+def test_the_report_and_index_pages_and_their_shared_script(batch):
+    _, out, _ = batch
+    page = (out / "slider_crank" / "report.html").read_text(encoding="utf-8")
+    assert "../.mechreport-html/report.js" in page and "R-RRT slider-crank" in page
+    index = (out / "index.html").read_text(encoding="utf-8")
+    assert 'href="slider_crank/report.html"' in index and "could not be built" in index
+    assert "[html](slider_crank/report.html)" in (out / "index.md").read_text(encoding="utf-8")
+    assert {p.name for p in (out / ".mechreport-html").iterdir()} == {"report.js", "report.css"}
+
+
+def test_report_html_false_writes_no_page(tmp_path):
+    from helpers import tiny_spec
+    spec = tiny_spec(tmp_path / "tiny.yaml")
+    spec.write_text(spec.read_text(encoding="utf-8") + "report: {html: false}\n",
+                    encoding="utf-8")
+    assert build_files([spec], tmp_path / "out", jobs=1) == 0
+    assert (tmp_path / "out" / "tiny" / "report.md").is_file()
+    assert not (tmp_path / "out" / "tiny" / "report.html").exists()
+    assert not (tmp_path / "out" / "index.html").exists()
+    assert not (tmp_path / "out" / ".mechreport-html").exists()

@@ -63,7 +63,7 @@ def test_no_space_left_fails_the_spec_clearly_and_keeps_its_report(tmp_path, mon
     assert "Traceback" not in err and "internal error" not in err and ".tmp-" not in err
     assert _files(out / "tiny") == before                    # left as it was
     assert sorted(p.name for p in out.iterdir() if p.name.startswith(".")) == \
-        [".mechreport.lock"]
+        [".mechreport-html", ".mechreport.lock"]   # report.html's script: no leftover
 
 
 def test_a_failed_write_names_the_file_being_written(tmp_path, monkeypatch):

@@ -198,7 +198,7 @@ def test_index_md_keeps_hostile_names_and_file_names_inert(hostile_build):
     c = cells(row)
     assert len(c) == 9 and c[0].startswith(md_inline(EVIL) + " (")   # name (spec path)
     assert c[-1] == ("[md](ev_il__x__y_/report.md) · [pdf](ev_il__x__y_/report.pdf) · "
-                     "[animation](ev_il__x__y_/animation.gif)")
+                     "[html](ev_il__x__y_/report.html) · [animation](ev_il__x__y_/animation.gif)")
 
 
 def test_index_md_failure_row_escapes_the_file_name(tmp_path):

@@ -161,7 +161,7 @@ def test_every_key_of_format_1_1_is_in_the_schema():
     props, defs = schema["properties"], schema["$defs"]
     assert {"friction", "dynamics", "materials"} <= set(props)
     assert {"section", "material", "members"} <= set(defs["Link"]["properties"])
-    assert {"animation", "dxf"} <= set(defs["Report"]["properties"])
+    assert {"animation", "dxf", "html"} <= set(defs["Report"]["properties"])
     assert {"motor", "flywheel", "start", "until", "output_step"} == set(
         defs["Dynamics"]["properties"])
 
@@ -217,6 +217,7 @@ SHAPE_MISTAKES = [
     ("at: [45]", "at: [45]\nsheet: yes", "sheet", "sheet:"),
     ("at: [45]", "at: [45]\nreport: {animation: yes}", "report.animation", "animation"),
     ("at: [45]", "at: [45]\nreport: {dxf: 1}", "report.dxf", "dxf"),
+    ("at: [45]", "at: [45]\nreport: {html: 'no'}", "report.html", "html"),
     ("links: [crank, rod]", "links: [crank, 5]", "joints.B.links", "links: [crank, 5]"),
     ("points: {C: [0, 0]}", "points: [C]", "links.slider.points", "points: [C]"),
     ("B: [1, 0]}", "B: [1, 0, 0]}", "links.crank.points.B", "[1, 0, 0]"),
