@@ -7,15 +7,17 @@ From them come
 
 - the key tables of the loader (``TOP_KEYS = keys_of(SpecFile)``, ...), so that a key is
   added to the format by one edit here;
-- a second opinion on every file the loader reads (:func:`shape_errors`): the loader maps
-  each pydantic error to ``file:line: key.path: message`` in its own wording;
+- the validation of every file the loader reads (:func:`shape_errors`): the loader maps
+  each pydantic error to ``file:line: key.path: message`` in the house wording (markers
+  :class:`Wording`, :class:`Refusal`; errors of type :data:`WORDED` carry their message);
 - the JSON Schema (:func:`json_schema`, ``mechreport schema``, ``docs/spec.schema.json``)
   with which an editor's YAML language server checks and completes a spec as it is typed;
   the field descriptions below are its hover texts (from docs/spec.md).
 
-Only the shape lives here. What needs more than one value at a time (a joint naming a link
-that exists, points present on both links, mobility, which cycle quantities are defined,
-units converted to SI) stays in the loader's plain Python. Every model forbids unknown keys.
+What one mapping's values say together is checked here too (a load's value or profile, a
+profile's increasing angles, a grid's range count). What needs the mechanism (a joint naming a
+link that exists, points present on both links, mobility, which cycle quantities are
+defined, units converted to SI) is the loader's pass over the validated data. Every model forbids unknown keys.
 Nothing here is built until it is used: the validator is built on the first validation, the
 JSON Schema on request.
 """
@@ -23,6 +25,7 @@ import functools
 import json
 import re
 import typing
+import unicodedata
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal, Optional, Union
 
@@ -40,6 +43,7 @@ from .types import GROUND
 __all__ = ["SpecFile", "LOAD_MODELS", "NUMBER_MAX", "NUMBER_MIN", "MAX_STUDY_VARIANTS",
            "MAX_SEED", "REPORT_TEXT_MAX", "SCHEMA_ID", "keys_of", "required_of", "choices_of",
            "literal_values", "shape_errors", "locate", "Located", "Wording", "Refusal", "ByKey",
+           "ZeroOrPositive",
            "json_schema"]
 
 # Every number in a spec is finite and, unless exactly zero, has a magnitude between
@@ -76,6 +80,12 @@ class Refusal:
     def says(self, kind: str) -> bool:
         """Whether this message is the one for an error of type ``kind``."""
         return not self.kinds or kind in self.kinds
+
+
+@dataclass(frozen=True)
+class ZeroOrPositive:
+    """A number whose 0 means something of its own (a massless link, a point mass): any other
+    value is refused as "must be a positive number". Metadata only."""
 
 
 @dataclass(frozen=True)
@@ -241,6 +251,35 @@ Name = Annotated[str, Field(strict=True, min_length=1), Wording("a name"),
                                  "true/false or null.")]
 Text = Annotated[str, Field(strict=True), Wording("text")]
 
+#: bidirectional controls: embeddings, overrides, isolates and marks (LRE ... RLO, LRI ... PDI,
+#: LRM, RLM, ALM)
+BIDI_CONTROL = re.compile("[\u202a-\u202e\u2066-\u2069\u200e\u200f\u061c]")
+#: the type of the errors whose message is written here, in the house wording (``msg``)
+WORDED = "spec_worded"
+
+
+def bidi_problem(name: str) -> str | None:
+    """Why ``name`` may not be a name (it holds a bidirectional control character, which
+    shows it in a report as other than it is: the "Trojan Source" trick), or None."""
+    bad = BIDI_CONTROL.search(name)
+    if bad is None:
+        return None
+    char = bad.group()
+    return (f"must not hold U+{ord(char):04X} "
+            f"({unicodedata.name(char, 'a bidirectional control')}), a bidirectional control "
+            "character that makes a name display as other than it is; remove it")
+
+
+def _no_bidi_control(name: str) -> str:
+    problem = bidi_problem(name)
+    if problem is not None:
+        raise PydanticCustomError(WORDED, problem)
+    return name
+
+
+#: a name that labels something in the reports (the mechanism's, a load's)
+Label = Annotated[Name, AfterValidator(_no_bidi_control)]
+
 
 def _whole(low: int, high: int) -> Any:
     """A whole number (3, or 3.0: the same number in JSON) from ``low`` to ``high``."""
@@ -250,6 +289,17 @@ def _whole(low: int, high: int) -> Any:
 
 Pair = Annotated[tuple[Number, Number], Wording("a pair [x, y]"),
                  _shared("pair", "[x, y]: two numbers.")]
+
+
+def _not_zero_vector(value: tuple) -> tuple:
+    if value[0] == 0 and value[1] == 0:
+        raise PydanticCustomError(WORDED, "must not be the zero vector")
+    return value
+
+
+#: a direction [dx, dy]: two numbers, not both zero (its length does not matter)
+Direction = Annotated[Pair, AfterValidator(_not_zero_vector),
+                      _JsonExtra((("not", {"const": [0, 0]}),))]
 
 
 # ---------------------------------------------------------------------------------- models
@@ -264,7 +314,8 @@ class Polar(_Model):
     """A point in polar form: ``{r: R, angle: A}``."""
 
     model_config = ConfigDict(title="polar point")
-    r: NonNegative = Field(description="Distance from the frame's origin, in the length unit "
+    r: Annotated[NonNegative, Refusal("must be a distance (not negative), got {value}",
+                                      ("greater_than_equal",))] = Field(description="Distance from the frame's origin, in the length unit "
                                        "(not negative).")
     angle: Number = Field(description="Degrees from the frame's x-axis, counter-clockwise.")
 
@@ -400,12 +451,23 @@ MaterialRef = Annotated[Union[Annotated[Name, Tag("name")], Annotated[Material, 
                                 "ultimate}")]
 
 
+def _names_only(value: Any) -> Any:
+    """A list of link names holds names only (said of the list, as "two link names")."""
+    if isinstance(value, list) and not all(isinstance(x, str) and x for x in value):
+        raise PydanticCustomError("names_only", "must be a list of names")
+    return value
+
+
 class Link(_Model):
     """A moving link: its named points in its own frame and its mass properties."""
 
-    points: dict[str, Point] = Field(
+    points: Annotated[dict[str, Point],
+                      Refusal("must map at least one point name to [x, y], got {value}",
+                              ("dict_type",)),
+                      Refusal("must map at least one point name to [x, y]",
+                              ("too_short",))] = Field(
         min_length=1, description="required, at least one: `NAME: [x, y]` in the link's own frame")
-    mass: NonNegative = Field(
+    mass: Annotated[NonNegative, ZeroOrPositive()] = Field(
         None, description=(
             "kg (or g with `units.mass: g`). Or give `density` and a `shape`: mass = density x "
             "shape volume. `mass: 0` alone (no `density`, `shape`, `com` or `inertia`) is a "
@@ -415,7 +477,7 @@ class Link(_Model):
     com: Point = Field(
         None, description=(
             "centre of mass `[x, y]` in the link frame. Default: the shape's centroid"))
-    inertia: NonNegative = Field(
+    inertia: Annotated[NonNegative, ZeroOrPositive()] = Field(
         None, description=(
             "kg·m² about the centre of mass, axis normal to the plane. Default: from the shape. "
             "`inertia: 0` with a `mass` is a point mass"))
@@ -436,7 +498,9 @@ class Link(_Model):
             " all in Pa (SI whatever `units` says). `endurance` is the fully corrected endurance "
             "limit S_e (surface, size, load, reliability already applied). `yield` and "
             "`endurance` may not exceed `ultimate`"))
-    members: Annotated[list[Annotated[list[Name], Field(min_length=2, max_length=2)]],
+    members: Annotated[list[Annotated[list[Name], BeforeValidator(_names_only),
+                                      Field(min_length=2, max_length=2),
+                                      Wording("a pair of point names [P, Q]")]],
                        Wording("a list of point pairs [[P, Q], ...]")] = Field(
         None, min_length=1, description=(
             "`[[P, Q], ...]`, points of the link: the straight beams it is made of. Default: the "
@@ -454,7 +518,7 @@ class Line(_Model):
                        Wording("a pair [x, y], a point name or {r: R, angle: A}")] = Field(
         description="A point of the guide (its name), or [x, y] in the guide's frame.")
     direction: Annotated[Union[Annotated[Number, Tag("angle")],
-                               Annotated[Pair, Tag("vector")]],
+                               Annotated[Direction, Tag("vector")]],
                          Discriminator(_direction_tag),
                          Wording("a pair [dx, dy] or an angle in degrees")] = Field(
         description="An angle in degrees, or a vector [dx, dy], in the guide's frame.")
@@ -465,7 +529,10 @@ class RJoint(_Model):
 
     model_config = ConfigDict(title="R joint")
     type: Literal["R"] = Field(description="R: revolute (pin).")
-    links: Annotated[list[Name], Wording("two link names [first, second]")] = Field(
+    links: Annotated[list[Name], BeforeValidator(_names_only),
+                     Wording("two link names [first, second]"),
+                     Refusal("must be two link names [first, second], got {value} (a pin "
+                             "joining several links lists them all)", ("too_short",))] = Field(
         min_length=2, description="[first, second]: the reaction reported is the force of the "
                                   "first on the second. Three or more: one pin joining them "
                                   "all (format 1.1).")
@@ -476,7 +543,8 @@ class TJoint(_Model):
 
     model_config = ConfigDict(title="T joint")
     type: Literal["T"] = Field(description="T: prismatic (slider).")
-    links: Annotated[list[Name], Wording("two link names [first, second]")] = Field(
+    links: Annotated[list[Name], BeforeValidator(_names_only),
+                     Wording("two link names [first, second]")] = Field(
         min_length=2, max_length=2, description="[guide, slider]: the second link slides on "
                                                 "the first.")
     point: Name = Field(description="A point of the slider that stays on the guide's line.")
@@ -516,10 +584,22 @@ class Sweep(_Model):
 #: a profile's crank angle, degrees: in [0, 360)
 ProfileAngle = Annotated[float, Field(strict=True, ge=0, lt=360, allow_inf_nan=False),
                          AfterValidator(_magnitude), _NOT_TINY,
-                         Wording("an angle in [0, 360)")]
+                         Wording("an angle in [0, 360)"),
+                         Refusal("angles must lie in [0, 360), got {value}",
+                                 ("greater_than_equal", "less_than"))]
+
+
+def _increasing(profile: list) -> list:
+    """A profile's angles strictly increase."""
+    if any(b[0] <= a[0] for a, b in zip(profile, profile[1:])):
+        raise PydanticCustomError(WORDED, "angles must be strictly increasing")
+    return profile
+
+
 Profile = Annotated[list[Annotated[tuple[ProfileAngle, Number],
                                    Wording("a pair [crank_angle_deg, magnitude]")]],
-                    Field(min_length=1), Wording("a list of [crank_angle_deg, magnitude] pairs")]
+                    Field(min_length=1), AfterValidator(_increasing),
+                    Wording("a list of [crank_angle_deg, magnitude] pairs")]
 End = Annotated[tuple[Name, Name], Wording("an end [link, point]"),
                 _shared("end", "[link, point]: a point of a link (or of ground).")]
 Ends = Annotated[tuple[End, End], Wording("two ends [[link, point], [link, point]]")]
@@ -530,26 +610,48 @@ LOAD_NAME = ("Labels the load in the torque breakdown, the plots and summary.jso
 class ForceLoad(_Model):
     """A force at a point of a moving link."""
 
-    model_config = ConfigDict(title="force")
+    model_config = ConfigDict(title="force", json_schema_extra={
+        "oneOf": [{"required": ["value"]}, {"required": ["profile"]}],
+        "dependentRequired": {"profile": ["direction"]},
+        "dependentSchemas": {"value": {"not": {"required": ["direction"]}}}})
     type: Literal["force"] = Field(description="A force at a point of a link.")
     link: Name = Field(description="The moving link it acts on.")
     point: Name = Field(description="The point of the link where it acts.")
     value: Pair = Field(None, description="[Fx, Fy] in N, global.")
-    direction: Pair = Field(None, description="[dx, dy], with `profile`.")
+    direction: Direction = Field(None, description="[dx, dy], with `profile`.")
     profile: Profile = Field(
         None, description="[[crank_angle_deg, magnitude_N], ...], angles strictly increasing "
                           "within [0, 360).")
     oppose: Literal["velocity"] = Field(
         None, description="velocity: the force opposes the motion of its point.")
-    name: Name = Field(None, description=LOAD_NAME)
+    name: Label = Field(None, description=LOAD_NAME)
     reacts_on: Literal[GROUND] = Field(
         None, description="ground: the load's reaction acts on the frame.")
+
+    @model_validator(mode="after")
+    def _value_or_profile(self):
+        """A force is a ``value`` [Fx, Fy], or a ``profile`` of magnitudes along a
+        ``direction``."""
+        _value_or_profile(self, "'value', or 'direction' with 'profile'")
+        if self.value is not None and self.direction is not None:
+            raise PydanticCustomError(WORDED, "goes with 'profile', not with 'value'",
+                                      {"key": "direction"})
+        if self.profile is not None and self.direction is None:
+            raise PydanticCustomError(WORDED, "a force 'profile' needs a 'direction' [dx, dy]")
+        return self
+
+
+def _value_or_profile(load: "_Model", what: str) -> None:
+    """A load gives exactly one of its ``value`` and its ``profile``."""
+    if (load.value is None) == (load.profile is None):
+        raise PydanticCustomError(WORDED, "give exactly one of {what}", {"what": what})
 
 
 class MomentLoad(_Model):
     """A moment on a moving link."""
 
-    model_config = ConfigDict(title="moment")
+    model_config = ConfigDict(title="moment", json_schema_extra={
+        "oneOf": [{"required": ["value"]}, {"required": ["profile"]}]})
     type: Literal["moment"] = Field(description="A moment on a link.")
     link: Name = Field(description="The moving link it acts on.")
     value: Number = Field(None, description="M in N·m, counter-clockwise positive.")
@@ -558,9 +660,15 @@ class MomentLoad(_Model):
                           "[0, 360).")
     oppose: Literal["rotation"] = Field(
         None, description="rotation: M = -sign(omega) |M0|.")
-    name: Name = Field(None, description=LOAD_NAME)
+    name: Label = Field(None, description=LOAD_NAME)
     reacts_on: Literal[GROUND] = Field(
         None, description="ground: the load's reaction acts on the frame.")
+
+    @model_validator(mode="after")
+    def _value_or_profile(self):
+        """A moment is a ``value`` or a ``profile``."""
+        _value_or_profile(self, "'value' or 'profile'")
+        return self
 
 
 class SpringLoad(_Model):
@@ -571,7 +679,7 @@ class SpringLoad(_Model):
     between: Ends = Field(description="[[link, point], [link, point]]; either link may be "
                                       "ground.")
     stiffness: Positive = Field(description="N/m.")
-    name: Name = Field(None, description=LOAD_NAME)
+    name: Label = Field(None, description=LOAD_NAME)
     free_length: NonNegative = Field(description="In the length unit.")
 
 
@@ -583,7 +691,7 @@ class DamperLoad(_Model):
     between: Ends = Field(description="[[link, point], [link, point]]; either link may be "
                                       "ground.")
     damping: Positive = Field(description="N·s/m.")
-    name: Name = Field(None, description=LOAD_NAME)
+    name: Label = Field(None, description=LOAD_NAME)
 
 
 class TorsionSpringLoad(_Model):
@@ -594,7 +702,7 @@ class TorsionSpringLoad(_Model):
     joint: Name = Field(description="The R joint it sits at.")
     stiffness: Positive = Field(description="N·m/rad.")
     free_angle: Number = Field(description="Degrees.")
-    name: Name = Field(None, description=LOAD_NAME)
+    name: Label = Field(None, description=LOAD_NAME)
 
 
 #: the load models by their ``type``, in the spec's order
@@ -734,7 +842,10 @@ DynamicsMotor = Annotated[Union[Annotated[TorqueMotor, Tag("torque")],
                                 Annotated[CurveMotor, Tag("curve")],
                                 Annotated[LinearCurveMotor, Tag("linear")]],
                           Discriminator(_motor_tag),
-                          Wording("exactly one of {torque}, {curve} or {linear}")]
+                          Wording("exactly one of {torque}, {curve} or {linear}"),
+                          Refusal("give exactly one of torque (N·m), curve ([[rpm, N·m], ...])"
+                                  " or linear ({{stall_torque, no_load_rpm}}), got {value}",
+                                  ("union_tag_not_found",))]
 
 
 class DynamicsStart(_Model):
@@ -900,7 +1011,7 @@ class SpecFile(_Model):
         description=(
             "format version: `1`, or `1.1` (the same format; a file using the version 1.1 keys "
             "may say so)"))
-    name: Name = Field(description="the mechanism's name, used in report titles")
+    name: Label = Field(description="the mechanism's name, used in report titles")
     description: Annotated[Optional[Text],
                            Refusal("must be text (Markdown), got {value}")] = Field(None, description=(
             "Markdown text shown at the top of the report"))
@@ -911,22 +1022,39 @@ class SpecFile(_Model):
         (0.0, -9.80665), description=(
             "`[gx, gy]` in m/s², default `[0, -9.80665]`; acts on every moving link at its centre"
             " of mass"))
-    ground: Annotated[Optional[dict[str, Point]], DocRequired("no*")] = Field(
+    ground: Annotated[Optional[dict[str, Point]], DocRequired("no*"),
+                      Wording("a mapping of point names to [x, y]")] = Field(
         None, description=(
             "named points of the frame, global coordinates (*needed for every joint with "
             "`ground`)"))
-    links: dict[str, Link] = Field(min_length=1, description="the moving links (section 4)")
-    joints: dict[str, Joint] = Field(min_length=1, description="the joints (section 5)")
+    links: Annotated[dict[str, Link],
+                     Refusal("must be a mapping of link names to link definitions, got "
+                             "{value}", ("dict_type",)),
+                     Refusal("must be a mapping of link names to link definitions",
+                             ("too_short",))] = Field(
+        min_length=1, description="the moving links (section 4)")
+    joints: Annotated[dict[str, Joint],
+                      Refusal("must be a mapping of joint names to joint definitions, got "
+                              "{value}", ("dict_type",)),
+                      Refusal("must be a mapping of joint names to joint definitions",
+                              ("too_short",))] = Field(
+        min_length=1, description="the joints (section 5)")
     driver: Driver = Field(description="the driving crank and its speed (section 6)")
     sweep: Optional[Sweep] = Field(None, description=(
             "crank angles to analyse, default 0 to 360 by 1 degree"))
     at: Annotated[list[Number], Wording("a list of crank angles in degrees")] = Field(
         None, min_length=1, description="reference angles, default `[sweep.start]`")
-    assembly: Optional[dict[str, Point]] = Field(
+    assembly: Annotated[Optional[dict[str, Point]],
+                        Refusal("must map point names to rough [x, y], got {value}",
+                                ("dict_type",))] = Field(
         None, description="hints that choose the assembly branch (section 7)")
-    loads: Optional[Annotated[list[Load], Wording("a list of loads")]] = Field(
+    loads: Optional[Annotated[list[Load], Wording("a list of loads"),
+                              Refusal("must be a list of loads ({{type: force|moment, link, "
+                                      "...}}), got {value}", ("list_type",))]] = Field(
         None, description="external forces and moments (section 8)")
-    materials: dict[str, Material] = Field(
+    materials: Annotated[dict[str, Material],
+                         Refusal("must map material names to {{E, yield, endurance, "
+                                 "ultimate}} (Pa)", ("dict_type", "too_short"))] = Field(
         None, min_length=1, description=(
             "named materials for the links' `material` (section 19, format 1.1)"))
     friction: dict[str, Friction] = Field(
@@ -1018,6 +1146,11 @@ class Located:
     def marker(self, kind: type) -> Any:
         """The first metadata item of type ``kind`` (a Wording, a Discriminator ...)."""
         return next((m for m in self.metadata if isinstance(m, kind)), None)
+
+    def refusal(self, kind: str) -> "Refusal | None":
+        """The first :class:`Refusal` here whose message is the one for an error of type
+        ``kind``."""
+        return next((m for m in self.metadata if isinstance(m, Refusal) and m.says(kind)), None)
 
     def picker(self) -> Any:
         """The discriminator of the tagged union at this place (a :class:`ByKey`, a
