@@ -60,6 +60,17 @@ def _section_text(sec, d: Display) -> str:
     return SECTION_TEXT[sec.kind].format(**shown)
 
 
+def _material_text(mat, d: Display) -> str:
+    """A material's E and strengths: E in GPa and the strengths in MPa, or all in the
+    report's stress unit when it is another (psi, ksi)."""
+    if d.stress == "MPa":
+        return (f"E = {fmt(mat.E / 1e9)} GPa, yield {fmt(mat.yield_ / 1e6)} MPa, "
+                f"ultimate {fmt(mat.ultimate / 1e6)} MPa, endurance "
+                f"{fmt(mat.endurance / 1e6)} MPa")
+    return (f"E = {d.q(mat.E, 'stress')}, yield {d.q(mat.yield_, 'stress')}, ultimate "
+            f"{d.q(mat.ultimate, 'stress')}, endurance {d.q(mat.endurance, 'stress')}")
+
+
 def strength_section(analysis, d: Display, axis: str = "deg") -> StrengthSection | None:
     """The Strength section of ``analysis`` (None when no link has a section)."""
     st = analysis.strength
@@ -73,9 +84,7 @@ def strength_section(analysis, d: Display, axis: str = "deg") -> StrengthSection
         mat = link.strength.material
         name = f"{mat.name}: " if mat.name else ""
         links.append(f"{link.name}: {_section_text(link.strength.section, d)}; "
-                     f"{name}E = {fmt(mat.E / 1e9)} GPa, yield {fmt(mat.yield_ / 1e6)} MPa, "
-                     f"ultimate {fmt(mat.ultimate / 1e6)} MPa, endurance "
-                     f"{fmt(mat.endurance / 1e6)} MPa; members "
+                     f"{name}{_material_text(mat, d)}; members "
                      + ", ".join(f"{p}–{q}" for p, q in link.strength.members))
     rows = []
     for m in st.members.values():

@@ -497,7 +497,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     at = _angle_list(top.get("at"), ("at",), ck) if "at" in top else (sweep.start,)
     assembly = _assembly(top.get("assembly"), ck, links, length_scale, units["length"])
     loads = _loads(top.get("loads"), ck, {l.name: l for l in links}, joints, ground,
-                   length_scale, pins)
+                   length_scale, pins, units)
     if driver is not None and driver.kind == "T":
         if "sweep" not in top:
             ck.error((), "a T driver needs a 'sweep': a plain range of strokes in the length "
@@ -509,11 +509,12 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                                                           "angle: it needs an R driver")
     friction = (_friction(top["friction"], ck, joints, pins, length_scale)
                 if "friction" in top else ())
-    dynamics = (_dynamics(top["dynamics"], ck, driver, sweep)
+    dynamics = (_dynamics(top["dynamics"], ck, driver, sweep, units)
                 if "dynamics" in top else None)
     expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src, driver=driver,
                      pins=pins)
-    design = _design(top.get("design"), ck, joints, pins) if "design" in top else Design()
+    design = (_design(top.get("design"), ck, joints, pins, units) if "design" in top
+              else Design())
     report = (_report(top.get("report"), ck, units, sweep.whole_turn) if "report" in top
               else ReportSettings(animation=sweep.whole_turn))
     study = _study(top["study"], ck, top) if "study" in top else None
@@ -537,7 +538,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     spec = Spec(file=ck.src.filename, name=name, description=description.strip(),
                 gravity=gravity, ground=ground, links=tuple(links), joints=tuple(joints),
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
-                expect=tuple(expect), sheet=sheet, units=units, design=design,
+                expect=tuple(expect), sheet=sheet, units=_written_units(units), design=design,
                 report=report, study=study, pins=tuple(pins), friction=friction,
                 dynamics=dynamics)
     _cycle_requests(spec, ck)
@@ -598,8 +599,8 @@ def _friction(value: Any, ck: _Checker, joints: list[Joint] | None, pins: list[P
     return tuple(sorted(out.values(), key=lambda f: order.index(f.joint)))
 
 
-def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep
-              ) -> Dynamics | None:
+def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep,
+              units: dict[str, str]) -> Dynamics | None:
     """``dynamics:`` (docs/spec.md, "Machine dynamics"): the motor, flywheel, initial state,
     end and output step; the driver must be a crank (an R joint with ground)."""
     path = ("dynamics",)
@@ -617,29 +618,35 @@ def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep
                        "positive sense); write the driver's speed positive and the mechanism "
                        "mirrored, or leave dynamics out")
         ok = False
-    motor = _dynamics_motor(body["motor"], path + ("motor",), ck)
+    motor = _dynamics_motor(body["motor"], path + ("motor",), ck, _si(units, "moment"))
     if not ok or motor is None or ck.refused(path):
         return None
     start = body.get("start") or {}
     until = body.get("until")
-    return Dynamics(motor, float(body.get("flywheel", 0.0)),
+    flywheel = ck.si(body.get("flywheel", 0.0), path + ("flywheel",),
+                     scale=_si(units, "inertia"), unit=units["inertia"])
+    if flywheel is None:
+        return None
+    return Dynamics(motor, flywheel,
                     float(start.get("angle", sweep.start)), float(start.get("rpm", 0.0)),
                     None if until in (None, "steady") else float(until),
                     None if body.get("output_step") is None else float(body["output_step"]))
 
 
-def _dynamics_motor(value: Any, path: tuple, ck: _Checker) -> MotorCurve | None:
-    """The motor of ``dynamics:``: exactly one of ``torque``, ``curve``, ``linear``."""
+def _dynamics_motor(value: Any, path: tuple, ck: _Checker,
+                    ms: float = 1.0) -> MotorCurve | None:
+    """The motor of ``dynamics:``: exactly one of ``torque``, ``curve``, ``linear`` (torques
+    in the spec's moment unit, ``ms`` N·m each)."""
     if ck.refused(path):
         return None             # the models say what is wrong
     body = value
     kind = next(k for k in DYN_MOTOR_KEYS if k in body)
     if kind == "torque":
-        return MotorCurve(constant=float(body["torque"]))
+        return MotorCurve(constant=float(body["torque"]) * ms)
     if kind == "linear":
-        return MotorCurve(stall_torque=float(body["linear"]["stall_torque"]),
+        return MotorCurve(stall_torque=float(body["linear"]["stall_torque"]) * ms,
                           no_load_rpm=float(body["linear"]["no_load_rpm"]))
-    points = [(float(a), float(b)) for a, b in body["curve"]]
+    points = [(float(a), float(b) * ms) for a, b in body["curve"]]
     for i in range(1, len(points)):
         if not points[i][0] > points[i - 1][0]:
             ck.error(path + ("curve", i, 0), f"the speeds must increase: {points[i][0]:g} rpm "
@@ -648,17 +655,24 @@ def _dynamics_motor(value: Any, path: tuple, ck: _Checker) -> MotorCurve | None:
     return MotorCurve(curve=tuple(points))
 
 
-def _design(value: Any, ck: _Checker, joints: list[Joint] | None, pins=()) -> Design:
-    """The design review's inputs, SI as written (their types and ranges are the models';
-    a part they refuse is left out); a bearing must name a joint."""
+def _design(value: Any, ck: _Checker, joints: list[Joint] | None, pins=(),
+            units: dict[str, str] | None = None) -> Design:
+    """The design review's inputs in SI (forces and torques written in the spec's units; their
+    types and ranges are the models'; a part they refuse is left out); a bearing must name a
+    joint."""
     path = ("design",)
     body = value if isinstance(value, dict) else {}
+    units = units or {key: f.default for key, f in schema.Units.model_fields.items()}
+
+    def si(model, key: str, x: Any) -> float:
+        kind = schema.unit_kind(model, key)
+        return float(x) * (_si(units, kind) if kind else 1.0)
 
     def numbers(key: str, model) -> dict[str, float]:
         raw = body.get(key)
         if not isinstance(raw, dict) or ck.refused(path + (key,)):
             return {}
-        return {k: float(raw[k]) for k in keys_of(model) if k in raw}
+        return {k: si(model, k, raw[k]) for k in keys_of(model) if k in raw}
 
     cs = body.get("speed_fluctuation")
     cs = None if cs is None or ck.refused(path + ("speed_fluctuation",)) else float(cs)
@@ -673,7 +687,7 @@ def _design(value: Any, ck: _Checker, joints: list[Joint] | None, pins=()) -> De
                          or f"no joint named '{jname}' (joints: {', '.join(sorted(names))})")
         elif not ck.refused(where):
             life = item.get("life_h")
-            bearings[jname] = BearingSpec(float(item["rating"]),
+            bearings[jname] = BearingSpec(si(schema.Bearing, "rating", item["rating"]),
                                           None if life is None else float(life))
     return Design(cs, numbers("motor", schema.Motor), bearings, numbers("limits", schema.Limits))
 
@@ -991,13 +1005,30 @@ def _study_requests(spec: Spec, ck: _Checker) -> None:
 
 
 def _units(value: Any, ck: _Checker) -> tuple[float, float, dict[str, str]]:
-    """The factors of the spec's length and mass units to m and kg, and their names (the
-    model's defaults where absent or refused)."""
+    """The factors of the spec's length and mass units to m and kg, and the names of all its
+    units (length, mass, force, moment, inertia: the model's defaults where absent or
+    refused)."""
     given = value if isinstance(value, dict) else {}
     names = {key: (given[key] if key in given and not ck.refused(("units", key))
                    else field.default)
              for key, field in schema.Units.model_fields.items()}
     return LENGTH_UNITS[names["length"]], MASS_UNITS[names["mass"]], names
+
+
+def _si(units: dict[str, str], kind: str) -> float:
+    """The size in SI of the spec's unit of ``kind`` (force, moment, inertia, ...)."""
+    return UNIT_TABLES[kind][units[kind]]
+
+
+#: the units every spec has in Spec.units; the others only where they are not SI
+_ALWAYS_SHOWN = ("length", "mass")
+
+
+def _written_units(units: dict[str, str]) -> dict[str, str]:
+    """``Spec.units``: the length and mass units, and the force, moment and inertia units
+    where the spec writes them in other than SI."""
+    return {key: name for key, name in units.items()
+            if key in _ALWAYS_SHOWN or name != schema.Units.model_fields[key].default}
 
 
 def _ground(value: Any, ck: _Checker, s: float, unit: str) -> dict[str, Vec]:
@@ -1064,9 +1095,12 @@ def _link(lname: str, number: int, body: dict, path: tuple, ck: _Checker,
     density = float(body["density"]) if "density" in body else None
     com = ck.to_point(body["com"], path + ("com",), ls, lu) if "com" in body else None
     point_mass = "inertia" in body and body["inertia"] == 0
-    inertia = (0.0 if point_mass else float(body["inertia"]) if "inertia" in body else None)
+    inertia = (0.0 if point_mass else
+               ck.si(body["inertia"], path + ("inertia",), scale=_si(units, "inertia"),
+                     unit=units["inertia"]) if "inertia" in body else None)
     bad = any(k in body and v is None for k, v in
-              (("shape", shape), ("mass", mass), ("com", com))) or not points_ok
+              (("shape", shape), ("mass", mass), ("com", com), ("inertia", inertia))) \
+        or not points_ok
     if bad:
         return None
     if massless:            # a massless link (a two-force member when it carries no load)
@@ -1380,9 +1414,12 @@ def _assembly(value: Any, ck: _Checker, links: list[Link], ls: float,
 
 
 def _loads(value: Any, ck: _Checker, links: dict[str, Link], joints: list[Joint] | None = None,
-           ground: dict[str, Vec] | None = None, ls: float = 1.0, pins=()) -> list[Load]:
-    """The loads, SI (their shape is the models'); here: the links, points and joints they
-    name exist, and their names differ."""
+           ground: dict[str, Vec] | None = None, ls: float = 1.0, pins=(),
+           units: dict[str, str] | None = None) -> list[Load]:
+    """The loads, SI (their shape is the models'; forces in ``units.force``, moments in
+    ``units.moment``); here: the links, points and joints they name exist, and their names
+    differ."""
+    units = units or {key: f.default for key, f in schema.Units.model_fields.items()}
     if not isinstance(value, list):
         return []
     loads = []
@@ -1394,9 +1431,9 @@ def _loads(value: Any, ck: _Checker, links: dict[str, Link], joints: list[Joint]
         label = _load_label(item, i, path, ck, names)
         kind = item["type"]
         if kind in ("spring", "damper", "torsion_spring"):
-            load = _element(kind, item, i, path, ck, links, joints, ground, ls, pins)
+            load = _element(kind, item, i, path, ck, links, joints, ground, ls, pins, units)
         else:
-            load = _load(kind, item, i, path, ck, links)
+            load = _load(kind, item, i, path, ck, links, units)
         if label is not None:
             names[label] = i
         if load is not None and label is not None and not ck.refused(path):
@@ -1419,7 +1456,7 @@ def _load_label(item: dict, i: int, path: tuple, ck: _Checker,
 
 
 def _load(kind: str, item: dict, i: int, path: tuple, ck: _Checker,
-          links: dict[str, Link]) -> Load | None:
+          links: dict[str, Link], units: dict[str, str]) -> Load | None:
     """A force or a moment the models validated, on a moving link (at one of its points)."""
     if ck.refused(path + ("link",)):
         return None
@@ -1439,21 +1476,38 @@ def _load(kind: str, item: dict, i: int, path: tuple, ck: _Checker,
             return None
     if ck.refused(path):
         return None
+    unit = units[kind]                  # a force's, or a moment's
+    scale = _si(units, kind)
     value_ = item.get("value")
     if kind == "force" and value_ is not None:
-        value_ = (float(value_[0]), float(value_[1]))
+        value_ = tuple(ck.si(x, path + ("value", k), scale=scale, unit=unit)
+                       for k, x in enumerate(value_))
     elif value_ is not None:
-        value_ = float(value_)
+        value_ = ck.si(value_, path + ("value",), scale=scale, unit=unit)
     direction = _direction(item["direction"]) if "direction" in item else None
-    profile = (tuple((float(a), float(b)) for a, b in item["profile"]) if "profile" in item
+    profile = (tuple((float(a), ck.si(b, path + ("profile", k, 1), scale=scale, unit=unit))
+                     for k, (a, b) in enumerate(item["profile"])) if "profile" in item
                else None)
+    values = ([] if value_ is None else list(value_) if isinstance(value_, tuple) else [value_])
+    values += [b for _, b in profile or ()]
+    if not values or any(x is None for x in values):
+        return None             # (reported: out of range in SI)
     return Load(kind, lname, i, point, value_, direction, profile, item.get("oppose"),
                 item.get("name"), item.get("reacts_on"))
 
 
+def _rate_unit(units: dict[str, str], ls: float) -> tuple[float, str]:
+    """The size in SI (N/m) of the unit a spring's or damper's rate is written in, and its
+    name: ``units.force`` per length unit (lbf/in, kip/in) when the spec's forces are not in
+    newtons, else N/m whatever the length unit (as in format 1.1)."""
+    if units["force"] == "N":
+        return 1.0, "N/m"
+    return _si(units, "force") / ls, f"{units['force']}/{units['length']}"
+
+
 def _element(kind: str, item: dict, i: int, path: tuple, ck: _Checker, links: dict[str, Link],
              joints: list[Joint] | None, ground: dict[str, Vec] | None, ls: float,
-             pins=()) -> Load | None:
+             pins=(), units: dict[str, str] | None = None) -> Load | None:
     """A spring, damper or torsion spring the models validated: machine elements whose force
     follows from the kinematics (docs/spec.md, section 8); the joint or the points they join
     exist."""
@@ -1474,8 +1528,12 @@ def _element(kind: str, item: dict, i: int, path: tuple, ck: _Checker, links: di
         if joint is None or ck.refused(path):
             return None
         moving = joint.links[1] if joint.links[1] != GROUND else joint.links[0]
-        return Load(kind, moving, i, name=item.get("name"), joint=jname,
-                    stiffness=float(item["stiffness"]), free_angle=float(item["free_angle"]))
+        k = ck.si(item["stiffness"], path + ("stiffness",), scale=_si(units, "moment"),
+                  unit=units["moment"] + "/rad")
+        if k is None:
+            return None
+        return Load(kind, moving, i, name=item.get("name"), joint=jname, stiffness=k,
+                    free_angle=float(item["free_angle"]))
     where = path + ("between",)
     if ck.refused(where):
         return None
@@ -1499,14 +1557,18 @@ def _element(kind: str, item: dict, i: int, path: tuple, ck: _Checker, links: di
     if ck.refused(path):
         return None
     moving = pairs[0][0] if pairs[0][0] != GROUND else pairs[1][0]
+    rate, per = _rate_unit(units, ls)
     if kind == "spring":
         free = ck.si(item["free_length"], path + ("free_length",), scale=ls)
-        if free is None:
+        k = ck.si(item["stiffness"], path + ("stiffness",), scale=rate, unit=per)
+        if free is None or k is None:
             return None
         return Load(kind, moving, i, name=item.get("name"), between=tuple(pairs),
-                    stiffness=float(item["stiffness"]), free_length=free)
-    return Load(kind, moving, i, name=item.get("name"), between=tuple(pairs),
-                damping=float(item["damping"]))
+                    stiffness=k, free_length=free)
+    c = ck.si(item["damping"], path + ("damping",), scale=rate, unit=per + "*s")
+    if c is None:
+        return None
+    return Load(kind, moving, i, name=item.get("name"), between=tuple(pairs), damping=c)
 
 
 def _expect(value: Any, ck: _Checker, links: list[Link], joints: list[Joint] | None,
@@ -1721,8 +1783,8 @@ def _structure(ck: _Checker, links: list[Link], joints: list[Joint]) -> None:
 
 def _report(value: Any, ck: _Checker, units: dict[str, str],
             whole_turn: bool) -> ReportSettings:
-    """The ``report`` section: display units (lengths default to the spec's ``units.length``,
-    the rest to SI), first-page metadata, ``animation`` (default: ``whole_turn``, the sweep is
+    """The ``report`` section: display units (lengths, forces and moments default to the spec's
+    own units, masses to kg, stresses to MPa: ``stress`` is there only when given), first-page metadata, ``animation`` (default: ``whole_turn``, the sweep is
     one whole turn of a crank) and ``dxf`` (docs/spec.md, section 16). Types and lengths are
     the models'; a key they refuse takes its default."""
     path = ("report",)
@@ -1735,8 +1797,11 @@ def _report(value: Any, ck: _Checker, units: dict[str, str],
             node = node.get(part) if isinstance(node, dict) else None
         return default if node is None or ck.refused(where) else node
 
-    shown = {"length": units.get("length", "m"), "force": "N", "moment": "N*m", "mass": "kg"}
+    shown = {"length": units.get("length", "m"), "force": units.get("force", "N"),
+             "moment": units.get("moment", "N*m"), "mass": "kg"}
     shown = {key: given(("units", key), default) for key, default in shown.items()}
+    shown.update({key: given(("units", key), None) for key in ("stress",)
+                  if given(("units", key), None) is not None})
     meta = {key: " ".join(str(given((key,), "")).split()) for key in REPORT_TEXT_KEYS}
     return ReportSettings(units=shown, **meta, animation=given(("animation",), whole_turn),
                           dxf=given(("dxf",), schema.Report.model_fields["dxf"].default))

@@ -43,7 +43,7 @@ from .types import GROUND
 __all__ = ["SpecFile", "LOAD_MODELS", "NUMBER_MAX", "NUMBER_MIN", "MAX_STUDY_VARIANTS",
            "MAX_SEED", "REPORT_TEXT_MAX", "SCHEMA_ID", "keys_of", "required_of", "choices_of",
            "literal_values", "shape_errors", "locate", "Located", "Wording", "Refusal", "ByKey",
-           "ZeroOrPositive",
+           "ZeroOrPositive", "InUnit", "unit_kind",
            "json_schema"]
 
 # Every number in a spec is finite and, unless exactly zero, has a magnitude between
@@ -80,6 +80,21 @@ class Refusal:
     def says(self, kind: str) -> bool:
         """Whether this message is the one for an error of type ``kind``."""
         return not self.kinds or kind in self.kinds
+
+
+@dataclass(frozen=True)
+class InUnit:
+    """The number is written in the spec's unit of ``kind`` (``units.force``,
+    ``units.moment``): the loader converts it to SI. Metadata only."""
+
+    kind: str
+
+
+def unit_kind(model: type[BaseModel], key: str) -> str | None:
+    """The kind of the spec's unit a key of ``model`` is written in (:class:`InUnit`), None
+    when it is always SI (or the loader converts it itself)."""
+    field = next(f for n, f in model.model_fields.items() if (f.alias or n) == key)
+    return next((m.kind for m in field.metadata if isinstance(m, InUnit)), None)
 
 
 @dataclass(frozen=True)
@@ -328,12 +343,24 @@ Point = Annotated[Union[Annotated[Pair, Tag("pair")], Annotated[Polar, Tag("pola
 
 
 class Units(_Model):
-    """The units the spec's lengths and masses are written in."""
+    """The units the spec's numbers are written in (each defaults to SI)."""
 
     length: Literal[SPEC_UNITS["length"]] = Field(
         "m", description="Unit of every length and coordinate in the spec: ground and link "
-                         "points, com, shape sizes, line.through, assembly hints.")
-    mass: Literal[SPEC_UNITS["mass"]] = Field("kg", description="Unit of `mass`.")
+                         "points, com, shape sizes, line.through, assembly hints (m, cm, mm, "
+                         "in, ft).")
+    mass: Literal[SPEC_UNITS["mass"]] = Field("kg", description="Unit of `mass` (kg, g, lb).")
+    force: Literal[SPEC_UNITS["force"]] = Field(
+        "N", description="Unit of every force the spec writes: force loads' values and "
+                         "profiles, spring and damper rates (per length unit), bearing "
+                         "ratings and force limits (N, lbf, kip; format 1.2).")
+    moment: Literal[SPEC_UNITS["moment"]] = Field(
+        "N*m", description="Unit of every moment and torque: moment loads, torsion spring "
+                           "rates (per rad), motor torques, design.motor torques (N*m, N*mm, "
+                           "lbf*in, lbf*ft; format 1.2).")
+    inertia: Literal[SPEC_UNITS["inertia"]] = Field(
+        "kg*m^2", description="Unit of link and flywheel inertias (kg*m^2, g*mm^2, lb*in^2, "
+                              "lb*ft^2; format 1.2).")
 
 
 class Bar(_Model):
@@ -479,7 +506,8 @@ class Link(_Model):
             "centre of mass `[x, y]` in the link frame. Default: the shape's centroid"))
     inertia: Annotated[NonNegative, ZeroOrPositive()] = Field(
         None, description=(
-            "kg·m² about the centre of mass, axis normal to the plane. Default: from the shape. "
+            "kg·m² (or `units.inertia`) about the centre of mass, axis normal to the plane. "
+            "Default: from the shape. "
             "`inertia: 0` with a `mass` is a point mass"))
     shape: Shape = Field(
         None, description=(
@@ -617,7 +645,7 @@ class ForceLoad(_Model):
     type: Literal["force"] = Field(description="A force at a point of a link.")
     link: Name = Field(description="The moving link it acts on.")
     point: Name = Field(description="The point of the link where it acts.")
-    value: Pair = Field(None, description="[Fx, Fy] in N, global.")
+    value: Pair = Field(None, description="[Fx, Fy] in N (or `units.force`), global.")
     direction: Direction = Field(None, description="[dx, dy], with `profile`.")
     profile: Profile = Field(
         None, description="[[crank_angle_deg, magnitude_N], ...], angles strictly increasing "
@@ -654,7 +682,8 @@ class MomentLoad(_Model):
         "oneOf": [{"required": ["value"]}, {"required": ["profile"]}]})
     type: Literal["moment"] = Field(description="A moment on a link.")
     link: Name = Field(description="The moving link it acts on.")
-    value: Number = Field(None, description="M in N·m, counter-clockwise positive.")
+    value: Number = Field(None, description="M in N·m (or `units.moment`), counter-clockwise "
+                                            "positive.")
     profile: Profile = Field(
         None, description="[[crank_angle_deg, M], ...], angles strictly increasing within "
                           "[0, 360).")
@@ -678,7 +707,7 @@ class SpringLoad(_Model):
     type: Literal["spring"] = Field(description="A linear spring between two points.")
     between: Ends = Field(description="[[link, point], [link, point]]; either link may be "
                                       "ground.")
-    stiffness: Positive = Field(description="N/m.")
+    stiffness: Positive = Field(description="N/m (or `units.force` per length unit).")
     name: Label = Field(None, description=LOAD_NAME)
     free_length: NonNegative = Field(description="In the length unit.")
 
@@ -690,7 +719,7 @@ class DamperLoad(_Model):
     type: Literal["damper"] = Field(description="A linear damper between two points.")
     between: Ends = Field(description="[[link, point], [link, point]]; either link may be "
                                       "ground.")
-    damping: Positive = Field(description="N·s/m.")
+    damping: Positive = Field(description="N·s/m (or `units.force` s per length unit).")
     name: Label = Field(None, description=LOAD_NAME)
 
 
@@ -700,7 +729,7 @@ class TorsionSpringLoad(_Model):
     model_config = ConfigDict(title="torsion spring")
     type: Literal["torsion_spring"] = Field(description="A torsion spring at an R joint.")
     joint: Name = Field(description="The R joint it sits at.")
-    stiffness: Positive = Field(description="N·m/rad.")
+    stiffness: Positive = Field(description="N·m/rad (or `units.moment` per rad).")
     free_angle: Number = Field(description="Degrees.")
     name: Label = Field(None, description=LOAD_NAME)
 
@@ -763,28 +792,32 @@ class Expectation(_Model):
 class Motor(_Model):
     """The motor's ratings, checked against the cycle."""
 
-    rated_torque: Positive = Field(None, description="N·m, against cycle.torque.rms.")
-    peak_torque: Positive = Field(None, description="N·m, against the largest |driver "
-                                                    "torque|.")
+    rated_torque: Annotated[Positive, InUnit("moment")] = Field(
+        None, description="N·m (or `units.moment`), against cycle.torque.rms.")
+    peak_torque: Annotated[Positive, InUnit("moment")] = Field(
+        None, description="N·m (or `units.moment`), against the largest |driver torque|.")
     rated_power: Positive = Field(None, description="W, against cycle.power.max.")
 
 
 class Bearing(_Model):
     """A joint's bearing: its dynamic load rating and required life."""
 
-    rating: Positive = Field(description="Dynamic load rating C, N.")
+    rating: Annotated[Positive, InUnit("force")] = Field(
+        description="Dynamic load rating C, N (or `units.force`).")
     life_h: Positive = Field(None, description="Required L10 life, hours.")
 
 
 class Limits(_Model):
     """Limits the cycle must keep."""
 
-    joint_force: Positive = Field(None, description="N, every joint over the cycle.")
+    joint_force: Annotated[Positive, InUnit("force")] = Field(
+        None, description="N (or `units.force`), every joint over the cycle.")
     transmission_angle: Annotated[Positive, Field(le=90), Refusal(
         "must be at most 90 degrees (the transmission angle is folded into [0, 90])",
         ("less_than_equal",))] = Field(
         None, description="Degrees, the smallest allowed (at most 90).")
-    shaking_force: Positive = Field(None, description="N, the largest allowed.")
+    shaking_force: Annotated[Positive, InUnit("force")] = Field(
+        None, description="N (or `units.force`), the largest allowed.")
     efficiency: Annotated[Positive, Field(le=1), Refusal(
         "must be at most 1 (an efficiency is a fraction: 0.85, not 85)",
         ("less_than_equal",))] = Field(
@@ -863,7 +896,7 @@ class Dynamics(_Model):
 
     motor: DynamicsMotor = Field(description="One of {torque}, {curve}, {linear}.")
     flywheel: Annotated[NonNegative, Refusal("must be 0 or more (kg·m²), got {value}",
-                                             ("greater_than_equal",))] = Field(None, description="Extra inertia on the crank shaft, kg·m² "
+                                             ("greater_than_equal",))] = Field(None, description="Extra inertia on the crank shaft, kg·m² (or units.inertia) "
                                                     "(default 0).")
     start: DynamicsStart = Field(None, description="{angle, rpm}, default sweep.start at rest.")
     until: Annotated[Union[Annotated[Literal["steady"], Tag("steady")],
@@ -896,9 +929,13 @@ class ReportUnits(_Model):
     model_config = ConfigDict(title="report units")
     length: Literal[tuple(UNIT_TABLES["length"])] = Field(
         None, description="Default: the spec's units.length.")
-    force: Literal[tuple(UNIT_TABLES["force"])] = Field(None, description="Default N.")
-    moment: Literal[tuple(UNIT_TABLES["moment"])] = Field(None, description="Default N*m.")
+    force: Literal[tuple(UNIT_TABLES["force"])] = Field(
+        None, description="Default: the spec's units.force (N).")
+    moment: Literal[tuple(UNIT_TABLES["moment"])] = Field(
+        None, description="Default: the spec's units.moment (N*m).")
     mass: Literal[tuple(UNIT_TABLES["mass"])] = Field(None, description="Default kg.")
+    stress: Literal[tuple(UNIT_TABLES["stress"])] = Field(
+        None, description="Default MPa (format 1.2: also psi, ksi).")
 
 
 REPORT_TEXT_MAX = 200
@@ -1005,19 +1042,20 @@ class SpecFile(_Model):
     """A mechreport spec: one planar linkage (docs/spec.md)."""
 
     model_config = ConfigDict(title="mechreport spec")
-    mechreport: Annotated[Literal[1, 1.1], BeforeValidator(_not_true_or_false),
-                          Refusal("format version must be 1, got {value} (or 1.1: the same "
-                                  "format with its version 1.1 keys)")] = Field(
+    mechreport: Annotated[Literal[1, 1.1, 1.2], BeforeValidator(_not_true_or_false),
+                          Refusal("format version must be 1, got {value} (or 1.1 or 1.2: the "
+                                  "same format with its version 1.1 or 1.2 keys)")] = Field(
         description=(
-            "format version: `1`, or `1.1` (the same format; a file using the version 1.1 keys "
-            "may say so)"))
+            "format version: `1`, or `1.1` or `1.2` (the same format; a file using the version "
+            "1.1 or 1.2 keys may say so)"))
     name: Label = Field(description="the mechanism's name, used in report titles")
     description: Annotated[Optional[Text],
                            Refusal("must be text (Markdown), got {value}")] = Field(None, description=(
             "Markdown text shown at the top of the report"))
     units: Optional[Units] = Field(None, description=(
-            "`{length: m|cm|mm, mass: kg|g}`, default `{length: m, mass: kg}`; either key may be "
-            "left out"))
+            "`{length: m|cm|mm|in|ft, mass: kg|g|lb, force: N|lbf|kip, moment: N*m|N*mm|lbf*in|lbf*ft, "
+            "inertia: kg*m^2|g*mm^2|lb*in^2|lb*ft^2}`, each defaulting to SI (m, kg, N, N*m, "
+            "kg*m^2); any key may be left out"))
     gravity: Annotated[Pair, Wording("a pair [gx, gy] in m/s^2")] = Field(
         (0.0, -9.80665), description=(
             "`[gx, gy]` in m/s², default `[0, -9.80665]`; acts on every moving link at its centre"

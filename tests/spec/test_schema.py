@@ -324,7 +324,7 @@ def test_a_nested_unknown_key_maps_to_file_line_and_key_path():
     ("B: {type: R,", "B: {type: Q,", "joints.B.type", "must be one of R, T, got 'Q'"),
     ("B: {type: R, links: [crank, rod]}", "B: {links: [crank, rod]}", "joints.B",
      "missing required key 'type' (R or T)"),
-    ("length: m,", "length: inch,", "units.length", "must be one of m, cm, mm, got 'inch'"),
+    ("length: m,", "length: inch,", "units.length", "must be one of m, cm, mm, in, ft, got 'inch'"),
     ("B: [1, 0]}", "B: [1, 0, 0]}", "links.crank.points.B",
      "must be a pair [x, y] or {r: R, angle: A}, got [1, 0, 0]"),
     ("{block: {width: 0.01,", "{block: {width: 0,", "links.slider.shape.block.width",
