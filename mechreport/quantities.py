@@ -27,7 +27,7 @@ CYCLE_UNITS = {
 DYNAMICS_QUANTITIES = tuple(q for q in CYCLE_UNITS if q.startswith("dynamics."))
 #: a member's quantities over the sweep (``member.L.attr``, ``member.L.P_Q.attr``)
 MEMBER_UNITS = {"stress_max": "Pa", "static_safety": "", "fatigue_safety": "",
-                "buckling_safety": ""}
+                "buckling_safety": "", "buckling_plane": ""}   # plane: 1 in it, 2 out of it
 JOINT_CYCLE_UNITS = {"f_max": "N", "f_mean": "N", "f_equivalent": "N", "life_h": "h"}
 JOINT_UNITS = {"fx": "N", "fy": "N", "f": "N", "moment": "N·m", "px": "m", "py": "m",
                "angle": "deg"}      # angle: an R joint's relative angle (kinematics)

@@ -452,6 +452,9 @@ class GivenSection(_Model):
     inertia: Positive = Field(description="Second moment for in-plane bending, length "
                                           "unit⁴.")
     c: Positive = Field(description="Neutral axis to the outer fibre, in the length unit.")
+    inertia_out: Positive = Field(
+        None, description="Second moment for out-of-plane bending and buckling, length unit⁴ "
+                          "(default: `inertia`; format 1.2).")
 
 
 Section = Annotated[Union[Annotated[RectSection, Tag("rect")],
@@ -483,6 +486,68 @@ def _names_only(value: Any) -> Any:
     if isinstance(value, list) and not all(isinstance(x, str) and x for x in value):
         raise PydanticCustomError("names_only", "must be a list of names")
     return value
+
+
+class Rankine(_Model):
+    """Rankine's column formula: P = crushing A / (1 + a (kL / r)^2)."""
+
+    crushing: Positive = Field(description="The crushing stress, Pa.")
+    a: Positive = Field(description="Rankine's constant (dimensionless; 1/7500 for mild "
+                                    "steel, pinned ends).")
+
+
+BUCKLING_FORMULAS = ("euler-johnson", "rankine")
+
+
+class Buckling(_Model):
+    """How a member buckles (format 1.2): effective lengths in and out of the plane, and the
+    formula."""
+
+    k: Positive = Field(1, description="Effective-length factor in the plane of motion "
+                                       "(default 1: pinned-pinned; 0.5 fixed-fixed, 0.7 "
+                                       "fixed-pinned, 2 a free end).")
+    k_out: Positive = Field(None, description="Effective-length factor out of the plane "
+                                              "(default `k`).")
+    formula: Literal[BUCKLING_FORMULAS] = Field(
+        "euler-johnson", description="`euler-johnson` (default: Euler above the transition "
+                                     "slenderness, Johnson below, taken with kL) or "
+                                     "`rankine`.")
+    rankine: Rankine = Field(None, description="{crushing, a}: Rankine's constants (with "
+                                               "`formula: rankine`).")
+
+    @model_validator(mode="after")
+    def _rankine_constants(self):
+        """Rankine's formula needs its constants; the constants need the formula."""
+        if self.formula == "rankine" and self.rankine is None:
+            raise PydanticCustomError(WORDED, "formula: rankine needs 'rankine: {crushing, a}'"
+                                              " (the crushing stress in Pa and the constant a)")
+        if self.formula != "rankine" and self.rankine is not None:
+            raise PydanticCustomError(WORDED, "goes with 'formula: rankine'", {"key": "rankine"})
+        return self
+
+
+MemberPair = Annotated[list[Name], BeforeValidator(_names_only),
+                       Field(min_length=2, max_length=2), Wording("a pair of point names [P, Q]")]
+
+
+class MemberEntry(_Model):
+    """A member with its own buckling data (format 1.2): ``{points: [P, Q], buckling}``."""
+
+    model_config = ConfigDict(title="member")
+    points: MemberPair = Field(description="[P, Q]: two points of the link.")
+    buckling: Buckling = Field(None, description="How this member buckles (default: the "
+                                                 "link's `buckling`).")
+
+
+def _member_tag(value: Any) -> str:
+    """A member: ``[P, Q]``, or ``{points: [P, Q], buckling}``."""
+    return "entry" if isinstance(value, dict) else "pair"
+
+
+Member = Annotated[Union[Annotated[MemberPair, Tag("pair")],
+                         Annotated[MemberEntry, Tag("entry")]],
+                   Discriminator(_member_tag),
+                   Wording("a pair of point names [P, Q] or {points: [P, Q], buckling}")]
 
 
 class Link(_Model):
@@ -526,16 +591,25 @@ class Link(_Model):
             " all in Pa (SI whatever `units` says). `endurance` is the fully corrected endurance "
             "limit S_e (surface, size, load, reliability already applied). `yield` and "
             "`endurance` may not exceed `ultimate`"))
-    members: Annotated[list[Annotated[list[Name], BeforeValidator(_names_only),
-                                      Field(min_length=2, max_length=2),
-                                      Wording("a pair of point names [P, Q]")]],
-                       Wording("a list of point pairs [[P, Q], ...]")] = Field(
+    members: Annotated[list[Member], Wording("a list of point pairs [[P, Q], ...]")] = Field(
         None, min_length=1, description=(
             "`[[P, Q], ...]`, points of the link: the straight beams it is made of. Default: the "
             "segment between the link's two joint points (the points of its R joints, and of T "
             "joints where it is the slider); a link with more or fewer joint points must list "
             "them. The members must join into one piece without a closed loop (a closed frame is "
-            "statically indeterminate); a member of zero length is an error"))
+            "statically indeterminate); a member of zero length is an error. A member may be "
+            "written `{points: [P, Q], buckling: {...}}` to give it its own buckling data "
+            "(format 1.2)"))
+    buckling: Buckling = Field(
+        None, description=(
+            "`{k, k_out, formula, rankine: {crushing, a}}` (format 1.2): the effective-length "
+            "factor `k` in the plane of motion (default 1, pinned-pinned) and `k_out` out of it "
+            "(default `k`), each with the section's second moment about that axis (a rect's "
+            "out-of-plane I is height width³ / 12); `formula` `euler-johnson` (default) or "
+            "`rankine` (P = crushing A / (1 + a (kL/r)²), `crushing` in Pa, `a` "
+            "dimensionless). member.L.buckling_safety is the smaller of the two planes; "
+            "member.L.buckling_plane is 1 when the plane of motion governs, 2 when out of the "
+            "plane does"))
 
 
 class Line(_Model):

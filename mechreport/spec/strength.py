@@ -13,7 +13,7 @@ import math
 from dataclasses import replace
 from typing import Any
 
-from .types import Joint, Link, Material, Section, Strength
+from .types import Buckling, Joint, Link, Material, Section, Strength
 
 MATERIAL_KEYS = ("E", "yield", "endurance", "ultimate")
 SECTION_SIZES = {"rect": ("width", "height"), "round": ("d",), "tube": ("d", "t"),
@@ -59,8 +59,9 @@ def section(value: Any, path: tuple, ck, ls: float, unit: str) -> Section | None
         where = path + (kind,)
     else:
         kind, dims, where = "area", value, path
-    keys = SECTION_SIZES[kind]
-    powers = {"area": 2, "inertia": 4}
+    keys = SECTION_SIZES[kind] + (("inertia_out",) if kind == "area" and "inertia_out" in dims
+                                  else ())
+    powers = {"area": 2, "inertia": 4, "inertia_out": 4}
     sizes = {k: ck.si(dims[k], where + (k,), scale=ls ** powers.get(k, 1),
                       unit=unit + ("^" + str(powers[k]) if k in powers else ""))
              for k in keys}
@@ -97,7 +98,8 @@ def _section(kind: str, sizes: dict[str, float]) -> Section:
         di = d - 2 * t
         i = math.pi * t * (d - t) * (d ** 2 + di ** 2) / 16
         return Section(kind, math.pi * t * (d - t), i, d / 2, i, tuple(sizes.items()))
-    return Section(kind, sizes["area"], sizes["inertia"], sizes["c"], sizes["inertia"],
+    return Section(kind, sizes["area"], sizes["inertia"], sizes["c"],
+                   min(sizes["inertia"], sizes.get("inertia_out", sizes["inertia"])),
                    tuple(sizes.items()))
 
 
@@ -126,7 +128,8 @@ def strength_links(raw_links: Any, raw_materials: Any, ck, links: list[Link],
     out = []
     for link in links:
         body = raw_links.get(link.name)
-        if not isinstance(body, dict) or not {"section", "material", "members"} & set(body):
+        if not isinstance(body, dict) or not {"section", "material", "members",
+                                              "buckling"} & set(body):
             out.append(link)
             continue
         strength = _link_strength(link, body, ("links", link.name), ck, joints, named,
@@ -138,7 +141,7 @@ def strength_links(raw_links: Any, raw_materials: Any, ck, links: list[Link],
 def _link_strength(link: Link, body: dict, path: tuple, ck, joints, named, raw_materials,
                    ls: float, unit: str) -> Strength | None:
     if "section" not in body:
-        for key in ("material", "members"):
+        for key in ("material", "members", "buckling"):
             if key in body:
                 ck.error(path + (key,), "is for a link with a 'section' (give the section "
                                         "too, or leave this out)")
@@ -160,7 +163,31 @@ def _link_strength(link: Link, body: dict, path: tuple, ck, joints, named, raw_m
     members = _members(link, body, path, ck, joints)
     if sec is None or mat is None or members is None:
         return None
-    return Strength(sec, mat, members, "members" in body)
+    return Strength(sec, mat, members, "members" in body, _bucklings(body, len(members), ck,
+                                                                     path))
+
+
+def buckling(value: dict | None) -> Buckling:
+    """``buckling:`` as the models validated it (None: pinned-pinned Euler-Johnson)."""
+    if value is None:
+        return Buckling()
+    k = float(value.get("k", 1.0))
+    rankine = value.get("rankine") or {}
+    return Buckling(k, float(value.get("k_out", k)), value.get("formula", "euler-johnson"),
+                    float(rankine["crushing"]) if rankine else None,
+                    float(rankine["a"]) if rankine else None)
+
+
+def _bucklings(body: dict, n: int, ck, path: tuple) -> tuple[Buckling, ...]:
+    """How each of the ``n`` members buckles: its own ``buckling`` (in ``members``), else the
+    link's; () when neither is given (all pinned-pinned, Euler-Johnson)."""
+    raw = body.get("members") if "members" in body else None
+    own = [m.get("buckling") if isinstance(m, dict) else None for m in raw or ()]
+    if "buckling" not in body and not any(own):
+        return ()
+    link = None if ck.refused(path + ("buckling",)) else body.get("buckling")
+    return tuple(buckling(own[i] if i < len(own) and own[i] is not None else link)
+                 for i in range(n))
 
 
 def _members(link: Link, body: dict, path: tuple, ck, joints) -> tuple | None:
@@ -181,6 +208,8 @@ def _members(link: Link, body: dict, path: tuple, ck, joints) -> tuple | None:
         pairs, where = [], []
         for i, pq in enumerate(body["members"]):
             at = path + ("members", i)
+            if isinstance(pq, dict):          # {points: [P, Q], buckling} (format 1.2)
+                pq, at = pq["points"], at + ("points",)
             missing = [x for x in pq if x not in link.points]
             if missing:
                 ck.error(at, f"link '{link.name}' has no point named '{missing[0]}' "

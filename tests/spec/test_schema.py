@@ -289,7 +289,7 @@ def test_the_key_tables_are_the_models():
     assert not hasattr(loader, "TOP_KEYS") and not hasattr(loader, "LOAD_KEYS")
     assert required_of(SpecFile) == ("mechreport", "name", "links", "joints", "driver")
     assert keys_of(schema.Link) == ("points", "mass", "density", "com", "inertia", "shape",
-                                    "section", "material", "members")
+                                    "section", "material", "members", "buckling")
     assert {t: keys_of(m) for t, m in (("R", schema.RJoint), ("T", schema.TJoint))} == {
         "R": ("type", "links"), "T": ("type", "links", "point", "line")}
     assert required_of(schema.SpringLoad) == ("type", "between", "stiffness", "free_length")
