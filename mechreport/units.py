@@ -48,6 +48,8 @@ INERTIA_UNITS = {"kg*m^2": 1.0, "g*mm^2": 1e-9, "lb*in^2": POUND * INCH ** 2,
                  "lb*ft^2": POUND * FOOT ** 2}
 #: a stress's units [Pa] (the reports' default: MPa)
 STRESS_UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9, "psi": PSI, "ksi": 1000 * PSI}
+#: a pressure's units [Pa] (a pressure load's ``unit``, ``report.units.pressure``)
+PRESSURE_UNITS = {"Pa": 1.0, "kPa": 1e3, "bar": 1e5, "MPa": 1e6, "psi": PSI}
 #: rad/s in one rpm (pi / 30): ``rpm * RPM`` is in rad/s, ``omega / RPM`` in rpm
 RPM = math.pi / 30.0
 #: units an ``expect`` entry may be written in, by the SI unit of its quantity (those of
@@ -85,7 +87,8 @@ SPEC_UNITS = {"length": ("m", "cm", "mm", "in", "ft"), "mass": ("kg", "g", "lb")
               "force": ("N", "lbf", "kip"), "moment": ("N*m", "N*mm", "lbf*in", "lbf*ft"),
               "inertia": tuple(INERTIA_UNITS)}
 UNIT_TABLES = {"length": LENGTH_UNITS, "force": FORCE_UNITS, "moment": MOMENT_UNITS,
-               "mass": MASS_UNITS, "inertia": INERTIA_UNITS, "stress": STRESS_UNITS}
+               "mass": MASS_UNITS, "inertia": INERTIA_UNITS, "stress": STRESS_UNITS,
+               "pressure": PRESSURE_UNITS}
 
 
 def pretty(unit: str) -> str:
@@ -161,6 +164,7 @@ class Display:
     mass: str = "kg"
     scales: dict = field(default_factory=dict, compare=False)
     stress: str = "MPa"
+    pressure: str = "Pa"
 
     # ------------------------------------------------------------------ units
     def factor(self, kind: str) -> float:
@@ -170,7 +174,8 @@ class Display:
                 "force": 1 / FORCE_UNITS[self.force], "moment": 1 / MOMENT_UNITS[self.moment],
                 "mass": 1 / MASS_UNITS[self.mass],
                 "mass_length": 1 / (MASS_UNITS[self.mass] * L),
-                "stress": 1 / STRESS_UNITS[self.stress]}.get(kind, 1.0)
+                "stress": 1 / STRESS_UNITS[self.stress],
+                "pressure": 1 / PRESSURE_UNITS[self.pressure]}.get(kind, 1.0)
 
     def unit(self, kind: str) -> str:
         """The printed unit of ``kind`` ("" for a ratio)."""
@@ -180,7 +185,7 @@ class Display:
                 "mass_length": f"{self.mass}·{L}", "inertia": "kg·m²", "energy": "J",
                 "power": "W", "angle": "deg", "omega": "rad/s", "alpha": "rad/s²",
                 "time": "h", "duration": "s", "speed": "rpm", "ratio": "",
-                "stress": self.stress}[kind]
+                "stress": self.stress, "pressure": self.pressure}[kind]
 
     def value(self, x, kind: str):
         """``x`` [SI] (a number or an array) in display units."""

@@ -364,7 +364,8 @@ def display_of(analysis) -> Display:
     for key, si in (("length", "m"), ("force", "N"), ("moment", "N*m")):
         units.setdefault(key, analysis.spec.units.get(key, si))    # the spec's own units
     return Display(units["length"], units["force"], units["moment"], units.get("mass", "kg"),
-                   analysis.scales(), stress=units.get("stress", "MPa"))
+                   analysis.scales(), stress=units.get("stress", "MPa"),
+                   pressure=units.get("pressure", "Pa"))
 
 
 # --------------------------------------------------------------------------- spec summary

@@ -97,7 +97,7 @@ def strength_section(analysis, d: Display, axis: str = "deg") -> StrengthSection
     for m in st.members.values():
         at = f"{deg(m.stress_angle)}, {d.num(m.stress_s, 'length')}"
         buck = (DASH if m.buckling_safety is None else fmt(m.buckling_safety))
-        pcr = (f"{d.num(m.critical_load, 'force')} ({m.buckling_rule} {m.plane_text}, "
+        pcr = (f"{d.num(m.critical_load, 'force')} ({m.buckling_rule}, {m.plane_text}, "
                f"{_slenderness_label(spec, m)} = {fmt(m.slenderness, 3)})")
         comp = (f"{d.num(m.compression, 'force')} at {deg(m.compression_angle)}"
                 if m.compression_angle is not None else "never in compression")

@@ -26,7 +26,8 @@ def kin_display(kin: Kinematics) -> Display:
     for key, si in (("length", "m"), ("force", "N"), ("moment", "N*m")):
         units.setdefault(key, spec.units.get(key, si))    # the spec's own units
     return Display(units["length"], units["force"], units["moment"], units.get("mass", "kg"),
-                   scales=kinematic_scales(kin), stress=units.get("stress", "MPa"))
+                   scales=kinematic_scales(kin), stress=units.get("stress", "MPa"),
+                   pressure=units.get("pressure", "Pa"))
 
 
 def kinematics_rows(kin: Kinematics, k: int, d: Display | None = None

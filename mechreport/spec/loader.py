@@ -1800,7 +1800,7 @@ def _report(value: Any, ck: _Checker, units: dict[str, str],
     shown = {"length": units.get("length", "m"), "force": units.get("force", "N"),
              "moment": units.get("moment", "N*m"), "mass": "kg"}
     shown = {key: given(("units", key), default) for key, default in shown.items()}
-    shown.update({key: given(("units", key), None) for key in ("stress",)
+    shown.update({key: given(("units", key), None) for key in ("stress", "pressure")
                   if given(("units", key), None) is not None})
     meta = {key: " ".join(str(given((key,), "")).split()) for key in REPORT_TEXT_KEYS}
     return ReportSettings(units=shown, **meta, animation=given(("animation",), whole_turn),

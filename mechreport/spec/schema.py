@@ -1010,6 +1010,9 @@ class ReportUnits(_Model):
     mass: Literal[tuple(UNIT_TABLES["mass"])] = Field(None, description="Default kg.")
     stress: Literal[tuple(UNIT_TABLES["stress"])] = Field(
         None, description="Default MPa (format 1.2: also psi, ksi).")
+    pressure: Literal[tuple(UNIT_TABLES["pressure"])] = Field(
+        None, description="Pressures (format 1.2: Pa, kPa, bar, MPa, psi); default: as a "
+                          "pressure load writes them.")
 
 
 REPORT_TEXT_MAX = 200

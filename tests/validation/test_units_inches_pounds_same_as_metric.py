@@ -156,13 +156,14 @@ def test_a_spec_in_inches_and_pounds_gives_the_same_forces():
 def test_report_and_expect_units_of_format_1_2():
     """report.units in, ft, lbf, kip, lbf*in, lbf*ft, psi, ksi; expect in in/s, ft/s^2."""
     text = written("in-lb") + (
-        "report: {units: {length: ft, force: kip, moment: lbf*ft, stress: ksi}}\n"
+        "report: {units: {length: ft, force: kip, moment: lbf*ft, stress: ksi, "
+        "pressure: psi}}\n"
         "expect:\n"
         "  - {angle: 0, quantity: point.C.vx, value: 0, unit: in/s, tol: 1}\n"
         "  - {angle: 0, quantity: point.C.ax, value: -1, unit: ft/s^2, tol: 1}\n")
     spec = parse_spec(text, "in.yaml")
     assert spec.report.units == {"length": "ft", "force": "kip", "moment": "lbf*ft",
-                                 "mass": "kg", "stress": "ksi"}
+                                 "mass": "kg", "stress": "ksi", "pressure": "psi"}
     assert [e.scale for e in spec.expect] == [INCH, FOOT]
     assert spec.expect[1].value == -FOOT and spec.expect[1].tol == FOOT
     # without report.units, forces and moments are shown in the spec's own units
