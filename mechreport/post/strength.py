@@ -119,6 +119,7 @@ class MemberStrength:
     buckling_safety: float | None
     note: str = ""
     buckling_plane: int = 1
+    column: Column | None = field(default=None, repr=False)   # both planes' loads
 
     @property
     def plane_text(self) -> str:
@@ -449,6 +450,7 @@ class Column:
     slenderness: float
     rule: str
     plane: int
+    planes: tuple = ()      # ((load, kL/r, rule) in the plane, the same out of it)
 
 
 def column(section: Section, material: Material, length: float,
@@ -458,10 +460,10 @@ def column(section: Section, material: Material, length: float,
     b = buckling or Buckling()
     rankine = (b.crushing, b.a) if b.formula == "rankine" else None
     planes = ((b.k, section.inertia), (b.k_out, section.inertia_out))
-    loads = [column_load(section.area, inertia, material, length, k, rankine)
-             for k, inertia in planes]
+    loads = tuple(column_load(section.area, inertia, material, length, k, rankine)
+                  for k, inertia in planes)
     plane = 1 if loads[0][0] <= loads[1][0] else 2
-    return Column(*loads[plane - 1], plane)
+    return Column(*loads[plane - 1], plane, loads)
 
 
 def critical_load(section: Section, material: Material, length: float,
@@ -636,7 +638,7 @@ def member_strength(part: MemberPart) -> MemberStrength:
         fatigue if math.isfinite(fatigue) else None, float(part.s[jf]), float(sa[f, jf]),
         float(sm[f, jf]), max(ext.compression, 0.0),
         ext.compression_angle if compressed else None, pcr, slender, rule,
-        pcr / ext.compression if compressed else None, part.note, col.plane)
+        pcr / ext.compression if compressed else None, part.note, col.plane, col)
 
 
 def link_members(ctx: ForceContext, link: Link) -> list[Member]:

@@ -112,3 +112,28 @@ def test_a_rod_fixed_out_of_the_plane_through_a_spec():
     # out of the plane now at half the length: four times the Euler load (h/w)^2 / 4 > 1
     assert fixed.buckling_plane == 1 and fixed.buckling_safety > pinned.buckling_safety
     assert fixed.values()["member.rod.buckling_plane"] == 1.0
+
+
+def test_the_solution_sheet_works_the_rankine_check_of_the_rod():
+    """The sheet's cut of the rod ends with the column check as the book writes it: kL/r in
+    each plane, Rankine's load in each, the smaller governing (numbers worked here)."""
+    from mechreport.report.sheet.expr import fmt
+    from mechreport.report.sheet.strength import cuts
+    base = (ROOT / "specs" / "crank_press_strength.yaml").read_text(encoding="utf-8")
+    text = base.replace("mechreport: 1.1", "mechreport: 1.2").replace(
+        "  rod:\n", "  rod:\n    buckling: {k: 1, k_out: 0.5, formula: rankine, "
+                    "rankine: {crushing: 320e6, a: 1.3333e-4}}\n", 1)
+    a = analyse(parse_spec(text, "press.yaml"))
+    rod = next(c for c in cuts(a, 0) if c.title == "Cut of member rod")
+    words = " ".join(x for x in rod.result if isinstance(x, str))
+    w, h, L = 0.012, 0.020, 0.400
+    area = w * h
+    p_in = 320e6 * area / (1 + 1.3333e-4 * (L / math.sqrt(h * h / 12)) ** 2)
+    p_out = 320e6 * area / (1 + 1.3333e-4 * (0.5 * L / math.sqrt(w * w / 12)) ** 2)
+    assert p_in < p_out
+    assert f"k = 1: kL/r = {fmt(L / math.sqrt(h * h / 12))}" in words
+    assert f"= {fmt(p_in)} N (Rankine)" in words and f"= {fmt(p_out)} N (Rankine)" in words
+    assert f"P_cr = {fmt(p_in)} N, in the plane" in words
+    # a link without buckling data: no column check in its cut (its report gives P_cr)
+    crank = next(c for c in cuts(a, 0) if c.title == "Cut of member crank")
+    assert not any("Column check" in x for x in crank.result if isinstance(x, str))
