@@ -29,14 +29,27 @@ SHEET_DIGITS = 6
 ZERO_RTOL = 1e-9
 DASH = "—"
 
+# US customary units, exact by definition (the international yard and pound, 1959; the
+# pound-force is the pound's weight at standard gravity 9.80665 m/s^2)
+INCH = 0.0254                   #: [m]
+FOOT = 12 * INCH                #: [m] (0.3048)
+POUND = 0.45359237              #: [kg]
+POUND_FORCE = 4.4482216152605   #: [N] (POUND x 9.80665)
+PSI = POUND_FORCE / INCH ** 2   #: [Pa] (lbf / in^2)
+
 #: display unit -> size in SI (m, N, N m, kg)
-LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254}
-FORCE_UNITS = {"N": 1.0, "kN": 1000.0, "lbf": 4.4482216152605}
-MOMENT_UNITS = {"N*m": 1.0, "N*mm": 0.001, "kN*m": 1000.0, "lbf*in": 4.4482216152605 * 0.0254}
-MASS_UNITS = {"kg": 1.0, "g": 0.001, "lb": 0.45359237}
-#: a pressure load's units (format 1.2 ``type: pressure``): name -> Pa (psi = lbf / in^2)
-PRESSURE_UNITS = {"Pa": 1.0, "kPa": 1e3, "bar": 1e5, "MPa": 1e6,
-                  "psi": 4.4482216152605 / 0.0254 ** 2}
+LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": INCH, "ft": FOOT}
+FORCE_UNITS = {"N": 1.0, "kN": 1000.0, "lbf": POUND_FORCE, "kip": 1000 * POUND_FORCE}
+MOMENT_UNITS = {"N*m": 1.0, "N*mm": 0.001, "kN*m": 1000.0, "lbf*in": POUND_FORCE * INCH,
+                "lbf*ft": POUND_FORCE * FOOT}
+MASS_UNITS = {"kg": 1.0, "g": 0.001, "lb": POUND}
+#: a moment of inertia's units [kg m^2]
+INERTIA_UNITS = {"kg*m^2": 1.0, "g*mm^2": 1e-9, "lb*in^2": POUND * INCH ** 2,
+                 "lb*ft^2": POUND * FOOT ** 2}
+#: a stress's units [Pa] (the reports' default: MPa)
+STRESS_UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9, "psi": PSI, "ksi": 1000 * PSI}
+#: a pressure's units [Pa] (a pressure load's ``unit``, ``report.units.pressure``)
+PRESSURE_UNITS = {"Pa": 1.0, "kPa": 1e3, "bar": 1e5, "MPa": 1e6, "psi": PSI}
 #: rad/s in one rpm (pi / 30): ``rpm * RPM`` is in rad/s, ``omega / RPM`` in rpm
 RPM = math.pi / 30.0
 #: units an ``expect`` entry may be written in, by the SI unit of its quantity (those of
@@ -45,11 +58,11 @@ EXPECT_UNITS = {
     "m": LENGTH_UNITS,
     "N": FORCE_UNITS,
     "N·m": {**MOMENT_UNITS, "N·m": 1.0},
-    "m/s": {"m/s": 1.0, "mm/s": 0.001},
-    "m/s^2": {"m/s^2": 1.0},
+    "m/s": {"m/s": 1.0, "mm/s": 0.001, "in/s": INCH, "ft/s": FOOT},
+    "m/s^2": {"m/s^2": 1.0, "in/s^2": INCH, "ft/s^2": FOOT},
     "deg": {"deg": 1.0, "rad": 57.29577951308232},
     "rad/s": {"rad/s": 1.0, "rpm": RPM},
-    "Pa": {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9},
+    "Pa": STRESS_UNITS,
 }
 
 
@@ -70,9 +83,12 @@ def rad_s_to_rpm(omega):
 
 #: the units a spec's own numbers may be written in (its ``units:``); a report may show any
 #: unit of the tables above (``report.units``)
-SPEC_UNITS = {"length": ("m", "cm", "mm"), "mass": ("kg", "g")}
+SPEC_UNITS = {"length": ("m", "cm", "mm", "in", "ft"), "mass": ("kg", "g", "lb"),
+              "force": ("N", "lbf", "kip"), "moment": ("N*m", "N*mm", "lbf*in", "lbf*ft"),
+              "inertia": tuple(INERTIA_UNITS)}
 UNIT_TABLES = {"length": LENGTH_UNITS, "force": FORCE_UNITS, "moment": MOMENT_UNITS,
-               "mass": MASS_UNITS}
+               "mass": MASS_UNITS, "inertia": INERTIA_UNITS, "stress": STRESS_UNITS,
+               "pressure": PRESSURE_UNITS}
 
 
 def pretty(unit: str) -> str:
@@ -147,6 +163,8 @@ class Display:
     moment: str = "N*m"
     mass: str = "kg"
     scales: dict = field(default_factory=dict, compare=False)
+    stress: str = "MPa"
+    pressure: str = "Pa"
 
     # ------------------------------------------------------------------ units
     def factor(self, kind: str) -> float:
@@ -155,7 +173,9 @@ class Display:
         return {"length": 1 / L, "velocity": 1 / L, "acceleration": 1 / L,
                 "force": 1 / FORCE_UNITS[self.force], "moment": 1 / MOMENT_UNITS[self.moment],
                 "mass": 1 / MASS_UNITS[self.mass],
-                "mass_length": 1 / (MASS_UNITS[self.mass] * L), "stress": 1e-6}.get(kind, 1.0)
+                "mass_length": 1 / (MASS_UNITS[self.mass] * L),
+                "stress": 1 / STRESS_UNITS[self.stress],
+                "pressure": 1 / PRESSURE_UNITS[self.pressure]}.get(kind, 1.0)
 
     def unit(self, kind: str) -> str:
         """The printed unit of ``kind`` ("" for a ratio)."""
@@ -165,7 +185,7 @@ class Display:
                 "mass_length": f"{self.mass}·{L}", "inertia": "kg·m²", "energy": "J",
                 "power": "W", "angle": "deg", "omega": "rad/s", "alpha": "rad/s²",
                 "time": "h", "duration": "s", "speed": "rpm", "ratio": "",
-                "stress": "MPa"}[kind]
+                "stress": self.stress, "pressure": self.pressure}[kind]
 
     def value(self, x, kind: str):
         """``x`` [SI] (a number or an array) in display units."""

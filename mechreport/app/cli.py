@@ -161,7 +161,7 @@ Writes OUT/<name>/study.parquet, study.csv (one row per variant), study.md and s
 
 
 def _add_study_parser(sub) -> None:
-    from ..forces import METHODS
+    from ..quantities import METHOD_NAMES     # (not the methods: no solver on start-up)
     p = sub.add_parser("study", help="run many variants of a spec (its study: section)",
                        description=textwrap.fill(
                            "Run the variants that the spec's study: section describes (one "
@@ -170,7 +170,7 @@ def _add_study_parser(sub) -> None:
                        epilog=_filled(STUDY_EPILOG), formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--out", default="out", help="output folder (default: out)")
-    p.add_argument("--method", choices=list(METHODS), default=None,
+    p.add_argument("--method", choices=list(METHOD_NAMES), default=None,
                    help="the force method for every variant (default: the fastest that gives "
                    "every kept quantity and design verdict)")
     p.add_argument("--scheduler", metavar="ADDRESS", default=None,

@@ -26,8 +26,11 @@ Over the analysed angles (for a whole turn, the cycle), per member: the largest 
 where it occurs, the static safety yield / stress_max, the fatigue safety by the modified
 Goodman line at the section and fibre where it is smallest (sigma_a / S_e + sigma_m / S_u =
 1 / n for a tensile mean stress; n = S_e / sigma_a for a compressive one), and for a member in
-compression the buckling safety P_cr / largest compression of a pinned-pinned column about
-its weakest axis (Euler above the transition slenderness sqrt(2 pi^2 E / S_y), Johnson below).
+compression the buckling safety P_cr / largest compression, P_cr the smaller of the column's
+loads in the plane of motion (effective length k L, second moment I) and out of it (k_out L,
+I_out): Euler above the transition slenderness sqrt(2 pi^2 E / S_y), Johnson below (both with
+kL), or Rankine's crushing A / (1 + a (kL/r)^2) (format 1.2 ``buckling``; by default a
+pinned-pinned column, k = k_out = 1).
 
 Pure functions of the solved kinematics and the reference method's reactions; arrays
 (n, K) over the angles and K positions along the member. Nothing here draws or formats.
@@ -42,7 +45,7 @@ import numpy as np
 from ..forces import ForceContext, ForceResult
 from ..kinematics.frames import cross, dot, perp
 from ..quantities import split as split_quantity
-from ..spec import Link, Material, Section
+from ..spec import Buckling, Link, Material, Section
 from ..units import Display
 
 #: positions along each member where the internal forces are evaluated (ends included)
@@ -115,6 +118,13 @@ class MemberStrength:
     buckling_rule: str
     buckling_safety: float | None
     note: str = ""
+    buckling_plane: int = 1
+    column: Column | None = field(default=None, repr=False)   # both planes' loads
+
+    @property
+    def plane_text(self) -> str:
+        """Where the member buckles, in words: "in the plane" or "out of the plane"."""
+        return "in the plane" if self.buckling_plane == 1 else "out of the plane"
 
     def quantity(self, attr: str) -> str:
         return f"member.{self.name}.{attr}"
@@ -126,6 +136,8 @@ class MemberStrength:
             v = getattr(self, attr)
             if v is not None:
                 out[self.quantity(attr)] = v
+        if self.buckling_safety is not None:      # the plane that governs it
+            out[self.quantity("buckling_plane")] = float(self.buckling_plane)
         return out
 
 
@@ -405,19 +417,62 @@ def goodman(sigma_a, sigma_m, endurance: float, ultimate: float):
     return np.where(sm > 0, tensile, compressive)
 
 
-def critical_load(section: Section, material: Material, length: float
-                  ) -> tuple[float, float, str]:
-    """The buckling load [N] of a pinned-pinned column of ``length`` [m] about the
-    section's weakest axis, its slenderness L / r and the rule used: Euler (pi^2 E I /
-    L^2) at or above the transition slenderness sqrt(2 pi^2 E / S_y), Johnson (A (S_y -
-    (S_y L / (2 pi r))^2 / E)) below it."""
+def column_load(area: float, inertia: float, material: Material, length: float,
+                k: float = 1.0, rankine: tuple[float, float] | None = None
+                ) -> tuple[float, float, str]:
+    """The buckling load [N] of a column of ``length`` [m], effective-length factor ``k``,
+    bending about an axis of second moment ``inertia`` [m^4] (r = sqrt(I / A)); its
+    slenderness kL / r and the rule used. By Rankine's formula with ``rankine`` = (crushing
+    stress [Pa], a): crushing A / (1 + a (kL / r)^2). Else Euler (pi^2 E I / (kL)^2) at or
+    above the transition slenderness pi sqrt(2 E / S_y), Johnson (A (S_y - (S_y kL / (2 pi
+    r))^2 / E)) below it."""
     E, Sy = material.E, material.yield_
-    r = math.sqrt(section.inertia_min / section.area)
-    slender = length / r
+    r = math.sqrt(inertia / area)
+    kl = k * length
+    slender = kl / r
+    if rankine is not None:
+        crushing, a = rankine
+        return crushing * area / (1.0 + a * slender ** 2), slender, "Rankine"
     transition = math.pi * math.sqrt(2.0 * E / Sy)
     if slender >= transition:
-        return math.pi ** 2 * E * section.inertia_min / length ** 2, slender, "Euler"
-    return section.area * (Sy - (Sy * slender / (2 * math.pi)) ** 2 / E), slender, "Johnson"
+        return math.pi ** 2 * E * inertia / kl ** 2, slender, "Euler"
+    return area * (Sy - (Sy * slender / (2 * math.pi)) ** 2 / E), slender, "Johnson"
+
+
+@dataclass(frozen=True)
+class Column:
+    """A member as a column: the buckling load [N] of the plane that governs (the smaller),
+    its slenderness kL / r and rule (Euler | Johnson | Rankine), and ``plane`` 1 (the plane
+    of motion: bending about the axis normal to it, I) or 2 (out of the plane: about the
+    axis in it, I_out)."""
+
+    load: float
+    slenderness: float
+    rule: str
+    plane: int
+    planes: tuple = ()      # ((load, kL/r, rule) in the plane, the same out of it)
+
+
+def column(section: Section, material: Material, length: float,
+           buckling: Buckling | None = None) -> Column:
+    """How a member of ``length`` [m] buckles: in the plane of motion (k, I) and out of it
+    (k_out, I_out), the smaller load governing (the plane of motion on a tie)."""
+    b = buckling or Buckling()
+    rankine = (b.crushing, b.a) if b.formula == "rankine" else None
+    planes = ((b.k, section.inertia), (b.k_out, section.inertia_out))
+    loads = tuple(column_load(section.area, inertia, material, length, k, rankine)
+                  for k, inertia in planes)
+    plane = 1 if loads[0][0] <= loads[1][0] else 2
+    return Column(*loads[plane - 1], plane, loads)
+
+
+def critical_load(section: Section, material: Material, length: float,
+                  buckling: Buckling | None = None) -> tuple[float, float, str]:
+    """The buckling load [N] of a member of ``length`` [m] in the plane that governs, its
+    slenderness kL / r and the rule used (:func:`column`; by default a pinned-pinned
+    column about the section's weakest axis, Euler or Johnson)."""
+    c = column(section, material, length, buckling)
+    return c.load, c.slenderness, c.rule
 
 
 def link_mass_note(link: Link, d: Display | None = None) -> str:
@@ -571,7 +626,9 @@ def member_strength(part: MemberPart) -> MemberStrength:
     nf = goodman(sa, sm, mat.endurance, mat.ultimate)
     f, jf = np.unravel_index(int(np.argmin(nf)), nf.shape)
     fatigue = float(nf[f, jf])
-    pcr, slender, rule = critical_load(sec, mat, part.length)
+    index = link.strength.members.index((part.P, part.Q))
+    col = column(sec, mat, part.length, link.strength.buckling_of(index))
+    pcr, slender, rule = col.load, col.slenderness, col.rule
     compressed = ext.compression > 1e-9 * ext.scale and ext.compression > 0
     smax = ext.stress_max
     return MemberStrength(
@@ -581,7 +638,7 @@ def member_strength(part: MemberPart) -> MemberStrength:
         fatigue if math.isfinite(fatigue) else None, float(part.s[jf]), float(sa[f, jf]),
         float(sm[f, jf]), max(ext.compression, 0.0),
         ext.compression_angle if compressed else None, pcr, slender, rule,
-        pcr / ext.compression if compressed else None, part.note)
+        pcr / ext.compression if compressed else None, part.note, col.plane, col)
 
 
 def link_members(ctx: ForceContext, link: Link) -> list[Member]:
@@ -626,7 +683,7 @@ def _link_parts(ctx: ForceContext, res: ForceResult, link: Link, g: np.ndarray,
     return out
 
 
-__all__ = ["POSITIONS", "Diagram", "Extremes", "MemberPart", "MemberStrength", "PointAction",
-           "StrengthReview", "critical_load", "extremes", "goodman", "internal_forces",
+__all__ = ["POSITIONS", "Column", "Diagram", "Extremes", "MemberPart", "MemberStrength",
+           "PointAction", "StrengthReview", "column", "column_load", "critical_load", "extremes", "goodman", "internal_forces",
            "link_members", "member_names", "merge_parts", "point_actions", "review_of_parts",
            "sides", "strength_parts", "strength_review"]

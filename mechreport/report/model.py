@@ -371,9 +371,11 @@ def spec_sha256(path) -> str:
 def display_of(analysis) -> Display:
     """The spec's display units with the scales [SI] of this analysis (round-off rule)."""
     units = dict(analysis.spec.report.units) or {}
-    units.setdefault("length", analysis.spec.units.get("length", "m"))
-    return Display(units.get("length", "m"), units.get("force", "N"),
-                   units.get("moment", "N*m"), units.get("mass", "kg"), analysis.scales())
+    for key, si in (("length", "m"), ("force", "N"), ("moment", "N*m")):
+        units.setdefault(key, analysis.spec.units.get(key, si))    # the spec's own units
+    return Display(units["length"], units["force"], units["moment"], units.get("mass", "kg"),
+                   analysis.scales(), stress=units.get("stress", "MPa"),
+                   pressure=units.get("pressure", "Pa"))
 
 
 # --------------------------------------------------------------------------- spec summary
@@ -1018,7 +1020,7 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
                "moment": _peak_text(summary.shaking_moment, "moment", d, sw.at_unit)}
     sweep = spec.sweep
     heads = {k: d.unit(k) for k in ("length", "velocity", "acceleration", "force", "moment",
-                                    "mass", "inertia")}
+                                    "mass", "inertia", "stress")}
     heads["axis"] = spec.axis_unit          # deg, or a stroke's length unit
     return ReportModel(
         stem=stem, source=source, name=spec.name,

@@ -277,9 +277,10 @@ def _strength(doc: Doc, m, st) -> None:
         doc.items(list(st.links))
     else:
         doc.add(Gap())
-    doc.add(_first_left(["member", Wording("largest stress [MPa]"),
+    doc.add(_first_left(["member", Wording(f"largest stress [{h['stress']}]"),
                          Wording(f"at [{h['axis']}], s [{h['length']}]"), "static safety",
-                         "fatigue safety", Wording(f"σa / σm [MPa] at s [{h['length']}]"),
+                         "fatigue safety",
+                         Wording(f"σa / σm [{h['stress']}] at s [{h['length']}]"),
                          "buckling safety", _u("largest compression", h["force"]),
                          _u("P_cr", h["force"])], st.rows, 7))
     if st.worst:

@@ -60,6 +60,24 @@ def _section_text(sec, d: Display) -> str:
     return SECTION_TEXT[sec.kind].format(**shown)
 
 
+def _slenderness_label(spec, m) -> str:
+    """``L/r`` for a pinned-pinned column (k = 1 in the plane that governs), else ``kL/r``."""
+    b = spec.link(m.link).strength.buckling_of(
+        spec.link(m.link).strength.members.index((m.P, m.Q)))
+    return "L/r" if (b.k if m.buckling_plane == 1 else b.k_out) == 1 else "kL/r"
+
+
+def _material_text(mat, d: Display) -> str:
+    """A material's E and strengths: E in GPa and the strengths in MPa, or all in the
+    report's stress unit when it is another (psi, ksi)."""
+    if d.stress == "MPa":
+        return (f"E = {fmt(mat.E / 1e9)} GPa, yield {fmt(mat.yield_ / 1e6)} MPa, "
+                f"ultimate {fmt(mat.ultimate / 1e6)} MPa, endurance "
+                f"{fmt(mat.endurance / 1e6)} MPa")
+    return (f"E = {d.q(mat.E, 'stress')}, yield {d.q(mat.yield_, 'stress')}, ultimate "
+            f"{d.q(mat.ultimate, 'stress')}, endurance {d.q(mat.endurance, 'stress')}")
+
+
 def strength_section(analysis, d: Display, axis: str = "deg") -> StrengthSection | None:
     """The Strength section of ``analysis`` (None when no link has a section)."""
     st = analysis.strength
@@ -73,16 +91,14 @@ def strength_section(analysis, d: Display, axis: str = "deg") -> StrengthSection
         mat = link.strength.material
         name = f"{mat.name}: " if mat.name else ""
         links.append(f"{link.name}: {_section_text(link.strength.section, d)}; "
-                     f"{name}E = {fmt(mat.E / 1e9)} GPa, yield {fmt(mat.yield_ / 1e6)} MPa, "
-                     f"ultimate {fmt(mat.ultimate / 1e6)} MPa, endurance "
-                     f"{fmt(mat.endurance / 1e6)} MPa; members "
+                     f"{name}{_material_text(mat, d)}; members "
                      + ", ".join(f"{p}–{q}" for p, q in link.strength.members))
     rows = []
     for m in st.members.values():
         at = f"{deg(m.stress_angle)}, {d.num(m.stress_s, 'length')}"
         buck = (DASH if m.buckling_safety is None else fmt(m.buckling_safety))
-        pcr = (f"{d.num(m.critical_load, 'force')} ({m.buckling_rule}, L/r = "
-               f"{fmt(m.slenderness, 3)})")
+        pcr = (f"{d.num(m.critical_load, 'force')} ({m.buckling_rule}, {m.plane_text}, "
+               f"{_slenderness_label(spec, m)} = {fmt(m.slenderness, 3)})")
         comp = (f"{d.num(m.compression, 'force')} at {deg(m.compression_angle)}"
                 if m.compression_angle is not None else "never in compression")
         rows.append([m.name, d.num(m.stress_max, "stress"), at,
@@ -120,9 +136,10 @@ def strength_section(analysis, d: Display, axis: str = "deg") -> StrengthSection
              "member's own frame. Largest stress σ = |N|/A + |M|c/I. Static safety: "
              "yield / largest σ. Fatigue safety: modified Goodman (σa/Se + σm/Su = 1/n; "
              "Se/σa for a compressive mean) at the section and outer fibre where it is "
-             "smallest. Buckling safety: a pinned-pinned column about its weakest axis "
-             "(Euler, or Johnson below the transition slenderness) against its largest "
-             "compression.")
+             "smallest. Buckling safety: the member as a column in the plane of motion and "
+             "out of it (pinned-pinned unless its buckling data say otherwise: effective "
+             "length kL), the smaller buckling load (Euler, or Johnson below the transition "
+             "slenderness; or Rankine's formula) against its largest compression.")
     return StrengthSection(intro, links, rows, text, notes, plot)
 
 
@@ -145,7 +162,7 @@ def strength_json(analysis) -> dict | None:
             "buckling": {"compression_N": m.compression,
                          "angle_deg": m.compression_angle,
                          "critical_load_N": m.critical_load, "slenderness": m.slenderness,
-                         "rule": m.buckling_rule},
+                         "rule": m.buckling_rule, "plane": m.buckling_plane},
             "note": m.note or None}
     return {"method": st.method, "members": out}
 

@@ -23,9 +23,11 @@ def kin_display(kin: Kinematics) -> Display:
 
     spec = kin.mechanism.spec
     units = dict(spec.report.units)
-    return Display(units.get("length", spec.units.get("length", "m")), units.get("force", "N"),
-                   units.get("moment", "N*m"), units.get("mass", "kg"),
-                   scales=kinematic_scales(kin))
+    for key, si in (("length", "m"), ("force", "N"), ("moment", "N*m")):
+        units.setdefault(key, spec.units.get(key, si))    # the spec's own units
+    return Display(units["length"], units["force"], units["moment"], units.get("mass", "kg"),
+                   scales=kinematic_scales(kin), stress=units.get("stress", "MPa"),
+                   pressure=units.get("pressure", "Pa"))
 
 
 def kinematics_rows(kin: Kinematics, k: int, d: Display | None = None

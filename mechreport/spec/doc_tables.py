@@ -18,7 +18,7 @@ __all__ = ["TABLES", "table", "updated"]
 TABLES = {
     "top": (schema.SpecFile, True, None),
     "link": (schema.Link, False, ("points", "mass", "density", "com", "inertia", "shape")),
-    "strength": (schema.Link, False, ("section", "material", "members")),
+    "strength": (schema.Link, False, ("section", "material", "members", "buckling")),
     "study": (schema.Study, True, None),
     "tolerances": (schema.Tolerances, True, None),
     "tolerance vary": (schema.TolVary, False, None),

@@ -3,15 +3,15 @@
 Every problem of a file is collected and raised together as one ``SpecError``; each names the
 file, line, key path and what was expected. Whatever the input, loading ends in a ``Spec`` or a
 ``SpecError``, quickly and in little memory: the reader (``yaml_source``) caps the file size
-and the nesting depth and refuses aliases, tags and non-UTF-8 text; this module checks every
-value's type and every number's range (docs/spec.md, "What the loader refuses, and why").
+and the nesting depth and refuses aliases, tags and non-UTF-8 text.
 
-The format's shape (its keys, which are required, their types, enumerations and number
-ranges) is declared once, by the pydantic models of :mod:`.schema`: the key tables below come
-from them, and their validation runs on every file after the checks here, so that a shape
-problem these checks do not see is reported too, in the same ``file:line: key.path: message``
-form (:func:`_shape_check`). What needs more than one value at a time (references between
-names, mobility, cycle quantities, units to SI) is checked here in plain Python.
+The format (its keys, which are required, their types, enumerations and number ranges, and
+what one mapping's values say together) is declared once, by the pydantic models of
+:mod:`.schema`; they validate every file, and :func:`_shape_problem` turns each of their errors
+into ``file:line: key.path: message`` in the house wording. What is left here is one pass over
+the validated data (a part the models refused is left out of it, so that nothing is reported
+twice): the references between names (a joint's links, a load's point), mobility, which cycle
+quantities are defined, and the conversion to SI (:mod:`.types`).
 """
 from __future__ import annotations
 
@@ -19,7 +19,6 @@ import difflib
 import math
 import os
 import re
-import unicodedata
 from dataclasses import replace
 from pathlib import Path as FsPath
 from typing import Any
@@ -29,8 +28,7 @@ from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, MEMBE
                           is_cycle, is_member, joint_unit, unit_of, split as split_quantity)
 from ..units import EXPECT_UNITS, PRESSURE_UNITS, SPEC_UNITS, UNIT_TABLES, rpm_to_rad_s
 import mechreport.spec.schema as schema   # the models (not `from . import`: spec/__init__)
-from .schema import (MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, choices_of, keys_of,
-                     required_of)
+from .schema import MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, keys_of, required_of
 from .strength import strength_links
 from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Dynamics, Expectation, Friction, Joint,
@@ -55,31 +53,17 @@ __all__ = ["load_spec", "parse_spec", "load_source", "parse_source", "spec_from_
            "LENGTH_UNITS", "MASS_UNITS", "NUMBER_MAX", "NUMBER_MIN",
            "MAX_FILE_BYTES", "MAX_DEPTH", "MAX_PROBLEMS"]
 
-# The key tables, from the models of .schema (the one place a key is declared): the keys a
-# mapping may have, in their order, and those it must have.
-TOP_KEYS, TOP_REQUIRED = keys_of(schema.SpecFile), required_of(schema.SpecFile)
-POLAR_KEYS, POLAR_REQUIRED = keys_of(schema.Polar), required_of(schema.Polar)
-LINK_KEYS, LINK_REQUIRED = keys_of(schema.Link), required_of(schema.Link)
+# What the post-validation pass reads of the models (the one place a key is declared).
 SHAPE_KEYS = {"bar": keys_of(schema.Bar), "block": keys_of(schema.Block)}
-JOINT_KEYS = {"R": keys_of(schema.RJoint), "T": keys_of(schema.TJoint)}
-LINE_KEYS, LINE_REQUIRED = keys_of(schema.Line), required_of(schema.Line)
 DRIVER_REQUIRED = required_of(schema.Driver)
-LOAD_KEYS = {kind: keys_of(model) for kind, model in schema.LOAD_MODELS.items()}
-LOAD_REQUIRED = {kind: tuple(k for k in required_of(model) if k != "type")
-                 for kind, model in schema.LOAD_MODELS.items()}
-OPPOSE = {kind: choices_of(schema.LOAD_MODELS[kind], "oppose") for kind in ("force", "moment")}
-REACTS_ON = choices_of(schema.ForceLoad, "reacts_on")
 FRICTION_KEYS = {"R": keys_of(schema.RFriction), "T": keys_of(schema.TFriction)}
-DYN_MOTOR_KEYS = schema.DYNAMICS_MOTOR_KINDS
 FRICTION_REQUIRED = {"R": required_of(schema.RFriction), "T": required_of(schema.TFriction)}
+DYN_MOTOR_KEYS = schema.DYNAMICS_MOTOR_KINDS
 EXPECT_REQUIRED = required_of(schema.Expectation)
 REPORT_TEXT_KEYS = tuple(k for k in keys_of(schema.Report) if k not in ("units", "animation",
                                                                       "dxf", "html"))
 STUDY_REQUIRED = required_of(schema.Study)
-VARY_KEYS, VARY_REQUIRED = keys_of(schema.Vary), required_of(schema.Vary)
-SAMPLES = choices_of(schema.Study, "sample")
-JOINT_TYPES = tuple(JOINT_KEYS)
-LOAD_TYPES = tuple(LOAD_KEYS)
+VARY_REQUIRED = required_of(schema.Vary)
 POINT_QUANTITIES = ("x", "y", "vx", "vy", "ax", "ay", "v", "a")
 LINK_QUANTITIES = ("angle", "omega", "alpha")
 R_QUANTITIES = ("fx", "fy", "f", "angle", "friction")
@@ -172,6 +156,17 @@ def _text_hint(value: Any, boolean: bool = False) -> str:
     return ""
 
 
+def polar_point(r: float, angle: float) -> Vec:
+    """The point at distance ``r`` and ``angle`` degrees from the x-axis (CCW). At a multiple
+    of 90 degrees the zero coordinate is exactly 0 (cos 90 deg is 6e-17 in floating point)."""
+    quarter = angle / 90.0
+    if quarter == round(quarter):        # exact on the axes
+        c, s = ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[int(round(quarter)) % 4]
+    else:
+        c, s = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+    return (r * c + 0.0, r * s + 0.0)
+
+
 class _Checker:
     """Typed access to the parsed document that records problems instead of raising."""
 
@@ -191,8 +186,12 @@ class _Checker:
     def validate(self, data: Any) -> None:
         """Validate ``data`` with the models of :mod:`.schema` (their problems are reported
         later, by :func:`_shape_check`): a section the models refuse is not converted."""
-        self.shape = schema.shape_errors(data) if isinstance(data, dict) else []
+        self.shape = schema.shape_errors(data) if data is not None else []
         self.refused_paths = [schema.locate(tuple(e["loc"])).path for e in self.shape]
+
+    def refused_here(self, path: tuple) -> bool:
+        """Whether the models refused the value at ``path`` itself (or what holds it)."""
+        return any(tuple(path[:len(p)]) == tuple(p) for p in self.refused_paths)
 
     def refused(self, path: tuple) -> bool:
         """Whether the models refused the value at ``path`` or something in it."""
@@ -206,37 +205,6 @@ class _Checker:
         self.problems.append(Problem(self.src.filename, self.src.line(path),
                                      format_path(path), message))
 
-    def mapping(self, value: Any, path: tuple, allowed: tuple[str, ...],
-                required: tuple[str, ...] = ()) -> dict | None:
-        if not isinstance(value, dict):
-            self.error(path, f"must be a mapping of keys ({', '.join(allowed)}), got {_show(value)}")
-            return None
-        for key in value:
-            if key not in allowed:
-                self.error(path + (key,), _unknown_key(key, allowed))
-        for key in required:
-            if key not in value:
-                self.error(path, f"missing required key '{key}'")
-        return value
-
-    def number(self, value: Any, path: tuple, *, positive: bool = False,
-               nonzero: bool = False, scale: float = 1.0, unit: str = "") -> float | None:
-        """A finite number in range, times ``scale`` (to SI; ``unit`` names the written unit);
-        None (reported) otherwise."""
-        if (isinstance(value, bool) or not isinstance(value, (int, float, HugeInteger))) \
-                and len(self.problems) >= MAX_PROBLEMS:   # not listed: skip the message
-            self.dropped += 1
-            return None
-        problem = _number_problem(value, positive)
-        if problem is not None:
-            self.error(path, problem)
-            return None
-        number = float(value)
-        if nonzero and number == 0:
-            self.error(path, "must not be zero")
-            return None
-        return self.si(value, path, scale=scale, unit=unit)
-
     def si(self, value: Any, path: tuple, *, scale: float = 1.0,
            unit: str = "") -> float | None:
         """A number the models validated, times ``scale`` (to SI; ``unit`` names the written
@@ -248,66 +216,22 @@ class _Checker:
             return None
         return si
 
-    def vec2(self, value: Any, path: tuple, what: str = "[x, y]", *, scale: float = 1.0,
-             unit: str = "") -> Vec | None:
-        if not isinstance(value, list) or len(value) != 2:
-            self.error(path, f"must be a pair {what}, got {_show(value)}")
-            return None
-        x = self.number(value[0], path + (0,), scale=scale, unit=unit)
-        y = self.number(value[1], path + (1,), scale=scale, unit=unit)
+    def to_point(self, value: Any, path: tuple, scale: float, unit: str) -> Vec | None:
+        """A point the models validated (``[x, y]`` or ``{r, angle}``, in the length unit) in
+        SI; None (reported) when it leaves the range of numbers in SI units."""
+        if isinstance(value, dict):
+            r = self.si(value["r"], path + ("r",), scale=scale, unit=unit)
+            return None if r is None else polar_point(r, float(value["angle"]))
+        x = self.si(value[0], path + (0,), scale=scale, unit=unit)
+        y = self.si(value[1], path + (1,), scale=scale, unit=unit)
         return None if x is None or y is None else (x, y)
 
-    def point(self, value: Any, path: tuple, what: str = "[x, y]", *, scale: float = 1.0,
-              unit: str = "") -> Vec | None:
-        """A point written ``[x, y]`` or, in polar form, ``{r: R, angle: A}`` (R in the
-        length unit, A in degrees from the frame's x-axis, CCW), to SI. At a multiple of 90
-        degrees the zero coordinate is exactly 0 (cos 90 deg is 6e-17 in floating point)."""
-        if not isinstance(value, dict) or not ({"r", "angle"} & set(value)):
-            return self.vec2(value, path, f"{what} or {{r: R, angle: A}}", scale=scale,
-                             unit=unit)
-        body = self.mapping(value, path, POLAR_KEYS, required=POLAR_REQUIRED)
-        if body is None or any(k not in body for k in POLAR_REQUIRED):
-            return None
-        r = self.number(body["r"], path + ("r",), scale=scale, unit=unit)
-        if r is not None and r < 0:
-            self.error(path + ("r",), f"must be a distance (not negative), got {_show(body['r'])}")
-            r = None
-        angle = self.number(body["angle"], path + ("angle",))
-        if r is None or angle is None:
-            return None
-        quarter = angle / 90.0
-        if quarter == round(quarter):        # exact on the axes
-            c, s = ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[int(round(quarter)) % 4]
-        else:
-            c, s = math.cos(math.radians(angle)), math.sin(math.radians(angle))
-        return (r * c + 0.0, r * s + 0.0)
-
-    def name(self, value: Any, path: tuple) -> str | None:
-        if not isinstance(value, str) or not value:
-            hint = (" (quote a name that looks like a number, true/false or null)"
-                    if value is None or isinstance(value, (bool, int, float)) else "")
-            self.error(path, f"must be a name, got {_show(value)}{hint}")
-            return None
-        self.no_bidi_control(value, path)
-        return value
-
     def no_bidi_control(self, name: str, path: tuple) -> None:
-        """A name (a value, or a mapping's key at ``path``) must not hold a bidirectional
-        control character: it would show the name in the report as other than it is (the
-        "Trojan Source" trick)."""
-        bad = _BIDI_CONTROL.search(name)
-        if bad is not None:
-            char = bad.group()
-            self.error(path, f"must not hold U+{ord(char):04X} "
-                             f"({unicodedata.name(char, 'a bidirectional control')}), a "
-                             "bidirectional control character that makes a name display as "
-                             "other than it is; remove it")
-
-    def choice(self, value: Any, path: tuple, options: tuple[str, ...]) -> str | None:
-        if not isinstance(value, str) or value not in options:
-            self.error(path, f"must be one of {', '.join(options)}, got {_show(value)}")
-            return None
-        return value
+        """A mapping's key at ``path`` (a name of a link, point, joint ...) must not hold a
+        bidirectional control character (:func:`.schema.bidi_problem`)."""
+        problem = schema.bidi_problem(name)
+        if problem is not None:
+            self.error(path, problem)
 
     def derived(self, value: float, path: tuple, what: str, unit: str) -> float | None:
         """A value computed from others (a mass from density x volume, an inertia from a shape)
@@ -401,49 +325,27 @@ def _checked(data: Any, src: Source) -> Spec:
 # ------------------------------------------------------------------ the models' verdict
 
 def _shape_check(data: Any, ck: _Checker) -> None:
-    """Validate ``data`` with the models of :mod:`.schema` and report each problem they find
-    that the checks of this module did not: at the line of its key path, in their wording.
-    A problem is not reported twice: nothing is added at a key path that has a problem,
-    below one (unless that one is only a missing key) or above one."""
-    if not isinstance(data, dict) or len(ck.problems) >= MAX_PROBLEMS:
-        return              # a document that is not a mapping is reported as it is
+    """Report every problem the models of :mod:`.schema` find in ``data`` at the line of its
+    key path (each once), in the wording of :func:`_shape_problem`."""
+    if data is None:
+        return              # an empty file is reported as such
     if ck.shape is None:
         ck.validate(data)
-    reported = [(p.path, p.message) for p in ck.problems]
-    added: set[tuple[str, str]] = set()
+    added: set[tuple[tuple, str]] = set()
     for error in ck.shape:
-        path, message = _shape_problem(error)
-        shown = format_path(path)
-        if (shown, message) in added or _already_reported(shown, message, reported):
-            continue
-        added.add((shown, message))
-        ck.error(path, message)
-
-
-def _already_reported(path: str, message: str, reported: list[tuple[str, str]]) -> bool:
-    """Whether a problem ``message`` at ``path`` (formatted) repeats one of ``reported``: the
-    same key path (at the top level, the same message), a path below it, or a path above it
-    whose problem is more than a missing key (then what is below was not looked at, or is
-    that problem)."""
-    for other, text in reported:
-        if other == path and (path or text == message):
-            return True
-        if path and _below(other, path):
-            return True
-        if other and _below(path, other) and not text.startswith("missing required key"):
-            return True
-    return False
-
-
-def _below(path: str, ancestor: str) -> bool:
-    """Whether formatted key path ``path`` lies strictly below ``ancestor``."""
-    return path.startswith(ancestor) and path[len(ancestor):len(ancestor) + 1] in (".", "[")
+        found = _shape_problem(error)
+        if found not in added:
+            added.add(found)
+            ck.error(*found)
 
 
 def _shape_problem(error: dict) -> tuple[tuple, str]:
     """A pydantic error (``loc``, ``type``, ``input``) as a key path and a message in the
     wording of this module's checks."""
     loc, kind, value = tuple(error["loc"]), error["type"], error.get("input")
+    if kind == schema.WORDED:                # said in the house wording where it is found
+        key = (error.get("ctx") or {}).get("key")
+        return schema.locate(loc).path + ((key,) if key else ()), error["msg"]
     if kind == "missing" and loc and isinstance(loc[-1], int):    # a short pair
         where = schema.locate(loc[:-1])
         return where.path, f"must be {_wording(where, 'a longer list')}, got {_show(value)}"
@@ -452,11 +354,11 @@ def _shape_problem(error: dict) -> tuple[tuple, str]:
         return where.path[:-1], f"missing required key '{where.path[-1]}'"
     if kind == "extra_forbidden" and where.owner is not None:
         return where.path, _unknown_key(str(where.path[-1]), keys_of(where.owner))
+    refusal = where.refusal(kind)
+    if refusal is not None:
+        return where.path, refusal.text.format(value=_show(value))
     if kind in ("union_tag_invalid", "union_tag_not_found"):
         return _tag_problem(where, value)
-    refusal = where.marker(schema.Refusal)
-    if refusal is not None and refusal.says(kind):
-        return where.path, refusal.text.format(value=_show(value))
     return where.path, _value_problem(where, kind, value, error.get("msg", ""))
 
 
@@ -496,9 +398,10 @@ def _value_problem(where: schema.Located, kind: str, value: Any, fallback: str) 
                             "string_type": "text"}.get(kind, ""))
     if not what:
         return _fallback(fallback)
+    items = value if isinstance(value, list) else [value]
     quote = (" (quote a name that looks like a number, true/false or null)"
-             if what == "a name" and (value is None or isinstance(value, (bool, int, float)))
-             else "")
+             if "name" in what and any(x is None or isinstance(x, (bool, int, float))
+                                       for x in items) else "")
     return f"must be {what}, got {_show(value)}{quote}"
 
 
@@ -506,11 +409,13 @@ def _range_problem(where: schema.Located, value: Any) -> str | None:
     """A number's problem: not a number, out of the range every number keeps, or out of the
     range of its key (greater than zero, 0 or more, at most some limit)."""
     low, high = where.constraint("ge"), where.constraint("le")
-    problem = _number_problem(value, positive=low is not None and low > 0)
+    positive = low is not None and low > 0 or where.marker(schema.ZeroOrPositive) is not None
+    problem = _number_problem(value, positive=positive)
     if problem is not None:
         return problem
     if low == 0 and value < 0:
-        return f"must be 0 or more, got {_show(value)}"
+        return (f"must be a positive number, got {_show(value)}" if positive else
+                f"must be 0 or more, got {_show(value)}")
     if high is not None and value > high:
         return f"must be at most {high:g}, got {_show(value)}"
     return None
@@ -568,12 +473,12 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     if data is None:
         ck.error((), "the file is empty; a spec starts with 'mechreport: 1'")
         return None
-    top = ck.mapping(data, (), TOP_KEYS, required=TOP_REQUIRED)
-    if top is None:
-        return None
+    if not isinstance(data, dict):
+        return None             # the models say what it must be
+    top = data
     _key_names(top, (), ck)
 
-    name = ck.name(top.get("name"), ("name",)) if "name" in top else None
+    name = None if "name" not in top or ck.refused(("name",)) else top["name"]
     description = top.get("description")
     if description is None or ck.refused(("description",)):
         description = ""
@@ -597,7 +502,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     at = _angle_list(top.get("at"), ("at",), ck) if "at" in top else (sweep.start,)
     assembly = _assembly(top.get("assembly"), ck, links, length_scale, units["length"])
     loads = _loads(top.get("loads"), ck, {l.name: l for l in links}, joints, ground,
-                   length_scale, pins)
+                   length_scale, pins, units)
     if driver is not None and driver.kind == "T":
         if "sweep" not in top:
             ck.error((), "a T driver needs a 'sweep': a plain range of strokes in the length "
@@ -609,11 +514,12 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                                                           "angle: it needs an R driver")
     friction = (_friction(top["friction"], ck, joints, pins, length_scale)
                 if "friction" in top else ())
-    dynamics = (_dynamics(top["dynamics"], ck, driver, sweep)
+    dynamics = (_dynamics(top["dynamics"], ck, driver, sweep, units)
                 if "dynamics" in top else None)
     expect = _expect(top.get("expect"), ck, links, joints, src_lines=ck.src, driver=driver,
                      pins=pins)
-    design = _design(top.get("design"), ck, joints, pins) if "design" in top else Design()
+    design = (_design(top.get("design"), ck, joints, pins, units) if "design" in top
+              else Design())
     report = (_report(top.get("report"), ck, units, sweep.whole_turn) if "report" in top
               else ReportSettings(animation=sweep.whole_turn))
     study = _study(top["study"], ck, top) if "study" in top else None
@@ -627,7 +533,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                                                             ck.invalid_joints):
         _structure(ck, links, joints)
 
-    if ck.problems or name is None or driver is None or joints is None:
+    if ck.problems or ck.shape or name is None or driver is None or joints is None:
         # what the sweep alone says is still said, so that every problem is listed at once
         if "design" in top and (driver is None or driver.kind == "R") \
                 and _cycle_design(top.get("design")):
@@ -638,7 +544,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     spec = Spec(file=ck.src.filename, name=name, description=description.strip(),
                 gravity=gravity, ground=ground, links=tuple(links), joints=tuple(joints),
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
-                expect=tuple(expect), sheet=sheet, units=units, design=design,
+                expect=tuple(expect), sheet=sheet, units=_written_units(units), design=design,
                 report=report, study=study, pins=tuple(pins), friction=friction,
                 dynamics=dynamics, cycle=cycle, tolerances=tolerances)
     _cycle_requests(spec, ck)
@@ -677,12 +583,17 @@ def _friction(value: Any, ck: _Checker, joints: list[Joint] | None, pins: list[P
                 ck.error(where, f"no joint named '{name}'{hint}")
             continue
         jtype = targets[0].type
-        required = FRICTION_REQUIRED[jtype]
-        entry = ck.mapping(body, where, FRICTION_KEYS[jtype], required=required)
-        if entry is None or any(k not in entry for k in required):
-            continue
         if ck.refused(where):
             continue            # the models say what is wrong
+        entry = body            # an R joint's keys, or a T joint's: its type decides
+        for key in entry:
+            if key not in FRICTION_KEYS[jtype]:
+                ck.error(where + (key,), _unknown_key(key, FRICTION_KEYS[jtype]))
+        missing = [k for k in FRICTION_REQUIRED[jtype] if k not in entry]
+        for key in missing:
+            ck.error(where, f"missing required key '{key}'")
+        if missing or any(k not in FRICTION_KEYS[jtype] for k in entry):
+            continue
         mu = float(entry["mu"])
         size_key = "radius" if jtype == "R" else "length"
         size = (ck.si(entry[size_key], where + (size_key,), scale=ls)
@@ -698,8 +609,8 @@ def _friction(value: Any, ck: _Checker, joints: list[Joint] | None, pins: list[P
     return tuple(sorted(out.values(), key=lambda f: order.index(f.joint)))
 
 
-def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep
-              ) -> Dynamics | None:
+def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep,
+              units: dict[str, str]) -> Dynamics | None:
     """``dynamics:`` (docs/spec.md, "Machine dynamics"): the motor, flywheel, initial state,
     end and output step; the driver must be a crank (an R joint with ground)."""
     path = ("dynamics",)
@@ -717,37 +628,35 @@ def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep
                        "positive sense); write the driver's speed positive and the mechanism "
                        "mirrored, or leave dynamics out")
         ok = False
-    motor = _dynamics_motor(body["motor"], path + ("motor",), ck)
+    motor = _dynamics_motor(body["motor"], path + ("motor",), ck, _si(units, "moment"))
     if not ok or motor is None or ck.refused(path):
         return None
     start = body.get("start") or {}
     until = body.get("until")
-    return Dynamics(motor, float(body.get("flywheel", 0.0)),
+    flywheel = ck.si(body.get("flywheel", 0.0), path + ("flywheel",),
+                     scale=_si(units, "inertia"), unit=units["inertia"])
+    if flywheel is None:
+        return None
+    return Dynamics(motor, flywheel,
                     float(start.get("angle", sweep.start)), float(start.get("rpm", 0.0)),
                     None if until in (None, "steady") else float(until),
                     None if body.get("output_step") is None else float(body["output_step"]))
 
 
-def _dynamics_motor(value: Any, path: tuple, ck: _Checker) -> MotorCurve | None:
-    """The motor of ``dynamics:``: exactly one of ``torque``, ``curve``, ``linear``."""
-    body = ck.mapping(value, path, DYN_MOTOR_KEYS)
-    if body is None:
-        return None
-    given = [k for k in DYN_MOTOR_KEYS if k in body]
-    if len(given) != 1:
-        ck.error(path, "give exactly one of torque (N·m), curve ([[rpm, N·m], ...]) or linear "
-                       "({stall_torque, no_load_rpm})" + (f", not {' and '.join(given)}"
-                                                          if given else ""))
-        return None
+def _dynamics_motor(value: Any, path: tuple, ck: _Checker,
+                    ms: float = 1.0) -> MotorCurve | None:
+    """The motor of ``dynamics:``: exactly one of ``torque``, ``curve``, ``linear`` (torques
+    in the spec's moment unit, ``ms`` N·m each)."""
     if ck.refused(path):
-        return None
-    kind = given[0]
+        return None             # the models say what is wrong
+    body = value
+    kind = next(k for k in DYN_MOTOR_KEYS if k in body)
     if kind == "torque":
-        return MotorCurve(constant=float(body["torque"]))
+        return MotorCurve(constant=float(body["torque"]) * ms)
     if kind == "linear":
-        return MotorCurve(stall_torque=float(body["linear"]["stall_torque"]),
+        return MotorCurve(stall_torque=float(body["linear"]["stall_torque"]) * ms,
                           no_load_rpm=float(body["linear"]["no_load_rpm"]))
-    points = [(float(a), float(b)) for a, b in body["curve"]]
+    points = [(float(a), float(b) * ms) for a, b in body["curve"]]
     for i in range(1, len(points)):
         if not points[i][0] > points[i - 1][0]:
             ck.error(path + ("curve", i, 0), f"the speeds must increase: {points[i][0]:g} rpm "
@@ -756,17 +665,24 @@ def _dynamics_motor(value: Any, path: tuple, ck: _Checker) -> MotorCurve | None:
     return MotorCurve(curve=tuple(points))
 
 
-def _design(value: Any, ck: _Checker, joints: list[Joint] | None, pins=()) -> Design:
-    """The design review's inputs, SI as written (their types and ranges are the models';
-    a part they refuse is left out); a bearing must name a joint."""
+def _design(value: Any, ck: _Checker, joints: list[Joint] | None, pins=(),
+            units: dict[str, str] | None = None) -> Design:
+    """The design review's inputs in SI (forces and torques written in the spec's units; their
+    types and ranges are the models'; a part they refuse is left out); a bearing must name a
+    joint."""
     path = ("design",)
     body = value if isinstance(value, dict) else {}
+    units = units or {key: f.default for key, f in schema.Units.model_fields.items()}
+
+    def si(model, key: str, x: Any) -> float:
+        kind = schema.unit_kind(model, key)
+        return float(x) * (_si(units, kind) if kind else 1.0)
 
     def numbers(key: str, model) -> dict[str, float]:
         raw = body.get(key)
         if not isinstance(raw, dict) or ck.refused(path + (key,)):
             return {}
-        return {k: float(raw[k]) for k in keys_of(model) if k in raw}
+        return {k: si(model, k, raw[k]) for k in keys_of(model) if k in raw}
 
     cs = body.get("speed_fluctuation")
     cs = None if cs is None or ck.refused(path + ("speed_fluctuation",)) else float(cs)
@@ -781,7 +697,7 @@ def _design(value: Any, ck: _Checker, joints: list[Joint] | None, pins=()) -> De
                          or f"no joint named '{jname}' (joints: {', '.join(sorted(names))})")
         elif not ck.refused(where):
             life = item.get("life_h")
-            bearings[jname] = BearingSpec(float(item["rating"]),
+            bearings[jname] = BearingSpec(si(schema.Bearing, "rating", item["rating"]),
                                           None if life is None else float(life))
     return Design(cs, numbers("motor", schema.Motor), bearings, numbers("limits", schema.Limits))
 
@@ -1228,8 +1144,9 @@ def _kept_requests(spec: Spec, ck: _Checker, quantities: list[tuple[tuple, str]]
 
 
 def _units(value: Any, ck: _Checker) -> tuple[float, float, dict[str, str]]:
-    """The factors of the spec's length and mass units to m and kg, and their names (the
-    model's defaults where absent or refused)."""
+    """The factors of the spec's length and mass units to m and kg, and the names of all its
+    units (length, mass, force, moment, inertia: the model's defaults where absent or
+    refused)."""
     given = value if isinstance(value, dict) else {}
     names = {key: (given[key] if key in given and not ck.refused(("units", key))
                    else field.default)
@@ -1237,15 +1154,31 @@ def _units(value: Any, ck: _Checker) -> tuple[float, float, dict[str, str]]:
     return LENGTH_UNITS[names["length"]], MASS_UNITS[names["mass"]], names
 
 
+def _si(units: dict[str, str], kind: str) -> float:
+    """The size in SI of the spec's unit of ``kind`` (force, moment, inertia, ...)."""
+    return UNIT_TABLES[kind][units[kind]]
+
+
+#: the units every spec has in Spec.units; the others only where they are not SI
+_ALWAYS_SHOWN = ("length", "mass")
+
+
+def _written_units(units: dict[str, str]) -> dict[str, str]:
+    """``Spec.units``: the length and mass units, and the force, moment and inertia units
+    where the spec writes them in other than SI."""
+    return {key: name for key, name in units.items()
+            if key in _ALWAYS_SHOWN or name != schema.Units.model_fields[key].default}
+
+
 def _ground(value: Any, ck: _Checker, s: float, unit: str) -> dict[str, Vec]:
-    if value is None:
-        return {}
+    """The ground points, SI (their shape is the models'; a refused point is left out, and
+    later checks do not report it again as missing)."""
     if not isinstance(value, dict):
-        ck.error(("ground",), f"must be a mapping of point names to [x, y], got {_show(value)}")
         return {}
     out = {}
     for pname, pvalue in value.items():
-        v = ck.point(pvalue, ("ground", pname), scale=s, unit=unit)
+        v = None if ck.refused(("ground", pname)) else ck.to_point(pvalue, ("ground", pname),
+                                                                     s, unit)
         if v is not None:
             out[pname] = v
         else:
@@ -1254,11 +1187,10 @@ def _ground(value: Any, ck: _Checker, s: float, unit: str) -> dict[str, Vec]:
 
 
 def _links(value: Any, ck: _Checker, ls: float, ms: float, units: dict[str, str]) -> list[Link]:
-    if value is _ABSENT:
-        return []
-    if not isinstance(value, dict) or not value:
-        ck.error(("links",), "must be a mapping of link names to link definitions"
-                             + ("" if isinstance(value, dict) else f", got {_show(value)}"))
+    """The moving links, SI (their shape is the models'); a link whose points or mass
+    properties the models refused is left out, and its name and points are not reported
+    again where they are used."""
+    if not isinstance(value, dict):
         return []
     links = []
     for number, (lname, body) in enumerate(value.items(), start=1):
@@ -1266,7 +1198,9 @@ def _links(value: Any, ck: _Checker, ls: float, ms: float, units: dict[str, str]
         if lname == GROUND:
             ck.error(path, "'ground' is the reserved name of the frame; name moving links otherwise")
             continue
-        link = _link(lname, number, body, path, ck, ls, ms, units)
+        link = (_link(lname, number, body, path, ck, ls, ms, units)
+                if isinstance(body, dict) and not any(ck.refused(path + (key,))
+                                                      for key in LINK_MASS_KEYS) else None)
         if link is not None:
             links.append(link)
         else:
@@ -1276,42 +1210,36 @@ def _links(value: Any, ck: _Checker, ls: float, ms: float, units: dict[str, str]
     return links
 
 
-def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
+#: the keys of a link that make its kinematic and mass model (the rest: its strength)
+LINK_MASS_KEYS = ("points", "mass", "density", "com", "inertia", "shape")
+
+
+def _link(lname: str, number: int, body: dict, path: tuple, ck: _Checker,
           ls: float, ms: float, units: dict[str, str]) -> Link | None:
-    body = ck.mapping(body, path, LINK_KEYS, required=LINK_REQUIRED)
-    if body is None:
-        return None
+    """A link the models validated, SI: its mass, centre of mass and inertia as given, or
+    from its ``density`` and ``shape``."""
     lu, mu = units["length"], units["mass"]
     points: dict[str, Vec] = {}
-    raw_points = body.get("points")
-    points_ok = "points" in body
-    if "points" in body:
-        if not isinstance(raw_points, dict) or not raw_points:
-            ck.error(path + ("points",), "must map at least one point name to [x, y]"
-                     + ("" if isinstance(raw_points, dict) else f", got {_show(raw_points)}"))
-            points_ok = False
+    points_ok = True
+    for pname, pv in body["points"].items():
+        v = ck.to_point(pv, path + ("points", pname), ls, lu)
+        if v is not None:
+            points[pname] = v
         else:
-            for pname, pv in raw_points.items():
-                v = ck.point(pv, path + ("points", pname), scale=ls, unit=lu)
-                if v is not None:
-                    points[pname] = v
-                else:
-                    points_ok = False
-    shape = _shape(body.get("shape"), path + ("shape",), ck, ls, lu) if "shape" in body else None
-    massless = "mass" in body and type(body["mass"]) in (int, float) and body["mass"] == 0
-    mass = (ck.number(body["mass"], path + ("mass",), positive=True, scale=ms, unit=mu)
+            points_ok = False
+    shape = _shape(body["shape"], path + ("shape",), ck, ls, lu) if "shape" in body else None
+    massless = "mass" in body and body["mass"] == 0
+    mass = (ck.si(body["mass"], path + ("mass",), scale=ms, unit=mu)
             if "mass" in body and not massless else 0.0 if massless else None)
-    density = (ck.number(body["density"], path + ("density",), positive=True)
-               if "density" in body else None)
-    com = ck.point(body["com"], path + ("com",), scale=ls, unit=lu) if "com" in body else None
-    point_mass = ("inertia" in body and type(body["inertia"]) in (int, float)
-                  and body["inertia"] == 0)
+    density = float(body["density"]) if "density" in body else None
+    com = ck.to_point(body["com"], path + ("com",), ls, lu) if "com" in body else None
+    point_mass = "inertia" in body and body["inertia"] == 0
     inertia = (0.0 if point_mass else
-               ck.number(body["inertia"], path + ("inertia",), positive=True)
-               if "inertia" in body else None)
+               ck.si(body["inertia"], path + ("inertia",), scale=_si(units, "inertia"),
+                     unit=units["inertia"]) if "inertia" in body else None)
     bad = any(k in body and v is None for k, v in
-              (("shape", shape), ("mass", mass), ("density", density), ("com", com),
-               ("inertia", inertia))) or not points_ok
+              (("shape", shape), ("mass", mass), ("com", com), ("inertia", inertia))) \
+        or not points_ok
     if bad:
         return None
     if massless:            # a massless link (a two-force member when it carries no load)
@@ -1354,17 +1282,11 @@ def _link(lname: str, number: int, body: Any, path: tuple, ck: _Checker,
     return Link(lname, number, points, mass, com, inertia, shape)
 
 
-def _shape(value: Any, path: tuple, ck: _Checker, ls: float, unit: str) -> Shape | None:
-    if not isinstance(value, dict) or len(value) != 1 or next(iter(value)) not in SHAPE_KEYS:
-        ck.error(path, "must be {bar: {length, height, depth}} or {block: {width, height, depth}}")
-        return None
+def _shape(value: dict, path: tuple, ck: _Checker, ls: float, unit: str) -> Shape | None:
+    """A shape the models validated (``{bar: ...}`` or ``{block: ...}``), sizes in SI."""
     kind, dims = next(iter(value.items()))
     keys = SHAPE_KEYS[kind]
-    dims = ck.mapping(dims, path + (kind,), keys, required=keys)
-    if dims is None or any(k not in dims for k in keys):
-        return None
-    sizes = [ck.number(dims[k], path + (kind, k), positive=True, scale=ls, unit=unit)
-             for k in keys]
+    sizes = [ck.si(dims[k], path + (kind, k), scale=ls, unit=unit) for k in keys]
     if any(v is None for v in sizes):
         return None
     return Shape(kind, sizes[0], sizes[1], sizes[2])
@@ -1377,29 +1299,21 @@ def _link_points(lname: str, ground: dict[str, Vec], links: dict[str, Link]) -> 
 def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, Link],
             ls: float, unit: str) -> tuple[list[Joint] | None, list[Pin]]:
     """The joints as the methods solve them (a pin joining several links becomes a two-link
-    joint from its hub to each other link, see :class:`Pin`) and those pins."""
+    joint from its hub to each other link, see :class:`Pin`) and those pins. Their shape is
+    the models'; here: the links and points they name exist."""
     if value is _ABSENT:
         return None, []
-    if not isinstance(value, dict) or not value:
-        ck.error(("joints",), "must be a mapping of joint names to joint definitions"
-                              + ("" if isinstance(value, dict) else f", got {_show(value)}"))
+    if not isinstance(value, dict) or ck.refused(("joints",)) and not value:
         return None, []
     joints: list[Joint] = []
     pins: list[Pin] = []
     for jname, body in value.items():
         path = ("joints", jname)
-        if not isinstance(body, dict):
-            ck.error(path, f"must be a mapping like {{type: R, links: [a, b]}}, got {_show(body)}")
-            continue
-        jtype = ck.choice(body.get("type"), path + ("type",), JOINT_TYPES) if "type" in body \
-            else None
-        if "type" not in body:
-            ck.error(path, "missing required key 'type' (R or T)")
-        allowed = JOINT_KEYS.get(jtype or "T")
-        ck.mapping(body, path, allowed, required=allowed[1:] if jtype else ("links",))
-        if jtype is None or "links" not in body:
-            continue
-        names = _joint_links(jname, jtype, body["links"], path + ("links",), ck, links)
+        if not isinstance(body, dict) or ck.refused_here(path) or any(
+                ck.refused(path + (key,)) for key in ("type", "links", "point", "line")):
+            continue            # the models say what is wrong
+        jtype = body["type"]
+        names = _joint_links(jname, body["links"], path + ("links",), ck, links)
         if names is None:
             continue
         if jtype == "R":
@@ -1435,19 +1349,10 @@ def _joints(value: Any, ck: _Checker, ground: dict[str, Vec], links: dict[str, L
     return joints, pins
 
 
-def _joint_links(jname: str, jtype: str, names: Any, path: tuple, ck: _Checker,
+def _joint_links(jname: str, names: list[str], path: tuple, ck: _Checker,
                  links: dict[str, Link]) -> list[str] | None:
-    """The links a joint joins: two for a T joint, two or more for an R joint (a pin joining
-    several links), each known and none twice (None after reporting what is wrong)."""
-    if (not isinstance(names, list) or len(names) < 2 or (jtype == "T" and len(names) != 2)
-            or not all(isinstance(x, str) for x in names)):
-        quote = isinstance(names, list) and any(
-            x is None or isinstance(x, (bool, int, float)) for x in names)
-        ck.error(path, f"must be two link names [first, second], got {_show(names)}"
-                 + (" (quote a name that looks like a number, true/false or null)" if quote
-                    else " (a pin joining several links lists them all)" if jtype == "R"
-                    else ""))
-        return None
+    """The links a joint joins (two for a T joint, two or more for an R joint: the models'),
+    each known and none twice (None after reporting what is wrong)."""
     ok = True
     for i, lname in enumerate(names):
         if lname != GROUND and lname not in links:
@@ -1466,17 +1371,15 @@ def _joint_links(jname: str, jtype: str, names: Any, path: tuple, ck: _Checker,
 def _t_joint(jname: str, body: dict, pair: list, path: tuple, ck: _Checker,
              ground: dict[str, Vec], links: dict[str, Link], ls: float,
              unit: str) -> Joint | None:
+    """A T joint the models validated, SI: its point is the slider's, a line through a named
+    point passes through one of the guide's."""
     guide, slider = pair
-    point = ck.name(body.get("point"), path + ("point",)) if "point" in body else None
-    if point is not None and point not in _link_points(slider, ground, links):
+    point = body["point"]
+    if point not in _link_points(slider, ground, links):
         ck.error(path + ("point",), f"'{point}' is not a point of the slider '{slider}' "
                                     "(the second link of a T joint slides on the first)")
         point = None
-    if "line" not in body:   # reported as a missing key
-        return None
-    line = ck.mapping(body["line"], path + ("line",), LINE_KEYS, required=LINE_REQUIRED)
-    if line is None or any(k not in line for k in LINE_REQUIRED):
-        return None
+    line = body["line"]
     through_raw, through_name = line["through"], None
     if isinstance(through_raw, str):
         pts = _link_points(guide, ground, links)
@@ -1488,22 +1391,20 @@ def _t_joint(jname: str, body: dict, pair: list, path: tuple, ck: _Checker,
         else:
             through, through_name = pts[through_raw], through_raw
     else:
-        through = ck.point(through_raw, path + ("line", "through"), "[x, y], a point name",
-                           scale=ls, unit=unit)
-    direction_raw = line["direction"]
-    if isinstance(direction_raw, list):
-        d = ck.vec2(direction_raw, path + ("line", "direction"), "[dx, dy] or an angle in degrees")
-        if d is not None and math.hypot(*d) == 0:
-            ck.error(path + ("line", "direction"), "must not be the zero vector")
-            d = None
-        direction = None if d is None else (d[0] / math.hypot(*d), d[1] / math.hypot(*d))
-    else:
-        angle = ck.number(direction_raw, path + ("line", "direction"))
-        direction = None if angle is None else (math.cos(math.radians(angle)),
-                                                math.sin(math.radians(angle)))
-    if point is None or through is None or direction is None:
+        through = ck.to_point(through_raw, path + ("line", "through"), ls, unit)
+    direction = _direction(line["direction"])
+    if point is None or through is None:
         return None
     return Joint(jname, "T", (guide, slider), point, Line(through, direction, through_name))
+
+
+def _direction(value: Any) -> Vec:
+    """A direction the models validated (an angle in degrees, or a vector that is not zero)
+    as a unit vector."""
+    if isinstance(value, list):
+        norm = math.hypot(*value)
+        return (value[0] / norm, value[1] / norm)
+    return (math.cos(math.radians(value)), math.sin(math.radians(value)))
 
 
 def _driver(value: Any, ck: _Checker, joints: list[Joint] | None,
@@ -1619,11 +1520,6 @@ def _sweep(value: Any, ck: _Checker, cycle: float = 360.0) -> Sweep:
     return sweep
 
 
-#: bidirectional controls: embeddings, overrides, isolates and marks (LRE ... RLO, LRI ... PDI,
-#: LRM, RLM, ALM)
-_BIDI_CONTROL = re.compile("[\u202a-\u202e\u2066-\u2069\u200e\u200f\u061c]")
-
-
 def _key_names(node: Any, path: tuple, ck: _Checker) -> None:
     """Every mapping key of the document is a keyword or a name (of a link, point, joint,
     material, ...): none may hold a bidirectional control character."""
@@ -1638,27 +1534,26 @@ def _key_names(node: Any, path: tuple, ck: _Checker) -> None:
 
 
 def _angle_list(value: Any, path: tuple, ck: _Checker) -> tuple[float, ...]:
-    if not isinstance(value, list) or not value:
-        ck.error(path, f"must be a list of crank angles in degrees, got {_show(value)}")
+    """The reference angles, degrees (their types are the models'); each given once."""
+    if not isinstance(value, list) or not value or ck.refused(path):
         return (0.0,)
-    out = [ck.number(v, path + (i,)) for i, v in enumerate(value)]
+    out = [float(v) for v in value]
     for i, v in enumerate(out):
-        if v is not None and v in out[:i]:
+        if v in out[:i]:
             ck.error(path + (i,), f"{_show(value[i])} is given twice (also {path[-1]}"
                                   f"[{out.index(v)}]); give each reference angle once")
-    return tuple(v for v in out if v is not None) or (0.0,)
+    return tuple(out)
 
 
 def _assembly(value: Any, ck: _Checker, links: list[Link], ls: float,
               unit: str) -> dict[str, Vec]:
-    if value is None:
-        return {}
+    """The assembly hints, SI: each names a point of a moving link."""
     if not isinstance(value, dict):
-        ck.error(("assembly",), f"must map point names to rough [x, y], got {_show(value)}")
         return {}
     out = {}
     for pname, pv in value.items():
-        v = ck.point(pv, ("assembly", pname), scale=ls, unit=unit)
+        v = None if ck.refused(("assembly", pname)) else ck.to_point(pv, ("assembly", pname),
+                                                                       ls, unit)
         if not any(pname in l.points for l in links):
             if pname not in ck.invalid_points:
                 ck.error(("assembly", pname), f"'{pname}' is not a point of any moving link")
@@ -1667,130 +1562,98 @@ def _assembly(value: Any, ck: _Checker, links: list[Link], ls: float,
     return out
 
 
-def _profile(value: Any, path: tuple, ck: _Checker) -> tuple[tuple[float, float], ...] | None:
-    if not isinstance(value, list) or not value:
-        ck.error(path, "must be a list of [crank_angle_deg, magnitude] pairs")
-        return None
-    pairs = [ck.vec2(item, path + (i,), "[crank_angle_deg, magnitude]")
-             for i, item in enumerate(value)]
-    if any(p is None for p in pairs):
-        return None
-    angles = [p[0] for p in pairs]     # each in [0, cycle]: the models' (SpecFile)
-    if any(b <= a for a, b in zip(angles, angles[1:])):
-        ck.error(path, "angles must be strictly increasing")
-        return None
-    return tuple(pairs)
-
-
 def _loads(value: Any, ck: _Checker, links: dict[str, Link], joints: list[Joint] | None = None,
-           ground: dict[str, Vec] | None = None, ls: float = 1.0, pins=()) -> list[Load]:
-    if value is None:
-        return []
+           ground: dict[str, Vec] | None = None, ls: float = 1.0, pins=(),
+           units: dict[str, str] | None = None) -> list[Load]:
+    """The loads, SI (their shape is the models'; forces in ``units.force``, moments in
+    ``units.moment``); here: the links, points and joints they name exist, and their names
+    differ."""
+    units = units or {key: f.default for key, f in schema.Units.model_fields.items()}
     if not isinstance(value, list):
-        ck.error(("loads",), "must be a list of loads ({type: force|moment, link, ...})")
         return []
     loads = []
     names: dict[str, int] = {}    # load name -> its index
     for i, item in enumerate(value):
         path = ("loads", i)
-        if not isinstance(item, dict):
-            ck.error(path, f"must be a mapping like {{type: force, link, point, value}}, "
-                           f"got {_show(item)}")
-            continue
-        kind = ck.choice(item.get("type"), path + ("type",), LOAD_TYPES)
-        if kind is None:
-            continue
+        if not isinstance(item, dict) or ck.refused_here(path) or ck.refused(path + ("type",)):
+            continue            # the models say what is wrong
+        label = _load_label(item, i, path, ck, names)
+        kind = item["type"]
         if kind == "pressure":
-            load = _pressure(item, i, path, ck, links, names, ls)
-            if load is not None:
-                names[load.label] = i
-                loads.append(load)
-            continue
-        if kind in ("spring", "damper", "torsion_spring"):
-            load = _element(kind, item, i, path, ck, links, joints, ground, names, ls, pins)
-            if load is not None:
-                names[load.label] = i
-                loads.append(load)
-            continue
-        req = LOAD_REQUIRED[kind]
-        if ck.mapping(item, path, LOAD_KEYS[kind], required=req) is None or \
-                any(k not in item for k in req):
-            continue
-        lname = ck.name(item["link"], path + ("link",))
-        if lname is None:
-            continue
-        if lname not in links:
-            if lname not in ck.invalid_links:
-                ck.error(path + ("link",), f"unknown link '{lname}' (loads act on moving links: "
-                                           f"{', '.join(links)})")
-            continue
-        point = None
-        if kind == "force":
-            point = ck.name(item["point"], path + ("point",))
-            if point is None:
-                continue
-            if point not in links[lname].points:
-                ck.error(path + ("point",), f"'{point}' is not a point of link '{lname}'")
-                continue
-        has_value, has_profile = "value" in item, "profile" in item
-        if has_value == has_profile:
-            what = "'value', or 'direction' with 'profile'" if kind == "force" else \
-                "'value' or 'profile'"
-            ck.error(path, f"give exactly one of {what}")
-            continue
-        value_, direction, profile = None, None, None
-        if kind == "force":
-            if has_value:
-                value_ = ck.vec2(item["value"], path + ("value",), "[Fx, Fy] in N")
-                if "direction" in item:
-                    ck.error(path + ("direction",), "goes with 'profile', not with 'value'")
-            else:
-                if "direction" not in item:
-                    ck.error(path, "a force 'profile' needs a 'direction' [dx, dy]")
-                    continue
-                d = ck.vec2(item["direction"], path + ("direction",), "[dx, dy]")
-                if d is not None and math.hypot(*d) == 0:
-                    ck.error(path + ("direction",), "must not be the zero vector")
-                    d = None
-                direction = None if d is None else (d[0] / math.hypot(*d), d[1] / math.hypot(*d))
-                profile = _profile(item["profile"], path + ("profile",), ck)
+            load = _pressure(item, i, path, ck, links, ls)
+        elif kind in ("spring", "damper", "torsion_spring"):
+            load = _element(kind, item, i, path, ck, links, joints, ground, ls, pins, units)
         else:
-            if has_value:
-                value_ = ck.number(item["value"], path + ("value",))
-            else:
-                profile = _profile(item["profile"], path + ("profile",), ck)
-        oppose = None
-        if "oppose" in item:
-            oppose = ck.choice(item["oppose"], path + ("oppose",), OPPOSE[kind])
-        if (has_value and value_ is None) or (has_profile and profile is None) or \
-                ("oppose" in item and oppose is None):
-            continue
-        if kind == "force" and has_profile and direction is None:
-            continue
-        label = ck.name(item["name"], path + ("name",)) if "name" in item else f"load {i + 1}"
-        if label is not None and label in names:
-            ck.error(path + ("name",), f"'{label}' is the name of loads[{names[label]}] too: "
-                                       "load names must differ (they label the torque "
-                                       "breakdown)")
-            label = None
-        reacts = (ck.choice(item["reacts_on"], path + ("reacts_on",), REACTS_ON)
-                  if "reacts_on" in item else None)
-        if label is None or ("reacts_on" in item and reacts is None):
-            continue
-        names[label] = i
-        shift = float(item.get("shift", 0.0)) if not ck.refused(path + ("shift",)) else 0.0
-        loads.append(Load(kind, lname, i, point, value_, direction, profile, oppose,
-                          item.get("name"), reacts, shift=shift))
+            load = _load(kind, item, i, path, ck, links, units)
+        if label is not None:
+            names[label] = i
+        if load is not None and label is not None and not ck.refused(path):
+            loads.append(load)
     return loads
 
 
+def _load_label(item: dict, i: int, path: tuple, ck: _Checker,
+                names: dict[str, int]) -> str | None:
+    """The label of a load (its ``name``, or "load N"); None (reported) when an earlier load
+    has it."""
+    if ck.refused(path + ("name",)):
+        return None
+    label = item["name"] if "name" in item else f"load {i + 1}"
+    if label in names:
+        ck.error(path + ("name",), f"'{label}' is the name of loads[{names[label]}] too: "
+                                   "load names must differ (they label the torque breakdown)")
+        return None
+    return label
+
+
+def _load(kind: str, item: dict, i: int, path: tuple, ck: _Checker,
+          links: dict[str, Link], units: dict[str, str]) -> Load | None:
+    """A force or a moment the models validated, on a moving link (at one of its points)."""
+    if ck.refused(path + ("link",)):
+        return None
+    lname = item["link"]
+    if lname not in links:
+        if lname not in ck.invalid_links:
+            ck.error(path + ("link",), f"unknown link '{lname}' (loads act on moving links: "
+                                       f"{', '.join(links)})")
+        return None
+    point = None
+    if kind == "force":
+        point = item["point"]
+        if ck.refused(path + ("point",)):
+            return None
+        if point not in links[lname].points:
+            ck.error(path + ("point",), f"'{point}' is not a point of link '{lname}'")
+            return None
+    if ck.refused(path):
+        return None
+    unit = units[kind]                  # a force's, or a moment's
+    scale = _si(units, kind)
+    value_ = item.get("value")
+    if kind == "force" and value_ is not None:
+        value_ = tuple(ck.si(x, path + ("value", k), scale=scale, unit=unit)
+                       for k, x in enumerate(value_))
+    elif value_ is not None:
+        value_ = ck.si(value_, path + ("value",), scale=scale, unit=unit)
+    direction = _direction(item["direction"]) if "direction" in item else None
+    profile = (tuple((float(a), ck.si(b, path + ("profile", k, 1), scale=scale, unit=unit))
+                     for k, (a, b) in enumerate(item["profile"])) if "profile" in item
+               else None)
+    values = ([] if value_ is None else list(value_) if isinstance(value_, tuple) else [value_])
+    values += [b for _, b in profile or ()]
+    if not values or any(x is None for x in values):
+        return None             # (reported: out of range in SI)
+    return Load(kind, lname, i, point, value_, direction, profile, item.get("oppose"),
+                item.get("name"), item.get("reacts_on"), shift=float(item.get("shift", 0.0)))
+
+
 def _pressure(item: dict, i: int, path: tuple, ck: _Checker, links: dict[str, Link],
-              names: dict[str, int], ls: float) -> Load | None:
+              ls: float) -> Load | None:
     """A ``type: pressure`` load (format 1.2) as the force it is: the profile (p - ambient)
     x area [N] along the unit ``direction``, at ``point`` of ``link``, reacting on the frame
     (the cylinder head). The models checked its keys; here only what needs the rest of the
-    spec (the link and its point, the load's name) and the conversion to SI."""
-    if ck.refused(path):
+    spec (the link and its point) and the conversion to SI."""
+    if ck.refused(path) or ck.refused(path + ("link",)) or ck.refused(path + ("point",)):
         return None
     lname, point = item["link"], item["point"]
     if lname not in links:
@@ -1800,11 +1663,6 @@ def _pressure(item: dict, i: int, path: tuple, ck: _Checker, links: dict[str, Li
         return None
     if point not in links[lname].points:
         ck.error(path + ("point",), f"'{point}' is not a point of link '{lname}'")
-        return None
-    label = item.get("name", f"load {i + 1}")
-    if label in names:
-        ck.error(path + ("name",), f"'{label}' is the name of loads[{names[label]}] too: load "
-                                   "names must differ (they label the torque breakdown)")
         return None
     model = schema.PressureLoad.model_fields
     unit = item.get("unit", model["unit"].default)
@@ -1828,24 +1686,27 @@ def _pressure(item: dict, i: int, path: tuple, ck: _Checker, links: dict[str, Li
                 shift=float(item.get("shift", 0.0)), pressure=pressure)
 
 
+def _rate_unit(units: dict[str, str], ls: float) -> tuple[float, str]:
+    """The size in SI (N/m) of the unit a spring's or damper's rate is written in, and its
+    name: ``units.force`` per length unit (lbf/in, kip/in) when the spec's forces are not in
+    newtons, else N/m whatever the length unit (as in format 1.1)."""
+    if units["force"] == "N":
+        return 1.0, "N/m"
+    return _si(units, "force") / ls, f"{units['force']}/{units['length']}"
+
+
 def _element(kind: str, item: dict, i: int, path: tuple, ck: _Checker, links: dict[str, Link],
-             joints: list[Joint] | None, ground: dict[str, Vec] | None, names: dict[str, int],
-             ls: float, pins=()) -> Load | None:
-    """A spring, damper or torsion spring: machine elements whose force follows from the
-    kinematics (docs/spec.md, section 8)."""
-    required = LOAD_REQUIRED[kind]
-    body = ck.mapping(item, path, LOAD_KEYS[kind], required=required)
-    if body is None or any(k not in body for k in required):
-        return None
-    label = ck.name(item["name"], path + ("name",)) if "name" in item else f"load {i + 1}"
-    if label is not None and label in names:
-        ck.error(path + ("name",), f"'{label}' is the name of loads[{names[label]}] too: load "
-                                   "names must differ (they label the torque breakdown)")
-        return None
+             joints: list[Joint] | None, ground: dict[str, Vec] | None, ls: float,
+             pins=(), units: dict[str, str] | None = None) -> Load | None:
+    """A spring, damper or torsion spring the models validated: machine elements whose force
+    follows from the kinematics (docs/spec.md, section 8); the joint or the points they join
+    exist."""
     if kind == "torsion_spring":
-        jname = ck.name(body["joint"], path + ("joint",))
+        if ck.refused(path + ("joint",)):
+            return None
+        jname = item["joint"]
         joint = next((j for j in joints or () if j.name == jname), None)
-        if jname is not None and joint is None and joints is not None:
+        if joint is None and joints is not None:
             if jname not in ck.invalid_joints:
                 ck.error(path + ("joint",), _pin_hint(jname, pins, "torsion spring")
                          or f"unknown joint '{jname}'")
@@ -1854,25 +1715,20 @@ def _element(kind: str, item: dict, i: int, path: tuple, ck: _Checker, links: di
             ck.error(path + ("joint",), f"a torsion spring sits at an R joint; '{jname}' is a "
                                         "slider (T)")
             return None
-        k = ck.number(body["stiffness"], path + ("stiffness",), positive=True)
-        a0 = ck.number(body["free_angle"], path + ("free_angle",))
-        if joint is None or k is None or a0 is None or label is None:
+        if joint is None or ck.refused(path):
             return None
         moving = joint.links[1] if joint.links[1] != GROUND else joint.links[0]
+        k = ck.si(item["stiffness"], path + ("stiffness",), scale=_si(units, "moment"),
+                  unit=units["moment"] + "/rad")
+        if k is None:
+            return None
         return Load(kind, moving, i, name=item.get("name"), joint=jname, stiffness=k,
-                    free_angle=a0)
-    ends = body["between"]
+                    free_angle=float(item["free_angle"]))
     where = path + ("between",)
-    if not (isinstance(ends, list) and len(ends) == 2 and all(
-            isinstance(e, list) and len(e) == 2 for e in ends)):
-        ck.error(where, f"must be two ends [[link, point], [link, point]], got {_show(ends)}")
+    if ck.refused(where):
         return None
     pairs = []
-    for e, (lname, pname) in enumerate(ends):
-        lname = ck.name(lname, where + (e, 0))
-        pname = ck.name(pname, where + (e, 1))
-        if lname is None or pname is None:
-            return None
+    for e, (lname, pname) in enumerate(item["between"]):
         if lname != GROUND and lname not in links:
             if lname not in ck.invalid_links:
                 ck.error(where + (e, 0), f"unknown link '{lname}' (ground or a moving link: "
@@ -1888,18 +1744,19 @@ def _element(kind: str, item: dict, i: int, path: tuple, ck: _Checker, links: di
         ck.error(where, f"both ends are on '{pairs[0][0]}': a {kind} between two points of one "
                         "link does nothing")
         return None
+    if ck.refused(path):
+        return None
     moving = pairs[0][0] if pairs[0][0] != GROUND else pairs[1][0]
+    rate, per = _rate_unit(units, ls)
     if kind == "spring":
-        k = ck.number(body["stiffness"], path + ("stiffness",), positive=True)
-        free = ck.number(body["free_length"], path + ("free_length",), scale=ls)
-        if k is None or free is None or free < 0 or label is None:
-            if free is not None and free < 0:
-                ck.error(path + ("free_length",), "must not be negative")
+        free = ck.si(item["free_length"], path + ("free_length",), scale=ls)
+        k = ck.si(item["stiffness"], path + ("stiffness",), scale=rate, unit=per)
+        if free is None or k is None:
             return None
-        return Load(kind, moving, i, name=item.get("name"), between=tuple(pairs), stiffness=k,
-                    free_length=free)
-    c = ck.number(body["damping"], path + ("damping",), positive=True)
-    if c is None or label is None:
+        return Load(kind, moving, i, name=item.get("name"), between=tuple(pairs),
+                    stiffness=k, free_length=free)
+    c = ck.si(item["damping"], path + ("damping",), scale=rate, unit=per + "*s")
+    if c is None:
         return None
     return Load(kind, moving, i, name=item.get("name"), between=tuple(pairs), damping=c)
 
@@ -2116,8 +1973,8 @@ def _structure(ck: _Checker, links: list[Link], joints: list[Joint]) -> None:
 
 def _report(value: Any, ck: _Checker, units: dict[str, str],
             whole_turn: bool) -> ReportSettings:
-    """The ``report`` section: display units (lengths default to the spec's ``units.length``,
-    the rest to SI), first-page metadata, ``animation`` (default: ``whole_turn``, the sweep is
+    """The ``report`` section: display units (lengths, forces and moments default to the spec's
+    own units, masses to kg, stresses to MPa: ``stress`` is there only when given), first-page metadata, ``animation`` (default: ``whole_turn``, the sweep is
     one whole turn of a crank) and ``dxf`` (docs/spec.md, section 16). Types and lengths are
     the models'; a key they refuse takes its default."""
     path = ("report",)
@@ -2130,8 +1987,11 @@ def _report(value: Any, ck: _Checker, units: dict[str, str],
             node = node.get(part) if isinstance(node, dict) else None
         return default if node is None or ck.refused(where) else node
 
-    shown = {"length": units.get("length", "m"), "force": "N", "moment": "N*m", "mass": "kg"}
+    shown = {"length": units.get("length", "m"), "force": units.get("force", "N"),
+             "moment": units.get("moment", "N*m"), "mass": "kg"}
     shown = {key: given(("units", key), default) for key, default in shown.items()}
+    shown.update({key: given(("units", key), None) for key in ("stress", "pressure")
+                  if given(("units", key), None) is not None})
     meta = {key: " ".join(str(given((key,), "")).split()) for key in REPORT_TEXT_KEYS}
     return ReportSettings(units=shown, **meta, animation=given(("animation",), whole_turn),
                           dxf=given(("dxf",), schema.Report.model_fields["dxf"].default),

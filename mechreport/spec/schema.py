@@ -7,15 +7,17 @@ From them come
 
 - the key tables of the loader (``TOP_KEYS = keys_of(SpecFile)``, ...), so that a key is
   added to the format by one edit here;
-- a second opinion on every file the loader reads (:func:`shape_errors`): the loader maps
-  each pydantic error to ``file:line: key.path: message`` in its own wording;
+- the validation of every file the loader reads (:func:`shape_errors`): the loader maps
+  each pydantic error to ``file:line: key.path: message`` in the house wording (markers
+  :class:`Wording`, :class:`Refusal`; errors of type :data:`WORDED` carry their message);
 - the JSON Schema (:func:`json_schema`, ``mechreport schema``, ``docs/spec.schema.json``)
   with which an editor's YAML language server checks and completes a spec as it is typed;
   the field descriptions below are its hover texts (from docs/spec.md).
 
-Only the shape lives here. What needs more than one value at a time (a joint naming a link
-that exists, points present on both links, mobility, which cycle quantities are defined,
-units converted to SI) stays in the loader's plain Python. Every model forbids unknown keys.
+What one mapping's values say together is checked here too (a load's value or profile, a
+profile's increasing angles, a grid's range count). What needs the mechanism (a joint naming a
+link that exists, points present on both links, mobility, which cycle quantities are
+defined, units converted to SI) is the loader's pass over the validated data. Every model forbids unknown keys.
 Nothing here is built until it is used: the validator is built on the first validation, the
 JSON Schema on request.
 """
@@ -23,6 +25,7 @@ import functools
 import json
 import re
 import typing
+import unicodedata
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal, Optional, Union
 
@@ -40,6 +43,7 @@ from .types import GROUND
 __all__ = ["SpecFile", "LOAD_MODELS", "NUMBER_MAX", "NUMBER_MIN", "MAX_STUDY_VARIANTS",
            "MAX_SEED", "REPORT_TEXT_MAX", "SCHEMA_ID", "keys_of", "required_of", "choices_of",
            "literal_values", "shape_errors", "locate", "Located", "Wording", "Refusal", "ByKey",
+           "ZeroOrPositive", "InUnit", "unit_kind",
            "json_schema"]
 
 # Every number in a spec is finite and, unless exactly zero, has a magnitude between
@@ -76,6 +80,27 @@ class Refusal:
     def says(self, kind: str) -> bool:
         """Whether this message is the one for an error of type ``kind``."""
         return not self.kinds or kind in self.kinds
+
+
+@dataclass(frozen=True)
+class InUnit:
+    """The number is written in the spec's unit of ``kind`` (``units.force``,
+    ``units.moment``): the loader converts it to SI. Metadata only."""
+
+    kind: str
+
+
+def unit_kind(model: type[BaseModel], key: str) -> str | None:
+    """The kind of the spec's unit a key of ``model`` is written in (:class:`InUnit`), None
+    when it is always SI (or the loader converts it itself)."""
+    field = next(f for n, f in model.model_fields.items() if (f.alias or n) == key)
+    return next((m.kind for m in field.metadata if isinstance(m, InUnit)), None)
+
+
+@dataclass(frozen=True)
+class ZeroOrPositive:
+    """A number whose 0 means something of its own (a massless link, a point mass): any other
+    value is refused as "must be a positive number". Metadata only."""
 
 
 @dataclass(frozen=True)
@@ -241,6 +266,35 @@ Name = Annotated[str, Field(strict=True, min_length=1), Wording("a name"),
                                  "true/false or null.")]
 Text = Annotated[str, Field(strict=True), Wording("text")]
 
+#: bidirectional controls: embeddings, overrides, isolates and marks (LRE ... RLO, LRI ... PDI,
+#: LRM, RLM, ALM)
+BIDI_CONTROL = re.compile("[\u202a-\u202e\u2066-\u2069\u200e\u200f\u061c]")
+#: the type of the errors whose message is written here, in the house wording (``msg``)
+WORDED = "spec_worded"
+
+
+def bidi_problem(name: str) -> str | None:
+    """Why ``name`` may not be a name (it holds a bidirectional control character, which
+    shows it in a report as other than it is: the "Trojan Source" trick), or None."""
+    bad = BIDI_CONTROL.search(name)
+    if bad is None:
+        return None
+    char = bad.group()
+    return (f"must not hold U+{ord(char):04X} "
+            f"({unicodedata.name(char, 'a bidirectional control')}), a bidirectional control "
+            "character that makes a name display as other than it is; remove it")
+
+
+def _no_bidi_control(name: str) -> str:
+    problem = bidi_problem(name)
+    if problem is not None:
+        raise PydanticCustomError(WORDED, problem)
+    return name
+
+
+#: a name that labels something in the reports (the mechanism's, a load's)
+Label = Annotated[Name, AfterValidator(_no_bidi_control)]
+
 
 def _whole(low: int, high: int) -> Any:
     """A whole number (3, or 3.0: the same number in JSON) from ``low`` to ``high``."""
@@ -250,6 +304,17 @@ def _whole(low: int, high: int) -> Any:
 
 Pair = Annotated[tuple[Number, Number], Wording("a pair [x, y]"),
                  _shared("pair", "[x, y]: two numbers.")]
+
+
+def _not_zero_vector(value: tuple) -> tuple:
+    if value[0] == 0 and value[1] == 0:
+        raise PydanticCustomError(WORDED, "must not be the zero vector")
+    return value
+
+
+#: a direction [dx, dy]: two numbers, not both zero (its length does not matter)
+Direction = Annotated[Pair, AfterValidator(_not_zero_vector),
+                      _JsonExtra((("not", {"const": [0, 0]}),))]
 
 
 # ---------------------------------------------------------------------------------- models
@@ -264,7 +329,8 @@ class Polar(_Model):
     """A point in polar form: ``{r: R, angle: A}``."""
 
     model_config = ConfigDict(title="polar point")
-    r: NonNegative = Field(description="Distance from the frame's origin, in the length unit "
+    r: Annotated[NonNegative, Refusal("must be a distance (not negative), got {value}",
+                                      ("greater_than_equal",))] = Field(description="Distance from the frame's origin, in the length unit "
                                        "(not negative).")
     angle: Number = Field(description="Degrees from the frame's x-axis, counter-clockwise.")
 
@@ -277,12 +343,24 @@ Point = Annotated[Union[Annotated[Pair, Tag("pair")], Annotated[Polar, Tag("pola
 
 
 class Units(_Model):
-    """The units the spec's lengths and masses are written in."""
+    """The units the spec's numbers are written in (each defaults to SI)."""
 
     length: Literal[SPEC_UNITS["length"]] = Field(
         "m", description="Unit of every length and coordinate in the spec: ground and link "
-                         "points, com, shape sizes, line.through, assembly hints.")
-    mass: Literal[SPEC_UNITS["mass"]] = Field("kg", description="Unit of `mass`.")
+                         "points, com, shape sizes, line.through, assembly hints (m, cm, mm, "
+                         "in, ft).")
+    mass: Literal[SPEC_UNITS["mass"]] = Field("kg", description="Unit of `mass` (kg, g, lb).")
+    force: Literal[SPEC_UNITS["force"]] = Field(
+        "N", description="Unit of every force the spec writes: force loads' values and "
+                         "profiles, spring and damper rates (per length unit), bearing "
+                         "ratings and force limits (N, lbf, kip; format 1.2).")
+    moment: Literal[SPEC_UNITS["moment"]] = Field(
+        "N*m", description="Unit of every moment and torque: moment loads, torsion spring "
+                           "rates (per rad), motor torques, design.motor torques (N*m, N*mm, "
+                           "lbf*in, lbf*ft; format 1.2).")
+    inertia: Literal[SPEC_UNITS["inertia"]] = Field(
+        "kg*m^2", description="Unit of link and flywheel inertias (kg*m^2, g*mm^2, lb*in^2, "
+                              "lb*ft^2; format 1.2).")
 
 
 class Bar(_Model):
@@ -374,6 +452,9 @@ class GivenSection(_Model):
     inertia: Positive = Field(description="Second moment for in-plane bending, length "
                                           "unit⁴.")
     c: Positive = Field(description="Neutral axis to the outer fibre, in the length unit.")
+    inertia_out: Positive = Field(
+        None, description="Second moment for out-of-plane bending and buckling, length unit⁴ "
+                          "(default: `inertia`; format 1.2).")
 
 
 Section = Annotated[Union[Annotated[RectSection, Tag("rect")],
@@ -400,12 +481,85 @@ MaterialRef = Annotated[Union[Annotated[Name, Tag("name")], Annotated[Material, 
                                 "ultimate}")]
 
 
+def _names_only(value: Any) -> Any:
+    """A list of link names holds names only (said of the list, as "two link names")."""
+    if isinstance(value, list) and not all(isinstance(x, str) and x for x in value):
+        raise PydanticCustomError("names_only", "must be a list of names")
+    return value
+
+
+class Rankine(_Model):
+    """Rankine's column formula: P = crushing A / (1 + a (kL / r)^2)."""
+
+    crushing: Positive = Field(description="The crushing stress, Pa.")
+    a: Positive = Field(description="Rankine's constant (dimensionless; 1/7500 for mild "
+                                    "steel, pinned ends).")
+
+
+BUCKLING_FORMULAS = ("euler-johnson", "rankine")
+
+
+class Buckling(_Model):
+    """How a member buckles (format 1.2): effective lengths in and out of the plane, and the
+    formula."""
+
+    k: Positive = Field(1, description="Effective-length factor in the plane of motion "
+                                       "(default 1: pinned-pinned; 0.5 fixed-fixed, 0.7 "
+                                       "fixed-pinned, 2 a free end).")
+    k_out: Positive = Field(None, description="Effective-length factor out of the plane "
+                                              "(default `k`).")
+    formula: Literal[BUCKLING_FORMULAS] = Field(
+        "euler-johnson", description="`euler-johnson` (default: Euler above the transition "
+                                     "slenderness, Johnson below, taken with kL) or "
+                                     "`rankine`.")
+    rankine: Rankine = Field(None, description="{crushing, a}: Rankine's constants (with "
+                                               "`formula: rankine`).")
+
+    @model_validator(mode="after")
+    def _rankine_constants(self):
+        """Rankine's formula needs its constants; the constants need the formula."""
+        if self.formula == "rankine" and self.rankine is None:
+            raise PydanticCustomError(WORDED, "formula: rankine needs 'rankine: {crushing, a}'"
+                                              " (the crushing stress in Pa and the constant a)")
+        if self.formula != "rankine" and self.rankine is not None:
+            raise PydanticCustomError(WORDED, "goes with 'formula: rankine'", {"key": "rankine"})
+        return self
+
+
+MemberPair = Annotated[list[Name], BeforeValidator(_names_only),
+                       Field(min_length=2, max_length=2), Wording("a pair of point names [P, Q]")]
+
+
+class MemberEntry(_Model):
+    """A member with its own buckling data (format 1.2): ``{points: [P, Q], buckling}``."""
+
+    model_config = ConfigDict(title="member")
+    points: MemberPair = Field(description="[P, Q]: two points of the link.")
+    buckling: Buckling = Field(None, description="How this member buckles (default: the "
+                                                 "link's `buckling`).")
+
+
+def _member_tag(value: Any) -> str:
+    """A member: ``[P, Q]``, or ``{points: [P, Q], buckling}``."""
+    return "entry" if isinstance(value, dict) else "pair"
+
+
+Member = Annotated[Union[Annotated[MemberPair, Tag("pair")],
+                         Annotated[MemberEntry, Tag("entry")]],
+                   Discriminator(_member_tag),
+                   Wording("a pair of point names [P, Q] or {points: [P, Q], buckling}")]
+
+
 class Link(_Model):
     """A moving link: its named points in its own frame and its mass properties."""
 
-    points: dict[str, Point] = Field(
+    points: Annotated[dict[str, Point],
+                      Refusal("must map at least one point name to [x, y], got {value}",
+                              ("dict_type",)),
+                      Refusal("must map at least one point name to [x, y]",
+                              ("too_short",))] = Field(
         min_length=1, description="required, at least one: `NAME: [x, y]` in the link's own frame")
-    mass: NonNegative = Field(
+    mass: Annotated[NonNegative, ZeroOrPositive()] = Field(
         None, description=(
             "kg (or g with `units.mass: g`). Or give `density` and a `shape`: mass = density x "
             "shape volume. `mass: 0` alone (no `density`, `shape`, `com` or `inertia`) is a "
@@ -415,9 +569,10 @@ class Link(_Model):
     com: Point = Field(
         None, description=(
             "centre of mass `[x, y]` in the link frame. Default: the shape's centroid"))
-    inertia: NonNegative = Field(
+    inertia: Annotated[NonNegative, ZeroOrPositive()] = Field(
         None, description=(
-            "kg·m² about the centre of mass, axis normal to the plane. Default: from the shape. "
+            "kg·m² (or `units.inertia`) about the centre of mass, axis normal to the plane. "
+            "Default: from the shape. "
             "`inertia: 0` with a `mass` is a point mass"))
     shape: Shape = Field(
         None, description=(
@@ -436,14 +591,25 @@ class Link(_Model):
             " all in Pa (SI whatever `units` says). `endurance` is the fully corrected endurance "
             "limit S_e (surface, size, load, reliability already applied). `yield` and "
             "`endurance` may not exceed `ultimate`"))
-    members: Annotated[list[Annotated[list[Name], Field(min_length=2, max_length=2)]],
-                       Wording("a list of point pairs [[P, Q], ...]")] = Field(
+    members: Annotated[list[Member], Wording("a list of point pairs [[P, Q], ...]")] = Field(
         None, min_length=1, description=(
             "`[[P, Q], ...]`, points of the link: the straight beams it is made of. Default: the "
             "segment between the link's two joint points (the points of its R joints, and of T "
             "joints where it is the slider); a link with more or fewer joint points must list "
             "them. The members must join into one piece without a closed loop (a closed frame is "
-            "statically indeterminate); a member of zero length is an error"))
+            "statically indeterminate); a member of zero length is an error. A member may be "
+            "written `{points: [P, Q], buckling: {...}}` to give it its own buckling data "
+            "(format 1.2)"))
+    buckling: Buckling = Field(
+        None, description=(
+            "`{k, k_out, formula, rankine: {crushing, a}}` (format 1.2): the effective-length "
+            "factor `k` in the plane of motion (default 1, pinned-pinned) and `k_out` out of it "
+            "(default `k`), each with the section's second moment about that axis (a rect's "
+            "out-of-plane I is height width³ / 12); `formula` `euler-johnson` (default) or "
+            "`rankine` (P = crushing A / (1 + a (kL/r)²), `crushing` in Pa, `a` "
+            "dimensionless). member.L.buckling_safety is the smaller of the two planes; "
+            "member.L.buckling_plane is 1 when the plane of motion governs, 2 when out of the "
+            "plane does"))
 
 
 class Line(_Model):
@@ -454,7 +620,7 @@ class Line(_Model):
                        Wording("a pair [x, y], a point name or {r: R, angle: A}")] = Field(
         description="A point of the guide (its name), or [x, y] in the guide's frame.")
     direction: Annotated[Union[Annotated[Number, Tag("angle")],
-                               Annotated[Pair, Tag("vector")]],
+                               Annotated[Direction, Tag("vector")]],
                          Discriminator(_direction_tag),
                          Wording("a pair [dx, dy] or an angle in degrees")] = Field(
         description="An angle in degrees, or a vector [dx, dy], in the guide's frame.")
@@ -465,7 +631,10 @@ class RJoint(_Model):
 
     model_config = ConfigDict(title="R joint")
     type: Literal["R"] = Field(description="R: revolute (pin).")
-    links: Annotated[list[Name], Wording("two link names [first, second]")] = Field(
+    links: Annotated[list[Name], BeforeValidator(_names_only),
+                     Wording("two link names [first, second]"),
+                     Refusal("must be two link names [first, second], got {value} (a pin "
+                             "joining several links lists them all)", ("too_short",))] = Field(
         min_length=2, description="[first, second]: the reaction reported is the force of the "
                                   "first on the second. Three or more: one pin joining them "
                                   "all (format 1.1).")
@@ -476,7 +645,8 @@ class TJoint(_Model):
 
     model_config = ConfigDict(title="T joint")
     type: Literal["T"] = Field(description="T: prismatic (slider).")
-    links: Annotated[list[Name], Wording("two link names [first, second]")] = Field(
+    links: Annotated[list[Name], BeforeValidator(_names_only),
+                     Wording("two link names [first, second]")] = Field(
         min_length=2, max_length=2, description="[guide, slider]: the second link slides on "
                                                 "the first.")
     point: Name = Field(description="A point of the slider that stays on the guide's line.")
@@ -528,9 +698,19 @@ Cycle = Annotated[int, Field(strict=True, ge=360, le=CYCLE_MAX, multiple_of=360)
 ProfileAngle = Annotated[float, Field(strict=True, ge=0, le=CYCLE_MAX, allow_inf_nan=False),
                          AfterValidator(_magnitude), _NOT_TINY,
                          Wording("an angle in [0, cycle]")]
+
+
+def _increasing(profile: list) -> list:
+    """A profile's angles strictly increase."""
+    if any(b[0] <= a[0] for a, b in zip(profile, profile[1:])):
+        raise PydanticCustomError(WORDED, "angles must be strictly increasing")
+    return profile
+
+
 Profile = Annotated[list[Annotated[tuple[ProfileAngle, Number],
                                    Wording("a pair [crank_angle_deg, magnitude]")]],
-                    Field(min_length=1), Wording("a list of [crank_angle_deg, magnitude] pairs")]
+                    Field(min_length=1), AfterValidator(_increasing),
+                    Wording("a list of [crank_angle_deg, magnitude] pairs")]
 End = Annotated[tuple[Name, Name], Wording("an end [link, point]"),
                 _shared("end", "[link, point]: a point of a link (or of ground).")]
 Ends = Annotated[tuple[End, End], Wording("two ends [[link, point], [link, point]]")]
@@ -543,39 +723,68 @@ SHIFT = ("Degrees, with `profile`: the value at crank angle phi is profile(phi -
 class ForceLoad(_Model):
     """A force at a point of a moving link."""
 
-    model_config = ConfigDict(title="force")
+    model_config = ConfigDict(title="force", json_schema_extra={
+        "oneOf": [{"required": ["value"]}, {"required": ["profile"]}],
+        "dependentRequired": {"profile": ["direction"]},
+        "dependentSchemas": {"value": {"not": {"required": ["direction"]}}}})
     type: Literal["force"] = Field(description="A force at a point of a link.")
     link: Name = Field(description="The moving link it acts on.")
     point: Name = Field(description="The point of the link where it acts.")
-    value: Pair = Field(None, description="[Fx, Fy] in N, global.")
-    direction: Pair = Field(None, description="[dx, dy], with `profile`.")
+    value: Pair = Field(None, description="[Fx, Fy] in N (or `units.force`), global.")
+    direction: Direction = Field(None, description="[dx, dy], with `profile`.")
     profile: Profile = Field(
         None, description="[[crank_angle_deg, magnitude_N], ...], angles strictly increasing "
                           "within [0, cycle] (a point at `cycle` repeats the one at 0).")
     shift: Number = Field(None, description=SHIFT)
     oppose: Literal["velocity"] = Field(
         None, description="velocity: the force opposes the motion of its point.")
-    name: Name = Field(None, description=LOAD_NAME)
+    name: Label = Field(None, description=LOAD_NAME)
     reacts_on: Literal[GROUND] = Field(
         None, description="ground: the load's reaction acts on the frame.")
+
+    @model_validator(mode="after")
+    def _value_or_profile(self):
+        """A force is a ``value`` [Fx, Fy], or a ``profile`` of magnitudes along a
+        ``direction``."""
+        _value_or_profile(self, "'value', or 'direction' with 'profile'")
+        if self.value is not None and self.direction is not None:
+            raise PydanticCustomError(WORDED, "goes with 'profile', not with 'value'",
+                                      {"key": "direction"})
+        if self.profile is not None and self.direction is None:
+            raise PydanticCustomError(WORDED, "a force 'profile' needs a 'direction' [dx, dy]")
+        return self
+
+
+def _value_or_profile(load: "_Model", what: str) -> None:
+    """A load gives exactly one of its ``value`` and its ``profile``."""
+    if (load.value is None) == (load.profile is None):
+        raise PydanticCustomError(WORDED, "give exactly one of {what}", {"what": what})
 
 
 class MomentLoad(_Model):
     """A moment on a moving link."""
 
-    model_config = ConfigDict(title="moment")
+    model_config = ConfigDict(title="moment", json_schema_extra={
+        "oneOf": [{"required": ["value"]}, {"required": ["profile"]}]})
     type: Literal["moment"] = Field(description="A moment on a link.")
     link: Name = Field(description="The moving link it acts on.")
-    value: Number = Field(None, description="M in N·m, counter-clockwise positive.")
+    value: Number = Field(None, description="M in N·m (or `units.moment`), counter-clockwise "
+                                            "positive.")
     profile: Profile = Field(
         None, description="[[crank_angle_deg, M], ...], angles strictly increasing within "
                           "[0, cycle] (a point at `cycle` repeats the one at 0).")
     shift: Number = Field(None, description=SHIFT)
     oppose: Literal["rotation"] = Field(
         None, description="rotation: M = -sign(omega) |M0|.")
-    name: Name = Field(None, description=LOAD_NAME)
+    name: Label = Field(None, description=LOAD_NAME)
     reacts_on: Literal[GROUND] = Field(
         None, description="ground: the load's reaction acts on the frame.")
+
+    @model_validator(mode="after")
+    def _value_or_profile(self):
+        """A moment is a ``value`` or a ``profile``."""
+        _value_or_profile(self, "'value' or 'profile'")
+        return self
 
 
 def _not_zero(pair: tuple) -> tuple:
@@ -613,7 +822,7 @@ class PressureLoad(_Model):
         description="[[crank_angle_deg, p], ...] over one cycle, p in `unit`; angles strictly "
                     "increasing within [0, cycle] (a point at `cycle` repeats the one at 0).")
     shift: Number = Field(None, description=SHIFT)
-    name: Name = Field(None, description=LOAD_NAME)
+    name: Label = Field(None, description=LOAD_NAME)
     reacts_on: Literal[GROUND] = Field(
         None, description="ground (the default for a pressure load): the reaction acts on the "
                           "cylinder head, part of the frame.")
@@ -637,8 +846,8 @@ class SpringLoad(_Model):
     type: Literal["spring"] = Field(description="A linear spring between two points.")
     between: Ends = Field(description="[[link, point], [link, point]]; either link may be "
                                       "ground.")
-    stiffness: Positive = Field(description="N/m.")
-    name: Name = Field(None, description=LOAD_NAME)
+    stiffness: Positive = Field(description="N/m (or `units.force` per length unit).")
+    name: Label = Field(None, description=LOAD_NAME)
     free_length: NonNegative = Field(description="In the length unit.")
 
 
@@ -649,8 +858,8 @@ class DamperLoad(_Model):
     type: Literal["damper"] = Field(description="A linear damper between two points.")
     between: Ends = Field(description="[[link, point], [link, point]]; either link may be "
                                       "ground.")
-    damping: Positive = Field(description="N·s/m.")
-    name: Name = Field(None, description=LOAD_NAME)
+    damping: Positive = Field(description="N·s/m (or `units.force` s per length unit).")
+    name: Label = Field(None, description=LOAD_NAME)
 
 
 class TorsionSpringLoad(_Model):
@@ -659,9 +868,9 @@ class TorsionSpringLoad(_Model):
     model_config = ConfigDict(title="torsion spring")
     type: Literal["torsion_spring"] = Field(description="A torsion spring at an R joint.")
     joint: Name = Field(description="The R joint it sits at.")
-    stiffness: Positive = Field(description="N·m/rad.")
+    stiffness: Positive = Field(description="N·m/rad (or `units.moment` per rad).")
     free_angle: Number = Field(description="Degrees.")
-    name: Name = Field(None, description=LOAD_NAME)
+    name: Label = Field(None, description=LOAD_NAME)
 
 
 #: the load models by their ``type``, in the spec's order
@@ -723,28 +932,32 @@ class Expectation(_Model):
 class Motor(_Model):
     """The motor's ratings, checked against the cycle."""
 
-    rated_torque: Positive = Field(None, description="N·m, against cycle.torque.rms.")
-    peak_torque: Positive = Field(None, description="N·m, against the largest |driver "
-                                                    "torque|.")
+    rated_torque: Annotated[Positive, InUnit("moment")] = Field(
+        None, description="N·m (or `units.moment`), against cycle.torque.rms.")
+    peak_torque: Annotated[Positive, InUnit("moment")] = Field(
+        None, description="N·m (or `units.moment`), against the largest |driver torque|.")
     rated_power: Positive = Field(None, description="W, against cycle.power.max.")
 
 
 class Bearing(_Model):
     """A joint's bearing: its dynamic load rating and required life."""
 
-    rating: Positive = Field(description="Dynamic load rating C, N.")
+    rating: Annotated[Positive, InUnit("force")] = Field(
+        description="Dynamic load rating C, N (or `units.force`).")
     life_h: Positive = Field(None, description="Required L10 life, hours.")
 
 
 class Limits(_Model):
     """Limits the cycle must keep."""
 
-    joint_force: Positive = Field(None, description="N, every joint over the cycle.")
+    joint_force: Annotated[Positive, InUnit("force")] = Field(
+        None, description="N (or `units.force`), every joint over the cycle.")
     transmission_angle: Annotated[Positive, Field(le=90), Refusal(
         "must be at most 90 degrees (the transmission angle is folded into [0, 90])",
         ("less_than_equal",))] = Field(
         None, description="Degrees, the smallest allowed (at most 90).")
-    shaking_force: Positive = Field(None, description="N, the largest allowed.")
+    shaking_force: Annotated[Positive, InUnit("force")] = Field(
+        None, description="N (or `units.force`), the largest allowed.")
     efficiency: Annotated[Positive, Field(le=1), Refusal(
         "must be at most 1 (an efficiency is a fraction: 0.85, not 85)",
         ("less_than_equal",))] = Field(
@@ -802,7 +1015,10 @@ DynamicsMotor = Annotated[Union[Annotated[TorqueMotor, Tag("torque")],
                                 Annotated[CurveMotor, Tag("curve")],
                                 Annotated[LinearCurveMotor, Tag("linear")]],
                           Discriminator(_motor_tag),
-                          Wording("exactly one of {torque}, {curve} or {linear}")]
+                          Wording("exactly one of {torque}, {curve} or {linear}"),
+                          Refusal("give exactly one of torque (N·m), curve ([[rpm, N·m], ...])"
+                                  " or linear ({{stall_torque, no_load_rpm}}), got {value}",
+                                  ("union_tag_not_found",))]
 
 
 class DynamicsStart(_Model):
@@ -820,7 +1036,7 @@ class Dynamics(_Model):
 
     motor: DynamicsMotor = Field(description="One of {torque}, {curve}, {linear}.")
     flywheel: Annotated[NonNegative, Refusal("must be 0 or more (kg·m²), got {value}",
-                                             ("greater_than_equal",))] = Field(None, description="Extra inertia on the crank shaft, kg·m² "
+                                             ("greater_than_equal",))] = Field(None, description="Extra inertia on the crank shaft, kg·m² (or units.inertia) "
                                                     "(default 0).")
     start: DynamicsStart = Field(None, description="{angle, rpm}, default sweep.start at rest.")
     until: Annotated[Union[Annotated[Literal["steady"], Tag("steady")],
@@ -853,9 +1069,16 @@ class ReportUnits(_Model):
     model_config = ConfigDict(title="report units")
     length: Literal[tuple(UNIT_TABLES["length"])] = Field(
         None, description="Default: the spec's units.length.")
-    force: Literal[tuple(UNIT_TABLES["force"])] = Field(None, description="Default N.")
-    moment: Literal[tuple(UNIT_TABLES["moment"])] = Field(None, description="Default N*m.")
+    force: Literal[tuple(UNIT_TABLES["force"])] = Field(
+        None, description="Default: the spec's units.force (N).")
+    moment: Literal[tuple(UNIT_TABLES["moment"])] = Field(
+        None, description="Default: the spec's units.moment (N*m).")
     mass: Literal[tuple(UNIT_TABLES["mass"])] = Field(None, description="Default kg.")
+    stress: Literal[tuple(UNIT_TABLES["stress"])] = Field(
+        None, description="Default MPa (format 1.2: also psi, ksi).")
+    pressure: Literal[tuple(UNIT_TABLES["pressure"])] = Field(
+        None, description="Pressures (format 1.2: Pa, kPa, bar, MPa, psi); default: as a "
+                          "pressure load writes them.")
 
 
 REPORT_TEXT_MAX = 200
@@ -1112,23 +1335,35 @@ class SpecFile(_Model):
         description=(
             "format version: `1`, or `1.1` or `1.2` (the same format; a file using the version "
             "1.1 or 1.2 keys may say so)"))
-    name: Name = Field(description="the mechanism's name, used in report titles")
+    name: Label = Field(description="the mechanism's name, used in report titles")
     description: Annotated[Optional[Text],
                            Refusal("must be text (Markdown), got {value}")] = Field(None, description=(
             "Markdown text shown at the top of the report"))
     units: Optional[Units] = Field(None, description=(
-            "`{length: m|cm|mm, mass: kg|g}`, default `{length: m, mass: kg}`; either key may be "
-            "left out"))
+            "`{length: m|cm|mm|in|ft, mass: kg|g|lb, force: N|lbf|kip, moment: N*m|N*mm|lbf*in|lbf*ft, "
+            "inertia: kg*m^2|g*mm^2|lb*in^2|lb*ft^2}`, each defaulting to SI (m, kg, N, N*m, "
+            "kg*m^2); any key may be left out"))
     gravity: Annotated[Pair, Wording("a pair [gx, gy] in m/s^2")] = Field(
         (0.0, -9.80665), description=(
             "`[gx, gy]` in m/s², default `[0, -9.80665]`; acts on every moving link at its centre"
             " of mass"))
-    ground: Annotated[Optional[dict[str, Point]], DocRequired("no*")] = Field(
+    ground: Annotated[Optional[dict[str, Point]], DocRequired("no*"),
+                      Wording("a mapping of point names to [x, y]")] = Field(
         None, description=(
             "named points of the frame, global coordinates (*needed for every joint with "
             "`ground`)"))
-    links: dict[str, Link] = Field(min_length=1, description="the moving links (section 4)")
-    joints: dict[str, Joint] = Field(min_length=1, description="the joints (section 5)")
+    links: Annotated[dict[str, Link],
+                     Refusal("must be a mapping of link names to link definitions, got "
+                             "{value}", ("dict_type",)),
+                     Refusal("must be a mapping of link names to link definitions",
+                             ("too_short",))] = Field(
+        min_length=1, description="the moving links (section 4)")
+    joints: Annotated[dict[str, Joint],
+                      Refusal("must be a mapping of joint names to joint definitions, got "
+                              "{value}", ("dict_type",)),
+                      Refusal("must be a mapping of joint names to joint definitions",
+                              ("too_short",))] = Field(
+        min_length=1, description="the joints (section 5)")
     driver: Driver = Field(description="the driving crank and its speed (section 6)")
     cycle: Cycle = Field(360, description=(
             "crank degrees after which the loads repeat, a whole multiple of 360 (`720`: a "
@@ -1137,11 +1372,17 @@ class SpecFile(_Model):
             "crank angles to analyse, default one cycle: 0 to `cycle` by 1 degree"))
     at: Annotated[list[Number], Wording("a list of crank angles in degrees")] = Field(
         None, min_length=1, description="reference angles, default `[sweep.start]`")
-    assembly: Optional[dict[str, Point]] = Field(
+    assembly: Annotated[Optional[dict[str, Point]],
+                        Refusal("must map point names to rough [x, y], got {value}",
+                                ("dict_type",))] = Field(
         None, description="hints that choose the assembly branch (section 7)")
-    loads: Optional[Annotated[list[Load], Wording("a list of loads")]] = Field(
+    loads: Optional[Annotated[list[Load], Wording("a list of loads"),
+                              Refusal("must be a list of loads ({{type: force|moment, link, "
+                                      "...}}), got {value}", ("list_type",))]] = Field(
         None, description="external forces and moments (section 8)")
-    materials: dict[str, Material] = Field(
+    materials: Annotated[dict[str, Material],
+                         Refusal("must map material names to {{E, yield, endurance, "
+                                 "ultimate}} (Pa)", ("dict_type", "too_short"))] = Field(
         None, min_length=1, description=(
             "named materials for the links' `material` (section 19, format 1.1)"))
     friction: dict[str, Friction] = Field(
@@ -1265,6 +1506,11 @@ class Located:
     def marker(self, kind: type) -> Any:
         """The first metadata item of type ``kind`` (a Wording, a Discriminator ...)."""
         return next((m for m in self.metadata if isinstance(m, kind)), None)
+
+    def refusal(self, kind: str) -> "Refusal | None":
+        """The first :class:`Refusal` here whose message is the one for an error of type
+        ``kind``."""
+        return next((m for m in self.metadata if isinstance(m, Refusal) and m.says(kind)), None)
 
     def picker(self) -> Any:
         """The discriminator of the tagged union at this place (a :class:`ByKey`, a

@@ -1,5 +1,7 @@
 """The strength keys of a spec: a link's ``section``, ``material`` and ``members``, and the
-top-level ``materials:`` (format 1.1), checked and converted to SI.
+top-level ``materials:`` (format 1.1), as the models of :mod:`.schema` validated them,
+converted to SI, with what needs more than one value checked (a section needs a material,
+members name points of the link and make one tree, strengths below the ultimate).
 
 Called by the loader once the links and joints are read, with its checker ``ck`` (which
 records problems as ``file:line: key.path: message``). Section sizes are in the spec's length
@@ -11,7 +13,7 @@ import math
 from dataclasses import replace
 from typing import Any
 
-from .types import Joint, Link, Material, Section, Strength
+from .types import Buckling, Joint, Link, Material, Section, Strength
 
 MATERIAL_KEYS = ("E", "yield", "endurance", "ultimate")
 SECTION_SIZES = {"rect": ("width", "height"), "round": ("d",), "tube": ("d", "t"),
@@ -19,28 +21,23 @@ SECTION_SIZES = {"rect": ("width", "height"), "round": ("d",), "tube": ("d", "t"
 
 
 def materials(value: Any, ck) -> dict[str, Material]:
-    """The top-level ``materials:`` by name (those that check out)."""
-    path = ("materials",)
-    if not isinstance(value, dict) or not value:
-        ck.error(path, "must map material names to {E, yield, endurance, ultimate} (Pa)")
+    """The top-level ``materials:`` by name (those the models accepted and that check out)."""
+    if not isinstance(value, dict):
         return {}
     out = {}
     for name, body in value.items():
-        m = material(body, path + (name,), ck, str(name))
+        m = material(body, ("materials", name), ck, str(name))
         if m is not None:
             out[name] = m
     return out
 
 
 def material(body: Any, path: tuple, ck, name: str = "") -> Material | None:
-    """{E, yield, endurance, ultimate} [Pa] as a Material; None (reported) when wrong. The
-    yield and endurance strengths cannot exceed the ultimate strength."""
-    body = ck.mapping(body, path, MATERIAL_KEYS, required=MATERIAL_KEYS)
-    if body is None or any(k not in body for k in MATERIAL_KEYS):
+    """{E, yield, endurance, ultimate} [Pa] as the models validated it, as a Material; None
+    (reported) when the yield or endurance strength exceeds the ultimate strength."""
+    if ck.refused(path):
         return None
-    v = {k: ck.number(body[k], path + (k,), positive=True) for k in MATERIAL_KEYS}
-    if any(x is None for x in v.values()):
-        return None
+    v = {k: float(body[k]) for k in MATERIAL_KEYS}
     bad = False
     for key in ("yield", "endurance"):
         if v[key] > v["ultimate"]:
@@ -51,26 +48,22 @@ def material(body: Any, path: tuple, ck, name: str = "") -> Material | None:
 
 
 def section(value: Any, path: tuple, ck, ls: float, unit: str) -> Section | None:
-    """A section as written (sizes in the length unit, ``ls`` m each) in SI; None (reported)
-    when wrong. rect: ``height`` in the plane (I = w h^3 / 12, c = h / 2); round; tube
-    (wall ``t`` at most d / 2); or {area, inertia, c} (area in unit^2, inertia in unit^4)."""
-    kinds = "{rect: {width, height}}, {round: {d}}, {tube: {d, t}} or {area, inertia, c}"
-    if isinstance(value, dict) and len(value) == 1 and next(iter(value)) in SECTION_SIZES \
-            and next(iter(value)) != "area":
+    """A section as the models validated it (sizes in the length unit, ``ls`` m each) in SI;
+    None (reported) when its sizes do not make one. rect: ``height`` in the plane
+    (I = w h^3 / 12, c = h / 2); round; tube (wall ``t`` at most d / 2); or {area, inertia,
+    c} (area in unit^2, inertia in unit^4)."""
+    if ck.refused(path):
+        return None
+    if len(value) == 1 and next(iter(value)) in SECTION_SIZES and next(iter(value)) != "area":
         kind, dims = next(iter(value.items()))
         where = path + (kind,)
-    elif isinstance(value, dict) and {"area", "inertia", "c"} & set(value):
-        kind, dims, where = "area", value, path
     else:
-        ck.error(path, f"must be {kinds}")
-        return None
-    keys = SECTION_SIZES[kind]
-    dims = ck.mapping(dims, where, keys, required=keys)
-    if dims is None or any(k not in dims for k in keys):
-        return None
-    powers = {"area": 2, "inertia": 4}
-    sizes = {k: ck.number(dims[k], where + (k,), positive=True, scale=ls ** powers.get(k, 1),
-                          unit=unit + ("^" + str(powers[k]) if k in powers else ""))
+        kind, dims, where = "area", value, path
+    keys = SECTION_SIZES[kind] + (("inertia_out",) if kind == "area" and "inertia_out" in dims
+                                  else ())
+    powers = {"area": 2, "inertia": 4, "inertia_out": 4}
+    sizes = {k: ck.si(dims[k], where + (k,), scale=ls ** powers.get(k, 1),
+                      unit=unit + ("^" + str(powers[k]) if k in powers else ""))
              for k in keys}
     if any(x is None for x in sizes.values()):
         return None
@@ -105,7 +98,8 @@ def _section(kind: str, sizes: dict[str, float]) -> Section:
         di = d - 2 * t
         i = math.pi * t * (d - t) * (d ** 2 + di ** 2) / 16
         return Section(kind, math.pi * t * (d - t), i, d / 2, i, tuple(sizes.items()))
-    return Section(kind, sizes["area"], sizes["inertia"], sizes["c"], sizes["inertia"],
+    return Section(kind, sizes["area"], sizes["inertia"], sizes["c"],
+                   min(sizes["inertia"], sizes.get("inertia_out", sizes["inertia"])),
                    tuple(sizes.items()))
 
 
@@ -130,11 +124,12 @@ def strength_links(raw_links: Any, raw_materials: Any, ck, links: list[Link],
     without a closed loop; without ``members``, the link has exactly two joint points)."""
     if not isinstance(raw_links, dict):
         return links
-    named = materials(raw_materials, ck) if raw_materials is not None else {}
+    named = materials(raw_materials, ck)
     out = []
     for link in links:
         body = raw_links.get(link.name)
-        if not isinstance(body, dict) or not {"section", "material", "members"} & set(body):
+        if not isinstance(body, dict) or not {"section", "material", "members",
+                                              "buckling"} & set(body):
             out.append(link)
             continue
         strength = _link_strength(link, body, ("links", link.name), ck, joints, named,
@@ -146,7 +141,7 @@ def strength_links(raw_links: Any, raw_materials: Any, ck, links: list[Link],
 def _link_strength(link: Link, body: dict, path: tuple, ck, joints, named, raw_materials,
                    ls: float, unit: str) -> Strength | None:
     if "section" not in body:
-        for key in ("material", "members"):
+        for key in ("material", "members", "buckling"):
             if key in body:
                 ck.error(path + (key,), "is for a link with a 'section' (give the section "
                                         "too, or leave this out)")
@@ -168,7 +163,31 @@ def _link_strength(link: Link, body: dict, path: tuple, ck, joints, named, raw_m
     members = _members(link, body, path, ck, joints)
     if sec is None or mat is None or members is None:
         return None
-    return Strength(sec, mat, members, "members" in body)
+    return Strength(sec, mat, members, "members" in body, _bucklings(body, len(members), ck,
+                                                                     path))
+
+
+def buckling(value: dict | None) -> Buckling:
+    """``buckling:`` as the models validated it (None: pinned-pinned Euler-Johnson)."""
+    if value is None:
+        return Buckling()
+    k = float(value.get("k", 1.0))
+    rankine = value.get("rankine") or {}
+    return Buckling(k, float(value.get("k_out", k)), value.get("formula", "euler-johnson"),
+                    float(rankine["crushing"]) if rankine else None,
+                    float(rankine["a"]) if rankine else None)
+
+
+def _bucklings(body: dict, n: int, ck, path: tuple) -> tuple[Buckling, ...]:
+    """How each of the ``n`` members buckles: its own ``buckling`` (in ``members``), else the
+    link's; () when neither is given (all pinned-pinned, Euler-Johnson)."""
+    raw = body.get("members") if "members" in body else None
+    own = [m.get("buckling") if isinstance(m, dict) else None for m in raw or ()]
+    if "buckling" not in body and not any(own):
+        return ()
+    link = None if ck.refused(path + ("buckling",)) else body.get("buckling")
+    return tuple(buckling(own[i] if i < len(own) and own[i] is not None else link)
+                 for i in range(n))
 
 
 def _members(link: Link, body: dict, path: tuple, ck, joints) -> tuple | None:
@@ -184,17 +203,13 @@ def _members(link: Link, body: dict, path: tuple, ck, joints) -> tuple | None:
         pairs = [tuple(ends)]
         where = [path + ("section",)]
     else:
-        raw = body["members"]
-        if not isinstance(raw, list) or not raw:
-            ck.error(path + ("members",), "must be a list of point pairs [[P, Q], ...]")
-            return None
+        if ck.refused(path + ("members",)):
+            return None         # the models say what is wrong
         pairs, where = [], []
-        for i, pq in enumerate(raw):
+        for i, pq in enumerate(body["members"]):
             at = path + ("members", i)
-            if not (isinstance(pq, list) and len(pq) == 2
-                    and all(isinstance(x, str) for x in pq)):
-                ck.error(at, f"must be a pair of point names [P, Q], got {pq!r}")
-                return None
+            if isinstance(pq, dict):          # {points: [P, Q], buckling} (format 1.2)
+                pq, at = pq["points"], at + ("points",)
             missing = [x for x in pq if x not in link.points]
             if missing:
                 ck.error(at, f"link '{link.name}' has no point named '{missing[0]}' "

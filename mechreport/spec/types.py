@@ -59,6 +59,31 @@ class Section:
     inertia_min: float
     sizes: tuple[tuple[str, float], ...] = ()
 
+    @property
+    def inertia_out(self) -> float:
+        """[m^4] The second moment about the axis in the plane of motion (out-of-plane
+        bending and buckling): a rect's height width^3 / 12; a round bar's or tube's I; a
+        section given by its properties, its ``inertia_out`` (default: ``inertia``)."""
+        sizes = dict(self.sizes)
+        if self.kind == "rect" and "width" in sizes:
+            return sizes["height"] * sizes["width"] ** 3 / 12
+        # (a section made without its sizes: the weaker axis, if it is not the plane's)
+        return sizes.get("inertia_out", min(self.inertia_min, self.inertia))
+
+
+@dataclass(frozen=True)
+class Buckling:
+    """How a member buckles (format 1.2 ``buckling:``): effective-length factors ``k`` in the
+    plane of motion and ``k_out`` out of it; ``formula`` euler-johnson | rankine, with
+    Rankine's ``crushing`` stress [Pa] and constant ``a`` (P = crushing A / (1 + a (kL /
+    r)^2))."""
+
+    k: float = 1.0
+    k_out: float = 1.0
+    formula: str = "euler-johnson"
+    crushing: float | None = None
+    a: float | None = None
+
 
 @dataclass(frozen=True)
 class Material:
@@ -81,6 +106,11 @@ class Strength:
     material: Material
     members: tuple[tuple[str, str], ...]
     members_given: bool = False      # written as `members:` (else the segment between joints)
+    buckling: tuple[Buckling, ...] = ()     # one per member ((): pinned-pinned Euler-Johnson)
+
+    def buckling_of(self, i: int) -> Buckling:
+        """How member ``i`` buckles (the default: pinned-pinned, Euler-Johnson)."""
+        return self.buckling[i] if self.buckling else Buckling()
 
 
 @dataclass(frozen=True)

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from ..report.plots import styled
-from ..units import fmt
+from ..units import fmt, pretty
 from ..report.document import Code, Doc, Print, Strong
 from .table import Table, badness, column_name, larger_is_better, quantity_unit, with_unit
 
@@ -56,6 +56,8 @@ def key_unit(path: tuple, units: dict[str, str], loads: list | None = None) -> s
     """The unit a varied leaf is written in (the spec's own units); "" when it has none or
     is not known. ``loads``: the spec's ``loads`` list as written (for load values)."""
     length, mass = units.get("length", "m"), units.get("mass", "kg")
+    force, moment = units.get("force", "N"), pretty(units.get("moment", "N*m"))
+    rate = "N/m" if force == "N" else f"{force}/{length}"    # (as the loader reads it)
     head, last = path[0], path[-1]
     names = [p for p in path if isinstance(p, str)]
     if head in ("ground", "assembly"):
@@ -65,7 +67,8 @@ def key_unit(path: tuple, units: dict[str, str], loads: list | None = None) -> s
             return length
         if "shape" in names:
             return length
-        return {"mass": mass, "density": "kg/m^3", "inertia": "kg·m^2"}.get(last, "")
+        return {"mass": mass, "density": "kg/m^3",
+                "inertia": pretty(units.get("inertia", "kg*m^2"))}.get(last, "")
     if head == "joints":
         return length if "through" in names else ""
     if head == "driver":
@@ -76,27 +79,27 @@ def key_unit(path: tuple, units: dict[str, str], loads: list | None = None) -> s
     if head == "gravity":
         return "m/s^2"
     if head == "design":
-        table = {"rated_torque": "N·m", "peak_torque": "N·m", "rated_power": "W",
-                 "rating": "N", "life_h": "h", "joint_force": "N", "transmission_angle": "deg",
-                 "shaking_force": "N"}
+        table = {"rated_torque": moment, "peak_torque": moment, "rated_power": "W",
+                 "rating": force, "life_h": "h", "joint_force": force,
+                 "transmission_angle": "deg", "shaking_force": force}
         return table.get(last, "")
     if head == "loads" and len(path) >= 3 and loads is not None:
         item = loads[path[1]] if isinstance(path[1], int) and path[1] < len(loads) else {}
         kind = item.get("type") if isinstance(item, dict) else None
-        effort = "N·m" if kind == "moment" else "N"
+        effort = moment if kind == "moment" else force
         field_ = path[2]
         if field_ == "value":
             return effort
         if field_ == "profile":
             return "deg" if path[-1] == 0 else effort
         if field_ == "stiffness":
-            return "N·m/rad" if kind == "torsion_spring" else "N/m"
+            return f"{moment}/rad" if kind == "torsion_spring" else rate
         if field_ == "free_length":
             return length
         if field_ == "free_angle":
             return "deg"
         if field_ == "damping":
-            return "N s/m"
+            return "N s/m" if force == "N" else f"{rate}*s"
     return ""
 
 

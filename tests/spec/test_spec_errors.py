@@ -230,7 +230,7 @@ def test_mass_not_a_number():
     ("driver: {joint: A, omega: 1}", "driver: {joint: A, omega: fast}", "driver:",
      "driver.omega", "must be a number, got 'fast'"),
     ("length: m,", "length: inch,", "units:", "units.length",
-     "must be one of m, cm, mm, got 'inch'"),
+     "must be one of m, cm, mm, in, ft, got 'inch'"),
     ("mechreport: 1", "mechreport: 2", "mechreport:", "mechreport",
      "format version must be 1, got 2"),
     ("at: [45]", "at: 45", "at:", "at", "must be a list of crank angles in degrees, got 45"),

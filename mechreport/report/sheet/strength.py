@@ -110,7 +110,46 @@ def _cut(analysis, k, link, name, i, members, acts, mu, k2, g, w, al, side_sets)
               R(r"\sigma = |N|/A + |M|\,c/I", "sigma = abs(N)/A + abs(M) c / I"),
               f" = {_v(sigma / 1e6)} MPa (A = {_v(sec.area)} m², I = {_v(sec.inertia)} m⁴, "
               f"c = {_v(sec.c)} m)."]
+    result += column_check(analysis.strength.members[name], link.strength.buckling_of(i),
+                           bool(link.strength.buckling))
     return Cut(f"Cut of member {name}", intro, rows, result)
+
+
+#: each rule's formula for the buckling load, as the sheet writes it (TeX, Typst)
+RULES = {
+    "Euler": (r"P = \pi^2 E I / (kL)^2", "P = pi^2 E I / (k L)^2"),
+    "Johnson": (r"P = A\,(S_y - (S_y\,kL/(2\pi r))^2/E)",
+                "P = A (S_y - (S_y k L / (2 pi r))^2 / E)"),
+    "Rankine": (r"P = \sigma_c A / (1 + a\,(kL/r)^2)",
+                "P = sigma_c A / (1 + a (k L / r)^2)"),
+}
+
+
+def column_check(m, b, given: bool = True) -> list:
+    """The member as a column, worked as a machine-design book works a connecting rod: the
+    slenderness in the plane of motion and out of it, each plane's buckling load by its rule,
+    the smaller governing, and the safety against the largest compression over the sweep
+    (the numbers are :func:`mechreport.post.strength.column`'s). Nothing for a member never
+    in compression, nor (``given`` False) for a link without ``buckling`` data (its report
+    gives the pinned-pinned column's load)."""
+    if m.buckling_safety is None or m.column is None or not given:
+        return []
+    sec = m.section
+    formula = (f"Rankine, σc = {_v(b.crushing / 1e6)} MPa, a = {_v(b.a)}"
+               if b.formula == "rankine" else "Euler, or Johnson below the transition "
+               "slenderness π √(2E/S_y)")
+    out = [f" Column check over the sweep ({formula}): L = {_v(m.length)} m, A = {_v(sec.area)} m², r = √(I/A) = "
+           f"{_v((sec.inertia / sec.area) ** 0.5)} m in the plane and "
+           f"{_v((sec.inertia_out / sec.area) ** 0.5)} m out of it (I_out = "
+           f"{_v(sec.inertia_out)} m⁴)."]
+    for (load, slender, rule), k, where in zip(m.column.planes, (b.k, b.k_out),
+                                               ("In the plane", "Out of the plane")):
+        out += [f" {where}, k = {_v(k)}: kL/r = {_v(slender)}, ", R(*RULES[rule]),
+                f" = {_v(load)} N ({rule})."]
+    out.append(f" The smaller governs: P_cr = {_v(m.critical_load)} N, {m.plane_text}; the "
+               f"largest compression is {_v(m.compression)} N at {_v(m.compression_angle)}°, "
+               f"so the buckling safety is P_cr / P = {_v(m.buckling_safety)}.")
+    return out
 
 
 def _where(analysis, act, k: int) -> str:
