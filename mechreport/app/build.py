@@ -93,13 +93,21 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
     if do_sheet:
         from ..report.sheet import SheetOptions, sheet_spec
         options = SheetOptions(sheet_options.methods if sheet_options else None,
-                               sheet_options.angles if sheet_options else None, exact)
+                               sheet_options.angles if sheet_options else None, exact,
+                               *((sheet_options.variants, sheet_options.seed)
+                                 if sheet_options else ()))
         wanted = sheet_spec(spec, options)
         if wanted is not spec:              # the sheet's angles are not all in the sweep
             sheet_source = analyse(wanted, tol=analysis.tol)
     row = write_report_folder(analysis, folder, path, key["spec_sha256"], name=name,
                               build_key=key, sheet=do_sheet, sheet_options=options,
                               sheet_source=sheet_source, stage=stage, animation=animation)
+    if do_sheet and spec.sheet_settings.variants is not None:   # one problem per student
+        from ..report.sheet.variants_out import write_variants
+        from ..study.sheet_variants import make_variants
+        stage(4, 4, "writing the variants")
+        write_variants(make_variants(path, options.variants, options.seed, options.angles,
+                                     check_stop), folder, options, spec.name)
     for written in folder.rglob("*"):                   # nothing escaped the folder
         od.inside(folder, written)
     return dict(row, folder=name)
@@ -373,7 +381,9 @@ def build_command(ns) -> int:
     options = None
     if not ns.sheet:
         given = [o for o, v in (("--exact", ns.exact), ("--sheet-methods", ns.sheet_methods),
-                                ("--sheet-angles", ns.sheet_angles)) if v]
+                                ("--sheet-angles", ns.sheet_angles),
+                                ("--variants", ns.variants), ("--seed", ns.seed is not None))
+                 if v]
         if given:
             print(f"error: {', '.join(given)} need{'s' if len(given) == 1 else ''} --sheet: "
                   f"{'it changes' if len(given) == 1 else 'they change'} only the solution "
@@ -384,7 +394,8 @@ def build_command(ns) -> int:
         if ns.exact:
             from ..report.sheet.exact import require_sympy
             require_sympy()                 # a clear message now, not one per spec
-        options = SheetOptions(ns.sheet_methods, ns.sheet_angles, ns.exact)
+        options = SheetOptions(ns.sheet_methods, ns.sheet_angles, ns.exact, ns.variants,
+                               ns.seed)
     return build_files(spec_files(ns.specs), Path(ns.out), jobs=ns.jobs, sheet=ns.sheet,
                        exact=ns.exact, wait=ns.wait, force=ns.force, quiet=ns.quiet,
                        sheet_options=options, animation=not ns.no_animation)

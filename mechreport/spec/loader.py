@@ -32,6 +32,7 @@ import mechreport.spec.schema as schema   # the models (not `from . import`: spe
 from .schema import (MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, choices_of, keys_of,
                      required_of)
 from .strength import strength_links
+from .sheet_section import sheet_section
 from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Dynamics, Expectation, Friction, Joint,
                     Line, Link, Load, MotorCurve, Pin, Shape, Spec, Study, Sweep, Vary, Vec)
@@ -612,8 +613,9 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
     report = (_report(top.get("report"), ck, units, sweep.whole_turn) if "report" in top
               else ReportSettings(animation=sweep.whole_turn))
     study = _study(top["study"], ck, top) if "study" in top else None
-    sheet = (schema.SpecFile.model_fields["sheet"].default if ck.refused(("sheet",))
-             else top.get("sheet", schema.SpecFile.model_fields["sheet"].default))
+    sheet, sheet_settings = sheet_section(top.get("sheet"), ck.refused(("sheet",)),
+                                          lambda key, where: _key_path(key, where, ck, top),
+                                          ck.src.line)
 
     if links and joints:
         _zero_length(ck, links, joints)
@@ -634,7 +636,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
                 expect=tuple(expect), sheet=sheet, units=units, design=design,
                 report=report, study=study, pins=tuple(pins), friction=friction,
-                dynamics=dynamics)
+                dynamics=dynamics, sheet_settings=sheet_settings)
     _cycle_requests(spec, ck)
     if study is not None:
         _study_requests(spec, ck)

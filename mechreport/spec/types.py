@@ -418,6 +418,44 @@ class Study:
 
 
 @dataclass(frozen=True)
+class SheetVary:
+    """One varied datum of a problem's variants: ``key`` as written, ``path`` its keys and
+    list indices; ``values`` (as written, spec units) or the range ``start`` .. ``stop``
+    (both included) by ``step`` (None: any value of the range)."""
+
+    key: str
+    path: tuple
+    values: tuple[float, ...] | None = None
+    start: float | None = None
+    stop: float | None = None
+    step: float | None = None
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class SheetVariants:
+    """``sheet.variants``: ``count`` variants drawn from ``seed``, their varied data printed
+    to ``digits`` significant digits, each meeting ``require`` (name -> bound) at the sheet's
+    angles."""
+
+    vary: tuple[SheetVary, ...]
+    count: int = 30
+    seed: int = 0
+    digits: int = 3
+    require: tuple[tuple[str, float], ...] = ()
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class SheetSettings:
+    """The ``sheet`` mapping beyond on/off: the problem's own ``statement`` (Markdown, None:
+    written from the data) and its ``variants`` (None: one problem)."""
+
+    statement: str | None = None
+    variants: SheetVariants | None = None
+
+
+@dataclass(frozen=True)
 class ReportSettings:
     """The spec's ``report`` section: display ``units`` (``length`` m|cm|mm|in, ``force``
     N|kN|lbf, ``moment`` N*m|N*mm|kN*m|lbf*in, ``mass`` kg|g|lb; lengths default to the spec's
@@ -459,6 +497,9 @@ class Spec:
     pins: tuple[Pin, ...] = ()        # pins joining three or more links (solved as joints)
     friction: tuple[Friction, ...] = ()   # by solved joint, in spec order
     dynamics: Dynamics | None = None      # machine dynamics (format 1.1 ``dynamics:``)
+    # the ``sheet`` mapping's statement and variants (format 1.2); left out of the repr so
+    # that a spec without them reads as before
+    sheet_settings: SheetSettings = field(default_factory=SheetSettings, repr=False)
 
     @property
     def axis_unit(self) -> str:
