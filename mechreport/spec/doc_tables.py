@@ -20,6 +20,8 @@ TABLES = {
     "link": (schema.Link, False, ("points", "mass", "density", "com", "inertia", "shape")),
     "strength": (schema.Link, False, ("section", "material", "members")),
     "study": (schema.Study, True, None),
+    "sheet": (schema.SheetSection, True, None),
+    "sheet_variants": (schema.SheetVariants, True, None),
 }
 
 _REGION = re.compile(r"(<!-- key table (\w+) -->\n)(.*?)(<!-- end key table -->)", re.S)
