@@ -103,11 +103,9 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
                               build_key=key, sheet=do_sheet, sheet_options=options,
                               sheet_source=sheet_source, stage=stage, animation=animation)
     if do_sheet and spec.sheet_settings.variants is not None:   # one problem per student
-        from ..report.sheet.variants_out import write_variants
-        from ..study.sheet_variants import make_variants
+        from ..study.sheet_variants import write_class
         stage(4, 4, "writing the variants")
-        write_variants(make_variants(path, options.variants, options.seed, options.angles,
-                                     check_stop), folder, options, spec.name)
+        write_class(path, folder, options, check_stop)
     for written in folder.rglob("*"):                   # nothing escaped the folder
         od.inside(folder, written)
     return dict(row, folder=name)

@@ -7,7 +7,8 @@ from __future__ import annotations
 
 from typing import Any, Callable
 
-from . import schema
+from .schema import SheetVariants as VariantsModel
+from .schema import SpecFile
 from .types import SheetSettings, SheetVariants, SheetVary
 
 
@@ -16,7 +17,7 @@ def sheet_section(value: Any, refused: bool, key_path: Callable, line: Callable
     """``(enabled, settings)`` of the validated ``sheet`` value (``refused``: the models
     refused it; the default then). ``key_path(key, where)`` resolves a varied key (None when
     it reported a problem); ``line(where)`` the line of a key path."""
-    default = schema.SpecFile.model_fields["sheet"].default
+    default = SpecFile.model_fields["sheet"].default
     if refused or value is None:
         return default, SheetSettings()
     if not isinstance(value, dict):
@@ -38,7 +39,7 @@ def sheet_section(value: Any, refused: bool, key_path: Callable, line: Callable
                 stop=float(item["to"]) if "to" in item else None,
                 step=float(item["step"]) if "step" in item else None,
                 line=line(where)))
-        fields = schema.SheetVariants.model_fields
+        fields = VariantsModel.model_fields
         require = body.get("require") or {}
         variants = SheetVariants(
             tuple(vary), int(body.get("count", fields["count"].default)),

@@ -176,6 +176,59 @@ def make_variants(path: str | Path, count: int | None = None, seed: int | None =
     ``angles`` the sheet's angles, default ``at``). Raises ``SpecError`` naming the failing
     condition when fewer than ``count`` feasible, distinct variants are found within the
     bounded draws."""
+    return _make(path, count, seed, angles, stop_check)[1]
+
+
+def write_class(path: str | Path, folder: Path, options=None, stop_check=None,
+                jobs: int | None = None) -> list[Path]:
+    """Make the variants of the spec at ``path`` (``options``: a
+    :class:`~mechreport.report.sheet.SheetOptions`, its ``variants``, ``seed`` and ``angles``
+    override the spec's) and write them into ``folder/variants/``: each variant's sheets
+    (on ``jobs`` local processes through the executor; default: every usable core when this
+    is the main process, else 1: a build of several specs is parallel already), then the
+    class's answers and question bank. Returns the class files' paths."""
+    import multiprocessing
+
+    from ..report.sheet.variants_out import write_class_files
+    from .executor import usable_cores
+    from .run import run_chunks
+    base, variants = _make(path, getattr(options, "variants", None),
+                           getattr(options, "seed", None), getattr(options, "angles", None),
+                           stop_check)
+    root = Path(folder) / "variants"
+    if jobs is None:
+        jobs = usable_cores() if multiprocessing.parent_process() is None else 1
+    jobs = max(1, min(jobs, len(variants)))
+    shared = (base, sheet_angles(base.spec, getattr(options, "angles", None)), options, root)
+    problems: dict[int, dict] = {}
+    size = max(1, math.ceil(len(variants) / jobs))
+
+    def args_of(chunk) -> tuple:
+        return ([(v.number, v.values) for v in variants[chunk[0]:chunk[1]]],)
+
+    def on_done(chunk, result) -> None:
+        problems.update(result)
+
+    run_chunks(_write_task, shared, len(variants), size, args_of, on_done, jobs=jobs,
+               stop_check=stop_check)
+    return write_class_files(variants, [problems[v.number] for v in variants], root,
+                             base.spec.name)
+
+
+def _write_task(shared, items) -> dict:
+    """In a worker: analyse each (number, values) again (the same data give the same
+    analysis) and write its sheets into ``root/NN``; its problem as question text."""
+    from ..pipeline import analyse
+    from ..report.sheet.variants_out import folder_of, write_variant
+    base, angles, options, root = shared
+    out = {}
+    for number, values in items:
+        spec = _variant(base, values, angles, number)
+        out[number] = write_variant(analyse(spec), root / folder_of(number), options)
+    return out
+
+
+def _make(path, count, seed, angles, stop_check) -> tuple[BaseSpec, list[SheetVariant]]:
     from ..spec.loader import load_source
     src = load_source(path)
     spec, base = sheet_base(src)
@@ -223,17 +276,23 @@ def make_variants(path: str | Path, count: int | None = None, seed: int | None =
                                  f"only {len(kept)} of {count} variants found in {draws} "
                                  f"draws (seed {seed}); the others failed: {why}. Widen "
                                  "'vary', relax 'require' or ask for fewer")])
-    return kept
+    return base, kept
+
+
+def _variant(base: BaseSpec, values: dict, angles, number: int) -> Spec:
+    """Variant ``number``'s spec: the varied data in, the sheet's angles analysed, its name
+    numbered (raises ``SpecError`` for data not valid there)."""
+    spec = variant_spec(base, values)
+    return replace(_with_angles(spec, angles), name=f"{spec.name}, variant {number:02d}")
 
 
 def _candidate(base: BaseSpec, values: dict, angles, settings, number: int):
     """(SheetVariant, None) for a feasible candidate, else (None, why)."""
     from ..pipeline import analyse
     try:
-        spec = variant_spec(base, values)
+        spec = _variant(base, values, angles, number)
     except SpecError as exc:
         return None, exc.problems[0].message if exc.problems else str(exc)
-    spec = replace(_with_angles(spec, angles), name=f"{spec.name}, variant {number:02d}")
     try:
         analysis = analyse(spec)
     except MechreportError as exc:

@@ -88,7 +88,8 @@ def driver_statement(spec) -> str:
         how = (f"The actuator {joint.name} is at rest: its force F_d holds the mechanism in "
                "each position given below.")
     else:
-        how = (f"The actuator {joint.name} ({_link(spec, guide)} and {_link(spec, slider)}) "
+        how = (f"The actuator {joint.name}, between {_link(spec, guide)} and "
+               f"{_link(spec, slider)}, "
                f"extends at {fmt(d.omega)} m/s" + ("." if d.alpha == 0 else
                                                    f", accelerating at {fmt(d.alpha)} m/s²."))
     return f"{how} {coord}"

@@ -25,7 +25,6 @@ from ..pdf import compile_typst
 from ..write_markdown import markdown
 from ..write_typst import typst
 from .expr import fmt, round_off
-from .model import build_problem, build_sheet
 from .render import write_sheet
 
 ANSWERS_HEADER = ["variant", "quantity", "value", "unit", "tolerance"]
@@ -42,15 +41,25 @@ def folder_of(number: int) -> str:
 
 def write_variants(variants, outdir: Path, options=None, name: str = "") -> list[Path]:
     """Write every variant's sheets into ``outdir/variants/NN/`` and the class's files
-    (answers.csv, answers.md, answers.pdf, moodle.xml) into ``outdir/variants/``; returns
-    the class files' paths."""
+    (answers.csv, answers.md, answers.pdf, moodle.xml) into ``outdir/variants/``, in this
+    process; returns the class files' paths."""
     root = Path(outdir) / "variants"
+    problems = [write_variant(v.analysis, root / folder_of(v.number), options)
+                for v in variants]
+    return write_class_files(variants, problems, root, name)
+
+
+def write_variant(analysis, folder: Path, options=None) -> dict:
+    """One variant's problem and solution sheets in ``folder``; its problem as question
+    text (:func:`problem_html`)."""
+    sheet, problem = write_sheet(analysis, folder, options, models=True)
+    return problem_html(sheet, problem, folder)
+
+
+def write_class_files(variants, problems: list[dict], root: Path, name: str) -> list[Path]:
+    """answers.csv, answers.md, answers.pdf and moodle.xml of ``variants`` in ``root``
+    (``problems``: each variant's question text, in the same order)."""
     root.mkdir(parents=True, exist_ok=True)
-    problems = []
-    for v in variants:
-        folder = root / folder_of(v.number)
-        write_sheet(v.analysis, folder, options)
-        problems.append(problem_html(v.analysis, folder, options))
     out = [atomic_write_text(root / "answers.csv", answers_csv(variants))]
     key = key_document(variants, name)
     out.append(atomic_write_text(root / "answers.md", markdown(key)))
@@ -104,12 +113,11 @@ def _table(header: list[str], rows: list[list]) -> str:
     return f'<table border="1"><tr>{head}</tr>{body}</table>'
 
 
-def problem_html(analysis, folder: Path, options=None) -> dict:
-    """A variant's problem as question text: {"html": the statement and data as HTML (every
-    piece of user text escaped), "figures": [(file name, bytes)] (the mechanism at each
-    angle, referenced as @@PLUGINFILE@@/name)}."""
-    sheet = build_sheet(analysis, options)
-    p = build_problem(analysis, options, sheet)
+def problem_html(sheet, p, folder: Path) -> dict:
+    """A variant's problem (its sheet and problem models, figures drawn in ``folder``) as
+    question text: {"html": the statement and data as HTML (every piece of user text
+    escaped), "figures": {angle: (file name, bytes, title)} (the mechanism at each angle,
+    referenced as @@PLUGINFILE@@/name)}."""
     with round_off(p.zero):
         parts = []
         if p.own_statement:
