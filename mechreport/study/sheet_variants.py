@@ -281,9 +281,11 @@ def _make(path, count, seed, angles, stop_check) -> tuple[BaseSpec, list[SheetVa
 
 def _variant(base: BaseSpec, values: dict, angles, number: int) -> Spec:
     """Variant ``number``'s spec: the varied data in, the sheet's angles analysed, its name
-    numbered (raises ``SpecError`` for data not valid there)."""
+    numbered and without the description (written for the spec's own data, it would
+    describe other numbers); raises ``SpecError`` for data not valid there."""
     spec = variant_spec(base, values)
-    return replace(_with_angles(spec, angles), name=f"{spec.name}, variant {number:02d}")
+    return replace(_with_angles(spec, angles), name=f"{spec.name}, variant {number:02d}",
+                   description="")
 
 
 def _candidate(base: BaseSpec, values: dict, angles, settings, number: int):

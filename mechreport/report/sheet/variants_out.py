@@ -26,6 +26,8 @@ from ..write_markdown import markdown
 from ..write_typst import typst
 from .expr import fmt, round_off
 from .render import write_sheet
+from .statement import driver_statement
+from .symbols import Names
 
 ANSWERS_HEADER = ["variant", "quantity", "value", "unit", "tolerance"]
 #: the one-page key: landscape, small text
@@ -53,7 +55,7 @@ def write_variant(analysis, folder: Path, options=None) -> dict:
     """One variant's problem and solution sheets in ``folder``; its problem as question
     text (:func:`problem_html`)."""
     sheet, problem = write_sheet(analysis, folder, options, models=True)
-    return problem_html(sheet, problem, folder)
+    return problem_html(sheet, problem, folder, analysis.spec)
 
 
 def write_class_files(variants, problems: list[dict], root: Path, name: str) -> list[Path]:
@@ -113,7 +115,7 @@ def _table(header: list[str], rows: list[list]) -> str:
     return f'<table border="1"><tr>{head}</tr>{body}</table>'
 
 
-def problem_html(sheet, p, folder: Path) -> dict:
+def problem_html(sheet, p, folder: Path, spec) -> dict:
     """A variant's problem (its sheet and problem models, figures drawn in ``folder``) as
     question text: {"html": the statement and data as HTML (every piece of user text
     escaped), "figures": {angle: (file name, bytes, title)} (the mechanism at each angle,
@@ -130,6 +132,13 @@ def problem_html(sheet, p, folder: Path) -> dict:
                              "I_C [kg m²]", "C [m]"], p.links))
         parts.append(_table(["joint", "type", "between"], p.joints))
         loads = "".join(f"<li>{html.escape(str(x))}</li>" for x in p.loads)
+        names = Names(spec)
+        effort = "M: the driver torque" if spec.driver.kind == "R" else \
+            "F_d: the actuator force"
+        symbols = [effort] + [f"{names.vec[j.name]}: the force of {j.links[0]} on "
+                              f"{j.links[1]} at joint {j.written}" for j in spec.joints]
+        parts.append(f"<p>{html.escape(driver_statement(spec))}</p><p>Symbols: "
+                     f"{html.escape('; '.join(symbols))}.</p>")
         parts.append(f"<p>Ground points [m]: {html.escape(', '.join(p.ground))}. Gravity: "
                      f"g = {html.escape(p.gravity)}.</p>" + (f"<ul>{loads}</ul>" if loads
                                                              else ""))
