@@ -118,3 +118,26 @@ def test_a_bad_key_path_is_a_spec_error(tmp_path):
     path = class_spec(tmp_path, VARIANTS.replace("links.slider.mass", "links.slider.mas"))
     with pytest.raises(SpecError, match=r"sheet\.variants\.vary\[1\]\.key"):
         make_variants(path)
+
+
+@pytest.mark.slow
+def test_build_writes_the_class_files(tmp_path):
+    """`mechreport build --sheet --variants 2`: every file the contract names, per variant
+    and for the class; --seed changes the set."""
+    import subprocess
+    import sys
+    path = class_spec(tmp_path)
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "mechreport", "build", str(path), "--sheet", "--no-animation",
+           "-q", "-o", str(out), "--variants", "2"]
+    subprocess.run(cmd, check=True, cwd=ROOT)
+    root = out / "class" / "variants"
+    for n in ("01", "02"):
+        for f in ("problem.pdf", "solution.pdf", "problem.md", "solution.md"):
+            assert (root / n / f).is_file()
+    assert not (root / "03").exists()
+    for f in ("answers.csv", "answers.pdf", "moodle.xml"):
+        assert (root / f).is_file()
+    first = (root / "answers.csv").read_text(encoding="utf-8")
+    subprocess.run(cmd + ["--seed", "99", "--force"], check=True, cwd=ROOT)
+    assert (root / "answers.csv").read_text(encoding="utf-8") != first
