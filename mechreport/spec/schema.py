@@ -934,8 +934,10 @@ class SheetRequire(_Model):
 class SheetVariants(_Model):
     """One problem per student: the data varied, drawn from a seed."""
 
-    vary: Annotated[list[SheetVary], Wording("a list of {key, from, to, step} or {key, "
-                                             "values}")] = Field(
+    vary: Annotated[list[Annotated[SheetVary, Refusal(
+        "must be {{key, values: [...]}} or {{key, from, to}} (with 'step' or not), 'from' and "
+        "'to' different, got {value}", ("vary_form", "vary_range"))]],
+                    Wording("a list of {key, from, to, step} or {key, values}")] = Field(
         min_length=1, description="the varied data, each `{key, from, to, step}` or "
                                   "`{key, values}` (spec units)")
     count: _whole(1, MAX_SHEET_VARIANTS) = Field(30, description=(
