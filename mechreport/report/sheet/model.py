@@ -259,7 +259,7 @@ def _tag(angle: float) -> str:
 
 
 def _vec(v) -> str:
-    return f"({fmt(v[0])}, {fmt(v[1])})"
+    return f"({sci(v[0])}, {sci(v[1])})"
 
 
 def _free_body(spec, bodies) -> str:
@@ -436,8 +436,8 @@ def _inertia_rows(analysis, k: int) -> list:
         s = analysis.link_state(link.name)
         fin, mi = analysis.inertia_actions(link.name)
         g = analysis.gravity_action(link.name)
-        rows.append([str(link.number), link.name, fmt(s.mass), fmt(s.inertia),
-                     _vec(fin.value[k]), fmt(mi.value[k]), _vec(g.value[k])])
+        rows.append([str(link.number), link.name, sci(s.mass), sci(s.inertia),
+                     _vec(fin.value[k]), sci(mi.value[k]), _vec(g.value[k])])
     return rows
 
 
