@@ -1024,8 +1024,12 @@ def _build_problem(analysis, options: SheetOptions | None = None,
     tasks = [_kinematics_task(spec, shorts)]
     if _has_inertia(spec):
         tasks.append("the inertia force and inertia couple of every link;")
-    tasks += [f"the reaction of every joint ({', '.join(names.vec[j.name] for j in spec.joints)}"
-             f") and {effort}" + (f", by {_join_and(titles)}" if titles else "") + ";"]
+    reactions = ", ".join(f"{names.vec[j.name]} at {j.written}" for j in spec.joints)
+    couples = " and the couple of each slider" if any(j.type == "T" for j in spec.joints) \
+        else ""
+    tasks += [f"the reaction of every joint ({reactions}; Fij is the force link i exerts on "
+              f"link j{couples}) and {effort}" + (f", by {_join_and(titles)}" if titles else "")
+              + ";"]
     if spec.friction:
         named = [f"{spec.joint(fr.joint).written} ({_friction_name(spec, spec.joint(fr.joint))})"
                  for fr in spec.friction]
