@@ -958,7 +958,8 @@ class SheetSection(_Model):
     """The problem and solution sheets: on/off, the problem's own statement, variants."""
 
     enabled: bool = Field(True, strict=True, description=(
-        "`false` keeps the sheets off (default `true`: a `sheet:` mapping turns them on)"))
+        "`false` keeps the sheets off unless `build --sheet` asks for them (default `true`: a "
+        "`sheet:` mapping turns them on)"))
     statement: Annotated[str, Field(strict=True, min_length=1, max_length=20000),
                          Wording("text (Markdown)")] = Field(None, description=(
         "the problem sheet's own wording of the task (Markdown); default: a statement "
