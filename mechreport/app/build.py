@@ -93,7 +93,9 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
     if do_sheet:
         from ..report.sheet import SheetOptions, sheet_spec
         options = SheetOptions(sheet_options.methods if sheet_options else None,
-                               sheet_options.angles if sheet_options else None, exact)
+                               sheet_options.angles if sheet_options else None, exact,
+                               *((sheet_options.variants, sheet_options.seed)
+                                 if sheet_options else ()))
         wanted = sheet_spec(spec, options)
         if wanted is not spec:              # the sheet's angles are not all in the sweep
             sheet_source = analyse(wanted, tol=analysis.tol)
@@ -103,6 +105,10 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
     from .tolerance import carry_into_report         # a tolerance analysis there stays
     carry_into_report(folder / "summary.json", out / name / "tolerance.json",
                       key["spec_sha256"])
+    if do_sheet and spec.sheet_settings.variants is not None:   # one problem per student
+        from ..study.sheet_variants import write_class
+        stage(4, 4, "writing the variants")
+        write_class(path, folder, options, check_stop)
     for written in folder.rglob("*"):                   # nothing escaped the folder
         od.inside(folder, written)
     return dict(row, folder=name)
@@ -376,7 +382,9 @@ def build_command(ns) -> int:
     options = None
     if not ns.sheet:
         given = [o for o, v in (("--exact", ns.exact), ("--sheet-methods", ns.sheet_methods),
-                                ("--sheet-angles", ns.sheet_angles)) if v]
+                                ("--sheet-angles", ns.sheet_angles),
+                                ("--variants", ns.variants), ("--seed", ns.seed is not None))
+                 if v]
         if given:
             print(f"error: {', '.join(given)} need{'s' if len(given) == 1 else ''} --sheet: "
                   f"{'it changes' if len(given) == 1 else 'they change'} only the solution "
@@ -387,7 +395,8 @@ def build_command(ns) -> int:
         if ns.exact:
             from ..report.sheet.exact import require_sympy
             require_sympy()                 # a clear message now, not one per spec
-        options = SheetOptions(ns.sheet_methods, ns.sheet_angles, ns.exact)
+        options = SheetOptions(ns.sheet_methods, ns.sheet_angles, ns.exact, ns.variants,
+                               ns.seed)
     return build_files(spec_files(ns.specs), Path(ns.out), jobs=ns.jobs, sheet=ns.sheet,
                        exact=ns.exact, wait=ns.wait, force=ns.force, quiet=ns.quiet,
                        sheet_options=options, animation=not ns.no_animation)

@@ -87,6 +87,8 @@ def _checked(convert, ok, what: str):
 
 
 _int_at_least_1 = _checked(int, lambda v: v >= 1, "a whole number >= 1")
+_sheet_seed = _checked(int, lambda v: 0 <= v < 2**63, "a whole number from 0 to 2^63 - 1")
+_sheet_count = _checked(int, lambda v: 1 <= v <= 500, "a whole number from 1 to 500")
 
 
 def _sheet_methods(text: str) -> tuple[str, ...]:
@@ -346,6 +348,11 @@ def _main(argv: list[str] | None) -> int:
     p.add_argument("--exact", action="store_true",
                    help="solution sheets also show exact closed forms in the spec's square "
                    "roots (needs sympy: pip install 'mechreport[exact]'); needs --sheet")
+    p.add_argument("--variants", type=_sheet_count, default=None, metavar="N",
+                   help="how many variants of a problem with `sheet.variants` (overrides its "
+                   "count); needs --sheet")
+    p.add_argument("--seed", type=_sheet_seed, default=None,
+                   help="the variants' seed (overrides sheet.variants.seed); needs --sheet")
     p.add_argument("--no-animation", action="store_true",
                    help="leave out animation.gif (the mechanism moving with its forces), "
                    "which every spec with a whole-turn sweep gets unless its report says "

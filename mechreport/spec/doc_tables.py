@@ -25,6 +25,8 @@ TABLES = {
     "optimize": (schema.Optimize, True, None),
     "optimize_bound": (schema.OptimizeBound, True, None),
     "report": (schema.Report, False, None),
+    "sheet": (schema.SheetSection, True, None),
+    "sheet_variants": (schema.SheetVariants, True, None),
 }
 
 _REGION = re.compile(r"(<!-- key table (\w+(?: \w+)*) -->\n)(.*?)(<!-- end key table -->)", re.S)

@@ -30,6 +30,7 @@ from ..units import EXPECT_UNITS, PRESSURE_UNITS, SPEC_UNITS, UNIT_TABLES, rpm_t
 import mechreport.spec.schema as schema   # the models (not `from . import`: spec/__init__)
 from .schema import MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, keys_of, required_of
 from .strength import strength_links
+from .sheet_section import sheet_section
 from .types import ReportSettings
 from .types import (GROUND, BearingSpec, Design, Driver, Dynamics, Expectation, Friction, Joint,
                     Line, Link, Load, MotorCurve, Pin, Pressure, Shape, Spec, Study, Sweep,
@@ -524,8 +525,9 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
               else ReportSettings(animation=sweep.whole_turn))
     study = _study(top["study"], ck, top) if "study" in top else None
     tolerances = _tolerances(top["tolerances"], ck, top) if "tolerances" in top else None
-    sheet = (schema.SpecFile.model_fields["sheet"].default if ck.refused(("sheet",))
-             else top.get("sheet", schema.SpecFile.model_fields["sheet"].default))
+    sheet, sheet_settings = sheet_section(top.get("sheet"), ck.refused(("sheet",)),
+                                          lambda key, where: _key_path(key, where, ck, top),
+                                          ck.src.line)
 
     if links and joints:
         _zero_length(ck, links, joints)
@@ -546,7 +548,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
                 expect=tuple(expect), sheet=sheet, units=_written_units(units), design=design,
                 report=report, study=study, pins=tuple(pins), friction=friction,
-                dynamics=dynamics, cycle=cycle, tolerances=tolerances)
+                dynamics=dynamics, cycle=cycle, tolerances=tolerances,
+                sheet_settings=sheet_settings)
     _cycle_requests(spec, ck)
     if study is not None:
         _study_requests(spec, ck)

@@ -1323,6 +1323,93 @@ class Optimize(_Model):
             raise PydanticCustomError("objective", "give exactly one of 'minimize' and "
                                                    "'maximize'")
         return self
+# ------------------------------------------------------------------- sheets (format 1.2)
+
+MAX_SHEET_VARIANTS = 500
+
+
+class SheetVary(_Model):
+    """A varied datum of a problem's variants: {key, from, to, step} or {key, values}."""
+
+    key: Name = Field(description="A key path into this spec, as in `study.vary` "
+                                  "(links.crank.points.B.0).")
+    from_: Number = Field(None, alias="from", description="One end of the range (spec units).")
+    to: Number = Field(None, description="The other end of the range.")
+    step: Positive = Field(None, description="The range's values are from, from + step, ... up "
+                                             "to `to`; without it any value of the range.")
+    values: Annotated[list[Number], Wording("a list of numbers")] = Field(
+        None, min_length=1, max_length=MAX_STUDY_VARIANTS,
+        description="The values the key takes, instead of a range.")
+
+    @model_validator(mode="after")
+    def _range_or_values(self):
+        ranged = self.from_ is not None or self.to is not None or self.step is not None
+        if (self.values is not None) == ranged:
+            raise PydanticCustomError("vary_form", "give either 'values: [...]' or 'from', "
+                                                   "'to' (and 'step'), not both or neither")
+        if ranged and (self.from_ is None or self.to is None):
+            raise PydanticCustomError("vary_range", "a range needs 'from' and 'to'")
+        if ranged and self.from_ == self.to:
+            raise PydanticCustomError("vary_range", "'to' equals 'from': for one value write "
+                                                    "values: [x]")
+        return self
+
+
+class SheetRequire(_Model):
+    """What every variant must meet at the sheet's angles (else it is redrawn)."""
+
+    transmission_angle_min: Annotated[float, Field(strict=True, ge=0, le=90,
+                                                   allow_inf_nan=False)] = Field(
+        None, description="the smallest transmission angle allowed at the sheet's angles, "
+                          "degrees (0 to 90)")
+
+
+class SheetVariants(_Model):
+    """One problem per student: the data varied, drawn from a seed."""
+
+    vary: Annotated[list[Annotated[SheetVary, Refusal(
+        "must be {{key, values: [...]}} or {{key, from, to}} (with 'step' or not), 'from' and "
+        "'to' different, got {value}", ("vary_form", "vary_range"))]],
+                    Wording("a list of {key, from, to, step} or {key, values}")] = Field(
+        min_length=1, description="the varied data, each `{key, from, to, step}` or "
+                                  "`{key, values}` (spec units)")
+    count: _whole(1, MAX_SHEET_VARIANTS) = Field(30, description=(
+        f"how many variants (1 to {MAX_SHEET_VARIANTS}, default 30); `mechreport build "
+        "--variants N` overrides it"))
+    seed: _whole(0, MAX_SEED) = Field(0, description=(
+        "a whole number, default 0: the same spec and seed give the same variants "
+        "(`--seed` overrides it)"))
+    digits: _whole(2, 6) = Field(3, description=(
+        "significant digits the varied data are printed with (2 to 6, default 3); the "
+        "answers are computed from the printed data"))
+    require: SheetRequire = Field(None, description=(
+        "conditions every variant meets at the sheet's angles: `{transmission_angle_min: "
+        "deg}`; a variant that fails is redrawn"))
+
+
+class SheetSection(_Model):
+    """The problem and solution sheets: on/off, the problem's own statement, variants."""
+
+    enabled: bool = Field(True, strict=True, description=(
+        "`false` keeps the sheets off unless `build --sheet` asks for them (default `true`: a "
+        "`sheet:` mapping turns them on)"))
+    statement: Annotated[str, Field(strict=True, min_length=1, max_length=20000),
+                         Wording("text (Markdown)")] = Field(None, description=(
+        "the problem sheet's own wording of the task (Markdown); default: a statement "
+        "written from the data (the spec's `description` is never copied into a problem)"))
+    variants: SheetVariants = Field(None, description=(
+        "one problem per student: `{vary, count, seed, digits, require}`"))
+
+
+def _sheet_tag(value: Any) -> str:
+    """``sheet``: a mapping is the section, anything else the flag (true/false)."""
+    return "mapping" if isinstance(value, dict) else "flag"
+
+
+#: ``sheet: true`` / ``false`` or ``sheet: {enabled, statement, variants}``
+SheetValue = Annotated[Union[Annotated[bool, Field(strict=True), Tag("flag")],
+                             Annotated[SheetSection, Tag("mapping")]],
+                       Discriminator(_sheet_tag), Wording("true, false or a mapping")]
 
 
 class SpecFile(_Model):
@@ -1394,9 +1481,9 @@ class SpecFile(_Model):
     expect: Optional[Annotated[list[Expectation], Wording("a list of {angle, quantity, value, "
                                                           "tol}")]] = Field(
         None, description="values the results must reproduce (section 9)")
-    sheet: bool = Field(False, strict=True, description=(
+    sheet: SheetValue = Field(False, description=(
             "`true` adds worked solution sheets to `mechreport build` (section 14); default "
-            "`false`"))
+            "`false`; or a mapping `{enabled, statement, variants}` (format 1.2, section 14)"))
     design: Design = Field(None, description="the design review's inputs (section 15)")
     report: Optional[Report] = Field(None, description=(
             "display units and first-page metadata of the reports (section 16)"))

@@ -530,6 +530,35 @@ class Tolerances:
 
 
 @dataclass(frozen=True)
+class SheetVary:
+    """One varied datum of a problem's variants: ``key`` as written, ``path`` its keys and
+    list indices; ``values`` (as written, spec units) or the range ``start`` .. ``stop``
+    (both included) by ``step`` (None: any value of the range)."""
+
+    key: str
+    path: tuple
+    values: tuple[float, ...] | None = None
+    start: float | None = None
+    stop: float | None = None
+    step: float | None = None
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class SheetVariants:
+    """``sheet.variants``: ``count`` variants drawn from ``seed``, their varied data printed
+    to ``digits`` significant digits, each meeting ``require`` (name -> bound) at the sheet's
+    angles."""
+
+    vary: tuple[SheetVary, ...]
+    count: int = 30
+    seed: int = 0
+    digits: int = 3
+    require: tuple[tuple[str, float], ...] = ()
+    line: int | None = None
+
+
+@dataclass(frozen=True)
 class Bound:
     """A ``subject_to`` bound of an optimisation: ``quantity`` (a cycle quantity) kept at
     least ``low`` and at most ``high`` [SI; None: no such bound]; ``unit`` the unit they were
@@ -557,6 +586,15 @@ class Optimize:
     budget: int = 1000
     seed: int = 0
     line: int | None = None
+
+
+@dataclass(frozen=True)
+class SheetSettings:
+    """The ``sheet`` mapping beyond on/off: the problem's own ``statement`` (Markdown, None:
+    written from the data) and its ``variants`` (None: one problem)."""
+
+    statement: str | None = None
+    variants: SheetVariants | None = None
 
 
 @dataclass(frozen=True)
@@ -612,6 +650,9 @@ class Spec:
     # only `mechreport optimize` uses it (format 1.2); out of the repr, which stays the
     # loaded specs' reference (tests/spec/data/loaded_reprs.json)
     optimize: Optimize | None = field(default=None, repr=False)
+    # the ``sheet`` mapping's statement and variants (format 1.2); left out of the repr so
+    # that a spec without them reads as before
+    sheet_settings: SheetSettings = field(default_factory=SheetSettings, repr=False)
 
     @property
     def axis_unit(self) -> str:

@@ -250,11 +250,13 @@ def mechanism_figure(analysis, k: int, path: Path) -> Path:
             spot = _arc(ax, c.at, 0.06 * ext, c.value > 0, KNOWN, labels=labels)
             tips.append((tex_symbol(c.label), spot, (1, -1), KNOWN))
     drv = spec.driver
-    if drv.crank:
+    if drv.crank and not (drv.at_rest and drv.alpha == 0):   # no speed on a crank at rest
         pivot = analysis.joint_points()[drv.joint][k]
         n = spec.number(drv.link)
-        spot = _arc(ax, pivot, 0.09 * ext, drv.omega >= 0, UNKNOWN, labels=labels)
-        tips.append((rf"$\omega_{{{n}}}$", spot, (1, -1), UNKNOWN))
+        ccw = drv.alpha >= 0 if drv.at_rest else drv.omega >= 0
+        spot = _arc(ax, pivot, 0.09 * ext, ccw, UNKNOWN, labels=labels)
+        sym = r"\alpha" if drv.at_rest else r"\omega"
+        tips.append((rf"${sym}_{{{n}}}$", spot, (1, -1), UNKNOWN))
     # the joints' letters first (each at its point), then the loads' and the driver's symbols
     labels.place_points(sc.labels, ext)
     for text, at, prefer, color in tips:

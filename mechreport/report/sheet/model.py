@@ -24,6 +24,7 @@ from ...kinematics.frames import perp
 from .expr import (ZERO, Equation, Expr, Num, Op, Paren, Point, Raw, Sym, fmt, round_off,
                    sheet_zero)
 from .kinematics import derive, scalar, vec_expr
+from .statement import eng, sci, statement
 from .symbols import (M_, N_, NM_, R, Names, alpha, axis_atom, comp_sym, omega, scalar_sym,
                       unit_atom, vec_sym)
 from .translate import Translator, zero_by_constraint
@@ -39,6 +40,8 @@ class SheetOptions:
     methods: tuple[str, ...] | None = None
     angles: tuple[float, ...] | None = None
     exact: bool = False
+    variants: int | None = None       # --variants: overrides sheet.variants.count
+    seed: int | None = None           # --seed: overrides sheet.variants.seed
 
     def key(self) -> dict:
         """The options that change the output, for a build's up-to-date check (empty when
@@ -48,6 +51,10 @@ class SheetOptions:
             out["sheet_methods"] = list(self.methods)
         if self.angles is not None:
             out["sheet_angles"] = [float(a) for a in self.angles]
+        if self.variants is not None:
+            out["sheet_variants"] = int(self.variants)
+        if self.seed is not None:
+            out["sheet_seed"] = int(self.seed)
         return out
 
 
@@ -230,6 +237,8 @@ class ProblemModel:
     angles: list              # (title, Figure)
     tasks: list               # rich text items
     zero: float = ZERO        # round-off [SI]: smaller magnitudes print as 0
+    statement: list = field(default_factory=list)   # paragraphs (never the description)
+    own_statement: bool = False   # the statement is the spec's sheet.statement (Markdown)
 
 
 # ------------------------------------------------------------------------------ helpers
@@ -250,7 +259,7 @@ def _tag(angle: float) -> str:
 
 
 def _vec(v) -> str:
-    return f"({fmt(v[0])}, {fmt(v[1])})"
+    return f"({sci(v[0])}, {sci(v[1])})"
 
 
 def _free_body(spec, bodies) -> str:
@@ -427,8 +436,8 @@ def _inertia_rows(analysis, k: int) -> list:
         s = analysis.link_state(link.name)
         fin, mi = analysis.inertia_actions(link.name)
         g = analysis.gravity_action(link.name)
-        rows.append([str(link.number), link.name, fmt(s.mass), fmt(s.inertia),
-                     _vec(fin.value[k]), fmt(mi.value[k]), _vec(g.value[k])])
+        rows.append([str(link.number), link.name, sci(s.mass), sci(s.inertia),
+                     _vec(fin.value[k]), sci(mi.value[k]), _vec(g.value[k])])
     return rows
 
 
@@ -869,7 +878,7 @@ def _build_sheet(analysis, options: SheetOptions | None = None) -> SheetModel:
     display = display_of(analysis)
     si = (display.length, display.force, display.moment, display.mass) == ("m", "N", "N*m", "kg")
     links = [[str(l.number), l.name, ", ".join(f"{p} {_vec(xy)}" for p, xy in l.points.items()),
-              fmt(l.mass), fmt(l.inertia), _vec(l.com)] for l in spec.links]
+              sci(l.mass), sci(l.inertia), _vec(l.com)] for l in spec.links]
     joints = []
     for j in spec.joints:
         a, b = j.links
@@ -999,7 +1008,7 @@ def _build_problem(analysis, options: SheetOptions | None = None,
         if l.strength is not None:
             shape = "; ".join(x for x in (shape, _strength_datum(l)) if x)
         links.append([str(l.number), l.name, ", ".join(f"{p} {_vec(xy)}" for p, xy in pts),
-                      ", ".join(dims), shape, fmt(l.mass), fmt(l.inertia), _vec(l.com)])
+                      ", ".join(dims), shape, sci(l.mass), sci(l.inertia), _vec(l.com)])
     joints = [[j.name, {"R": "pin (R)", "T": "slider (T)"}[j.type],
                f"{spec.number(j.links[0])} ({j.links[0]}) – {spec.number(j.links[1])} "
                f"({j.links[1]})" + (f", line through {_vec(j.line.through)} along "
@@ -1026,11 +1035,15 @@ def _build_problem(analysis, options: SheetOptions | None = None,
     effort = "the driver torque M" if spec.driver.kind == "R" else \
         "the actuator force F_d"
     shorts = ", ".join(coordinate(spec, a)[1] for a in angles)
-    tasks = [f"the positions, velocities and accelerations of the joints and of the centres "
-             f"of mass, and the angular velocities and accelerations of the links, at {shorts};",
-             "the inertia force and inertia couple of every link;",
-             f"the reaction of every joint ({', '.join(names.vec[j.name] for j in spec.joints)}"
-             f") and {effort}" + (f", by {_join_and(titles)}" if titles else "") + ";"]
+    tasks = [_kinematics_task(spec, shorts)]
+    if _has_inertia(spec):
+        tasks.append("the inertia force and inertia couple of every link;")
+    reactions = ", ".join(f"{names.vec[j.name]} at {j.written}" for j in spec.joints)
+    couples = " and the couple of each slider" if any(j.type == "T" for j in spec.joints) \
+        else ""
+    tasks += [f"the reaction of every joint ({reactions}; Fij is the force link i exerts on "
+              f"link j{couples}) and {effort}" + (f", by {_join_and(titles)}" if titles else "")
+              + ";"]
     if spec.friction:
         named = [f"{spec.joint(fr.joint).written} ({_friction_name(spec, spec.joint(fr.joint))})"
                  for fr in spec.friction]
@@ -1045,19 +1058,44 @@ def _build_problem(analysis, options: SheetOptions | None = None,
     if "power" in methods:
         tasks.append(f"check {effort} with " + ("virtual work." if spec.driver.at_rest
                                                  else "a power balance."))
-    return ProblemModel(spec.name, str(spec.file), spec.description.strip(), links, joints,
+    own = spec.sheet_settings.statement
+    return ProblemModel(spec.name, str(spec.file), "", links, joints,
                         ground, _driver_text(spec), _vec(spec.gravity) + " m/s²", loads, figs,
-                        tasks)
+                        tasks, statement=[own] if own else statement(spec, shorts),
+                        own_statement=bool(own))
+
+
+def _kinematics_task(spec, shorts: str) -> str:
+    """What the kinematics asks: only what is not trivially zero (at rest, no velocity; at
+    rest without acceleration, positions alone)."""
+    d = spec.driver
+    if d.at_rest and d.alpha == 0:
+        return f"the positions of the joints and of the centres of mass at {shorts};"
+    if d.at_rest:
+        return (f"the positions and accelerations of the joints and of the centres of mass, "
+                f"and the angular accelerations of the links, at {shorts} (every velocity is "
+                "zero at this instant);")
+    return (f"the positions, velocities and accelerations of the joints and of the centres "
+            f"of mass, and the angular velocities and accelerations of the links, at {shorts};")
+
+
+def _has_inertia(spec) -> bool:
+    """Whether some link has an inertia force or couple: the driver moves or accelerates,
+    and some link has a mass or a moment of inertia."""
+    d = spec.driver
+    if d.at_rest and d.alpha == 0:
+        return False
+    return any(l.mass > 0 or l.inertia > 0 for l in spec.links)
 
 
 def _strength_datum(link) -> str:
     """A link's section, material and members as the problem states them (SI)."""
     st = link.strength
-    sizes = ", ".join(f"{k} = {fmt(v)}" for k, v in st.section.sizes)
+    sizes = ", ".join(f"{k} = {sci(v)}" for k, v in st.section.sizes)
     m = st.material
-    return (f"section {st.section.kind} ({sizes}, SI), E = {fmt(m.E)} Pa, yield "
-            f"{fmt(m.yield_)} Pa, ultimate {fmt(m.ultimate)} Pa, endurance {fmt(m.endurance)} "
-            "Pa; members " + ", ".join(f"{p}{q}" for p, q in st.members))
+    return (f"section {st.section.kind} ({sizes}, SI), E = {eng(m.E, 'Pa')}, yield "
+            f"{eng(m.yield_, 'Pa')}, ultimate {eng(m.ultimate, 'Pa')}, endurance "
+            f"{eng(m.endurance, 'Pa')}; members " + ", ".join(f"{p}{q}" for p, q in st.members))
 
 
 def _friction_datum(spec, fr, joint) -> str:

@@ -27,8 +27,11 @@ LINK_HEADER = ["link", "name", Wording("points [m]"), "lengths", "shape",
 def problem_document(p) -> Doc:
     """The problem sheet of the :class:`.model.ProblemModel` ``p``."""
     doc = Doc(f"Problem: {p.name}", layout=LAYOUT)
-    if p.description:
-        doc.add(Description(p.description))
+    if p.own_statement:           # the sheet's own statement (Markdown, never raw HTML)
+        doc.add(Description(p.statement))
+    else:                         # a statement written from the data
+        for par in p.statement:
+            doc.p(par)
     doc.h("Data")
     doc.p(Wording("SI units. Links (each with its own frame; points and centre of mass "),
           Either("C", _sym("C")), Wording(" in that frame):"))

@@ -43,9 +43,11 @@ def render_problem_typst(model) -> str:
         return typst(problem_document(model))
 
 
-def write_sheet(analysis, outdir: Path, options: SheetOptions | None = None) -> list[Path]:
+def write_sheet(analysis, outdir: Path, options: SheetOptions | None = None,
+                models: bool = False):
     """Write the answer key and the problem version of ``analysis`` into ``outdir``, with
-    their figures; returns [solution.md, solution.pdf, problem.md, problem.pdf]."""
+    their figures; returns [solution.md, solution.pdf, problem.md, problem.pdf] (with
+    ``models``: the sheet's and the problem's models instead)."""
     outdir = Path(outdir)
     sheet = build_sheet(analysis, options)
     (outdir / "figures").mkdir(parents=True, exist_ok=True)
@@ -57,4 +59,4 @@ def write_sheet(analysis, outdir: Path, options: SheetOptions | None = None) -> 
     out.append(compile_typst(render_typst(sheet), outdir / "solution.pdf", outdir))
     out.append(atomic_write_text(outdir / "problem.md", render_problem_markdown(problem)))
     out.append(compile_typst(render_problem_typst(problem), outdir / "problem.pdf", outdir))
-    return out
+    return (sheet, problem) if models else out

@@ -14,6 +14,7 @@ import numpy as np
 
 from ...post.strength import link_members, member_cut, member_names, point_actions, sides
 from .expr import fmt
+from .statement import sci
 from .symbols import R, scalar_sym, vec_sym
 
 
@@ -108,8 +109,8 @@ def _cut(analysis, k, link, name, i, members, acts, mu, k2, g, w, al, side_sets)
               f" = {_v(N)} N, ", R(r"V = \mathbf{F}\cdot\mathbf{n}", "V = bold(F) dot bold(n)"),
               f" = {_v(V)} N, M = {_v(M)} N·m. Stress: ",
               R(r"\sigma = |N|/A + |M|\,c/I", "sigma = abs(N)/A + abs(M) c / I"),
-              f" = {_v(sigma / 1e6)} MPa (A = {_v(sec.area)} m², I = {_v(sec.inertia)} m⁴, "
-              f"c = {_v(sec.c)} m)."]
+              f" = {_v(sigma / 1e6)} MPa (A = {sci(sec.area)} m², I = {sci(sec.inertia)} m⁴, "
+              f"c = {sci(sec.c)} m)."]
     result += column_check(analysis.strength.members[name], link.strength.buckling_of(i),
                            bool(link.strength.buckling))
     return Cut(f"Cut of member {name}", intro, rows, result)
