@@ -442,6 +442,9 @@ def _shape_problem(error: dict) -> tuple[tuple, str]:
     """A pydantic error (``loc``, ``type``, ``input``) as a key path and a message in the
     wording of this module's checks."""
     loc, kind, value = tuple(error["loc"]), error["type"], error.get("input")
+    if kind == schema.WORDED:                # said in the house wording where it is found
+        key = (error.get("ctx") or {}).get("key")
+        return schema.locate(loc).path + ((key,) if key else ()), error["msg"]
     if kind == "missing" and loc and isinstance(loc[-1], int):    # a short pair
         where = schema.locate(loc[:-1])
         return where.path, f"must be {_wording(where, 'a longer list')}, got {_show(value)}"
@@ -694,7 +697,7 @@ def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep
     end and output step; the driver must be a crank (an R joint with ground)."""
     path = ("dynamics",)
     body = value if isinstance(value, dict) else {}
-    if "motor" not in body:
+    if ("motor" in body) == ("mean_rpm" in body):
         return None             # the models say what is wrong
     ok = True
     if driver is not None and not driver.crank:
@@ -707,20 +710,25 @@ def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep
                        "positive sense); write the driver's speed positive and the mechanism "
                        "mirrored, or leave dynamics out")
         ok = False
-    motor = _dynamics_motor(body["motor"], path + ("motor",), ck)
-    if not ok or motor is None or ck.refused(path):
+    motor = (_dynamics_motor(body["motor"], path + ("motor",), ck) if "motor" in body
+             else None)
+    if not ok or (motor is None and "motor" in body) or ck.refused(path):
         return None
     start = body.get("start") or {}
     until = body.get("until")
-    return Dynamics(motor, float(body.get("flywheel", 0.0)),
+    fly = body.get("flywheel", 0.0)
+    geared = (float(fly["inertia"]), float(fly["ratio"])) if isinstance(fly, dict) else None
+    return Dynamics(motor, geared[1] ** 2 * geared[0] if geared else float(fly),
                     float(start.get("angle", sweep.start)), float(start.get("rpm", 0.0)),
                     None if until in (None, "steady") else float(until),
-                    None if body.get("output_step") is None else float(body["output_step"]))
+                    None if body.get("output_step") is None else float(body["output_step"]),
+                    None if body.get("mean_rpm") is None else float(body["mean_rpm"]),
+                    geared)
 
 
 def _dynamics_motor(value: Any, path: tuple, ck: _Checker) -> MotorCurve | None:
     """The motor of ``dynamics:``: exactly one of ``torque``, ``curve``, ``linear``."""
-    body = ck.mapping(value, path, DYN_MOTOR_KEYS)
+    body = ck.mapping(value, path, DYN_MOTOR_KEYS + ("ratio", "efficiency"))
     if body is None:
         return None
     given = [k for k in DYN_MOTOR_KEYS if k in body]
@@ -732,18 +740,19 @@ def _dynamics_motor(value: Any, path: tuple, ck: _Checker) -> MotorCurve | None:
     if ck.refused(path):
         return None
     kind = given[0]
+    gear = {k: float(body[k]) for k in ("ratio", "efficiency") if k in body}
     if kind == "torque":
-        return MotorCurve(constant=float(body["torque"]))
+        return MotorCurve(constant=float(body["torque"]), **gear)
     if kind == "linear":
         return MotorCurve(stall_torque=float(body["linear"]["stall_torque"]),
-                          no_load_rpm=float(body["linear"]["no_load_rpm"]))
+                          no_load_rpm=float(body["linear"]["no_load_rpm"]), **gear)
     points = [(float(a), float(b)) for a, b in body["curve"]]
     for i in range(1, len(points)):
         if not points[i][0] > points[i - 1][0]:
             ck.error(path + ("curve", i, 0), f"the speeds must increase: {points[i][0]:g} rpm "
                                              f"follows {points[i - 1][0]:g} rpm")
             return None
-    return MotorCurve(curve=tuple(points))
+    return MotorCurve(curve=tuple(points), **gear)
 
 
 def _design(value: Any, ck: _Checker, joints: list[Joint] | None, pins=()) -> Design:
@@ -827,6 +836,9 @@ def _dynamics_need(spec: Spec, quantity: str) -> str | None:
     if spec.dynamics is None:
         return (f"'{quantity}' needs a 'dynamics:' section (a motor, and the steady state it "
                 "reaches)")
+    if quantity == "dynamics.startup_time" and spec.dynamics.mean_rpm is not None:
+        return (f"'{quantity}' is undefined with dynamics.mean_rpm: the steady state is "
+                "found directly, with no start-up (give a motor to simulate one)")
     if spec.dynamics.until is not None:
         return (f"'{quantity}' is a quantity of the steady cycle: with dynamics.until a time "
                 "the simulation gives the transient only (write until: steady)")
