@@ -267,11 +267,15 @@ __all__ = ["EquationOfMotion", "InertiaTerm", "STATES", "cycle_degrees", "equati
 def flywheel_estimate(eom: EquationOfMotion, omega: float) -> tuple[float, float, float]:
     """The constant-speed estimate the design review's flywheel formula makes, at the mean
     speed ``omega`` [rad/s]: (the energy fluctuation dE [J] of the torque the mechanism takes
-    at constant speed, B omega^2 + C omega + D, against its mean; the mean reduced inertia
+    at constant speed, B omega^2 + C omega + D, against its mean, over the cycle's grid by
+    the design review's rule; the mean over the crank angle of the reduced inertia
     J_mean + If [kg m^2]; the speed fluctuation it predicts, dE / ((J_mean + If) omega^2))."""
     torque = eom.B * omega ** 2 + eom.C * omega + eom.D
     h = math.radians(GRID_STEP_DEG)
-    energy = np.concatenate([[0.0], np.cumsum(torque - torque.mean()) * h])
+    # the design review's rule: the periodic trapezoid's running integral of the torque
+    # less its mean, its extremes at the grid's angles
+    g = torque - torque.mean()
+    energy = np.concatenate([[0.0], np.cumsum(0.5 * (g + np.roll(g, -1)) * h)[:-1]])
     swing = float(np.max(energy) - np.min(energy))
     inertia = float(np.mean(eom.J)) + eom.flywheel
     return swing, inertia, swing / (inertia * omega ** 2)

@@ -100,6 +100,7 @@ class Simulation:
     turns: int
     steady: SteadyCycle | None
     startup_time: float | None
+    drive_torque: float | None = None     # mean_rpm: the constant driving torque [N m]
 
 
 class _OverBudget(Exception):
@@ -237,6 +238,9 @@ def simulate(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarray, file: str
     ``angles`` [deg] the sweep's, where the steady turn is sampled. Raises
     ``AnalysisError`` at a stall, without a steady state (``MAX_TURNS``), where the
     equation is singular or stiff, or beyond the integration's bounds."""
+    if dyn.mean_rpm is not None:
+        from .mean_speed import steady_at_mean_speed
+        return steady_at_mean_speed(eom, dyn, angles, file)
     theta0 = math.radians(_start_angle(dyn.start_angle, file))
     omega = dyn.start_rpm * RPM
     require_inertia(eom, file)
@@ -611,7 +615,7 @@ def _extreme(sol, alpha, times: np.ndarray, w: np.ndarray, sign: float, period: 
     try:
         a_lo, a_hi = acc(lo), acc(hi)
         if a_lo > 0 > a_hi:
-            t = brentq(acc, lo, hi, xtol=1e-15 * max(period, 1.0), rtol=4e-16)
+            t = brentq(acc, lo, hi, xtol=1e-15 * max(period, 1.0))
         else:
             t = minimize_scalar(lambda t: -sign * state(t)[1], bounds=(lo, hi),
                                 method="bounded", options={"xatol": 1e-12 * period}).x

@@ -15,6 +15,7 @@ import numpy as np
 
 from ..dynamics import (EquationOfMotion, Simulation, equation_of_motion, flywheel_estimate,
                         simulate, spec_at_speed)
+from ..dynamics.motor import constant_drive
 from ..kinematics import Kinematics, solve_kinematics, with_rates
 from ..model import Mechanism
 from ..units import RPM
@@ -40,20 +41,36 @@ class DynamicsResult:
 
 
 def simulated(mech: Mechanism) -> tuple[EquationOfMotion, Simulation, dict[str, float]]:
-    """The equation of motion of ``mech``'s spec, the motion it gives and the
-    ``dynamics.*`` quantities of its steady turn (empty without one): what a check needs of
-    machine dynamics. Raises ``AnalysisError`` at a stall, where the crank cannot turn, or
-    without a steady state."""
+    """The equation of motion of ``mech``'s spec (with ``mean_rpm``, its constant driving
+    torque as found), the motion it gives and the ``dynamics.*`` quantities of its steady
+    cycle (empty without one): what a check needs of machine dynamics. Raises
+    ``AnalysisError`` at a stall, where the crank cannot turn, or without a steady state."""
     spec = mech.spec
     eom = equation_of_motion(mech)
     sim = simulate(eom, spec.dynamics, spec.analysed_angles(), spec.file)
+    if sim.drive_torque is not None:
+        eom = replace(eom, motor=constant_drive(sim.drive_torque))
     cycle = sim.steady
     if cycle is None:
         return eom, sim, {}
-    return eom, sim, {"dynamics.speed_fluctuation": cycle.fluctuation,
-                      "dynamics.mean_rpm": cycle.mean_omega / RPM,
-                      "dynamics.startup_time": sim.startup_time,
-                      "dynamics.motor_rms_torque": cycle.motor_rms}
+    return eom, sim, steady_values(eom, sim)
+
+
+def steady_values(eom: EquationOfMotion, sim: Simulation) -> dict[str, float]:
+    """The ``dynamics.*`` quantities of the steady cycle of ``sim`` (SI; the speeds'
+    angles in degrees within the cycle); ``dynamics.startup_time`` only after a start-up
+    (not with ``mean_rpm``)."""
+    cycle = sim.steady
+    _, _, estimate = flywheel_estimate(eom, cycle.mean_omega)
+    values = {"dynamics.speed_fluctuation": cycle.fluctuation,
+              "dynamics.mean_rpm": cycle.mean_omega / RPM,
+              "dynamics.startup_time": sim.startup_time,
+              "dynamics.motor_rms_torque": cycle.motor_rms,
+              "dynamics.omega_max": cycle.omega_max, "dynamics.omega_min": cycle.omega_min,
+              "dynamics.omega_max_angle": cycle.omega_max_angle,
+              "dynamics.omega_min_angle": cycle.omega_min_angle,
+              "dynamics.speed_fluctuation_estimate": estimate}
+    return {k: v for k, v in values.items() if v is not None}
 
 
 def run_dynamics(mech: Mechanism, analyse_turn, methods=None, tol: float = 1e-6, plans=None,
@@ -81,6 +98,20 @@ def run_dynamics(mech: Mechanism, analyse_turn, methods=None, tol: float = 1e-6,
                           steady_verdicts(steady.verdicts, cycle))
 
 
+def steady_rates(sim: Simulation, angles: np.ndarray) -> dict[str, np.ndarray]:
+    """``dynamics.omega`` [rad/s] and ``dynamics.alpha`` [rad/s^2] of the steady cycle at
+    the sweep's ``angles`` [deg] (NaN at an angle it was not sampled at; empty without a
+    steady state): what ``expect`` reads at an angle."""
+    cycle = sim.steady
+    if cycle is None:
+        return {}
+    where = np.searchsorted(np.round(cycle.angles, 9), np.round(angles, 9))
+    where = np.minimum(where, len(cycle.angles) - 1)
+    found = np.isclose(cycle.angles[where], angles, rtol=0, atol=1e-9)
+    return {"dynamics.omega": np.where(found, cycle.omega[where], np.nan),
+            "dynamics.alpha": np.where(found, cycle.alpha[where], np.nan)}
+
+
 #: the motor's own quantities a steady turn's motor verdicts read (the crank shaft's torque,
 #: cycle.torque.*, is the motor's and the flywheel's together)
 MOTOR_QUANTITIES = {"motor.rated_torque": ("dynamics.motor_rms_torque", "motor_rms", "N·m"),
@@ -101,4 +132,4 @@ def steady_verdicts(verdicts, cycle) -> tuple:
 
 
 __all__ = ["DynamicsResult", "MOTOR_QUANTITIES", "run_dynamics", "simulated",
-           "steady_verdicts"]
+           "steady_rates", "steady_values", "steady_verdicts"]

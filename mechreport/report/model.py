@@ -1387,6 +1387,11 @@ MEANING = {
     "dynamics.mean_rpm": "mean crank speed",
     "dynamics.startup_time": "start-up time (to 95 %)",
     "dynamics.motor_rms_torque": "motor's RMS torque",
+    "dynamics.omega_max": "largest crank speed (steady cycle)",
+    "dynamics.omega_min": "smallest crank speed (steady cycle)",
+    "dynamics.omega_max_angle": "crank angle of the largest speed",
+    "dynamics.omega_min_angle": "crank angle of the smallest speed",
+    "dynamics.speed_fluctuation_estimate": "first-order estimate dE / ((J_mean + I_f) ω²)",
     "f_max": "peak bearing load", "f_mean": "mean bearing load",
     "f_equivalent": "equivalent (cube-mean) load", "life_h": "L10 rating life",
 }

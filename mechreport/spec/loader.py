@@ -25,8 +25,8 @@ from pathlib import Path as FsPath
 from typing import Any
 
 from ..errors import Problem, SpecError
-from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, MEMBER_UNITS,
-                          is_cycle, is_member, joint_unit, unit_of, split as split_quantity)
+from ..quantities import (CYCLE_UNITS, DYNAMICS_INSTANT, JOINT_CYCLE_UNITS, MECHANISM_UNITS,
+                          MEMBER_UNITS, is_cycle, is_member, joint_unit, unit_of, split as split_quantity)
 from ..units import EXPECT_UNITS, SPEC_UNITS, UNIT_TABLES, rpm_to_rad_s
 import mechreport.spec.schema as schema   # the models (not `from . import`: spec/__init__)
 from .schema import (MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, choices_of, keys_of,
@@ -803,6 +803,10 @@ def _cycle_requests(spec: Spec, ck: _Checker) -> None:
     why = spec.cycle_problem()
     asked = [(("expect", i), e.quantity) for i, e in enumerate(spec.expect)
              if e.angle is None and not is_member(e.quantity)]
+    for i, e in enumerate(spec.expect):          # the steady cycle's speed at an angle
+        need = _dynamics_need(spec, e.quantity) if e.quantity in DYNAMICS_INSTANT else None
+        if need:
+            ck.error(("expect", i), need)
     strength = [k for k in STRENGTH_LIMITS if k in spec.design.limits]
     if strength and not any(link.strength for link in spec.links):
         ck.error(("design", "limits", strength[0]), "needs a link with a 'section' and a "
