@@ -33,7 +33,7 @@ from .equation import EquationOfMotion
 from .motor import RPM, constant_drive
 from .prechecks import require_inertia
 from .simulate import (DEFAULT_SAMPLES, MAX_ROWS, STALL_SPEED, Simulation, _start_angle,
-                       _too_many_rows, _Turns, steady_cycle)
+                       _too_many_rows, _Turns, simulate, steady_cycle)
 
 #: the conditions (speed's return and period, relative) met to within this
 TOL = 1e-12
@@ -42,6 +42,15 @@ ACCEPT = 1e-10
 MAX_ITERATIONS = 30
 #: the relative step of the finite differences of the first Jacobian
 STEP = 1e-6
+
+
+def motion(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarray, file: str
+           ) -> Simulation:
+    """The motion ``dyn`` asks for: the steady state at ``mean_rpm``
+    (:func:`steady_at_mean_speed`), or what its motor gives (:func:`.simulate.simulate`)."""
+    if dyn.mean_rpm is not None:
+        return steady_at_mean_speed(eom, dyn, angles, file)
+    return simulate(eom, dyn, angles, file)
 
 
 def steady_at_mean_speed(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarray,
@@ -130,4 +139,4 @@ def _stalls(file: str, mean_rpm: float, phi: float | None) -> str:
             "run it faster")
 
 
-__all__ = ["steady_at_mean_speed"]
+__all__ = ["motion", "steady_at_mean_speed"]

@@ -238,9 +238,6 @@ def simulate(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarray, file: str
     ``angles`` [deg] the sweep's, where the steady turn is sampled. Raises
     ``AnalysisError`` at a stall, without a steady state (``MAX_TURNS``), where the
     equation is singular or stiff, or beyond the integration's bounds."""
-    if dyn.mean_rpm is not None:
-        from .mean_speed import steady_at_mean_speed
-        return steady_at_mean_speed(eom, dyn, angles, file)
     theta0 = math.radians(_start_angle(dyn.start_angle, file))
     omega = dyn.start_rpm * RPM
     require_inertia(eom, file)

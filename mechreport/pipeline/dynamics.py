@@ -14,7 +14,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..dynamics import (EquationOfMotion, Simulation, equation_of_motion, flywheel_estimate,
-                        simulate, spec_at_speed)
+                        motion, spec_at_speed)
 from ..dynamics.motor import constant_drive
 from ..kinematics import Kinematics, solve_kinematics, with_rates
 from ..model import Mechanism
@@ -47,7 +47,7 @@ def simulated(mech: Mechanism) -> tuple[EquationOfMotion, Simulation, dict[str, 
     ``AnalysisError`` at a stall, where the crank cannot turn, or without a steady state."""
     spec = mech.spec
     eom = equation_of_motion(mech)
-    sim = simulate(eom, spec.dynamics, spec.analysed_angles(), spec.file)
+    sim = motion(eom, spec.dynamics, spec.analysed_angles(), spec.file)
     if sim.drive_torque is not None:
         eom = replace(eom, motor=constant_drive(sim.drive_torque))
     cycle = sim.steady
