@@ -591,7 +591,8 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                            length_scale, units["length"])
     driver = (_driver(top.get("driver"), ck, joints, length_scale, pins) if "driver" in top
               else None)
-    sweep = _sweep(top.get("sweep"), ck)
+    cycle = _cycle(top, ck)
+    sweep = _sweep(top.get("sweep"), ck, cycle)
     at = _angle_list(top.get("at"), ("at",), ck) if "at" in top else (sweep.start,)
     assembly = _assembly(top.get("assembly"), ck, links, length_scale, units["length"])
     loads = _loads(top.get("loads"), ck, {l.name: l for l in links}, joints, ground,
@@ -637,7 +638,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
                 expect=tuple(expect), sheet=sheet, units=units, design=design,
                 report=report, study=study, pins=tuple(pins), friction=friction,
-                dynamics=dynamics)
+                dynamics=dynamics, cycle=cycle)
     _cycle_requests(spec, ck)
     if study is not None:
         _study_requests(spec, ck)
@@ -1457,16 +1458,26 @@ def _default_gravity() -> Vec:
     return (float(gx), float(gy))
 
 
-def _default_sweep() -> Sweep:
-    """The sweep of a spec without ``sweep:`` (the model's defaults), degrees."""
-    return Sweep(**{key: float(field.default)
-                    for key, field in schema.Sweep.model_fields.items()})
+def _cycle(top: dict, ck: _Checker) -> float:
+    """``cycle``: the loads' period in crank degrees (the model's default where absent or
+    refused)."""
+    default = float(schema.SpecFile.model_fields["cycle"].default)
+    if "cycle" not in top or ck.refused(("cycle",)):
+        return default
+    return float(top["cycle"])
 
 
-def _sweep(value: Any, ck: _Checker) -> Sweep:
-    """The crank angles analysed, degrees (the model's defaults where absent; the defaults
-    throughout when the model refused any of it)."""
-    defaults = _default_sweep()
+def _default_sweep(cycle: float = 360.0) -> Sweep:
+    """The sweep of a spec without ``sweep:`` (the model's defaults), degrees: one cycle
+    (``stop`` defaults to ``cycle``)."""
+    values = {key: float(field.default) for key, field in schema.Sweep.model_fields.items()}
+    return Sweep(**{**values, "stop": cycle})
+
+
+def _sweep(value: Any, ck: _Checker, cycle: float = 360.0) -> Sweep:
+    """The crank angles analysed, degrees (the model's defaults where absent, ``stop``
+    defaulting to one cycle; the defaults throughout when the model refused any of it)."""
+    defaults = _default_sweep(cycle)
     if value is None or ck.refused(("sweep",)):
         return defaults
     vals = {key: float(value.get(key, getattr(defaults, key)))

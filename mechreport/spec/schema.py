@@ -518,8 +518,18 @@ class Sweep(_Model):
     """The crank angles analysed: start, start + step, ... up to stop (degrees)."""
 
     start: Number = Field(0, description="First angle, degrees (stroke for a T driver).")
-    stop: Number = Field(360, description="Last angle, degrees; greater than start.")
+    stop: Number = Field(360, description="Last angle, degrees; greater than start (default "
+                                          "`cycle`: one cycle).")
     step: Positive = Field(1, description="Step, degrees (positive).")
+
+
+#: the largest ``cycle``, crank degrees (a hundred turns)
+CYCLE_MAX = 36000
+#: ``cycle``: the loads' period in crank degrees, a positive whole multiple of 360
+Cycle = Annotated[int, Field(strict=True, ge=360, le=CYCLE_MAX, multiple_of=360),
+                  BeforeValidator(_not_true_or_false), BeforeValidator(_whole_value),
+                  Refusal("must be a whole multiple of 360 crank degrees (360, 720, ...) up to "
+                          f"{CYCLE_MAX}, got {{value}}")]
 
 
 #: a profile's crank angle, degrees: in [0, 360)
@@ -967,12 +977,12 @@ class SpecFile(_Model):
     """A mechreport spec: one planar linkage (docs/spec.md)."""
 
     model_config = ConfigDict(title="mechreport spec")
-    mechreport: Annotated[Literal[1, 1.1], BeforeValidator(_not_true_or_false),
-                          Refusal("format version must be 1, got {value} (or 1.1: the same "
-                                  "format with its version 1.1 keys)")] = Field(
+    mechreport: Annotated[Literal[1, 1.1, 1.2], BeforeValidator(_not_true_or_false),
+                          Refusal("format version must be 1, got {value} (or 1.1 or 1.2: the "
+                                  "same format with its version 1.1 or 1.2 keys)")] = Field(
         description=(
-            "format version: `1`, or `1.1` (the same format; a file using the version 1.1 keys "
-            "may say so)"))
+            "format version: `1`, or `1.1` or `1.2` (the same format; a file using the version "
+            "1.1 or 1.2 keys may say so)"))
     name: Name = Field(description="the mechanism's name, used in report titles")
     description: Annotated[Optional[Text],
                            Refusal("must be text (Markdown), got {value}")] = Field(None, description=(
@@ -991,8 +1001,11 @@ class SpecFile(_Model):
     links: dict[str, Link] = Field(min_length=1, description="the moving links (section 4)")
     joints: dict[str, Joint] = Field(min_length=1, description="the joints (section 5)")
     driver: Driver = Field(description="the driving crank and its speed (section 6)")
+    cycle: Cycle = Field(360, description=(
+            "crank degrees after which the loads repeat, a whole multiple of 360 (`720`: a "
+            "four-stroke engine); default 360 (format 1.2)"))
     sweep: Optional[Sweep] = Field(None, description=(
-            "crank angles to analyse, default 0 to 360 by 1 degree"))
+            "crank angles to analyse, default one cycle: 0 to `cycle` by 1 degree"))
     at: Annotated[list[Number], Wording("a list of crank angles in degrees")] = Field(
         None, min_length=1, description="reference angles, default `[sweep.start]`")
     assembly: Optional[dict[str, Point]] = Field(

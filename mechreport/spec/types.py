@@ -469,6 +469,9 @@ class Spec:
     pins: tuple[Pin, ...] = ()        # pins joining three or more links (solved as joints)
     friction: tuple[Friction, ...] = ()   # by solved joint, in spec order
     dynamics: Dynamics | None = None      # machine dynamics (format 1.1 ``dynamics:``)
+    # the loads' period, crank degrees (format 1.2 ``cycle:``); out of the repr, so that the
+    # specs written before 1.2 (all 360) keep their reference reprs (tests/spec)
+    cycle: float = field(default=360.0, repr=False)
 
     @property
     def axis_unit(self) -> str:
