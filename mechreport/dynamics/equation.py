@@ -193,7 +193,7 @@ def equation_of_motion(mech: Mechanism) -> EquationOfMotion:
 def cycle_degrees(spec: Spec) -> float:
     """The crank degrees after which the loads repeat: the period of the equation of
     motion (360, or the spec's longer ``cycle``)."""
-    return float(getattr(spec, "cycle", 360.0))
+    return float(spec.cycle)
 
 
 def _pieces(x: np.ndarray, y: np.ndarray) -> np.ndarray:

@@ -115,8 +115,8 @@ class _Turns:
     integrated again, identically, when sampled), and the speed's largest value at its steps
     ``peaks``. Counts the equation's evaluations: ``evaluations`` in all."""
 
-    def __init__(self, eom: EquationOfMotion, theta0: float, file: str):
-        self.eom, self.file, self.theta0 = eom, file, theta0
+    def __init__(self, eom: EquationOfMotion, theta0: float, file: str, rtol: float = RTOL):
+        self.eom, self.file, self.theta0, self.rtol = eom, file, theta0, rtol
         self.alpha = eom.scalar()
         self.evaluations = 0
         self._count, self._limit, self._y, self._nan = 0, 0, None, False
@@ -167,7 +167,8 @@ class _Turns:
         self._count, self._limit, self._nan = 0, limit, False
         scale = max(abs(omega), 1.0)
         return solve_ivp(self._rhs, (0.0, bound), (self.theta0, omega), method="DOP853",
-                         rtol=RTOL, atol=(ATOL_ANGLE, RTOL * scale), events=self._events,
+                         rtol=self.rtol, atol=(ATOL_ANGLE * self.rtol / RTOL,
+                                               self.rtol * scale), events=self._events,
                          dense_output=True)
 
     def run(self, t0: float, omega: float, bound: float):

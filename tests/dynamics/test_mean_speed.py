@@ -99,3 +99,30 @@ def test_dynamics_quantities_at_an_angle_need_a_steady_cycle():
         "expect:\n  - {quantity: dynamics.startup_time, value: 1, tol: 1}\n")
     with pytest.raises(SpecError, match="no start-up"):
         parse_spec(text, "dyn.yaml")
+
+
+@pytest.mark.parametrize("dynamics", ["{mean_rpm: 240, flywheel: 0.01}",
+                                      "{motor: {linear: {stall_torque: 40, no_load_rpm: 330}}, "
+                                      "flywheel: 0.01}"])
+def test_over_a_two_turn_cycle_the_steady_state_is_the_same_periodic_motion(dynamics):
+    """Loads that repeat every turn repeat every two turns too: with ``cycle: 720`` the
+    steady state settles on the same motion, its cycle two turns long (200 time-history
+    samples per cycle)."""
+    one = _run(dynamics)[2]
+    text = four_bar(dynamics, DAMPER, step=2).replace(
+        "mechreport: 1.1", "mechreport: 1.2\ncycle: 720").replace(
+        "stop: 360", "stop: 720")
+    spec = parse_spec(text, "dyn.yaml")
+    eom, sim, two = simulated(build_mechanism(spec))
+    assert eom.period == pytest.approx(4 * math.pi)
+    assert sim.steady.period == pytest.approx(2 * 2 * math.pi / sim.steady.mean_omega)
+    for name in ("dynamics.mean_rpm", "dynamics.omega_max", "dynamics.omega_min",
+                 "dynamics.speed_fluctuation", "dynamics.speed_fluctuation_estimate"):
+        assert two[name] == pytest.approx(one[name], rel=1e-6), name
+    for name in ("dynamics.omega_max_angle", "dynamics.omega_min_angle"):
+        assert two[name] % 360 == pytest.approx(one[name], abs=1e-4), name
+    if "mean_rpm" in dynamics:
+        assert len(sim.time) == 201
+    else:
+        step = sim.time[1] - sim.time[0]
+        assert step == pytest.approx(sim.steady.period / 200, rel=1e-9)
