@@ -191,7 +191,7 @@ def friction_scalar(eom):
         if jt.type == "T" and fr.length is not None:
             laws.append(("length", fr.mu, fr.length))
         else:
-            laws.append(("norm", fr.mu * (fr.radius if jt.type == "R" else 1.0), 0.0))
+            laws.append(("norm", fr.journal_mu * fr.radius if jt.type == "R" else fr.mu, 0.0))
     fly = eom.flywheel
     state = {"m": [0.0] * J}
 

@@ -1175,7 +1175,8 @@ def _friction(analysis, design: DesignSummary, sw: SweepData, d: Display
         lost = losses.get(fr.joint)
         share = (f"{fmt(100 * lost / total, 3)} %" if lost is not None and total else DASH)
         peak = _largest(values.get(fr.joint), analysis.angles)
-        rows.append([fr.joint, "pin (R)" if j.type == "R" else "slider (T)",
+        rows.append([fr.joint, ("pin (R, friction circle)" if fr.model == "circle" else
+                                "pin (R)") if j.type == "R" else "slider (T)",
                      friction_symbol(spec, j), fmt(fr.mu), size,
                      DASH if lost is None else fmt(lost),
                      share, DASH if peak is None else d.q(peak[0], kind),

@@ -687,7 +687,8 @@ def _friction(value: Any, ck: _Checker, joints: list[Joint] | None, pins: list[P
         for joint in targets:
             out[joint.name] = Friction(joint.name, mu, size if jtype == "R" else None,
                                        size if jtype == "T" else None,
-                                       None if sense is None else int(sense))
+                                       None if sense is None else int(sense),
+                                       str(entry.get("model") or "couple"))
     order = [j.name for j in joints or ()]
     return tuple(sorted(out.values(), key=lambda f: order.index(f.joint)))
 

@@ -636,6 +636,9 @@ class RFriction(_Model):
     mu: NonNegative = Field(description="Coefficient of friction (0 or more; 0 adds nothing).")
     radius: Positive = Field(description="Journal radius, in the length unit.")
     friction_sense: FrictionSense = None
+    model: Literal["couple", "circle"] = Field(
+        None, description="`couple` (default): a couple mu r |F|; `circle`: the "
+                          "friction circle's r sin(atan mu) |F| (format 1.2).")
 
 
 class TFriction(_Model):

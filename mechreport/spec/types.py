@@ -169,6 +169,16 @@ class Friction:
     radius: float | None = None
     length: float | None = None
     sense: int | None = None
+    # format 1.2: an R joint's law, ``couple`` (mu r |F|) or ``circle`` (the friction
+    # circle, r sin(atan mu) |F|); out of the repr (the specs before 1.2 keep their reprs)
+    model: str = field(default="couple", repr=False)
+
+    @property
+    def journal_mu(self) -> float:
+        """The factor of r |F| in an R joint's friction couple: mu, or sin(atan mu) =
+        mu / sqrt(1 + mu^2) for the friction circle."""
+        return self.mu / math.sqrt(1.0 + self.mu * self.mu) if self.model == "circle" \
+            else self.mu
 
 
 @dataclass(frozen=True)
