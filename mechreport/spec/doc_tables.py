@@ -20,6 +20,7 @@ TABLES = {
     "link": (schema.Link, False, ("points", "mass", "density", "com", "inertia", "shape")),
     "strength": (schema.Link, False, ("section", "material", "members")),
     "study": (schema.Study, True, None),
+    "dynamics": (schema.Dynamics, False, None),
 }
 
 _REGION = re.compile(r"(<!-- key table (\w+) -->\n)(.*?)(<!-- end key table -->)", re.S)
