@@ -1326,8 +1326,14 @@ def _dynamics_figures(section) -> dict[str, Figure]:
     """The Machine dynamics figure and its caption (none without dynamics)."""
     if section is None:
         return {}
-    text = ("Crank speed from the start (left: the steady mean dashed, 95 % of it dotted)"
-            + (" and over the steady turn (right)." if len(section.plot.angles) else "."))
+    plot = section.plot
+    over = ("over the steady turn" if plot.cycle == 360 else
+            f"over the steady {plot.cycle:g}° cycle") + ", its largest and smallest speed marked"
+    if not plot.startup_shown:          # mean_rpm: no start-up
+        text = f"Crank speed {over} (the mean dashed)."
+    else:
+        text = ("Crank speed from the start (left: the steady mean dashed, 95 % of it dotted)"
+                + (f" and {over} (right)." if len(plot.angles) else "."))
     return {"dynamics": Figure("dynamics", text, "dynamics")}
 
 
@@ -1392,7 +1398,7 @@ MEANING = {
     "dynamics.omega_min": "smallest crank speed (steady cycle)",
     "dynamics.omega_max_angle": "crank angle of the largest speed",
     "dynamics.omega_min_angle": "crank angle of the smallest speed",
-    "dynamics.speed_fluctuation_estimate": "first-order estimate dE / ((J_mean + I_f) ω²)",
+    "dynamics.speed_fluctuation_estimate": "its first-order estimate",
     "f_max": "peak bearing load", "f_mean": "mean bearing load",
     "f_equivalent": "equivalent (cube-mean) load", "life_h": "L10 rating life",
 }
