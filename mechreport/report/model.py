@@ -1398,7 +1398,7 @@ MEANING = {
     "dynamics.omega_min": "smallest crank speed (steady cycle)",
     "dynamics.omega_max_angle": "crank angle of the largest speed",
     "dynamics.omega_min_angle": "crank angle of the smallest speed",
-    "dynamics.speed_fluctuation_estimate": "its first-order estimate",
+    "dynamics.speed_fluctuation_estimate": "speed fluctuation, first-order estimate",
     "f_max": "peak bearing load", "f_mean": "mean bearing load",
     "f_equivalent": "equivalent (cube-mean) load", "life_h": "L10 rating life",
 }

@@ -206,6 +206,7 @@ class SheetModel:
     units: str = ""
     exact_note: str = ""
     zero: float = ZERO         # round-off [SI]: smaller magnitudes print as 0
+    flywheel: object | None = None   # the flywheel problem (.flywheel.FlywheelSheet)
 
     def figures(self) -> list[Figure]:
         out = []
@@ -853,6 +854,8 @@ def build_sheet(analysis, options: SheetOptions | None = None) -> SheetModel:
     with round_off(zero):
         model = _build_sheet(analysis, options)
     model.zero = zero
+    from .flywheel import flywheel_sheet
+    model.flywheel = flywheel_sheet(analysis)
     return model
 
 
