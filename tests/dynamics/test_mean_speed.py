@@ -126,3 +126,11 @@ def test_over_a_two_turn_cycle_the_steady_state_is_the_same_periodic_motion(dyna
     else:
         step = sim.time[1] - sim.time[0]
         assert step == pytest.approx(sim.steady.period / 200, rel=1e-9)
+
+
+def test_a_crank_that_cannot_keep_turning_at_the_mean_speed_is_a_clear_error():
+    """At 1 rpm with no flywheel the crank's kinetic energy cannot carry it over the
+    weights' swing: an error naming mean_rpm and what helps, never a wrong state."""
+    from mechreport.errors import AnalysisError
+    with pytest.raises(AnalysisError, match="mean_rpm = 1: at that mean speed the crank stalls"):
+        _run("{mean_rpm: 1}")
