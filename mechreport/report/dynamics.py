@@ -135,19 +135,19 @@ def dynamics_section(analysis, d: Display) -> DynamicsSection | None:
                 "within 1e-6 of its extrapolated limit.")
         outcome = (f"{head} Over the steady {cyc} the crank runs at "
                    f"{fmt(v['dynamics.mean_rpm'])} rpm on average, between "
-                   f"{fmt(cycle.omega_min / RPM)} rpm at φ = {deg(cycle.omega_min_angle)}° and "
-                   f"{fmt(cycle.omega_max / RPM)} rpm at φ = {deg(cycle.omega_max_angle)}°; "
+                   f"{fmt(cycle.omega_min / RPM)} rpm at φ = {fmt(cycle.omega_min_angle, 5)}° and "
+                   f"{fmt(cycle.omega_max / RPM)} rpm at φ = {fmt(cycle.omega_max_angle, 5)}°; "
                    f"one {cyc} takes {fmt(cycle.period)} s." + _checked_text(dyn.steady))
         rows = [["dynamics.mean_rpm", f"{fmt(v['dynamics.mean_rpm'])} rpm",
                  f"the time-mean speed of the steady {cyc}"],
                 ["dynamics.omega_max", f"{fmt(v['dynamics.omega_max'])} rad/s",
                  f"the largest speed ({fmt(v['dynamics.omega_max'] / RPM)} rpm), located "
                  "between samples"],
-                ["dynamics.omega_max_angle", f"{deg(v['dynamics.omega_max_angle'])}°",
+                ["dynamics.omega_max_angle", f"{fmt(v['dynamics.omega_max_angle'], 5)}°",
                  f"the crank angle where it occurs, within the {cyc}"],
                 ["dynamics.omega_min", f"{fmt(v['dynamics.omega_min'])} rad/s",
                  f"the smallest speed ({fmt(v['dynamics.omega_min'] / RPM)} rpm)"],
-                ["dynamics.omega_min_angle", f"{deg(v['dynamics.omega_min_angle'])}°",
+                ["dynamics.omega_min_angle", f"{fmt(v['dynamics.omega_min_angle'], 5)}°",
                  "the crank angle where it occurs"],
                 ["dynamics.speed_fluctuation", fmt(v["dynamics.speed_fluctuation"]),
                  f"(max − min) / mean of the steady {cyc}'s speed"],
