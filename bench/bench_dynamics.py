@@ -75,6 +75,19 @@ def main() -> None:
         print(f"periodic state      {t_sim:6.3f} s CPU")
         print(f"steady state, all   {t_all:6.3f} s CPU (budget 2 s)")
 
+    for name in ("single_cylinder_engine", "inline_four_engine"):     # once they are merged
+        path = ROOT / "specs" / f"{name}.yaml"
+        if not path.exists():
+            continue
+        spec = parse_spec(path.read_text(encoding="utf-8")
+                          + "\ndynamics:\n  mean_rpm: 3000\n  flywheel: 0.1\n", path.name)
+        mech = build_mechanism(spec)
+        run_dynamics(mech, analysis_of)
+        t_all, dyn = cpu(lambda: run_dynamics(mech, analysis_of), repeat=3)
+        print(f"{name} at mean_rpm 3000 over {spec.cycle:g}°: fluctuation "
+              f"{dyn.values['dynamics.speed_fluctuation']:.4g}, all {t_all:6.3f} s CPU "
+              "(budget 2 s)")
+
 
 if __name__ == "__main__":
     main()
