@@ -59,3 +59,12 @@ def test_the_friction_model_is_one_of_couple_or_circle():
     text = FLYWHEEL.replace("RPM", "300").replace("radius: 0.02}", "radius: 0.02, model: ring}")
     with pytest.raises(SpecError, match="couple, circle"):
         parse_spec(text, "f.yaml")
+
+
+def test_the_sheet_works_the_friction_circle_s_couple():
+    from mechreport.report.sheet import build_sheet, render_markdown
+    text = FLYWHEEL.replace("RPM", "300").replace(
+        "A: {mu: 0.05, radius: 0.02}", "A: {mu: 0.2, radius: 0.02, model: circle}")
+    md = render_markdown(build_sheet(mechreport.analyse(text)))
+    assert r"r\,\sin(\arctan\mu)" in md
+    assert "0.196116" in md                   # sin(atan 0.2) = 0.2 / sqrt(1.04)
