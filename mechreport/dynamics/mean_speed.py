@@ -66,6 +66,7 @@ def steady_at_mean_speed(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarra
     not converge."""
     require_inertia(eom, file)
     target = dyn.mean_rpm * RPM
+    _require_resolvable(eom, target, dyn.mean_rpm, file)
     t_target = eom.period / target
     theta0 = math.radians(_start_angle(dyn.start_angle, file))
     inertia = float(np.mean(eom.J)) + eom.flywheel
@@ -124,6 +125,31 @@ def steady_at_mean_speed(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarra
     phi, w = turns(time)
     return Simulation(time, phi, w, solved.alpha(phi, w), solved.motor_own(w), 1, cycle,
                       None, float(x[0]))
+
+
+#: the inertia forces' torque may be at most this many times the loads' (else the driving
+#: torque, their cycle mean, is below the integration's relative resolution RTOL)
+RESOLVABLE = 1e9
+
+
+def _require_resolvable(eom: EquationOfMotion, omega: float, mean_rpm: float, file: str
+                        ) -> None:
+    """Raise ``AnalysisError`` where, at the speed ``omega`` [rad/s], the torque of the
+    changing velocity ratios (B omega^2, which returns over a cycle) is more than
+    ``RESOLVABLE`` times that of the loads (C omega + D): the driving torque, the loads'
+    cycle mean, would be lost in the integration's round-off (a nonsense speed such as
+    1e12 rpm). Loads at the round-off of the equation (a conservative mechanism: its
+    driving torque is 0) are none."""
+    inertial = float(np.max(np.abs(eom.B))) * omega ** 2
+    loads = float(np.max(np.abs(np.asarray(eom.C) * omega + np.asarray(eom.D))))
+    floor = 1e-12 * float(np.max(np.abs(eom.J)))      # loads that are round-off: none
+    if loads <= floor or inertial <= RESOLVABLE * loads:
+        return
+    raise AnalysisError(
+        f"{file}: dynamics.mean_rpm = {mean_rpm:g}: at that speed the inertia forces' torque "
+        f"({inertial:.3g} N·m) is more than {RESOLVABLE:.0e} times the loads' "
+        f"({loads:.3g} N·m), so the driving torque, the loads' mean over a cycle, is below "
+        "the integration's resolution; check the speed and its unit (rpm)")
 
 
 def _cycle(eom: EquationOfMotion, x, theta0: float, t_target: float, file: str,

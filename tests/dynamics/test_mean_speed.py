@@ -134,3 +134,9 @@ def test_a_crank_that_cannot_keep_turning_at_the_mean_speed_is_a_clear_error():
     from mechreport.errors import AnalysisError
     with pytest.raises(AnalysisError, match="mean_rpm = 1: at that mean speed the crank stalls"):
         _run("{mean_rpm: 1}")
+
+
+def test_a_mean_speed_too_large_to_resolve_the_driving_torque_is_a_clear_error():
+    from mechreport.errors import AnalysisError
+    with pytest.raises(AnalysisError, match="below the integration's resolution"):
+        _run("{mean_rpm: 1e12, flywheel: 0.01}")
