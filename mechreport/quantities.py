@@ -22,6 +22,9 @@ CYCLE_UNITS = {
     # the steady cycle of machine dynamics (``dynamics:``)
     "dynamics.speed_fluctuation": "", "dynamics.mean_rpm": "rpm", "dynamics.startup_time": "s",
     "dynamics.motor_rms_torque": "N·m",
+    "dynamics.omega_max": "rad/s", "dynamics.omega_min": "rad/s",
+    "dynamics.omega_max_angle": "deg", "dynamics.omega_min_angle": "deg",
+    "dynamics.speed_fluctuation_estimate": "",
 }
 #: the cycle quantities machine dynamics gives (``dynamics:`` with ``until: steady``)
 DYNAMICS_QUANTITIES = tuple(q for q in CYCLE_UNITS if q.startswith("dynamics."))
@@ -36,8 +39,12 @@ JOINT_UNITS = {"fx": "N", "fy": "N", "f": "N", "moment": "N·m", "px": "m", "py"
                "angle": "deg"}      # angle: an R joint's relative angle (kinematics)
 POINT_UNITS = {"x": "m", "y": "m", "vx": "m/s", "vy": "m/s", "ax": "m/s^2", "ay": "m/s^2",
                "v": "m/s", "a": "m/s^2"}           # v, a: magnitudes
-#: instantaneous quantities of the whole mechanism, at an angle
-MECHANISM_UNITS = {"transmission_angle": "deg"}
+#: instantaneous quantities of the whole mechanism, at an angle (the steady cycle's speed
+#: and acceleration of machine dynamics too: one value per angle, not per force method)
+MECHANISM_UNITS = {"transmission_angle": "deg", "dynamics.omega": "rad/s",
+                   "dynamics.alpha": "rad/s^2"}
+#: the instantaneous quantities of machine dynamics' steady cycle
+DYNAMICS_INSTANT = ("dynamics.omega", "dynamics.alpha")
 #: the instantaneous quantities the kinematics alone gives (not the force methods)
 KINEMATIC_KINDS = ("point", "link")
 LINK_UNITS = {"angle": "deg", "omega": "rad/s", "alpha": "rad/s^2"}

@@ -58,12 +58,16 @@ def _one(path: Path, out: Path, name: str) -> int:
         print(f"{path}: transient to t = {fmt(sim.time[-1])} s, {sim.turns} whole turns; "
               f"final speed {fmt(rad_s_to_rpm(sim.omega[-1]))} rpm")
     else:
-        print(f"{path}: steady after {sim.turns} turns (t = {fmt(cycle.t0 + cycle.period)} s)")
+        if sim.drive_torque is not None:
+            print(f"{path}: periodic state at the mean speed found directly, under a constant "
+                  f"driving torque of {fmt(sim.drive_torque)} N·m")
+        else:
+            print(f"{path}: steady after {sim.turns} turns (t = "
+                  f"{fmt(cycle.t0 + cycle.period)} s)")
         for qname, value in dyn.values.items():
             from ..quantities import unit_of
             unit = unit_of(qname)
             print(f"  {qname} = {fmt(value)}{' ' + unit if unit else ''}")
-        print(f"  flywheel estimate of the speed fluctuation = {fmt(dyn.estimate[2])}")
         for v in dyn.verdicts:
             print(f"  {'PASS' if v.passed else 'FAIL'} {v.describe(fmt)}")
     for entry in od.DYNAMICS_ENTRIES:

@@ -41,7 +41,8 @@ from ..model import Mechanism
 from ..spec import Spec
 from ..spec.types import MotorCurve
 from .friction import friction_scalar, friction_state, friction_terms, method_parts_of
-from .motor import RPM, motor_function, motor_torque
+from .motor import (RPM, constant_drive, motor_function, motor_torque, on_crank, own_power,
+                    own_torque)
 from .pieces import DEGREE, GRID_STEP_DEG, periodic_pieces, values_at
 
 #: the rate states (omega [rad/s], alpha [rad/s^2]) the reference method is solved at
@@ -51,7 +52,10 @@ STATES = ((1.0, 0.0), (2.0, 0.0), (3.0, 0.0), (1.0, 1.0))
 @dataclass(frozen=True)
 class EquationOfMotion:
     """(J(phi) + flywheel) alpha = motor(omega) - B(phi) omega^2 - C(phi) omega - D(phi),
-    phi the crank angle [rad] (periodic over a turn), omega [rad/s]. ``grid`` (N,) [deg] and
+    phi the crank angle [rad] (periodic over a cycle, :attr:`period`), omega [rad/s];
+    ``motor`` the torque the crank receives (the motor through its gearing, :func:`on_crank`,
+    or ``mean_rpm``'s constant torque), ``drive`` the motor as the spec gives it (None with
+    ``mean_rpm``). ``grid`` (N,) [deg] and
     ``J``, ``B``, ``C``, ``D`` (N,) their values there [kg m^2, kg m^2, N m s, N m];
     ``coefficients`` (N, 4, DEGREE + 1) the periodic splines through them, by grid
     interval, function and power of the angle from the interval's start (highest first; see
@@ -71,6 +75,27 @@ class EquationOfMotion:
     viscous: bool = True
     friction: object | None = None
     file: str = ""
+    drive: MotorCurve | None = None
+
+    @property
+    def period(self) -> float:
+        """One cycle [rad]: the period of J, B, C, D (a turn, or the loads' longer cycle)."""
+        return len(self.grid) * math.radians(GRID_STEP_DEG)
+
+    def motor_own(self, omega: np.ndarray) -> np.ndarray:
+        """The motor's own torque [N m] at crank speeds ``omega`` [rad/s] (through its
+        gearing, ``drive``); the constant driving torque on the crank without a motor
+        (``mean_rpm``)."""
+        if self.drive is None:
+            return motor_torque(self.motor, omega)
+        return own_torque(self.drive, omega)
+
+    def motor_power(self, omega: np.ndarray) -> np.ndarray:
+        """The motor's own power [W] at crank speeds ``omega`` [rad/s] (the driving
+        torque's on the crank without a motor)."""
+        if self.drive is None:
+            return motor_torque(self.motor, omega) * np.asarray(omega, float)
+        return own_power(self.drive, omega)
 
     def at(self, phi: np.ndarray) -> np.ndarray:
         """(J, B, C, D) at crank angles ``phi`` (n,) [rad], (n, 4)."""
@@ -104,10 +129,10 @@ class EquationOfMotion:
         n = len(coef)
         fly = self.flywheel
         torque = motor_function(self.motor)
-        two_pi = 2 * math.pi
+        period = n * h
 
         def alpha(phi: float, omega: float) -> float:
-            x = (phi % two_pi) / h
+            x = (phi % period) / h
             i = min(int(x), n - 1)
             t = (x - i) * h
             (j5, j4, j3, j2, j1, j0), (b5, b4, b3, b2, b1, b0), (c5, c4, c3, c2, c1, c0), \
@@ -126,7 +151,7 @@ def equation_of_motion(mech: Mechanism) -> EquationOfMotion:
     Raises ``AnalysisError`` where the crank cannot turn fully (a grid angle unreachable
     or singular: the motion could not continue there)."""
     spec = mech.spec
-    grid = np.arange(0.0, 360.0, GRID_STEP_DEG)
+    grid = np.arange(0.0, cycle_degrees(spec), GRID_STEP_DEG)
     unit_spec = replace(spec, driver=replace(spec.driver, omega=1.0, alpha=0.0),
                         friction=(), expect=())
     friction = None
@@ -155,10 +180,20 @@ def equation_of_motion(mech: Mechanism) -> EquationOfMotion:
         rubbed = mech.with_spec(replace(unit_spec, friction=spec.friction))
         friction = friction_terms(spec, replace(kin, mechanism=rubbed), STATES,
                                   method_parts_of)
-    return EquationOfMotion(grid, j, b, c, d, spec.dynamics.flywheel, spec.dynamics.motor,
+    drive = spec.dynamics.motor
+    # a motor's characteristic as the crank receives it; with mean_rpm a constant torque,
+    # set when the steady state is found (dynamics.steady_at)
+    motor = on_crank(drive) if drive is not None else constant_drive(0.0)
+    return EquationOfMotion(grid, j, b, c, d, spec.dynamics.flywheel, motor,
                             _pieces(np.radians(grid), values),
                             bool(spec.friction) or any(ld.kind == "damper" for ld in spec.loads),
-                            friction, spec.file)
+                            friction, spec.file, drive)
+
+
+def cycle_degrees(spec: Spec) -> float:
+    """The crank degrees after which the loads repeat: the period of the equation of
+    motion (360, or the spec's longer ``cycle``)."""
+    return float(spec.cycle)
 
 
 def _pieces(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -225,18 +260,22 @@ def spec_at_speed(spec: Spec, omega: float) -> Spec:
                                         rpm_given=omega / RPM))
 
 
-__all__ = ["EquationOfMotion", "InertiaTerm", "STATES", "equation_of_motion",
+__all__ = ["EquationOfMotion", "InertiaTerm", "STATES", "cycle_degrees", "equation_of_motion",
            "flywheel_estimate", "generalized_inertia", "inertia_terms", "spec_at_speed"]
 
 
 def flywheel_estimate(eom: EquationOfMotion, omega: float) -> tuple[float, float, float]:
     """The constant-speed estimate the design review's flywheel formula makes, at the mean
     speed ``omega`` [rad/s]: (the energy fluctuation dE [J] of the torque the mechanism takes
-    at constant speed, B omega^2 + C omega + D, against its mean; the mean reduced inertia
+    at constant speed, B omega^2 + C omega + D, against its mean, over the cycle's grid by
+    the design review's rule; the mean over the crank angle of the reduced inertia
     J_mean + If [kg m^2]; the speed fluctuation it predicts, dE / ((J_mean + If) omega^2))."""
     torque = eom.B * omega ** 2 + eom.C * omega + eom.D
     h = math.radians(GRID_STEP_DEG)
-    energy = np.concatenate([[0.0], np.cumsum(torque - torque.mean()) * h])
+    # the design review's rule: the periodic trapezoid's running integral of the torque
+    # less its mean, its extremes at the grid's angles
+    g = torque - torque.mean()
+    energy = np.concatenate([[0.0], np.cumsum(0.5 * (g + np.roll(g, -1)) * h)[:-1]])
     swing = float(np.max(energy) - np.min(energy))
     inertia = float(np.mean(eom.J)) + eom.flywheel
     return swing, inertia, swing / (inertia * omega ** 2)

@@ -180,6 +180,7 @@ def friction_scalar(eom):
     h = math.radians(GRID_STEP_DEG)
     pieces, core = terms.pieces, eom.coefficients
     n = len(pieces)
+    period = n * h                          # one cycle [rad]
     powers = np.arange(DEGREE, -1, -1)
     effort = next(span for name, span in layout.items() if name.startswith("driver."))
     rates = layout["rates"]
@@ -190,13 +191,13 @@ def friction_scalar(eom):
         if jt.type == "T" and fr.length is not None:
             laws.append(("length", fr.mu, fr.length))
         else:
-            laws.append(("norm", fr.mu * (fr.radius if jt.type == "R" else 1.0), 0.0))
+            laws.append(("norm", fr.journal_mu * fr.radius if jt.type == "R" else fr.mu, 0.0))
     fly = eom.flywheel
     state = {"m": [0.0] * J}
 
     def alpha(phi: float, omega: float) -> float:
         phi, omega = float(phi), float(omega)     # the integrator's numpy scalars: floats
-        x = (phi % (2 * math.pi)) / h
+        x = (phi % period) / h
         i = min(int(x), n - 1)
         tp = ((x - i) * h) ** powers
         j, b, c, d = (core[i] @ tp).tolist()

@@ -36,7 +36,7 @@ def require_inertia(eom, file: str) -> None:
     sampled ``INERTIA_SAMPLES`` times per grid interval): the motor's torque would give the
     crank an unbounded acceleration there (light links at a dead centre, nothing with mass
     moving with the crank)."""
-    deg = np.arange(0.0, 360.0, GRID_STEP_DEG / INERTIA_SAMPLES)
+    deg = np.arange(0.0, math.degrees(eom.period), GRID_STEP_DEG / INERTIA_SAMPLES)
     total = eom.at(np.radians(deg))[:, 0] + eom.flywheel
     top = float(np.max(total))
     k = int(np.argmin(total))

@@ -57,9 +57,12 @@ CHUNK = 100_000           # time-history rows evaluated at once
 class SteadyCycle:
     """The periodic motion reached: at the sweep's ``angles`` (n,) [deg] the speed ``omega``
     and acceleration ``alpha`` (n,) [rad/s, rad/s^2]; the turn's ``period`` [s], its time-mean
-    speed ``mean_omega`` = 2 pi / period [rad/s], its ``omega_min`` and ``omega_max``, the
-    motor's RMS torque over time ``motor_rms``, its largest magnitude ``motor_peak`` [N m]
-    and largest power ``motor_power`` [W], and when the turn began, ``t0`` [s]."""
+    speed ``mean_omega`` = cycle / period [rad/s], its ``omega_min`` and ``omega_max`` (the
+    integrated motion's, located between samples) and where they occur,
+    ``omega_min_angle``, ``omega_max_angle`` [deg within the cycle], the motor's own RMS
+    torque over time ``motor_rms``, its largest magnitude ``motor_peak`` [N m] and largest
+    power ``motor_power`` [W] (the constant driving torque's with ``mean_rpm``), and when
+    the turn began, ``t0`` [s]."""
 
     angles: np.ndarray
     omega: np.ndarray
@@ -72,6 +75,8 @@ class SteadyCycle:
     motor_peak: float
     motor_power: float
     t0: float
+    omega_max_angle: float = math.nan
+    omega_min_angle: float = math.nan
 
     @property
     def fluctuation(self) -> float:
@@ -95,6 +100,7 @@ class Simulation:
     turns: int
     steady: SteadyCycle | None
     startup_time: float | None
+    drive_torque: float | None = None     # mean_rpm: the constant driving torque [N m]
 
 
 class _OverBudget(Exception):
@@ -109,8 +115,8 @@ class _Turns:
     integrated again, identically, when sampled), and the speed's largest value at its steps
     ``peaks``. Counts the equation's evaluations: ``evaluations`` in all."""
 
-    def __init__(self, eom: EquationOfMotion, theta0: float, file: str):
-        self.eom, self.file, self.theta0 = eom, file, theta0
+    def __init__(self, eom: EquationOfMotion, theta0: float, file: str, rtol: float = RTOL):
+        self.eom, self.file, self.theta0, self.rtol = eom, file, theta0, rtol
         self.alpha = eom.scalar()
         self.evaluations = 0
         self._count, self._limit, self._y, self._nan = 0, 0, None, False
@@ -122,7 +128,7 @@ class _Turns:
         self._steps: list[int] = []
         self._kept, self._oldest = 0, 0
         self._again: dict = {}
-        target = theta0 + 2 * math.pi
+        target = theta0 + eom.period          # a "turn" here is one cycle of the loads
 
         def turn(t, y):
             return y[0] - target
@@ -161,7 +167,8 @@ class _Turns:
         self._count, self._limit, self._nan = 0, limit, False
         scale = max(abs(omega), 1.0)
         return solve_ivp(self._rhs, (0.0, bound), (self.theta0, omega), method="DOP853",
-                         rtol=RTOL, atol=(ATOL_ANGLE, RTOL * scale), events=self._events,
+                         rtol=self.rtol, atol=(ATOL_ANGLE * self.rtol / RTOL,
+                                               self.rtol * scale), events=self._events,
                          dense_output=True)
 
     def run(self, t0: float, omega: float, bound: float):
@@ -222,7 +229,7 @@ class _Turns:
         for i in np.unique(k):
             hit = k == i
             out[:, hit] = self.dense(i)(t[hit] - starts[i])
-            out[0, hit] += 2 * math.pi * i
+            out[0, hit] += self.eom.period * i
         return out
 
 
@@ -293,7 +300,7 @@ def simulate(eom: EquationOfMotion, dyn: Dynamics, angles: np.ndarray, file: str
         part = slice(k, k + CHUNK)
         ang[part], w[part] = turns(time[part])
         acc[part] = eom.alpha(ang[part], w[part])
-    return Simulation(time, ang, w, acc, motor_torque(eom.motor, w), len(start_turns), cycle,
+    return Simulation(time, ang, w, acc, eom.motor_own(w), len(start_turns), cycle,
                       startup)
 
 
@@ -340,7 +347,7 @@ def _require_reachable(eom: EquationOfMotion, dyn: Dynamics, omega: float, file:
         f"integrated: from the energy balance the crank turns at {speed / RPM:.4g} rpm or "
         f"faster {f'after {after:.3g} s' if after > 0 else 'throughout'}, at least "
         f"{0.5 * turns:.3g} turns by then; simulate a shorter time ({MAX_TURNS} turns are "
-        f"done within {after + MAX_TURNS * 2 * math.pi / speed:.3g} s here), or write until: "
+        f"done within {after + MAX_TURNS * eom.period / speed:.3g} s here), or write until: "
         "steady")
 
 
@@ -362,7 +369,7 @@ def _require_turns_left(eom: EquationOfMotion, start_turns, until: float, evalua
         more = left / period
     else:
         stop = 1 / (1 - (before / period) ** 2)           # turns until the energy is gone
-        omega = 2 * math.pi / period
+        omega = eom.period / period
         energy = (float(np.mean(eom.J)) + eom.flywheel) * omega ** 2 / 2
         safe = stop * (1 - 2 * _load_swing(eom, omega) / energy)
         if not safe > 0:
@@ -537,7 +544,7 @@ def _require_balance(eom: EquationOfMotion, file: str) -> None:
     if eom.motor.kind != "torque" or eom.viscous:
         return
     h = math.radians(eom.grid[1] - eom.grid[0])
-    motor = 2 * math.pi * eom.motor.constant
+    motor = eom.period * eom.motor.constant
     loads = float(np.sum(eom.D)) * h
     if abs(motor - loads) <= 1e-9 * max(abs(motor), abs(loads)):
         return
@@ -550,27 +557,72 @@ def _require_balance(eom: EquationOfMotion, file: str) -> None:
 
 
 def _steady(turns: _Turns, eom: EquationOfMotion, start_turns, angles) -> SteadyCycle:
-    """The last turn integrated, sampled at the sweep's ``angles`` [deg], on its own clock."""
-    i = len(start_turns) - 1
+    """The last turn (cycle) integrated, sampled at the sweep's ``angles`` [deg], on its own
+    clock."""
     (t0, _), (t1, _) = start_turns[-2:]
-    period = t1 - t0
-    sol = turns.dense(i)
+    return steady_cycle(turns.dense(len(start_turns) - 1), turns.alpha, eom, t1 - t0, t0,
+                        angles)
+
+
+def steady_cycle(sol, alpha, eom: EquationOfMotion, period: float, t0: float, angles
+                 ) -> SteadyCycle:
+    """The periodic motion given by the dense output ``sol`` of one cycle (time [s] on its
+    own clock, from 0 to ``period``, to (phi [rad], omega [rad/s])): sampled at the sweep's
+    ``angles`` [deg], its extremes of speed located between samples (:func:`_extreme`),
+    the motor's torque and power over it. ``alpha``: the equation's scalar acceleration."""
     times = np.linspace(0.0, period, FINE + 1)
     phi, w = sol(times)
     phi0 = float(phi[0])
     # the time of each sweep angle within the turn: interpolated, then Newton's method
-    want = phi0 + np.mod(np.radians(np.asarray(angles, float)) - phi0, 2 * math.pi)
+    want = phi0 + np.mod(np.radians(np.asarray(angles, float)) - phi0, eom.period)
     ts = np.interp(want, phi, times)
     for _ in range(4):
         p, v = sol(ts)
         ts = np.clip(ts - (p - want) / v, 0.0, period)
     p, v = sol(ts)
-    motor = motor_torque(eom.motor, w[:-1])
-    mean = 2 * math.pi / period
-    return SteadyCycle(np.asarray(angles, float), v, eom.alpha(p, v), period, mean,
-                       float(min(np.min(w), np.min(v))), float(max(np.max(w), np.max(v))),
+    motor = eom.motor_own(w[:-1])
+    cycle_deg = math.degrees(eom.period)
+    (w_max, a_max), (w_min, a_min) = (_extreme(sol, alpha, times, w, sign, period, cycle_deg)
+                                      for sign in (1.0, -1.0))
+    return SteadyCycle(np.asarray(angles, float), v, eom.alpha(p, v), period,
+                       eom.period / period, w_min, w_max,
                        float(np.sqrt(np.mean(motor ** 2))), float(np.max(np.abs(motor))),
-                       float(np.max(motor * w[:-1])), t0)
+                       float(np.max(eom.motor_power(w[:-1]))), t0, a_max, a_min)
+
+
+def _extreme(sol, alpha, times: np.ndarray, w: np.ndarray, sign: float, period: float,
+             cycle_deg: float) -> tuple[float, float]:
+    """The largest (``sign`` +1) or smallest (-1) speed of the periodic motion ``sol`` and
+    the crank angle where it occurs [rad/s, deg within the cycle]: near the extreme sample
+    of ``w`` (at ``times``), where the acceleration ``alpha(phi, omega)`` changes sign
+    (Brent's method on the dense output, the times taken modulo the period), or, where it
+    does not change sign there (a friction's corner), the dense output's extreme between
+    the neighbouring samples."""
+    from scipy.optimize import brentq, minimize_scalar
+    k = int(np.argmax(sign * w[:-1]))
+    dt = times[1] - times[0]
+    lo, hi = times[k] - dt, times[k] + dt
+
+    def state(t: float) -> tuple[float, float]:
+        t = t % period
+        p, v = sol(t)
+        return float(p), float(v)
+
+    def acc(t: float) -> float:
+        return sign * alpha(*state(t))
+    try:
+        a_lo, a_hi = acc(lo), acc(hi)
+        if a_lo > 0 > a_hi:
+            t = brentq(acc, lo, hi, xtol=1e-15 * max(period, 1.0))
+        else:
+            t = minimize_scalar(lambda t: -sign * state(t)[1], bounds=(lo, hi),
+                                method="bounded", options={"xatol": 1e-12 * period}).x
+    except (ValueError, ArithmeticError):
+        t = times[k]
+    p, v = state(t)
+    if sign * v < sign * w[k]:               # never less extreme than a sample
+        p, v = state(times[k])
+    return v, math.degrees(p) % cycle_deg
 
 
 def _startup(turns: _Turns, t_end: float, mean: float) -> float:

@@ -65,7 +65,8 @@ def magnitude(fr: Friction, joint: Joint, ctx: ForceContext, fx: np.ndarray, fy:
     f = np.hypot(fx, fy)
     with np.errstate(invalid="ignore", divide="ignore"):
         ux, uy = np.where(f > 0, fx / f, 0.0), np.where(f > 0, fy / f, 0.0)
-    return fr.mu * arm * f, fr.mu * arm * ux, fr.mu * arm * uy, zero
+    mu = fr.journal_mu if joint.type == "R" else fr.mu       # the friction circle's, or mu
+    return mu * arm * f, mu * arm * ux, mu * arm * uy, zero
 
 
 def friction_from(ctx: ForceContext, fr: Friction, sense: np.ndarray, fx: np.ndarray,

@@ -36,7 +36,7 @@ from ..post.transmission import instant_quantities
 from ..quantities import MECHANISM_UNITS
 from ..post.sweep import SweepSummary, sweep_summary
 from ..spec import Spec, load_spec, parse_spec
-from .dynamics import run_dynamics
+from .dynamics import run_dynamics, steady_rates
 
 DEFAULT_TOL = 1e-6
 
@@ -276,7 +276,7 @@ def analysis_of(mech: Mechanism, kin: Kinematics, methods=None, tol: float = DEF
     ctx.cache.clear()   # the actions and equations the methods shared: rebuilt if asked for
     return Analysis(spec, mech, kin, ctx, forces, kin.flags, agreement(forces, spec.size, effort), res,
                     check_expectations(kin, forces, kin.flags, values, why,
-                                       _instant(spec, kin), members), tol, rev, why,
+                                       _instant(spec, kin, dynamics), members), tol, rev, why,
                     tuple(verdicts(spec.design, values, why, members,
                                          undefined_reasons(spec))), strength, dynamics)
 
@@ -291,10 +291,14 @@ def strength_of(ctx: ForceContext, forces: dict[str, ForceResult]) -> StrengthRe
     return strength_review(ctx, res)
 
 
-def _instant(spec: Spec, kin: Kinematics) -> dict[str, np.ndarray] | None:
-    """The mechanism's own quantities at each angle, where an expectation asks for one."""
+def _instant(spec: Spec, kin: Kinematics, dynamics=None) -> dict[str, np.ndarray] | None:
+    """The mechanism's own quantities at each angle, where an expectation asks for one (the
+    steady cycle's speed and acceleration from ``dynamics``, when it has one)."""
     if any(e.quantity in MECHANISM_UNITS for e in spec.expect):
-        return instant_quantities(kin)
+        out = instant_quantities(kin)
+        if dynamics is not None:
+            out.update(steady_rates(dynamics.simulation, kin.angles))
+        return out
     return None
 
 

@@ -14,7 +14,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..dynamics import (EquationOfMotion, Simulation, equation_of_motion, flywheel_estimate,
-                        simulate, spec_at_speed)
+                        motion, spec_at_speed)
+from ..dynamics.motor import constant_drive
 from ..kinematics import Kinematics, solve_kinematics, with_rates
 from ..model import Mechanism
 from ..units import RPM
@@ -39,21 +40,43 @@ class DynamicsResult:
     verdicts: tuple = ()      # the steady turn's design verdicts (steady_verdicts)
 
 
-def simulated(mech: Mechanism) -> tuple[EquationOfMotion, Simulation, dict[str, float]]:
-    """The equation of motion of ``mech``'s spec, the motion it gives and the
-    ``dynamics.*`` quantities of its steady turn (empty without one): what a check needs of
-    machine dynamics. Raises ``AnalysisError`` at a stall, where the crank cannot turn, or
-    without a steady state."""
+def motion_of(mech: Mechanism) -> tuple[EquationOfMotion, Simulation]:
+    """The equation of motion of ``mech``'s spec (with ``mean_rpm``, its constant driving
+    torque as found) and the motion it gives. Raises ``AnalysisError`` at a stall, where the
+    crank cannot turn, or without a steady state."""
     spec = mech.spec
     eom = equation_of_motion(mech)
-    sim = simulate(eom, spec.dynamics, spec.analysed_angles(), spec.file)
-    cycle = sim.steady
-    if cycle is None:
+    sim = motion(eom, spec.dynamics, spec.analysed_angles(), spec.file)
+    if sim.drive_torque is not None:
+        eom = replace(eom, motor=constant_drive(sim.drive_torque))
+    return eom, sim
+
+
+def simulated(mech: Mechanism) -> tuple[EquationOfMotion, Simulation, dict[str, float]]:
+    """:func:`motion_of` and the ``dynamics.*`` quantities of its steady cycle (empty
+    without one): what a check needs of machine dynamics."""
+    eom, sim = motion_of(mech)
+    if sim.steady is None:
         return eom, sim, {}
-    return eom, sim, {"dynamics.speed_fluctuation": cycle.fluctuation,
-                      "dynamics.mean_rpm": cycle.mean_omega / RPM,
-                      "dynamics.startup_time": sim.startup_time,
-                      "dynamics.motor_rms_torque": cycle.motor_rms}
+    return eom, sim, steady_values(sim, flywheel_estimate(eom, sim.steady.mean_omega))
+
+
+def steady_values(sim: Simulation, estimate: tuple[float, float, float]
+                  ) -> dict[str, float]:
+    """The ``dynamics.*`` quantities of the steady cycle of ``sim`` (SI; the speeds'
+    angles in degrees within the cycle), ``estimate`` the flywheel estimate at its mean
+    speed (:func:`~mechreport.dynamics.flywheel_estimate`); ``dynamics.startup_time`` only
+    after a start-up (not with ``mean_rpm``)."""
+    cycle = sim.steady
+    values = {"dynamics.speed_fluctuation": cycle.fluctuation,
+              "dynamics.mean_rpm": cycle.mean_omega / RPM,
+              "dynamics.startup_time": sim.startup_time,
+              "dynamics.motor_rms_torque": cycle.motor_rms,
+              "dynamics.omega_max": cycle.omega_max, "dynamics.omega_min": cycle.omega_min,
+              "dynamics.omega_max_angle": cycle.omega_max_angle,
+              "dynamics.omega_min_angle": cycle.omega_min_angle,
+              "dynamics.speed_fluctuation_estimate": estimate[2]}
+    return {k: v for k, v in values.items() if v is not None}
 
 
 def run_dynamics(mech: Mechanism, analyse_turn, methods=None, tol: float = 1e-6, plans=None,
@@ -64,11 +87,13 @@ def run_dynamics(mech: Mechanism, analyse_turn, methods=None, tol: float = 1e-6,
     whose positions the steady turn takes (solved here when not given). Raises
     ``AnalysisError`` at a stall, where the crank cannot turn, or without a steady state."""
     spec = mech.spec
-    eom, sim, values = simulated(mech)
+    eom, sim = motion_of(mech)
     cycle = sim.steady
     angles = spec.analysed_angles()
     if cycle is None:
         return DynamicsResult(eom, sim, None, {})
+    estimate = flywheel_estimate(eom, cycle.mean_omega)
+    values = steady_values(sim, estimate)
     # the steady turn's own analysis: the spec's expectations are the sweep's (at its speed)
     steady_spec = replace(spec_at_speed(spec, cycle.mean_omega), expect=())
     smech = mech.with_spec(steady_spec)
@@ -77,8 +102,22 @@ def run_dynamics(mech: Mechanism, analyse_turn, methods=None, tol: float = 1e-6,
     pick = np.searchsorted(np.round(angles, 9), np.round(kin.angles, 9))
     kin = with_rates(kin, cycle.omega[pick], cycle.alpha[pick])
     steady = analyse_turn(smech, kin, methods, tol, plans, extra=values)
-    return DynamicsResult(eom, sim, steady, values, flywheel_estimate(eom, cycle.mean_omega),
+    return DynamicsResult(eom, sim, steady, values, estimate,
                           steady_verdicts(steady.verdicts, cycle))
+
+
+def steady_rates(sim: Simulation, angles: np.ndarray) -> dict[str, np.ndarray]:
+    """``dynamics.omega`` [rad/s] and ``dynamics.alpha`` [rad/s^2] of the steady cycle at
+    the sweep's ``angles`` [deg] (NaN at an angle it was not sampled at; empty without a
+    steady state): what ``expect`` reads at an angle."""
+    cycle = sim.steady
+    if cycle is None:
+        return {}
+    where = np.searchsorted(np.round(cycle.angles, 9), np.round(angles, 9))
+    where = np.minimum(where, len(cycle.angles) - 1)
+    found = np.isclose(cycle.angles[where], angles, rtol=0, atol=1e-9)
+    return {"dynamics.omega": np.where(found, cycle.omega[where], np.nan),
+            "dynamics.alpha": np.where(found, cycle.alpha[where], np.nan)}
 
 
 #: the motor's own quantities a steady turn's motor verdicts read (the crank shaft's torque,
@@ -100,5 +139,5 @@ def steady_verdicts(verdicts, cycle) -> tuple:
     return tuple(out)
 
 
-__all__ = ["DynamicsResult", "MOTOR_QUANTITIES", "run_dynamics", "simulated",
-           "steady_verdicts"]
+__all__ = ["DynamicsResult", "MOTOR_QUANTITIES", "motion_of", "run_dynamics", "simulated",
+           "steady_rates", "steady_values", "steady_verdicts"]

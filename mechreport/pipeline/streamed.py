@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .dynamics import simulated
+from .dynamics import simulated, steady_rates
 from .analysis import (DEFAULT_TOL, Analysis, Checked, analyse, no_angle_error,
                        solve_trusted, sweep_angles_left)
 from ..checks import Agreement, ExpectationResult, Residual, residuals
@@ -39,7 +39,7 @@ from ..quantities import split as split_quantity
 from ..post import Traces, Verdict, design_review_from, reference_method, traces_of, verdicts
 from ..post.verdicts import undefined_reasons
 from ..post.strength import merge_parts, review_of_parts, strength_parts
-from ..quantities import is_member
+from ..quantities import DYNAMICS_INSTANT, is_member
 from ..post.transmission import instant_quantities
 from ..spec import Spec
 
@@ -97,7 +97,8 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
     trust: dict = {}                      # (method, kind) -> checks.trust.Bound
     reversed_at: list[float] = []         # where friction alone reverses the effort
     n = 0
-    timed = [(i, e) for i, e in enumerate(spec.expect) if e.angle is not None]
+    timed = [(i, e) for i, e in enumerate(spec.expect) if e.angle is not None
+             and e.quantity not in DYNAMICS_INSTANT]      # those: from the simulation
     strength = None                       # the members' extremes, merged chunk by chunk
     off_sweep, swept = spec.off_sweep_angles(), False    # a sweep angle is left (not only `at`)
     effort = 0.0                          # the driver effort's resolvable scale (agreement)
@@ -150,7 +151,13 @@ def check_sweep(spec: Spec, methods=None, tol: float = DEFAULT_TOL,
                                   chunks.turn_problem, jam_note(flags, spec))
     values = rev.values if rev is not None else None
     if spec.dynamics is not None:       # the steady turn's quantities, from the simulation
-        values = {**(values or {}), **simulated(mech)[2]}
+        _, sim, steady = simulated(mech)
+        values = {**(values or {}), **steady}
+        for i, e in enumerate(spec.expect):
+            if e.angle is not None and e.quantity in DYNAMICS_INSTANT:
+                got = steady_rates(sim, np.array([e.angle])).get(e.quantity)
+                found[i] = judge(e, {"kinematics": float("nan") if got is None
+                                     else float(got[0])}, spec)
     del rev, traces
     members = (review_of_parts(strength, "").values if strength else None)
     expectations: list[ExpectationResult] = []

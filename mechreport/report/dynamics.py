@@ -31,6 +31,12 @@ class DynamicsPlot:
     turn_rpm: np.ndarray = field(default_factory=lambda: np.zeros(0))
     mean: float | None = None
     startup: float | None = None
+    # the steady cycle's extremes (angle [deg within the cycle], speed [rpm]) and its
+    # length [deg]; ``startup_shown`` False where there is no start-up (mean_rpm)
+    highest: tuple[float, float] | None = None
+    lowest: tuple[float, float] | None = None
+    cycle: float = 360.0
+    startup_shown: bool = True
 
 
 @dataclass
@@ -52,6 +58,31 @@ class DynamicsSection:
     histories: list[np.ndarray]
 
 
+def _drive_text(sd, sim) -> str:
+    """What drives the crank: the motor (and its gearing), or mean_rpm's constant torque."""
+    if sd.motor is None:
+        return (f"a constant torque of {fmt(sim.drive_torque)} N·m, the cycle mean of the "
+                f"torque the mechanism takes at a mean speed of {fmt(sd.mean_rpm)} rpm "
+                "(dynamics.mean_rpm)")
+    text = _motor_text(sd.motor)
+    m = sd.motor
+    if m.ratio != 1 or m.efficiency != 1:
+        text += (f", geared to turn {fmt(m.ratio)} times as fast as the crank (efficiency "
+                 f"{fmt(m.efficiency)}: the crank receives {fmt(m.ratio)} × {fmt(m.efficiency)}"
+                 f" × its torque while it drives, {fmt(m.ratio)} × its torque / "
+                 f"{fmt(m.efficiency)} driven back)")
+    return text
+
+
+def _flywheel_text(sd) -> str:
+    if sd.flywheel_geared is None:
+        return f"a flywheel of {fmt(sd.flywheel)} kg·m² on its shaft"
+    inertia, ratio = sd.flywheel_geared
+    return (f"a flywheel of {fmt(inertia)} kg·m² on a shaft turning {fmt(ratio)} times as "
+            f"fast as the crank ({fmt(ratio)}² × {fmt(inertia)} = {fmt(sd.flywheel)} kg·m² on "
+            "the crank)")
+
+
 def _motor_text(motor) -> str:
     if motor.kind == "torque":
         return f"a constant motor torque of {fmt(motor.constant)} N·m"
@@ -69,17 +100,24 @@ def dynamics_section(analysis, d: Display) -> DynamicsSection | None:
     if dyn is None or spec.dynamics is None:
         return None
     sim, cycle, sd = dyn.simulation, dyn.simulation.steady, spec.dynamics
-    start = (f"started at crank angle {deg(sd.start_angle)}° "
+    mean_speed = sd.mean_rpm is not None
+    start = ("" if mean_speed else
+             f", started at crank angle {deg(sd.start_angle)}° "
              + ("from rest" if sd.start_rpm == 0 else f"at {fmt(sd.start_rpm)} rpm"))
-    intro = (f"The crank is driven by {_motor_text(sd.motor)}, with a flywheel of "
-             f"{fmt(sd.flywheel)} kg·m² on its shaft, {start}. Its equation of motion, "
+    how = ("its periodic state at that mean speed is found directly, with no start-up "
+           "(shooting one cycle: the starting speed and the torque such that the speed "
+           "returns and the cycle takes as long as at the mean speed, by Newton's method on "
+           "the integration, scipy solve_ivp, DOP853, relative tolerance 1e-12)."
+           if mean_speed else
+           "it is integrated in time (scipy solve_ivp, DOP853, relative tolerance 1e-10).")
+    intro = (f"The crank is driven by {_drive_text(sd, sim)}, with {_flywheel_text(sd)}"
+             f"{start}. Its equation of motion, "
              "(J(φ) + I_f) α = M_m(ω) − B(φ) ω² − C(φ) ω − D(φ), has the mechanism's reduced "
              "inertia J on the crank (found from the reference method's driver torque; the "
              "kinetic energy of the velocity coefficients, Σ m v² + I ω², gives the same), "
              "B = J′/2, C its viscous "
              "loads and D its other loads and weights, all from the same kinematics and loads "
-             "as the sweep; it is integrated in time (scipy solve_ivp, DOP853, relative "
-             "tolerance 1e-10).")
+             f"as the sweep; {how}")
     rows, compared, verdicts, why = [], [], [], ""
     if cycle is None:
         outcome = (f"Integrated to t = {fmt(sim.time[-1])} s (dynamics.until) over "
@@ -87,25 +125,42 @@ def dynamics_section(analysis, d: Display) -> DynamicsSection | None:
                    "the steady-state quantities need until: steady.")
     else:
         v = dyn.values
-        swing, inertia, estimate = dyn.estimate
-        outcome = (f"Steady state after {sim.turns} turns (t = {fmt(cycle.t0 + cycle.period)} "
-                   f"s): two successive turns agree in speed and period to 1e-6, the speed "
-                   "within 1e-6 of its extrapolated limit. Over the "
-                   f"steady turn the crank runs at {fmt(v['dynamics.mean_rpm'])} rpm on "
-                   f"average, between {fmt(cycle.omega_min / RPM)} and "
-                   f"{fmt(cycle.omega_max / RPM)} rpm; one turn takes "
-                   f"{fmt(cycle.period)} s." + _checked_text(dyn.steady))
+        swing, inertia, _ = dyn.estimate
+        estimate = v["dynamics.speed_fluctuation_estimate"]
+        cyc = "turn" if sim_cycle(dyn) == 360 else f"{fmt(sim_cycle(dyn))}° cycle"
+        head = (f"Periodic state found at a time-mean speed of {fmt(sd.mean_rpm)} rpm under the "
+                f"constant driving torque {fmt(sim.drive_torque)} N·m." if mean_speed else
+                f"Steady state after {sim.turns} {cyc}s (t = {fmt(cycle.t0 + cycle.period)} "
+                f"s): two successive {cyc}s agree in speed and period to 1e-6, the speed "
+                "within 1e-6 of its extrapolated limit.")
+        outcome = (f"{head} Over the steady {cyc} the crank runs at "
+                   f"{fmt(v['dynamics.mean_rpm'])} rpm on average, between "
+                   f"{fmt(cycle.omega_min / RPM)} rpm at φ = {fmt(cycle.omega_min_angle, 5)}° and "
+                   f"{fmt(cycle.omega_max / RPM)} rpm at φ = {fmt(cycle.omega_max_angle, 5)}°; "
+                   f"one {cyc} takes {fmt(cycle.period)} s." + _checked_text(dyn.steady))
         rows = [["dynamics.mean_rpm", f"{fmt(v['dynamics.mean_rpm'])} rpm",
-                 "the time-mean speed of the steady turn, 60 / period"],
+                 f"the time-mean speed of the steady {cyc}"],
+                ["dynamics.omega_max", f"{fmt(v['dynamics.omega_max'])} rad/s",
+                 f"the largest speed ({fmt(v['dynamics.omega_max'] / RPM)} rpm), located "
+                 "between samples"],
+                ["dynamics.omega_max_angle", f"{fmt(v['dynamics.omega_max_angle'], 5)}°",
+                 f"the crank angle where it occurs, within the {cyc}"],
+                ["dynamics.omega_min", f"{fmt(v['dynamics.omega_min'])} rad/s",
+                 f"the smallest speed ({fmt(v['dynamics.omega_min'] / RPM)} rpm)"],
+                ["dynamics.omega_min_angle", f"{fmt(v['dynamics.omega_min_angle'], 5)}°",
+                 "the crank angle where it occurs"],
                 ["dynamics.speed_fluctuation", fmt(v["dynamics.speed_fluctuation"]),
-                 "(max − min) / mean of the steady turn's speed"],
-                ["flywheel estimate", fmt(estimate),
-                 f"ΔE / ((J_mean + I_f) ω²): ΔE = {fmt(swing)} J at a constant "
-                 f"{fmt(v['dynamics.mean_rpm'])} rpm, J_mean + I_f = {fmt(inertia)} kg·m²"],
-                ["dynamics.startup_time", f"{fmt(v['dynamics.startup_time'])} s",
-                 "from the start to 95 % of the steady mean speed"],
-                ["dynamics.motor_rms_torque", f"{fmt(v['dynamics.motor_rms_torque'])} N·m",
-                 "the motor's RMS torque over the steady turn, in time"]]
+                 f"(max − min) / mean of the steady {cyc}'s speed"],
+                ["dynamics.speed_fluctuation_estimate", fmt(estimate),
+                 f"first-order estimate ΔE / ((J_mean + I_f) ω²): ΔE = {fmt(swing)} J at a "
+                 f"constant {fmt(v['dynamics.mean_rpm'])} rpm, J_mean + I_f = "
+                 f"{fmt(inertia)} kg·m²"]]
+        if "dynamics.startup_time" in v:
+            rows.append(["dynamics.startup_time", f"{fmt(v['dynamics.startup_time'])} s",
+                         "from the start to 95 % of the steady mean speed"])
+        rows.append(["dynamics.motor_rms_torque", f"{fmt(v['dynamics.motor_rms_torque'])} N·m",
+                     f"the driving torque (constant)" if mean_speed else
+                     f"the motor's RMS torque over the steady {cyc}, in time"])
         why = _why_they_differ(v["dynamics.speed_fluctuation"], estimate, sd.motor)
         compared = _compared(analysis, dyn.steady, d)
         verdicts = [vd.describe(fmt) + (" — met" if vd.passed else " — NOT MET")
@@ -114,9 +169,17 @@ def dynamics_section(analysis, d: Display) -> DynamicsSection | None:
                         cycle.angles if cycle else np.zeros(0),
                         cycle.omega / RPM if cycle else np.zeros(0),
                         cycle.mean_omega / RPM if cycle else None,
-                        sim.startup_time)
+                        sim.startup_time,
+                        (cycle.omega_max_angle, cycle.omega_max / RPM) if cycle else None,
+                        (cycle.omega_min_angle, cycle.omega_min / RPM) if cycle else None,
+                        sim_cycle(dyn), not mean_speed)
     return DynamicsSection(intro, outcome, rows, why, compared, verdicts, plot,
                            histories_of(sim))
+
+
+def sim_cycle(dyn) -> float:
+    """The length of the dynamics' cycle [deg] (360, or the loads' longer cycle)."""
+    return float(np.degrees(dyn.equation.period))
 
 
 def histories_of(sim) -> list[np.ndarray]:
@@ -140,7 +203,7 @@ def _why_they_differ(simulated: float, estimate: float, motor) -> str:
     gap = (simulated - estimate) / estimate if estimate else 0.0
     motor_part = ("; and the motor's torque follows the speed (a torque that falls as the "
                   "speed rises takes up part of the energy swing itself)"
-                  if motor.kind != "torque" else "")
+                  if motor is not None and motor.kind != "torque" else "")
     return (f"The simulated fluctuation is {fmt(abs(gap) * 100, 3)} % "
             f"{'above' if gap > 0 else 'below'} the flywheel estimate of the design review's "
             "formula. The estimate takes the speed as constant while the energy swings, and "

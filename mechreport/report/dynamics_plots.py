@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from ..units import fmt
-from .mpl import BLUE, GREY, figure, legend_top, save, styled
+from .mpl import BLUE, GREY, VERMILION, figure, legend_top, save, styled
 
 SPEED_COLOR = BLUE
 
@@ -16,11 +16,12 @@ def dynamics_figure(dp, d=None):
     """Two panels: the speed [rpm] against time from the start, with the steady mean and its
     95 % (the end of the start-up) dashed; and the speed over the steady turn against the
     crank angle, with its mean. One panel (the start-up) without a steady state."""
-    two = len(dp.angles) > 0
-    fig, axes = figure(2.6, 1, 2 if two else 1, wgap=0.75, margins=(0.62, 0.12, 0.46, 0.42))
-    draw_startup(axes[0, 0], dp)
-    if two:
-        draw_steady_turn(axes[0, 1], dp)
+    steady = len(dp.angles) > 0
+    panels = [p for p, shown in ((draw_startup, dp.startup_shown),
+                                 (draw_steady_turn, steady)) if shown] or [draw_startup]
+    fig, axes = figure(2.6, 1, len(panels), wgap=0.75, margins=(0.62, 0.12, 0.46, 0.42))
+    for k, draw in enumerate(panels):
+        draw(axes[0, k], dp)
     return fig
 
 
@@ -40,19 +41,34 @@ def draw_startup(ax, dp, d=None) -> None:
 
 
 def draw_steady_turn(ax, dp, d=None) -> None:
-    """The crank's speed [rpm] over the steady turn against the crank angle [deg] on
-    ``ax``, with its mean (``dp`` a report's DynamicsPlot with a steady state)."""
+    """The crank's speed [rpm] over the steady cycle against the crank angle [deg] on
+    ``ax``, with its mean and its extremes marked (the integrated motion's, located between
+    samples: ``dp.highest``, ``dp.lowest``), each labelled with its speed and angle (``dp``
+    a report's DynamicsPlot with a steady state)."""
+    name = "steady turn" if dp.cycle == 360 else "steady cycle"
     ax.plot(dp.angles, dp.turn_rpm, color=SPEED_COLOR, lw=1.3,
-            label=f"steady turn (mean {fmt(dp.mean)} rpm)")
+            label=f"{name} (mean {fmt(dp.mean)} rpm)")
     ax.axhline(dp.mean, color=GREY, lw=0.8, ls=(0, (5, 2)))
-    ax.set_xlim(0, 360)
-    ax.set_xticks(np.arange(0, 361, 90))
+    ax.set_xlim(0, dp.cycle)
+    ax.set_xticks(np.arange(0, dp.cycle + 1, 90 if dp.cycle <= 360 else 180))
     ax.set_xlabel("crank angle φ [deg]")
     ax.set_ylabel("crank speed [rpm]")
-    span = float(np.ptp(dp.turn_rpm))
-    pad = max(span * 0.25, abs(dp.mean) * 1e-4)
-    ax.set_ylim(float(np.min(dp.turn_rpm)) - pad, float(np.max(dp.turn_rpm)) + pad)
+    tops = [x for x in (dp.highest, dp.lowest) if x is not None]
+    hi = max([float(np.max(dp.turn_rpm))] + [r for _, r in tops])
+    lo = min([float(np.min(dp.turn_rpm))] + [r for _, r in tops])
+    pad = max((hi - lo) * 0.3, abs(dp.mean) * 1e-4)
+    ax.set_ylim(lo - pad, hi + pad)
     ax.ticklabel_format(axis="y", useOffset=False)
+    for where, above in ((dp.highest, True), (dp.lowest, False)):
+        if where is None:
+            continue
+        angle, rpm = where
+        ax.plot([angle], [rpm], marker="v" if above else "^", color=VERMILION, ms=4.5, lw=0)
+        right = angle < 0.6 * dp.cycle
+        ax.annotate(f"{'max' if above else 'min'} {fmt(rpm, 5)} rpm at {fmt(angle, 4)}°",
+                    (angle, rpm), xytext=(4 if right else -4, 5 if above else -5),
+                    textcoords="offset points", ha="left" if right else "right",
+                    va="bottom" if above else "top", fontsize=6.5, color=VERMILION)
     legend_top(ax, 1)
 
 

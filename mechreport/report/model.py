@@ -1216,7 +1216,8 @@ def _friction(analysis, design: DesignSummary, sw: SweepData, d: Display
         lost = losses.get(fr.joint)
         share = (f"{fmt(100 * lost / total, 3)} %" if lost is not None and total else DASH)
         peak = _largest(values.get(fr.joint), analysis.angles)
-        rows.append([fr.joint, "pin (R)" if j.type == "R" else "slider (T)",
+        rows.append([fr.joint, ("pin (R, friction circle)" if fr.model == "circle" else
+                                "pin (R)") if j.type == "R" else "slider (T)",
                      friction_symbol(spec, j), fmt(fr.mu), size,
                      DASH if lost is None else fmt(lost),
                      share, DASH if peak is None else d.q(peak[0], kind),
@@ -1366,8 +1367,14 @@ def _dynamics_figures(section) -> dict[str, Figure]:
     """The Machine dynamics figure and its caption (none without dynamics)."""
     if section is None:
         return {}
-    text = ("Crank speed from the start (left: the steady mean dashed, 95 % of it dotted)"
-            + (" and over the steady turn (right)." if len(section.plot.angles) else "."))
+    plot = section.plot
+    over = ("over the steady turn" if plot.cycle == 360 else
+            f"over the steady {plot.cycle:g}° cycle") + ", its largest and smallest speed marked"
+    if not plot.startup_shown:          # mean_rpm: no start-up
+        text = f"Crank speed {over} (the mean dashed)."
+    else:
+        text = ("Crank speed from the start (left: the steady mean dashed, 95 % of it dotted)"
+                + (f" and {over} (right)." if len(plot.angles) else "."))
     return {"dynamics": Figure("dynamics", text, "dynamics")}
 
 
@@ -1428,6 +1435,11 @@ MEANING = {
     "dynamics.mean_rpm": "mean crank speed",
     "dynamics.startup_time": "start-up time (to 95 %)",
     "dynamics.motor_rms_torque": "motor's RMS torque",
+    "dynamics.omega_max": "largest crank speed (steady cycle)",
+    "dynamics.omega_min": "smallest crank speed (steady cycle)",
+    "dynamics.omega_max_angle": "crank angle of the largest speed",
+    "dynamics.omega_min_angle": "crank angle of the smallest speed",
+    "dynamics.speed_fluctuation_estimate": "speed fluctuation, first-order estimate",
     "f_max": "peak bearing load", "f_mean": "mean bearing load",
     "f_equivalent": "equivalent (cube-mean) load", "life_h": "L10 rating life",
 }

@@ -27,6 +27,7 @@ TABLES = {
     "report": (schema.Report, False, None),
     "sheet": (schema.SheetSection, True, None),
     "sheet_variants": (schema.SheetVariants, True, None),
+    "dynamics": (schema.Dynamics, False, None),
 }
 
 _REGION = re.compile(r"(<!-- key table (\w+(?: \w+)*) -->\n)(.*?)(<!-- end key table -->)", re.S)

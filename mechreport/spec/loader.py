@@ -24,8 +24,9 @@ from pathlib import Path as FsPath
 from typing import Any
 
 from ..errors import Problem, SpecError
-from ..quantities import (CYCLE_UNITS, JOINT_CYCLE_UNITS, MECHANISM_UNITS, MEMBER_UNITS,
-                          is_cycle, is_member, joint_unit, unit_of, split as split_quantity)
+from ..quantities import (CYCLE_UNITS, DYNAMICS_INSTANT, JOINT_CYCLE_UNITS, MECHANISM_UNITS,
+                          MEMBER_UNITS, is_cycle, is_member, joint_unit, unit_of,
+                          split as split_quantity)
 from ..units import EXPECT_UNITS, PRESSURE_UNITS, SPEC_UNITS, UNIT_TABLES, rpm_to_rad_s
 import mechreport.spec.schema as schema   # the models (not `from . import`: spec/__init__)
 from .schema import MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, keys_of, required_of
@@ -607,7 +608,8 @@ def _friction(value: Any, ck: _Checker, joints: list[Joint] | None, pins: list[P
         for joint in targets:
             out[joint.name] = Friction(joint.name, mu, size if jtype == "R" else None,
                                        size if jtype == "T" else None,
-                                       None if sense is None else int(sense))
+                                       None if sense is None else int(sense),
+                                       str(entry.get("model") or "couple"))
     order = [j.name for j in joints or ()]
     return tuple(sorted(out.values(), key=lambda f: order.index(f.joint)))
 
@@ -618,7 +620,7 @@ def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep,
     end and output step; the driver must be a crank (an R joint with ground)."""
     path = ("dynamics",)
     body = value if isinstance(value, dict) else {}
-    if "motor" not in body:
+    if ("motor" in body) == ("mean_rpm" in body):
         return None             # the models say what is wrong
     ok = True
     if driver is not None and not driver.crank:
@@ -631,41 +633,48 @@ def _dynamics(value: Any, ck: _Checker, driver: Driver | None, sweep: Sweep,
                        "positive sense); write the driver's speed positive and the mechanism "
                        "mirrored, or leave dynamics out")
         ok = False
-    motor = _dynamics_motor(body["motor"], path + ("motor",), ck, _si(units, "moment"))
-    if not ok or motor is None or ck.refused(path):
+    motor = (_dynamics_motor(body["motor"], path + ("motor",), ck, _si(units, "moment"))
+             if "motor" in body else None)
+    if not ok or (motor is None and "motor" in body) or ck.refused(path):
         return None
     start = body.get("start") or {}
     until = body.get("until")
-    flywheel = ck.si(body.get("flywheel", 0.0), path + ("flywheel",),
+    fly = body.get("flywheel", 0.0)
+    geared = (float(fly["inertia"]), float(fly["ratio"])) if isinstance(fly, dict) else None
+    flywheel = ck.si(geared[1] ** 2 * geared[0] if geared else fly, path + ("flywheel",),
                      scale=_si(units, "inertia"), unit=units["inertia"])
     if flywheel is None:
         return None
     return Dynamics(motor, flywheel,
                     float(start.get("angle", sweep.start)), float(start.get("rpm", 0.0)),
                     None if until in (None, "steady") else float(until),
-                    None if body.get("output_step") is None else float(body["output_step"]))
+                    None if body.get("output_step") is None else float(body["output_step"]),
+                    None if body.get("mean_rpm") is None else float(body["mean_rpm"]),
+                    geared)
 
 
 def _dynamics_motor(value: Any, path: tuple, ck: _Checker,
                     ms: float = 1.0) -> MotorCurve | None:
     """The motor of ``dynamics:``: exactly one of ``torque``, ``curve``, ``linear`` (torques
-    in the spec's moment unit, ``ms`` N·m each)."""
+    in the spec's moment unit, ``ms`` N·m each), with its gearing (``ratio``,
+    ``efficiency``)."""
     if ck.refused(path):
         return None             # the models say what is wrong
     body = value
     kind = next(k for k in DYN_MOTOR_KEYS if k in body)
+    gear = {k: float(body[k]) for k in ("ratio", "efficiency") if k in body}
     if kind == "torque":
-        return MotorCurve(constant=float(body["torque"]) * ms)
+        return MotorCurve(constant=float(body["torque"]) * ms, **gear)
     if kind == "linear":
         return MotorCurve(stall_torque=float(body["linear"]["stall_torque"]) * ms,
-                          no_load_rpm=float(body["linear"]["no_load_rpm"]))
+                          no_load_rpm=float(body["linear"]["no_load_rpm"]), **gear)
     points = [(float(a), float(b) * ms) for a, b in body["curve"]]
     for i in range(1, len(points)):
         if not points[i][0] > points[i - 1][0]:
             ck.error(path + ("curve", i, 0), f"the speeds must increase: {points[i][0]:g} rpm "
                                              f"follows {points[i - 1][0]:g} rpm")
             return None
-    return MotorCurve(curve=tuple(points))
+    return MotorCurve(curve=tuple(points), **gear)
 
 
 def _design(value: Any, ck: _Checker, joints: list[Joint] | None, pins=(),
@@ -723,6 +732,10 @@ def _cycle_requests(spec: Spec, ck: _Checker) -> None:
     why = spec.cycle_problem()
     asked = [(("expect", i), e.quantity) for i, e in enumerate(spec.expect)
              if e.angle is None and not is_member(e.quantity)]
+    for i, e in enumerate(spec.expect):          # the steady cycle's speed at an angle
+        need = _dynamics_need(spec, e.quantity) if e.quantity in DYNAMICS_INSTANT else None
+        if need:
+            ck.error(("expect", i), need)
     strength = [k for k in STRENGTH_LIMITS if k in spec.design.limits]
     if strength and not any(link.strength for link in spec.links):
         ck.error(("design", "limits", strength[0]), "needs a link with a 'section' and a "
@@ -756,6 +769,9 @@ def _dynamics_need(spec: Spec, quantity: str) -> str | None:
     if spec.dynamics is None:
         return (f"'{quantity}' needs a 'dynamics:' section (a motor, and the steady state it "
                 "reaches)")
+    if quantity == "dynamics.startup_time" and spec.dynamics.mean_rpm is not None:
+        return (f"'{quantity}' is undefined with dynamics.mean_rpm: the steady state is "
+                "found directly, with no start-up (give a motor to simulate one)")
     if spec.dynamics.until is not None:
         return (f"'{quantity}' is a quantity of the steady cycle: with dynamics.until a time "
                 "the simulation gives the transient only (write until: steady)")

@@ -212,6 +212,15 @@ def _until_tag(value: Any) -> str:
     return "steady" if isinstance(value, str) else "time"
 
 
+#: the type of the errors whose message is written here, in the house wording (``msg``)
+WORDED = "spec_worded"
+
+
+def _flywheel_tag(value: Any) -> str:
+    """``dynamics.flywheel``: a mapping is a geared flywheel, anything else a number."""
+    return "geared" if isinstance(value, dict) else "number"
+
+
 def _motor_tag(value: Any) -> str | None:
     """``dynamics.motor``: the one kind (torque, curve, linear) a mapping gives; None when it
     gives none or several."""
@@ -894,6 +903,9 @@ class RFriction(_Model):
     mu: NonNegative = Field(description="Coefficient of friction (0 or more; 0 adds nothing).")
     radius: Positive = Field(description="Journal radius, in the length unit.")
     friction_sense: FrictionSense = None
+    model: Literal["couple", "circle"] = Field(
+        None, description="`couple` (default): a couple mu r |F|; `circle`: the "
+                          "friction circle's r sin(atan mu) |F| (format 1.2).")
 
 
 class TFriction(_Model):
@@ -973,6 +985,18 @@ class Limits(_Model):
                                                         "member.*.buckling_safety allowed.")
 
 
+#: a gearing's efficiency: a fraction in (0, 1]
+GearEfficiency = Annotated[Positive, Field(le=1), Refusal(
+    "must be at most 1 (an efficiency is a fraction: 0.92, not 92)", ("less_than_equal",))]
+
+
+MOTOR_RATIO = ("Motor speed over crank speed (default 1); the motor's curve stays in motor "
+               "rpm and N·m.")
+MOTOR_EFFICIENCY = ("Of the gearing, (0, 1], default 1: the crank receives ratio × efficiency "
+                    "× the motor's torque while the motor drives, ratio × torque / efficiency "
+                    "when the crank drives it back.")
+
+
 class LinearMotor(_Model):
     """A motor whose torque falls linearly from its stall torque at rest to 0 at its
     no-load speed."""
@@ -989,6 +1013,8 @@ class TorqueMotor(_Model):
 
     model_config = ConfigDict(title="constant torque motor")
     torque: Number = Field(description="A constant torque, N·m.")
+    ratio: Positive = Field(None, description=MOTOR_RATIO)
+    efficiency: GearEfficiency = Field(None, description=MOTOR_EFFICIENCY)
 
 
 class CurveMotor(_Model):
@@ -1000,6 +1026,8 @@ class CurveMotor(_Model):
                              ("list_type", "too_short"))] = Field(
         min_length=2, description="[[rpm, N·m], ...], speeds increasing; linear between "
                                   "the points and along the end segments beyond them.")
+    ratio: Positive = Field(None, description=MOTOR_RATIO)
+    efficiency: GearEfficiency = Field(None, description=MOTOR_EFFICIENCY)
 
 
 class LinearCurveMotor(_Model):
@@ -1007,6 +1035,8 @@ class LinearCurveMotor(_Model):
 
     model_config = ConfigDict(title="linear motor")
     linear: LinearMotor = Field(description="{stall_torque, no_load_rpm}.")
+    ratio: Positive = Field(None, description=MOTOR_RATIO)
+    efficiency: GearEfficiency = Field(None, description=MOTOR_EFFICIENCY)
 
 
 #: the kinds of dynamics.motor, one key each (a motor gives exactly one)
@@ -1031,13 +1061,44 @@ class DynamicsStart(_Model):
         None, description="Crank speed, rpm (default 0: from rest).")
 
 
-class Dynamics(_Model):
-    """Machine dynamics: the motion a motor and a flywheel give (format 1.1)."""
+class GearedFlywheel(_Model):
+    """A flywheel on a shaft geared to the crank."""
 
-    motor: DynamicsMotor = Field(description="One of {torque}, {curve}, {linear}.")
-    flywheel: Annotated[NonNegative, Refusal("must be 0 or more (kg·m²), got {value}",
-                                             ("greater_than_equal",))] = Field(None, description="Extra inertia on the crank shaft, kg·m² (or units.inertia) "
-                                                    "(default 0).")
+    model_config = ConfigDict(title="geared flywheel")
+    inertia: Annotated[NonNegative, Refusal("must be 0 or more (kg·m²), got {value}",
+                                            ("greater_than_equal",))] = Field(
+        description="The flywheel's own inertia, kg·m² (or `units.inertia`).")
+    ratio: Positive = Field(description="Its speed over the crank's (it counts ratio² times "
+                                        "on the crank).")
+
+
+#: exactly one of motor and mean_rpm; mean_rpm without start or until
+_MOTOR_OR_MEAN_SPEED = {"oneOf": [
+    {"required": ["motor"]},
+    {"required": ["mean_rpm"], "not": {"anyOf": [{"required": ["start"]},
+                                                 {"required": ["until"]}]}}]}
+
+
+class Dynamics(_Model):
+    """Machine dynamics: the motion a motor and a flywheel give (format 1.1), or the steady
+    state at a mean speed (format 1.2)."""
+
+    model_config = ConfigDict(json_schema_extra=_MOTOR_OR_MEAN_SPEED)
+
+    motor: DynamicsMotor = Field(None, description="One of {torque}, {curve}, {linear}, with "
+                                                   "optional ratio and efficiency (exclusive "
+                                                   "with mean_rpm).")
+    mean_rpm: Positive = Field(None, description="Instead of a motor: the periodic state at "
+                                                 "this time-mean crank speed, rpm, under a "
+                                                 "constant driving torque (the cycle mean).")
+    flywheel: Annotated[Union[Annotated[NonNegative, Tag("number"),
+                                        Refusal("must be 0 or more (kg·m²), got {value}",
+                                                ("greater_than_equal",))],
+                              Annotated[GearedFlywheel, Tag("geared")]],
+                        Discriminator(_flywheel_tag),
+                        Wording("a number (kg·m²) or {inertia, ratio}")] = Field(
+        None, description="Extra inertia on the crank shaft, kg·m² (or `units.inertia`; default 0), or {inertia, "
+                          "ratio}: a flywheel turning ratio times as fast as the crank.")
     start: DynamicsStart = Field(None, description="{angle, rpm}, default sweep.start at rest.")
     until: Annotated[Union[Annotated[Literal["steady"], Tag("steady")],
                            Annotated[Positive, Tag("time")]],
@@ -1047,6 +1108,21 @@ class Dynamics(_Model):
         None, description="steady (default: until two cycles agree), or a time in s.")
     output_step: Positive = Field(None, description="s, the sampling of the time histories "
                                                     "(default 200 per steady cycle).")
+
+    @model_validator(mode="after")
+    def _motor_or_mean_speed(self):
+        """Exactly one of ``motor`` and ``mean_rpm``; ``mean_rpm`` is the steady state
+        itself (no start, no end time)."""
+        if (self.motor is None) == (self.mean_rpm is None):
+            raise PydanticCustomError(
+                WORDED, "give exactly one of motor (the motion it gives) or "
+                "mean_rpm (the steady state at that mean speed){extra}",
+                {"extra": "" if self.motor is None else ", not both"})
+        if self.mean_rpm is not None and (self.start is not None or self.until is not None):
+            raise PydanticCustomError(
+                WORDED, "with mean_rpm the steady state is found directly: start "
+                "and until are not used (leave them out)")
+        return self
 
 
 class Design(_Model):

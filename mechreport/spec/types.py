@@ -199,6 +199,16 @@ class Friction:
     radius: float | None = None
     length: float | None = None
     sense: int | None = None
+    # format 1.2: an R joint's law, ``couple`` (mu r |F|) or ``circle`` (the friction
+    # circle, r sin(atan mu) |F|); out of the repr (the specs before 1.2 keep their reprs)
+    model: str = field(default="couple", repr=False)
+
+    @property
+    def journal_mu(self) -> float:
+        """The factor of r |F| in an R joint's friction couple: mu, or sin(atan mu) =
+        mu / sqrt(1 + mu^2) for the friction circle."""
+        return self.mu / math.sqrt(1.0 + self.mu * self.mu) if self.model == "circle" \
+            else self.mu
 
 
 @dataclass(frozen=True)
@@ -418,6 +428,10 @@ class MotorCurve:
     curve: tuple[tuple[float, float], ...] = ()
     stall_torque: float | None = None
     no_load_rpm: float | None = None
+    # format 1.2: the gearing to the crank (motor speed = ratio x crank speed) and its
+    # efficiency; out of the repr, so that the specs written before 1.2 keep their reprs
+    ratio: float = field(default=1.0, repr=False)
+    efficiency: float = field(default=1.0, repr=False)
 
     @property
     def kind(self) -> str:
@@ -435,17 +449,23 @@ class MotorCurve:
 
 @dataclass(frozen=True)
 class Dynamics:
-    """``dynamics:`` (format 1.1): the ``motor``, the ``flywheel``'s extra inertia on the crank
-    shaft [kg m^2], the initial state (``start_angle`` [deg], ``start_rpm``), ``until``
+    """``dynamics:`` (format 1.1): the ``motor`` (None with ``mean_rpm``), the ``flywheel``'s
+    extra inertia on the crank shaft [kg m^2], the initial state (``start_angle`` [deg], ``start_rpm``), ``until``
     (None: until the steady state; else a time [s]) and ``output_step`` [s] of the time
     histories (None: 200 samples per steady cycle)."""
 
-    motor: MotorCurve
+    motor: MotorCurve | None
     flywheel: float = 0.0
     start_angle: float = 0.0
     start_rpm: float = 0.0
     until: float | None = None
     output_step: float | None = None
+    # format 1.2 (out of the repr: the specs written before 1.2 keep their reprs): the
+    # steady state's time-mean speed [rpm] instead of a motor (None: the motor's motion),
+    # and a geared flywheel as written, (its own inertia [kg m^2], its speed ratio to the
+    # crank), whose ratio^2 x inertia is ``flywheel`` (None: a flywheel on the crank)
+    mean_rpm: float | None = field(default=None, repr=False)
+    flywheel_geared: tuple[float, float] | None = field(default=None, repr=False)
 
 
 @dataclass(frozen=True)

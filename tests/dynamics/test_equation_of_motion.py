@@ -376,16 +376,20 @@ def test_a_run_too_long_to_simulate_or_store_is_a_clear_error(dynamics, words, m
 PRESS = (Path(__file__).resolve().parents[2] / "specs" / "crank_press_friction.yaml")
 
 
-@pytest.mark.parametrize("which", ["pins", "slider with length"])
+@pytest.mark.parametrize("which", ["pins", "slider with length", "friction circles"])
 def test_the_integrators_friction_path_is_the_batched_one(which):
     """The plain-float right-hand side with friction gives the batched solver's alpha: the
-    four-bar's rubbing pins, and the crank press's pins and ram guide (a slider with a
-    length: the drawer effect)."""
+    four-bar's rubbing pins (as couples, and as friction circles, format 1.2), and the crank
+    press's pins and ram guide (a slider with a length: the drawer effect)."""
     from mechreport.dynamics.friction import friction_state
+    circles = FRICTION.replace("radius: 12}", "radius: 12, model: circle}").replace(
+        "radius: 8}", "radius: 8, model: circle}")
     text = (four_bar(STEADY, DAMPER) + FRICTION if which == "pins" else
+            four_bar(STEADY, DAMPER) + circles if which == "friction circles" else
             PRESS.read_text(encoding="utf-8")
             + "dynamics: {motor: {linear: {stall_torque: 400, no_load_rpm: 66}}, flywheel: 30}\n")
     spec, mech, eom = equation(text)
+    assert (which == "friction circles") == all(f.model == "circle" for f in spec.friction)
     rng = np.random.default_rng(7)
     phi, w = rng.uniform(0, 2 * math.pi, 40), rng.uniform(5, 40, 40)
     one = eom.scalar()

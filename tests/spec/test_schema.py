@@ -162,8 +162,16 @@ def test_every_key_of_format_1_1_is_in_the_schema():
     assert {"friction", "dynamics", "materials"} <= set(props)
     assert {"section", "material", "members"} <= set(defs["Link"]["properties"])
     assert {"animation", "dxf", "html"} <= set(defs["Report"]["properties"])
-    assert {"motor", "flywheel", "start", "until", "output_step"} == set(
+    assert {"motor", "flywheel", "start", "until", "output_step"} <= set(
         defs["Dynamics"]["properties"])
+
+
+def test_the_dynamics_keys_of_format_1_2_are_in_the_schema():
+    """``mean_rpm`` beside ``motor``; a motor's ``ratio`` and ``efficiency``."""
+    defs = json_schema()["$defs"]
+    assert "mean_rpm" in defs["Dynamics"]["properties"]
+    motors = [d for d in defs.values() if {"ratio", "efficiency"} <= set(d.get("properties", {}))]
+    assert len(motors) == 3
 
 
 # -- it accepts every spec the loader accepts ----------------------------------------------

@@ -51,7 +51,9 @@ def equation_of_motion_text(analysis, k: int) -> list[str]:
         hit = np.flatnonzero(np.abs(cycle.angles - angle) < 1e-9)
         if len(hit):
             w = float(cycle.omega[hit[0]])
-            m = float(motor_torque(spec.dynamics.motor, np.array([w]))[0])
+            # the torque the crank receives (a geared motor's through its gearing; with
+            # mean_rpm the constant driving torque)
+            m = float(motor_torque(eom.motor, np.array([w]))[0])
             q = -(c * w + d)
             alpha = float(cycle.alpha[hit[0]])       # the simulation's, from these terms
             out.append(

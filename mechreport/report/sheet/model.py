@@ -213,6 +213,7 @@ class SheetModel:
     units: str = ""
     exact_note: str = ""
     zero: float = ZERO         # round-off [SI]: smaller magnitudes print as 0
+    flywheel: object | None = None   # the flywheel problem (.flywheel.FlywheelSheet)
 
     def figures(self) -> list[Figure]:
         out = []
@@ -670,7 +671,12 @@ def _first_iteration(analysis, k: int, parts: dict | None) -> list:
     mag = _abs(vec_sym(spec.symbol(*joint.links)))
     value = _friction_atom_scalar(spec, joint)
     unit = NM_ if joint.type == "R" else N_
-    if joint.type == "R":
+    if joint.type == "R" and fr.model == "circle":     # the friction circle's radius
+        law = R(r"r\,\sin(\arctan\mu)", "r sin(arctan mu)")
+        numbers = Expr().add(1, Num(fr.radius), Op("mul"), Num(fr.journal_mu), Op("mul"),
+                             Num(f0))
+        first = fr.journal_mu * fr.radius * f0
+    elif joint.type == "R":
         law = R(r"\mu\,r", "mu r")
         numbers = Expr().add(1, Num(fr.mu), Op("mul"), Num(fr.radius), Op("mul"), Num(f0))
         first = fr.mu * fr.radius * f0
@@ -857,6 +863,8 @@ def build_sheet(analysis, options: SheetOptions | None = None) -> SheetModel:
     with round_off(zero):
         model = _build_sheet(analysis, options)
     model.zero = zero
+    from .flywheel import flywheel_sheet
+    model.flywheel = flywheel_sheet(analysis)
     return model
 
 
@@ -1112,7 +1120,8 @@ def _friction_datum(spec, fr, joint) -> str:
                  f"relative to {a}" if joint.type == "R" else
                  f", {b} about to slide {'along' if fr.sense > 0 else 'against'} its line's "
                  "direction")
-    return f"Coulomb friction{on} μ = {fmt(fr.mu)}{size}{sense}"
+    circle = " (friction circle: r sin(arctan μ) |F|)" if fr.model == "circle" else ""
+    return f"Coulomb friction{on} μ = {fmt(fr.mu)}{size}{circle}{sense}"
 
 
 def _join_and(items: list[str]) -> str:

@@ -8,6 +8,7 @@ from ..document import (Code, Columns, Description, Doc, Either, Emph, Equation,
                         Found, Gap, Heading, Items, Layout, Math, NewLine, Number, Paragraph, Print,
                         Strong, Table, Wording, rich)
 from .expr import Raw
+from .flywheel import flywheel_blocks
 from .symbols import rich_label
 
 #: a sheet's page: small text, its title a heading, derivations flush left
@@ -66,6 +67,8 @@ def solution_document(sheet) -> Doc:
     doc.add(Items(items, small=True))
     for a in sheet.angles:
         _angle(doc, sheet, a)
+    if sheet.flywheel is not None:
+        flywheel_blocks(doc, sheet.flywheel)
     return doc
 
 
