@@ -23,6 +23,8 @@ from .mpl import CUT_COLOR, LINK_FILL, WIDTH, save, styled
 ARROW_LEN = 0.26        # longest arrow as a fraction of the mechanism's extent
 ARROW_MIN = 0.05        # shortest drawn (non-zero) arrow, same unit
 AX_FRACTION = 0.70      # the drawing's share of the figure width (the legend has the rest)
+LEGEND_ENTRY_IN = 0.16  # height of one legend entry at 7.5 pt, inches (measured 0.157)
+LEGEND_MAX_IN = 7.0     # the tallest a drawing grows for its legend, inches
 
 
 @dataclass(frozen=True)
@@ -168,7 +170,10 @@ def _cut_mark(ax, start, tip, extent: float) -> None:
 
 def _links(ax, scene, numbered: bool = True) -> None:
     """Plates under blocks under bars; the driver link above all of them; blocks and bars
-    with their link's number when ``numbered``."""
+    with their link's number when ``numbered`` (links drawn on top of each other, as the
+    pistons of an in-line engine whose cranks are in phase, share one label: "6/9", as their
+    points share "P1/P4")."""
+    numbers: list[list] = []                   # [centre, numbers, zorder] per label
     for s in scene.shapes:
         xy = np.asarray(s.xy)
         fill = LINK_FILL[(s.number - 1) % len(LINK_FILL)]
@@ -182,8 +187,16 @@ def _links(ax, scene, numbered: bool = True) -> None:
               alpha=0.8 if s.kind == "plate" else 0.92)
         if s.kind != "plate" and numbered:
             c = xy.mean(axis=0)
-            ax.text(c[0], c[1], str(s.number), fontsize=6.5, ha="center", va="center",
-                    color="0.25", zorder=z + 0.005)
+            same = next((n for n in numbers
+                         if np.hypot(*(n[0] - c)) <= 0.02 * scene.extent), None)
+            if same is None:
+                numbers.append([c, [s.number], z])
+            else:
+                same[1].append(s.number)
+                same[2] = max(same[2], z)
+    for c, nums, z in numbers:
+        ax.text(c[0], c[1], "/".join(map(str, nums)), fontsize=6.5, ha="center",
+                va="center", color="0.25", zorder=z + 0.005)
 
 
 def draw_element(ax, kind: str, p0, p1, size: float, color: str = "0.3") -> None:
@@ -254,6 +267,10 @@ def _sized_axes(scene, arrows):
     span = hi - lo
     ax_w = WIDTH * (AX_FRACTION - 0.01)
     height = float(np.clip(ax_w * span[1] / span[0] + 0.35, 2.4, 4.3))
+    # tall enough for the legend beside it (measured: 0.157 in per entry at 7.5 pt), which a
+    # flat mechanism with many forces (an in-line engine: 19 entries) would overflow
+    height = max(height, min(LEGEND_ENTRY_IN * (len(arrows) + len(scene.couples)) + 0.25,
+                             LEGEND_MAX_IN))
     ax_h = height * (1 - 0.02) - 0.3
     # widen the data range along one axis so that one unit is as long in x as in y
     want = ax_w / ax_h
@@ -381,8 +398,9 @@ def draw_scene(scene, d=None, title: str | None = None, view: View | None = None
         return fig
     ax.set_title(title or f"φ = {scene.angle:g}°", loc="left")
     if handles:
+        fits = LEGEND_ENTRY_IN * len(handles) + 0.25 <= fig.get_figheight()
         fig.legend(handles=handles, loc="center left", bbox_to_anchor=(AX_FRACTION, 0.5),
-                   fontsize=7.5, frameon=False, handlelength=1.8)
+                   fontsize=7.5, frameon=False, handlelength=1.8, ncols=1 if fits else 2)
     return fig
 
 

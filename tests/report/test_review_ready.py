@@ -90,7 +90,7 @@ def test_report_section_is_loaded():
 
 @pytest.mark.parametrize("bad, message", [
     ("report: {units: {length: furlong}}", "report.units.length: must be one of m, cm, mm, "
-                                           "in, got 'furlong'"),
+                                           "in, ft, got 'furlong'"),
     ("report: {units: {torque: N*m}}", "report.units.torque: unknown key"),
     ("report: {autor: x}", "report.autor: unknown key; did you mean 'author'?"),
     ("report: {title: [1]}", "report.title: must be text"),
