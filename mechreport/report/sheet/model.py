@@ -874,7 +874,7 @@ def _build_sheet(analysis, options: SheetOptions | None = None) -> SheetModel:
                       "value to 12 digits; “none found” means the value is not such a "
                       "combination (or needs more digits than a computed value can confirm).")
     methods = choose_methods(analysis, options.methods)
-    from ..model import display_of
+    from ..section import display_of
     display = display_of(analysis)
     si = (display.length, display.force, display.moment, display.mass) == ("m", "N", "N*m", "kg")
     links = [[str(l.number), l.name, ", ".join(f"{p} {_vec(xy)}" for p, xy in l.points.items()),

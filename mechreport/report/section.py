@@ -1,0 +1,77 @@
+"""What every section of the report model shares: the number formatters (:func:`num` for
+the text, :func:`jnum` for JSON), a :class:`Figure`, the display units of an analysis, the
+driver's effort and coordinate, the joints' colours and reaction symbols."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..units import SIG_DIGITS, Display, clean, fmt
+from .mpl import PALETTE
+
+
+def num(x, digits: int = SIG_DIGITS) -> str:
+    """``x`` (already in the unit it is shown in) by the one formatter; "—" for None/NaN."""
+    return fmt(x, digits)
+
+
+def jnum(x, scale: float | None = None) -> float | None:
+    """A float for JSON (SI, round-off of its quantity's ``scale`` made 0): None where
+    undefined."""
+    if x is None or not math.isfinite(float(x)):
+        return None
+    return clean(float(x), scale)
+
+
+@dataclass
+class Figure:
+    """A figure ``figures/<stem>.svg`` (vector: the PDF and the Markdown report show the same
+    file), with its caption."""
+
+    stem: str
+    caption: str
+    kind: str                     # drawing|torque|reactions|polar|shaking|flywheel|...
+
+    @property
+    def svg(self) -> str:
+        return f"figures/{self.stem}.svg"
+
+    @property
+    def path(self) -> str:
+        return self.svg
+
+
+def display_of(analysis) -> Display:
+    """The spec's display units with the scales [SI] of this analysis (round-off rule)."""
+    units = dict(analysis.spec.report.units) or {}
+    for key, si in (("length", "m"), ("force", "N"), ("moment", "N*m")):
+        units.setdefault(key, analysis.spec.units.get(key, si))    # the spec's own units
+    return Display(units["length"], units["force"], units["moment"], units.get("mass", "kg"),
+                   analysis.scales(), stress=units.get("stress", "MPa"),
+                   pressure=units.get("pressure", "Pa"))
+
+
+def effort_of(spec) -> tuple[str, str, str, str]:
+    """(kind, label, coordinate, unit suffix) of the driver: a crank's torque over the crank
+    angle in degrees, or a T driver's force over its stroke in the spec's length unit."""
+    d = spec.driver
+    if getattr(d, "kind", "R") == "T":
+        return "force", "driver force F", "stroke", " " + spec.units.get("length", "m")
+    coord = getattr(d, "coordinate", "crank angle")
+    return "moment", "driver torque M", coord, "°"
+
+
+def joint_colors(spec) -> dict[str, str]:
+    """One colour per joint, in spec order, across every figure (:data:`PALETTE`)."""
+    return {name: PALETTE[i % len(PALETTE)]
+            for i, name in enumerate(spec.reported_reactions())}
+
+
+def reaction_symbols(spec) -> dict[str, str]:
+    """Textbook reaction symbol of each joint: F<first><second> by link number; a pin
+    joining several links: F<pin><link> for its force on its hub (on the others, it is the
+    reaction of the hub's joint to each)."""
+    out = {j.name: spec.symbol(*j.links) for j in spec.joints}
+    for pin in spec.pins:
+        out[pin.joint_name(pin.hub)] = f"F{pin.name}{spec.number(pin.hub)}"
+    return {name: out[name] for name in spec.reported_reactions()}
