@@ -11,7 +11,7 @@ from ..post.balance import NOTICEABLE
 from ..quantities import unit_of
 from ..spec import profile_at
 from ..units import DASH, Display, deg, fmt, kind_of
-from .section import Figure, jnum
+from .section import Figure
 
 
 @dataclass
@@ -196,25 +196,6 @@ def _margin(v) -> str:
         return f"value {fmt(ratio, 3)}× limit"
     text = f"{v.margin * 100:+.1f} %"
     return "0.0 %" if text in ("+0.0 %", "-0.0 %") else text
-
-
-def design_json(analysis, sc: dict) -> dict:
-    """summary.json's ``design``: verdicts and cycle quantities, each value as in
-    ``quantities`` (round-off of its kind made 0, :func:`jnum`)."""
-    rev = analysis.review
-    out: dict = {"verdicts": [{"item": v.item, "quantity": v.quantity, "value": jnum(v.value),
-                               "limit": v.limit, "unit": v.unit, "lower_limit": v.at_least,
-                               "margin": jnum(v.margin), "passed": v.passed,
-                               "joint": v.where or None, "why": v.why or None}
-                              for v in analysis.verdicts],
-                 "cycle_undefined": analysis.review_problem or None}
-    if rev is not None:
-        out["cycle"] = {name: {"value": jnum(value, sc.get(kind_of(unit_of(name) or ""))),
-                               "unit": unit_of(name)}
-                        for name, value in rev.values.items()}
-        out["method"] = rev.method
-        out["interpolated_deg"] = [float(a) for a in rev.cycle.interpolated]
-    return out
 
 
 def design_figures(design: DesignSummary, d: Display) -> dict[str, Figure]:

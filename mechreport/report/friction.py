@@ -9,9 +9,10 @@ import numpy as np
 
 from ..kinematics.result import angle_ranges
 from ..post.friction import efficiency_undefined
+from ..post.records import friction_symbol, largest
 from ..units import DASH, Display, deg, fmt
 from .design import DesignSummary, design_summary
-from .section import Figure, jnum
+from .section import Figure
 from .sweep_section import SweepData, sweep_data
 
 
@@ -89,7 +90,7 @@ def friction_section(analysis, design: DesignSummary, sw: SweepData, d: Display
                 + d.num(size, "length"))
         lost = losses.get(fr.joint)
         share = (f"{fmt(100 * lost / total, 3)} %" if lost is not None and total else DASH)
-        peak = _largest(values.get(fr.joint), analysis.angles)
+        peak = largest(values.get(fr.joint), analysis.angles)
         rows.append([fr.joint, "pin (R)" if j.type == "R" else "slider (T)",
                      friction_symbol(spec, j), fmt(fr.mu), size,
                      DASH if lost is None else fmt(lost),
@@ -138,24 +139,6 @@ def _friction_intro(spec) -> str:
             + (f" But {idle}." if idle else ""))
 
 
-def friction_symbol(spec, joint) -> str:
-    """The textbook's name of a joint's friction: Mf12, the couple of link 1 on link 2 in an
-    R joint; Ff03, the force of link 0 on link 3 along a T joint's line."""
-    return spec.symbol(*joint.links, "Mf" if joint.type == "R" else "Ff")
-
-
-def _largest(values: np.ndarray | None, angles: np.ndarray) -> tuple[float, float] | None:
-    """(largest |value|, its angle [deg]) over the analysed angles; None without a finite
-    value."""
-    if values is None or not len(values):
-        return None
-    mag = np.abs(np.asarray(values, float))
-    if not np.any(np.isfinite(mag)):
-        return None
-    k = int(np.nanargmax(mag))
-    return float(mag[k]), float(angles[k])
-
-
 def _friction_remarks(analysis, effort_name: str, unit: str) -> list[str]:
     """Sentences on where friction self-locks: the angles where it alone reverses the
     driver's effort, and those left out because it is undetermined there."""
@@ -177,63 +160,23 @@ def _friction_remarks(analysis, effort_name: str, unit: str) -> list[str]:
 
 def _friction_plot(analysis, design: DesignSummary, sw: SweepData, effort_name: str
                    ) -> FrictionPlot | None:
-    """The effort with and without friction: over the cycle grid when there is a review
-    (the breakdown's ``friction`` source), else over the analysed angles of the sweep (the
-    reference method's effort split by source)."""
-    cd = design.data
-    flipped = [float(a) for a in analysis.kinematics.reversed_by_friction]
-    if cd is not None and "friction" in cd.sources:
-        without = cd.torque - cd.sources["friction"]
+    """The effort with and without friction (``Kinematics.frictionless``, solved with the
+    friction): over the cycle grid when there is a review (sampled as the effort is), else
+    over the analysed angles of the sweep."""
+    cd, kin = design.data, analysis.kinematics
+    flipped = [float(a) for a in kin.reversed_by_friction]
+    if kin.frictionless is None:
+        return None
+    if cd is not None:
         rev = analysis.review
+        without = rev.cycle.sample(kin.frictionless, analysis.angles)
         return FrictionPlot(cd.angles, cd.torque, without, "moment", effort_name,
                             (cd.mean, rev.cycle.mean(without)), list(cd.interpolated),
                             None, flipped)
     if not len(sw.angles):
         return None
-    res = analysis.forces[analysis.sweep_summary().method]
-    part = analysis.by_source(res.method).get("friction", {}).get(res.driver_quantity)
-    if part is None:
-        return None
-    return FrictionPlot(sw.angles, sw.torque, sw.torque - part, sw.effort, effort_name,
+    return FrictionPlot(sw.angles, sw.torque, kin.frictionless, sw.effort, effort_name,
                         None, [], sw, flipped)
-
-
-def friction_json(analysis, sc: dict) -> dict | None:
-    """summary.json's ``friction`` (None without friction): per joint its data, its loss per
-    cycle and largest value over the sweep; the energy lost per cycle and the efficiency
-    (SI, with units; each value as in ``design.cycle``)."""
-    spec, rev = analysis.spec, analysis.review
-    if not spec.friction:
-        return None
-    losses = rev.friction if rev is not None else {}
-    total = rev.values.get("cycle.friction.energy") if rev is not None else None
-    joints = {}
-    for fr in spec.friction:
-        j = spec.joint(fr.joint)
-        unit = "N·m" if j.type == "R" else "N"
-        peak = _largest((analysis.kinematics.friction or {}).get(fr.joint), analysis.angles)
-        lost = losses.get(fr.joint)
-        joints[fr.joint] = {
-            "type": j.type, "symbol": friction_symbol(spec, j), "mu": fr.mu,
-            "radius": None if fr.radius is None else {"value": fr.radius, "unit": "m"},
-            "length": None if fr.length is None else {"value": fr.length, "unit": "m"},
-            "energy_per_cycle": None if lost is None else {"value": jnum(lost), "unit": "J"},
-            "share": jnum(lost / total) if lost is not None and total else None,
-            "largest": None if peak is None else {
-                "value": jnum(peak[0], sc.get("moment" if j.type == "R" else "force")),
-                "unit": unit, "angle_deg": peak[1]}}
-    eff = rev.values.get("cycle.efficiency") if rev is not None else None
-    if rev is None:
-        why = f"no cycle quantities: {analysis.review_problem}"
-    else:
-        why = None if eff is not None else efficiency_undefined(analysis.spec)
-    return {"joints": joints,
-            "energy_per_cycle": None if total is None else {"value": jnum(total), "unit": "J"},
-            "efficiency": None if eff is None else {"value": jnum(eff), "unit": ""},
-            "efficiency_undefined": why,
-            "reversed_by_friction_deg": [float(a) for a in
-                                         analysis.kinematics.reversed_by_friction],
-            "left_out_deg": [f.angle for f in analysis.flags if f.by_friction]}
 
 
 def friction_figures(section: FrictionSection | None, sw: SweepData) -> dict[str, Figure]:

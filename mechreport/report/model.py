@@ -25,20 +25,19 @@ from ..forces import METHODS
 from ..units import Display, deg, fmt
 from ..version import __version__
 from .check_text import failure_rows, summary_line
-from .design import MEANING, DesignSummary, design_figures, design_json, design_summary
-from .dynamics import dynamics_json, dynamics_section
+from .design import MEANING, DesignSummary, design_figures, design_summary
+from .dynamics import dynamics_section
 from .frames import Animation, animation_data
-from .friction import (FrictionSection, friction_data, friction_figures, friction_json,
-                       friction_section)
+from .friction import FrictionSection, friction_data, friction_figures, friction_section
 from .mpl import PALETTE
 from .provenance import Meta, build_time, spec_sha256
-from .records import index_row, results_csv, summary_record
+from .records import index_row, summary_json
 from .ref_angles import DxfData, RefAngle, dxf_data, reference_angles
 from .scene import Scene
 from .section import Figure, display_of, effort_of, joint_colors, reaction_symbols
 from .spec_text import (MethodRow, branch_rows, driver_text, joint_rows, link_rows,
                         load_texts, method_row)
-from .strength import StrengthSection, strength_json, strength_section
+from .strength import StrengthSection, strength_section
 from .sweep_section import (SweepData, agreement_rows, bearing_rows, flag_rows,
                             left_out_text, peak_text, power_check_text, sweep_data,
                             sweep_figures, sweep_series, torque_texts)
@@ -122,17 +121,11 @@ def build_model(analysis, source: str | Path | None = None, sha256: str | None =
     status_line = summary_line(source, analysis)
     refs, scenes = reference_angles(analysis, ref, symbols, colors, d)
     sw = sweep_series(analysis, summary, symbols, colors, d)
-    power_text, power_json = power_check_text(summary.power_check, sw.method_title, d,
-                                              spec.driver.at_rest)
-    header, rows = results_csv(analysis)
+    power_text = power_check_text(summary.power_check, sw.method_title, d, spec.driver.at_rest)
+    header, rows = analysis.results_table()
     design = design_summary(analysis, d)
     fails = failed_expectations(analysis)
-    record = summary_record(analysis, summary, sw, status_line, power_json, symbols, meta,
-                            fails, d.scales)
-    record["design"] = design_json(analysis, d.scales)
-    record["friction"] = friction_json(analysis, d.scales)
-    record["dynamics"] = dynamics_json(analysis)
-    record["strength"] = strength_json(analysis)
+    record = summary_json(analysis, meta, status_line, fails)
     friction = friction_section(analysis, design, sw, d)
     dynamics = dynamics_section(analysis, d)
     strength = strength_section(analysis, d, spec.axis_unit)

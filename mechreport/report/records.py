@@ -1,164 +1,30 @@
-"""The report's machine-readable records: results.csv's header and rows, summary.json
-(SI, the unit in every field) with its ``quantities`` (what ``mechreport diff`` compares), and
-the index row built from a summary."""
+"""summary.json as the report writes it: the title block and the check line (the report's
+words), then the analysis's summary record (``Analysis.summary_record``, built once in the
+pipeline, :mod:`mechreport.pipeline.records`) and the dynamics and strength records; and the
+index row read back from a summary."""
 from __future__ import annotations
 
-import math
-
-import numpy as np
-
-from .. import post as q
-from ..post.columns import sweep_rows
-from ..post.sweep import SweepSummary
-from ..quantities import unit_of
-from ..units import DASH, deg, fmt, kind_of
+from ..units import DASH, deg, fmt
+from .dynamics import dynamics_json
 from .provenance import Meta
-from .section import jnum
-from .sweep_section import SweepData
+from .strength import strength_json
 
 
-def results_csv(analysis) -> tuple[list[str], list[list[str]]]:
-    """One row per analysed crank angle; left-out angles keep their row, with the reason in
-    ``flag`` and empty cells; undefined values (NaN) are empty cells; round-off is 0."""
-    columns = analysis.columns()
-    names = [c.name for c in columns]
-    data = np.column_stack([c.values for c in columns]) if columns else \
-        np.zeros((analysis.kinematics.n, 0))
-    rows = []
-    for a, k, why in zip(*sweep_rows(analysis.angles, analysis.flags)):
-        cells = ([""] * len(names) if k is None else
-                 [f"{v:.10g}" if math.isfinite(v) else "" for v in data[k].tolist()])
-        rows.append([deg(a), why, *cells])
-    return [analysis.spec.axis_column, "flag", *names], rows
-
-
-def _peak_json(p: q.Peak | None, unit: str, scale: float | None = None) -> dict | None:
-    return None if p is None else {"value": jnum(p.value, scale), "unit": unit,
-                                   "angle_deg": p.angle}
-
-
-def summary_record(analysis, summary: SweepSummary, sw: SweepData, status_line: str,
-             power: dict | None, symbols, meta: Meta, fails: list[dict], sc: dict) -> dict:
-    st = summary.torque
-    ref = summary.method
-    F, M = sc["force"], sc["moment"]
-    EU, ES = ("N", F) if sw.effort == "force" else ("N·m", M)   # a T driver pushes
-    effort_key = "driver_force" if sw.effort == "force" else "driver_torque"
-    largest = summary.largest
-    refs = {}
-    for angle in analysis.spec.at:
-        k = analysis.kinematics.index_of(angle)
-        if k is None:
-            continue
-        refs[deg(angle)] = {
-            effort_key: {m: jnum(r.driver_torque[k], ES) for m, r in analysis.forces.items()},
-            "reactions": {j: {m: {"fx": jnum(r.reactions[j].fx[k], F),
-                                  "fy": jnum(r.reactions[j].fy[k], F)}
-                              for m, r in analysis.forces.items() if j in r.reactions}
-                          for j in symbols},
-            "units": {effort_key: EU, "reactions": "N"}}
-    w = analysis.worst
-    cycle = analysis.review.values if analysis.review is not None else {}
-    if analysis.strength is not None:   # the members' quantities: key figures too (diff)
-        cycle = {**cycle, **analysis.strength.values}
+def summary_json(analysis, meta: Meta, status_line: str, fails: list[dict]) -> dict:
+    """summary.json of ``analysis``: provenance, status and check line, the failed
+    expectations ``fails``, then the analysis's records (SI, the unit beside every value)."""
+    spec = analysis.spec
     return {
-        "mechreport_version": meta.version, "spec": analysis.spec.file,
-        "axis_unit": analysis.spec.axis_unit,
+        "mechreport_version": meta.version, "spec": spec.file, "axis_unit": spec.axis_unit,
         "spec_sha256": meta.sha256, "date": meta.date,
-        "name": analysis.spec.name, "title": meta.title or analysis.spec.name,
+        "name": spec.name, "title": meta.title or spec.name,
         "project": meta.project or None, "author": meta.author or None,
         "revision": meta.revision or None,
         "status": "PASS" if analysis.passed else "FAIL", "check": status_line,
         "failures": fails,
-        "reference_method": ref, "n_angles": int(analysis.kinematics.n),
-        "units": {"force": "N", "torque": "N·m", "moment": "N·m", "power": "W",
-                  "length": "m", "angle": "deg", "note": "summary.json and results.csv are SI"},
-        effort_key: None if st is None else {
-            "unit": EU, "mean": jnum(st.mean, ES), "rms": jnum(st.rms, ES),
-            "peak": _peak_json(st.peak, EU, ES), "min": _peak_json(st.low, EU, ES),
-            "max": _peak_json(st.high, EU, ES)},
-        "driver_effort": "force" if EU == "N" else "torque",
-        "mean_power": None if st is None else {"value": jnum(st.power), "unit": "W"},
-        "reactions": {js.name: {"symbol": js.symbol, "unit": "N",
-                                "peak": _peak_json(jl.peak, "N", F),
-                                "peak_away_from_left_out": _peak_json(jl.peak_far, "N", F),
-                                "rms": None if jl.rms is None else jnum(jl.rms, F),
-                                "fx_peak": _peak_json(jl.fx_peak, "N", F),
-                                "fy_peak": _peak_json(jl.fy_peak, "N", F)}
-                      for js in sw.joints if (jl := summary.joints[js.name])},
-        "largest_bearing_load": None if largest is None else {
-            "joint": largest[0], **_peak_json(largest[1], "N", F),
-            "away_from_left_out": _peak_json(summary.joints[largest[0]].peak_far, "N", F)},
-        "shaking": {"force_peak": _peak_json(summary.shaking_force, "N", F),
-                    "moment_peak": _peak_json(summary.shaking_moment, "N·m", M)},
-        "reference_angles": refs,
-        "branches": [{"dyad": b.dyad, "type": b.kind, "rule": b.rule}
-                     for b in analysis.kinematics.branches],
-        "agreement": {
-            "worst": None if w is None else {"quantity": w.quantity, "relative": w.relative,
-                                             "absolute": w.absolute,
-                                             "unit": analysis.spec.unit_of(w.quantity) or "N",
-                                             "methods": list(w.methods), "angle_deg": w.angle},
-            "quantities": [{"quantity": a.quantity, "relative": a.relative,
-                            "absolute": a.absolute,
-                            "unit": analysis.spec.unit_of(a.quantity) or "N",
-                            "methods": list(a.methods),
-                            "angle_deg": a.angle} for a in analysis.agreement]},
-        "power_balance": power,
-        "residuals": [{"method": r.method, "force_N": r.force, "moment_N_m": r.moment}
-                      for r in analysis.residuals],
-        "flags": [{"angle_deg": f.angle, "kind": f.kind, "reason": f.reason}
-                  for f in analysis.flags],
-        "near_singular_deg": sw.near_deg,
-        "notes": analysis.kinematics.notes(),
-        "quantities": _quantities(summary, cycle, sc, EU),
-    }
-
-
-def _quantities(summary: SweepSummary, cycle: dict, sc: dict, effort_unit: str = "N·m") -> dict:
-    """Every key figure by name -> {value [SI], unit}: what ``mechreport diff`` compares and
-    the index lists, each once: where the cycle quantities are defined, a sweep peak that
-    one of them states (a joint's peak load is ``joint.J.f_max``, the shaking force's and
-    moment's ``cycle.shaking.*_max``, the effort's mean and RMS and the mean power are
-    ``cycle.torque.mean``, ``cycle.torque.rms`` and ``cycle.power.mean``) is not listed again
-    under another name. The driver's signed peak and its angle stay: no cycle quantity says
-    where it is."""
-    out: dict[str, dict] = {}
-    cyclic = bool(cycle)
-
-    def put(name, value, unit, kind=None, angle=None):
-        if value is None:
-            return
-        entry = {"value": jnum(value, sc.get(kind) if kind else None), "unit": unit}
-        if angle is not None:
-            entry["angle_deg"] = float(angle)
-        out[name] = entry
-
-    st = summary.torque
-    if st is not None:
-        name, kind = (("driver.force", "force") if effort_unit == "N"
-                      else ("driver.torque", "moment"))
-        if "cycle.torque.rms" not in cycle:   # over a whole turn the cycle's names say them
-            put(f"{name}.mean", st.mean, effort_unit, kind)
-            put(f"{name}.rms", st.rms, effort_unit, kind)
-            put("driver.power.mean", st.power, "W")
-        put(f"{name}.peak", st.peak.value, effort_unit, kind, st.peak.angle)   # signed, where
-    for name, jl in summary.joints.items():
-        pk = jl.peak
-        if pk is not None:
-            if not cyclic or f"joint.{name}.f_max" not in cycle:
-                put(f"joint.{name}.f.peak", pk.value, "N", "force", pk.angle)
-            put(f"joint.{name}.f.rms", jl.rms, "N", "force")
-    sh = summary.shaking_force
-    if sh is not None and "cycle.shaking.force_max" not in cycle:
-        put("shaking.force.peak", sh.value, "N", "force", sh.angle)
-    shm = summary.shaking_moment
-    if shm is not None and "cycle.shaking.moment_max" not in cycle:
-        put("shaking.moment.peak", shm.value, "N·m", "moment", shm.angle)
-    for name, value in cycle.items():
-        unit = unit_of(name) or ""
-        put(name, value, unit, kind_of(unit))
-    return out
+        **analysis.summary_record(),
+        "dynamics": dynamics_json(analysis),
+        "strength": strength_json(analysis)}
 
 
 def _away_value(big: dict | None) -> float | None:

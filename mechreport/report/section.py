@@ -1,26 +1,20 @@
-"""What every section of the report model shares: the number formatters (:func:`num` for
-the text, :func:`jnum` for JSON), a :class:`Figure`, the display units of an analysis, the
-driver's effort and coordinate, the joints' colours and reaction symbols."""
+"""What every section of the report model shares: the number formatter (:func:`num`), a
+:class:`Figure`, the display units of an analysis, the driver's effort and coordinate, the
+joints' colours (their reaction symbols are :func:`mechreport.post.records.reaction_symbols`)."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
-from ..units import SIG_DIGITS, Display, clean, fmt
+from ..units import SIG_DIGITS, Display, fmt
+from ..post.records import reaction_symbols
 from .mpl import PALETTE
+
+__all__ = ["Figure", "display_of", "effort_of", "joint_colors", "num", "reaction_symbols"]
 
 
 def num(x, digits: int = SIG_DIGITS) -> str:
     """``x`` (already in the unit it is shown in) by the one formatter; "—" for None/NaN."""
     return fmt(x, digits)
-
-
-def jnum(x, scale: float | None = None) -> float | None:
-    """A float for JSON (SI, round-off of its quantity's ``scale`` made 0): None where
-    undefined."""
-    if x is None or not math.isfinite(float(x)):
-        return None
-    return clean(float(x), scale)
 
 
 @dataclass
@@ -65,13 +59,3 @@ def joint_colors(spec) -> dict[str, str]:
     """One colour per joint, in spec order, across every figure (:data:`PALETTE`)."""
     return {name: PALETTE[i % len(PALETTE)]
             for i, name in enumerate(spec.reported_reactions())}
-
-
-def reaction_symbols(spec) -> dict[str, str]:
-    """Textbook reaction symbol of each joint: F<first><second> by link number; a pin
-    joining several links: F<pin><link> for its force on its hub (on the others, it is the
-    reaction of the hub's joint to each)."""
-    out = {j.name: spec.symbol(*j.links) for j in spec.joints}
-    for pin in spec.pins:
-        out[pin.joint_name(pin.hub)] = f"F{pin.name}{spec.number(pin.hub)}"
-    return {name: out[name] for name in spec.reported_reactions()}

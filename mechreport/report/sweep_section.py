@@ -14,7 +14,7 @@ from ..post.bearings import bearing_carrier
 from ..post.sweep import PowerCheck, SweepSummary
 from ..units import DASH, Display, deg, fmt, kind_of
 from .ref_angles import RefAngle
-from .section import Figure, display_of, effort_of, jnum, joint_colors, reaction_symbols
+from .section import Figure, display_of, effort_of, joint_colors, reaction_symbols
 
 
 @dataclass
@@ -179,17 +179,17 @@ def agreement_rows(analysis, d: Display) -> list[list[str]]:
 
 
 def power_check_text(pc: PowerCheck | None, method_title: str, d: Display,
-                     at_rest: bool = False) -> tuple[str, dict | None]:
+                     at_rest: bool = False) -> str:
+    """The power balance's check against the reference method, in one sentence."""
     if pc is None:
-        return "The power balance was not solved.", None
+        return "The power balance was not solved."
     balance = ("Virtual work (the driver at rest: M = −Σ of every other action times its "
                "velocity coefficient)" if at_rest else
                "Power balance (M ω = Σ of the power of every other action)")
     text = (f"{balance} against "
             f"{method_title}: largest torque difference {_diag(pc.max_abs, 'moment', d)} "
             f"({fmt(pc.relative, 2)} of the peak torque) at {deg(pc.angle)}°.")
-    return text, {"max_abs_N_m": jnum(pc.max_abs), "relative": jnum(pc.relative),
-                  "angle_deg": pc.angle}
+    return text
 
 
 def left_out_text(analysis, summary: SweepSummary, sw: SweepData, d: Display) -> str:
