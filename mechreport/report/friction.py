@@ -13,6 +13,7 @@ from ..post.records import friction_symbol, largest
 from ..units import DASH, Display, deg, fmt
 from .design import DesignSummary, design_summary
 from .section import Figure
+from .spec_items import JOINT_KINDS
 from .sweep_section import SweepData, sweep_data
 
 
@@ -91,7 +92,7 @@ def friction_section(analysis, design: DesignSummary, sw: SweepData, d: Display
         lost = losses.get(fr.joint)
         share = (f"{fmt(100 * lost / total, 3)} %" if lost is not None and total else DASH)
         peak = largest(values.get(fr.joint), analysis.angles)
-        rows.append([fr.joint, "pin (R)" if j.type == "R" else "slider (T)",
+        rows.append([fr.joint, JOINT_KINDS[j.type],
                      friction_symbol(spec, j), fmt(fr.mu), size,
                      DASH if lost is None else fmt(lost),
                      share, DASH if peak is None else d.q(peak[0], kind),

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 from ..units import SIG_DIGITS, Display, fmt
 from ..post.records import reaction_symbols
 from .mpl import PALETTE
+from .spec_items import effort_of
 
 __all__ = ["Figure", "display_of", "effort_of", "joint_colors", "num", "reaction_symbols"]
 
@@ -43,16 +44,6 @@ def display_of(analysis) -> Display:
     return Display(units["length"], units["force"], units["moment"], units.get("mass", "kg"),
                    analysis.scales(), stress=units.get("stress", "MPa"),
                    pressure=units.get("pressure", "Pa"))
-
-
-def effort_of(spec) -> tuple[str, str, str, str]:
-    """(kind, label, coordinate, unit suffix) of the driver: a crank's torque over the crank
-    angle in degrees, or a T driver's force over its stroke in the spec's length unit."""
-    d = spec.driver
-    if getattr(d, "kind", "R") == "T":
-        return "force", "driver force F", "stroke", " " + spec.units.get("length", "m")
-    coord = getattr(d, "coordinate", "crank angle")
-    return "moment", "driver torque M", coord, "°"
 
 
 def joint_colors(spec) -> dict[str, str]:

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 from ..forces import METHODS
 from ..spec import GROUND
 from ..units import DASH, Display, deg, fmt
+from .spec_items import JOINT_KINDS, driver_item, load_items
 
 
 @dataclass(frozen=True)
@@ -61,7 +62,7 @@ def joint_rows(spec, symbols, d: Display) -> list[list[str]]:
                      f"on {b}")
         else:
             where = f"pin at {j.point}"
-        rows.append([j.name, "pin (R)" if j.type == "R" else "slider (T)", links,
+        rows.append([j.name, JOINT_KINDS[j.type], links,
                      symbols[j.name], where])
     return rows
 
@@ -80,8 +81,10 @@ def _branch_text(rule: str) -> str:
 
 
 def load_texts(spec, d: Display) -> list[str]:
+    """Each load in words, in display units (:func:`~mechreport.report.spec_items.load_items`)."""
     out = []
-    for ld in spec.loads:
+    for item in load_items(spec):
+        ld = item.load
         kind = "force" if ld.kind == "force" else "moment"
         unit = d.unit(kind)
         if ld.value is not None:
@@ -97,11 +100,10 @@ def load_texts(spec, d: Display) -> list[str]:
             val = f"profile [{prof}] {unit}{u}{shift}"
         else:
             val = _element_text(ld, d)
-        at = f" at {ld.point}" if ld.point else ""
+        at = f" at {item.point}" if item.point else ""
         opp = f", opposing its {ld.oppose}" if ld.oppose else ""
-        name = f"{ld.label}: " if getattr(ld, "label", "") else ""
-        kind_name = "pressure" if ld.pressure is not None else ld.kind.replace('_', ' ')
-        out.append(f"{name}{kind_name} on {ld.link}{at}: {val}{opp}")
+        name = f"{item.label}: " if item.label else ""
+        out.append(f"{name}{item.what} on {item.link}{at}: {val}{opp}")
     return out
 
 
@@ -140,18 +142,16 @@ def _element_text(ld, d: Display) -> str:
 
 
 def driver_text(spec) -> str:
-    d = spec.driver
-    joint = spec.joint(d.joint).written
+    """How the driver moves, in one phrase (:func:`~mechreport.report.spec_items.driver_item`)."""
+    d = driver_item(spec)
     if d.at_rest:
         what = "stroke" if d.kind == "T" else "angle"
-        if d.alpha == 0:
-            return (f"joint {joint} holds {d.link} at rest at each {what} (a static "
+        if d.holds:
+            return (f"joint {d.joint} holds {d.link} at rest at each {what} (a static "
                     "analysis: the holding effort and the reactions)")
-        unit = "m/s²" if d.kind == "T" else "rad/s²"
-        return (f"joint {joint} starts {d.link} from rest at each {what}, "
-                f"{'accel' if d.kind == 'T' else 'α'} = {fmt(d.alpha)} {unit}")
-    if getattr(d, "kind", "R") != "R":
-        return f"joint {joint} drives {d.link} along its line at {fmt(d.omega)} m/s"
-    rpm = d.rpm
-    return (f"joint {joint} turns {d.link} at ω = {fmt(d.omega)} rad/s ({fmt(rpm)} rpm), "
+        return (f"joint {d.joint} starts {d.link} from rest at each {what}, "
+                f"{'accel' if d.kind == 'T' else 'α'} = {fmt(d.alpha)} {d.accel_unit}")
+    if d.kind != "R":
+        return f"joint {d.joint} drives {d.link} along its line at {fmt(d.omega)} {d.rate_unit}"
+    return (f"joint {d.joint} turns {d.link} at ω = {fmt(d.omega)} rad/s ({fmt(d.rpm)} rpm), "
             f"α = {fmt(d.alpha)} rad/s²")
