@@ -108,7 +108,7 @@ def with_friction(kin: Kinematics) -> tuple[Kinematics, FrictionSolution]:
     found from the Newton-Euler equations' responses, with the angles that have no
     determined friction left out and flagged, and those where friction alone reverses the
     driver's effort (``reversed_by_friction``: the loads cannot drive the mechanism back
-    there, a note says so)."""
+    there, a note says so), and the driver's effort without friction (``frictionless``)."""
     unit = ForceContext(unit_friction(kin, kin.mechanism.spec.friction))
     parts = split_by_source(unit, newton_euler_steps(unit), friction_apart=True)
     solution = solve_friction(kin, parts, unit)
@@ -119,7 +119,8 @@ def with_friction(kin: Kinematics) -> tuple[Kinematics, FrictionSolution]:
              else "friction") for k, why in solution.left_out.items()),
         key=lambda f: f.angle))
     reversed_at = tuple(float(x) for x in kin.angles[solution.reversed & keep])
-    out = replace(kin, friction=solution.values, reversed_by_friction=reversed_at)
+    out = replace(kin, friction=solution.values, reversed_by_friction=reversed_at,
+                  frictionless=solution.frictionless)
     return (out if keep.all() else out.take(keep, flags)), solution
 
 

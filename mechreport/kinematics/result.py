@@ -178,6 +178,9 @@ class Kinematics:
     friction: dict[str, np.ndarray] | None = None
     # angles [deg] where friction alone reverses the sign of the driver's effort
     reversed_by_friction: tuple[float, ...] = ()
+    # the driver's effort without friction (n,) [N m, or N for a T driver]: the same motion
+    # and loads, the joints frictionless (solved with the friction); None without friction
+    frictionless: np.ndarray | None = None
     # the driven coordinate's rate (n,) [rad/s or m/s] where it varies from angle to angle
     # (machine dynamics: the crank's true speed); None: the driver's constant omega
     rates: np.ndarray | None = None
@@ -292,6 +295,8 @@ class Kinematics:
                        reversed_by_friction=tuple(
                            a for a in self.reversed_by_friction
                            if np.any(np.abs(self.angles[rows] - a) < 1e-9)),
+                       frictionless=None if self.frictionless is None else
+                       self.frictionless[rows],
                        rates=None if self.rates is None else self.rates[rows])
 
     @property

@@ -198,6 +198,17 @@ class Analysis(Checked):
         return self._once(("columns",), lambda: result_columns(self.kinematics, self.forces,
                                                               self.scales()))
 
+    def results_table(self) -> tuple[list[str], list[list[str]]]:
+        """results.csv's header and rows (see :func:`mechreport.pipeline.records.results_table`)."""
+        from .records import results_table
+        return self._once(("results_table",), lambda: results_table(self))
+
+    def summary_record(self) -> dict:
+        """summary.json's results, SI with units (see
+        :func:`mechreport.pipeline.records.summary_record`): read, never changed."""
+        from .records import summary_record
+        return self._once(("summary_record",), lambda: summary_record(self))
+
     def to_dataframe(self):
         """Every result as a pandas DataFrame (``pip install 'mechreport[pandas]'``): one
         row per angle of the sweep, indexed by the sweep coordinate

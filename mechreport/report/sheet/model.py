@@ -23,6 +23,7 @@ from ...spec import GROUND
 from ...kinematics.frames import perp
 from .expr import (ZERO, Equation, Expr, Num, Op, Paren, Point, Raw, Sym, fmt, round_off,
                    sheet_zero)
+from ..spec_items import JOINT_KINDS, LoadItem, driver_item, link_label, load_items
 from .kinematics import derive, scalar, vec_expr
 from .statement import eng, sci, statement
 from .symbols import (M_, N_, NM_, R, Names, alpha, axis_atom, comp_sym, omega, scalar_sym,
@@ -247,11 +248,11 @@ class ProblemModel:
 def coordinate(spec, angle: float) -> tuple[str, str]:
     """(heading, short) for a reference value: ("Crank angle 45°", "φ = 45°") or
     ("Stroke 300 mm", "s = 300 mm")."""
-    d = spec.driver
+    d = driver_item(spec)
     if d.kind == "R":
         what = "Crank angle" if d.crank else "Relative angle"
         return f"{what} {fmt(angle)}°", f"φ = {fmt(angle)}°"
-    u = spec.units.get("length", "m")
+    u = d.length_unit
     return f"Stroke {fmt(angle)} {u}", f"s = {fmt(angle)} {u}"
 
 
@@ -417,17 +418,16 @@ def _method_model(name: str, result, worked: tuple, k: int, names: Names, spec, 
 
 def _intro(analysis, k: int) -> list:
     kin, spec = analysis.kinematics, analysis.spec
-    d = spec.driver
-    drv = spec.link(d.link)
-    n = drv.number
+    d = driver_item(spec)
+    n = d.number
     if d.kind == "R":
-        return [f"The driver link {n} ({drv.name}) turns at ",
+        return [f"The driver {d.label} turns at ",
                 Equation([Expr().add(1, omega(n)), scalar(kin.omega[k, n], Raw(
                     r"\mathrm{rad/s}", '"rad/s"', "rad/s"))]), " with ",
                 Equation([Expr().add(1, alpha(n)), scalar(kin.alpha[k, n], Raw(
                     r"\mathrm{rad/s^2}", '"rad/s"^2', "rad/s^2"))]), "."]
     return [f"The actuator extends at {fmt(d.omega)} m/s (acceleration {fmt(d.alpha)} m/s²), "
-            f"moving link {n} ({drv.name})."]
+            f"moving {d.label}."]
 
 
 def _inertia_rows(analysis, k: int) -> list:
@@ -882,7 +882,7 @@ def _build_sheet(analysis, options: SheetOptions | None = None) -> SheetModel:
                       "value to 12 digits; “none found” means the value is not such a "
                       "combination (or needs more digits than a computed value can confirm).")
     methods = choose_methods(analysis, options.methods)
-    from ..model import display_of
+    from ..section import display_of
     display = display_of(analysis)
     si = (display.length, display.force, display.moment, display.mass) == ("m", "N", "N*m", "kg")
     links = [[str(l.number), l.name, ", ".join(f"{p} {_vec(xy)}" for p, xy in l.points.items()),
@@ -898,41 +898,38 @@ def _build_sheet(analysis, options: SheetOptions | None = None) -> SheetModel:
     angle_models = [_angle_model(analysis, float(a), names, exact, methods,
                                  None if si else display, parts) for a in angles]
     return SheetModel(spec.name, str(spec.file), spec.description.strip(), options.exact,
-                      links, joints, _driver_text(spec), _conventions(spec),
+                      links, joints, driver_datum(spec), _conventions(spec),
                       T_NOTE if any(j.type == "T" for j in spec.joints) else [],
                       angle_models, [METHODS[m].TITLE for m in methods],
                       "" if si else display.describe(), exact_note)
 
 
-def _driver_text(spec) -> list:
-    d = spec.driver
-    joint = spec.joint(d.joint).written
-    link = spec.link(d.link)
-    if d.at_rest and d.alpha == 0:
-        return [f"Driver: joint {joint} holds link {link.number} ({link.name}) at rest "
+def driver_datum(spec) -> list:
+    """The problem's driver datum (:func:`~mechreport.report.spec_items.driver_item`)."""
+    d = driver_item(spec)
+    if d.holds:
+        return [f"Driver: joint {d.joint} holds {d.label} at rest "
                 "(a static problem: no inertia forces; the driver's effort holds the "
                 "mechanism in each position)."]
     if d.at_rest:
-        unit = "rad/s²" if d.kind == "R" else "m/s²"
-        return [f"Driver: joint {joint} starts link {link.number} ({link.name}) from rest, "
-                f"accelerating at {fmt(d.alpha)} {unit}: at this instant every velocity is "
-                "zero, and the inertia forces come from the accelerations alone."]
+        return [f"Driver: joint {d.joint} starts {d.label} from rest, "
+                f"accelerating at {fmt(d.alpha)} {d.accel_unit}: at this instant every "
+                "velocity is zero, and the inertia forces come from the accelerations alone."]
     if d.kind == "R":
-        rpm = d.rpm
-        return [f"Driver: joint {joint}, link {link.number} ({link.name}) turns at ",
-                Equation([Expr().add(1, omega(link.number)), scalar(d.omega, Raw(
+        return [f"Driver: joint {d.joint}, {d.label} turns at ",
+                Equation([Expr().add(1, omega(d.number)), scalar(d.omega, Raw(
                     r"\mathrm{rad/s}", '"rad/s"', "rad/s"))]),
-                f" ({fmt(rpm)} rpm)" + (", constant" if d.alpha == 0 else
-                                        f", accelerating at {fmt(d.alpha)} rad/s²") + "."]
-    return [f"Driver: the actuator {joint} extends at {fmt(d.omega)} m/s, moving link "
-            f"{link.number} ({link.name})."]
+                f" ({fmt(d.rpm)} rpm)" + (", constant" if d.alpha == 0 else
+                                          f", accelerating at {fmt(d.alpha)} rad/s²") + "."]
+    return [f"Driver: the actuator {d.joint} extends at {fmt(d.omega)} m/s, moving "
+            f"{d.label}."]
 
 
 # ------------------------------------------------------------------------------ problem
 
-def _load_text(spec, load) -> str:
-    def where(link, point):
-        return f"link {spec.number(link)} ({link})" + (f" at {point}" if point else "")
+def _load_text(spec, item: LoadItem) -> str:
+    """A load as the problem states it, SI (:func:`~mechreport.report.spec_items.load_items`)."""
+    load = item.load
     if load.kind == "spring":
         (la, pa), (lb, pb) = load.between
         return (f"a spring of stiffness {fmt(load.stiffness)} N/m and free length "
@@ -959,11 +956,11 @@ def _load_text(spec, load) -> str:
             what = (f"a force along {_vec(load.direction)} whose magnitude [N] follows "
                     f"{_profile_text(load.profile, spec, load.shift)}")
         rule = " opposing the velocity of its point" if load.oppose == "velocity" else ""
-        return f"{what} on {where(load.link, load.point)}{rule}"
+        return f"{what} on {item.where}{rule}"
     what = f"a moment {fmt(load.value)} N·m" if load.value is not None else \
         f"a moment [N·m] following {_profile_text(load.profile, spec, load.shift)}"
     rule = " opposing the link's rotation" if load.oppose == "rotation" else ""
-    return f"{what} on {where(load.link, None)}{rule}"
+    return f"{what} on {link_label(spec, item.link)}{rule}"
 
 
 def _profile_text(profile, spec, shift: float = 0.0) -> str:
@@ -979,8 +976,8 @@ def _profile_text(profile, spec, shift: float = 0.0) -> str:
             else f", repeating every {fmt(cycle)}° cycle")
     phase = (f"; shifted by {fmt(shift)}°: the value at φ is the profile's at φ − {fmt(shift)}°"
              if shift else "")
-    return (f"the profile {points} over the {spec.driver.coordinate} (linear between these "
-            f"points{turn}{phase})")
+    return (f"the profile {points} over the {driver_item(spec).coordinate} (linear between "
+            f"these points{turn}{phase})")
 
 
 def build_problem(analysis, options: SheetOptions | None = None,
@@ -1017,20 +1014,21 @@ def _build_problem(analysis, options: SheetOptions | None = None,
             shape = "; ".join(x for x in (shape, _strength_datum(l)) if x)
         links.append([str(l.number), l.name, ", ".join(f"{p} {_vec(xy)}" for p, xy in pts),
                       ", ".join(dims), shape, sci(l.mass), sci(l.inertia), _vec(l.com)])
-    joints = [[j.name, {"R": "pin (R)", "T": "slider (T)"}[j.type],
+    joints = [[j.name, JOINT_KINDS[j.type],
                f"{spec.number(j.links[0])} ({j.links[0]}) – {spec.number(j.links[1])} "
                f"({j.links[1]})" + (f", line through {_vec(j.line.through)} along "
                                     f"{_vec(j.line.direction)} in the frame of "
                                     f"{j.links[0]}" if j.type == "T" else "")]
               for j in spec.joints if spec.pin(j.point) is None]
-    joints += [[pin.name, "pin (R)", " – ".join(f"{spec.number(x)} ({x})" for x in pin.links)]
+    joints += [[pin.name, JOINT_KINDS["R"],
+                " – ".join(f"{spec.number(x)} ({x})" for x in pin.links)]
                for pin in spec.pins]       # the pin as written, not its two-link joints
     for fr in spec.friction:               # its friction, with the joint (or the pin)
         joint = spec.joint(fr.joint)
         row = next(r for r in joints if r[0] == joint.written)
         row[2] += "; " + _friction_datum(spec, fr, joint)
     ground = [f"{n} {_vec(xy)}" for n, xy in spec.ground.items()]
-    loads = [_load_text(spec, ld) for ld in spec.loads]
+    loads = [_load_text(spec, item) for item in load_items(spec)]
     figs = []
     if sheet is not None:
         for am in sheet.angles:
@@ -1068,7 +1066,7 @@ def _build_problem(analysis, options: SheetOptions | None = None,
                                                  else "a power balance."))
     own = spec.sheet_settings.statement
     return ProblemModel(spec.name, str(spec.file), "", links, joints,
-                        ground, _driver_text(spec), _vec(spec.gravity) + " m/s²", loads, figs,
+                        ground, driver_datum(spec), _vec(spec.gravity) + " m/s²", loads, figs,
                         tasks, statement=[own] if own else statement(spec, shorts),
                         own_statement=bool(own))
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 
 from ...spec import GROUND
+from ..spec_items import driver_item, link_label
 from .expr import fmt
 
 _SUPER = str.maketrans("0123456789-+", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺")
@@ -44,52 +45,49 @@ def eng(x: float, unit: str) -> str:
     return f"{sci(x / 10 ** exp)} {_PREFIX[exp]}{unit}"
 
 
-def _link(spec, name: str) -> str:
-    return f"link {spec.number(name)} ({name})"
-
-
 def driver_statement(spec) -> str:
-    """How the mechanism is driven, with the driven coordinate defined."""
-    d = spec.driver
-    joint = spec.joint(d.joint)
-    moving = _link(spec, d.link)
+    """How the mechanism is driven, with the driven coordinate defined
+    (:func:`~mechreport.report.spec_items.driver_item`)."""
+    d = driver_item(spec)
+    joint = spec.joint(spec.driver.joint)
+    moving = d.label
     if d.kind == "R":
-        if d.crank:
+        if spec.driver.crank:
             coord = (f"The crank angle φ is the angle of {moving}'s x-axis (through its points "
                      "as tabulated) from the global x-axis, counter-clockwise.")
         else:
             a, b = joint.links
-            coord = (f"The angle φ is the angle of {_link(spec, b)}'s x-axis relative to "
-                     f"{_link(spec, a)}'s, counter-clockwise.")
-        if d.at_rest and d.alpha == 0:
-            how = (f"The mechanism is at rest: a torque M at joint {joint.written} holds "
+            coord = (f"The angle φ is the angle of {link_label(spec, b)}'s x-axis relative to "
+                     f"{link_label(spec, a)}'s, counter-clockwise.")
+        if d.holds:
+            how = (f"The mechanism is at rest: a torque M at joint {d.joint} holds "
                    f"{moving} in each position given below.")
         elif d.at_rest:
-            how = (f"The mechanism starts from rest: joint {joint.written} drives {moving} "
+            how = (f"The mechanism starts from rest: joint {d.joint} drives {moving} "
                    f"with an angular acceleration of {fmt(d.alpha)} rad/s² and no speed yet.")
         else:
             sense = "counter-clockwise" if d.omega > 0 else "clockwise"
-            how = (f"A torque M at joint {joint.written} drives {moving} at {fmt(abs(d.rpm))} "
+            how = (f"A torque M at joint {d.joint} drives {moving} at {fmt(abs(d.rpm))} "
                    f"rpm ({fmt(abs(d.omega))} rad/s) {sense}"
                    + (", constant." if d.alpha == 0 else
                       f", accelerating at {fmt(d.alpha)} rad/s²."))
         return f"{how} {coord}"
     guide, slider = joint.links
-    unit = spec.units.get("length", "m")
+    unit = d.length_unit
     through = joint.line.through
     origin = (f"point {joint.line.through_name}" if joint.line.through_name else
               f"the point ({fmt(through[0])}, {fmt(through[1])}) m")
-    coord = (f"The stroke s is the displacement of point {joint.point} of {_link(spec, slider)} "
-             f"along the line of joint {joint.name}, measured from {origin} of "
-             f"{_link(spec, guide)}'s frame and "
+    coord = (f"The stroke s is the displacement of point {joint.point} of "
+             f"{link_label(spec, slider)} along the line of joint {joint.name}, measured from "
+             f"{origin} of {link_label(spec, guide)}'s frame and "
              f"positive along ({fmt(joint.line.direction[0])}, "
              f"{fmt(joint.line.direction[1])}) in that frame; it is given in {unit}.")
-    if d.at_rest and d.alpha == 0:
+    if d.holds:
         how = (f"The actuator {joint.name} is at rest: its force F_d holds the mechanism in "
                "each position given below.")
     else:
-        how = (f"The actuator {joint.name}, between {_link(spec, guide)} and "
-               f"{_link(spec, slider)}, "
+        how = (f"The actuator {joint.name}, between {link_label(spec, guide)} and "
+               f"{link_label(spec, slider)}, "
                f"extends at {fmt(d.omega)} m/s" + ("." if d.alpha == 0 else
                                                    f", accelerating at {fmt(d.alpha)} m/s²."))
     return f"{how} {coord}"
