@@ -31,9 +31,11 @@ check: $(STAMP)
 
 bench: $(TEST_STAMP)
 	$(BIN)/python bench/bench_methods.py
+	$(BIN)/python bench/bench_build.py $(if $(AGAINST),--against $(AGAINST))
 
+# `make bench-build AGAINST=bf87766`: this tree and that revision, measured in one run
 bench-build: $(TEST_STAMP)
-	$(BIN)/python bench/bench_build.py
+	$(BIN)/python bench/bench_build.py $(if $(AGAINST),--against $(AGAINST))
 
 clean:
 	rm -rf out/* $(VENV)

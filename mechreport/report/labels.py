@@ -179,6 +179,18 @@ class Labels:
         dy = min(a[3], b[3]) - max(a[1], b[1])
         return dx * dy if dx > 0 and dy > 0 else 0.0
 
+    @staticmethod
+    def _overlaps(a, boxes: np.ndarray) -> float:
+        """``sum(_overlap(a, b) for b in boxes)`` (``boxes`` (n, 4)), bit for bit: the same
+        min/max (Python's, NaN included), products and left-to-right sum, over arrays (the
+        zero terms left out change no sum). Issue 48: the loop was 700 000 calls over the
+        specs/ batch, 0.9 s of 55 under the profiler."""
+        x0, y0, x1, y1 = boxes.T
+        dx = np.where(x1 < a[2], x1, a[2]) - np.where(x0 > a[0], x0, a[0])
+        dy = np.where(y1 < a[3], y1, a[3]) - np.where(y0 > a[1], y0, a[1])
+        hit = (dx > 0) & (dy > 0)
+        return sum((dx[hit] * dy[hit]).tolist())
+
     def place(self, text: str, x: float, y: float, color: str = "k", bold: bool = False,
               prefer=None, fontsize: float | None = None) -> None:
         """Write ``text`` (as given: literal where it carries a spec's name) beside data
@@ -202,10 +214,11 @@ class Labels:
                    "bottom" if sy > 0 else "top") for k in (4.5, 6.5)
                   for sx, sy in ((1, 1), (-1, 1), (1, -1), (-1, -1))]
         best, best_score = None, math.inf
+        placed = np.asarray(self.boxes, float).reshape(-1, 4)
         for dx, dy, ha, va in cands:
             box = self._box(px + dx * self.pt, py + dy * self.pt, w, h, ha, va)
             area = (box[2] - box[0]) * (box[3] - box[1])
-            score = (sum(self._overlap(box, b) for b in self.boxes)
+            score = (self._overlaps(box, placed)
                      + self.OUTSIDE * (area - self._overlap(box, self.frame)))
             if score < best_score:
                 best, best_score = (dx, dy, ha, va, box), score

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import re
 import string
+import threading
 from pathlib import Path
 
 import typst
@@ -39,13 +40,32 @@ def source_date_epoch() -> int | None:
     return value if value >= 0 else None
 
 
+#: one Typst compiler per thread, kept for the process (a batch's every report, sheet and
+#: index): its fonts are read once and its memoised layout work is shared between documents.
+#: Measured (issue 48, 5 documents of two specs, CPU): 0.59 s compiled one by one, 0.54 s by
+#: one compiler; the same PDF bytes. It reads every file afresh on each compile (a figure
+#: written again is seen) and its memory stays flat (118 MB over 60 documents).
+_COMPILERS = threading.local()
+
+
+def typst_compiler():
+    """This thread's :class:`typst.Compiler`: the bundled fonts and matplotlib's DejaVu fonts,
+    no system fonts (a compiler is not shared between threads)."""
+    compiler = getattr(_COMPILERS, "compiler", None)
+    if compiler is None:
+        fonts = typst.Fonts(include_system_fonts=False, font_paths=figure_fonts())
+        compiler = _COMPILERS.compiler = typst.Compiler(font_paths=fonts,
+                                                        ignore_system_fonts=True)
+    return compiler
+
+
 def compile_typst(source: str, out_pdf: Path, root: Path) -> Path:
     """Compile ``source`` to ``out_pdf``; images are resolved relative to ``root`` (the
     folder the source would live in). Written atomically. With ``SOURCE_DATE_EPOCH`` set the
     PDF carries that date, so the same input gives the same bytes."""
     try:
-        pdf = typst.compile(source.encode("utf-8"), root=str(root), ignore_system_fonts=True,
-                            font_paths=figure_fonts(), timestamp=source_date_epoch())
+        pdf = typst_compiler().compile(input=source.encode("utf-8"), root=str(root),
+                                       timestamp=source_date_epoch())
     except typst.TypstError as exc:
         raise RenderError(f"{out_pdf}: Typst could not typeset the report: {exc}") from None
     return atomic_write_bytes(Path(out_pdf), pdf)

@@ -48,3 +48,21 @@ def test_labels_at_one_point_never_overlap_and_take_the_boxes_they_measured():
         for b in drawn[i + 1:]:
             assert min(a.x1, b.x1) - max(a.x0, b.x0) <= 0.5 or \
                 min(a.y1, b.y1) - max(a.y0, b.y0) <= 0.5
+
+
+def test_overlap_sum_over_arrays_is_the_loop_bit_for_bit():
+    """Labels._overlaps (issue 48) is sum(_overlap(a, b) for b in boxes), NaN included."""
+    import numpy as np
+
+    from mechreport.report.labels import Labels
+    rng = np.random.default_rng(48)
+    for n in (0, 1, 7, 40):
+        boxes = rng.uniform(0, 100, (n, 4))
+        boxes[:, 2:] = boxes[:, :2] + rng.uniform(0, 30, (n, 2))
+        if n > 5:
+            boxes[3, 1] = np.nan
+        for _ in range(20):
+            a = tuple(float(v) for v in rng.uniform(0, 100, 2)) * 2
+            a = (a[0], a[1], a[0] + 17.3, a[1] + 9.1)
+            loop = sum(Labels._overlap(a, tuple(b)) for b in boxes)
+            assert Labels._overlaps(a, boxes) == loop
