@@ -60,9 +60,11 @@ def draw_histogram(ax, h: HistData) -> None:
         ax.text(0.5, 0.5, "no sample with a value", transform=ax.transAxes, ha="center")
         return
     unit = f" {h.unit}" if h.unit else ""
-    if not varies(float(np.std(v)), v):
-        ax.text(0.5, 0.5, f"every sample: {fmt(float(np.mean(v)))}{unit} (the tolerances do "
-                "not move it)", transform=ax.transAxes, ha="center", va="center")
+    if len(v) < 2 or not varies(float(np.std(v)), v):
+        text = (f"one ok sample only: {fmt(float(v[0]))}{unit} (no spread to show)"
+                if len(v) < 2 else f"every sample: {fmt(float(np.mean(v)))}{unit} (the "
+                "tolerances do not move it)")
+        ax.text(0.5, 0.5, text, transform=ax.transAxes, ha="center", va="center")
         ax.set_xticks([])
         ax.set_yticks([])
         ax.grid(False)

@@ -205,7 +205,9 @@ def analyse_samples(base, table, nominal, verdicts, method: str, why: str, secon
         limit, at_least, item = limit_of(q, verdicts)
         if len(col):
             p5, p95, p99 = (float(x) for x in np.percentile(col, PERCENTILES))
-            std = float(np.std(col, ddof=1)) if len(col) > 1 else 0.0
+            # one ok sample has no spread to measure: undefined (never a 0 that says the
+            # tolerances do not move the quantity)
+            std = float(np.std(col, ddof=1)) if len(col) > 1 else math.nan
             stats = (float(np.mean(col)), std, p5, p95, p99, float(col.min()), float(col.max()))
         else:
             stats = (math.nan,) * 7

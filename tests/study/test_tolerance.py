@@ -284,3 +284,36 @@ def test_the_limit_of_a_quantity_is_the_verdict_judged_on_it():
                                                                "limits.fatigue_safety")
     assert limit_of("cycle.torque.rms", verdicts) == (4.0, False, "motor.rated_torque")
     assert limit_of("cycle.torque.max", verdicts) == (None, False, "")
+
+
+def test_one_ok_sample_has_no_spread_to_report():
+    """Only one sample assembles (a rocker below 70 mm locks the crank): its standard
+    deviation is undefined, not 0, and the histogram does not say that the tolerances do not
+    move the quantity (the nominal 2.28 N·m is far from that sample's value)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from mechreport.report.write_markdown import markdown
+    from mechreport.study.tolerance_report import build_document, draw_histogram, hist_data
+    text = with_tolerances("""\
+  vary:
+    - {key: links.rocker.points.C.0, from: 55, to: 78}
+  count: 2
+  seed: 1
+  keep: [cycle.torque.rms]
+""")
+    result = mechreport.tolerance(text, jobs=1)
+    assert result.counts["ok"] == 1, result.table.status
+    s = result.quantities[0]
+    assert s.n == 1 and math.isnan(s.std)
+    assert "tolerance.cycle.torque.rms.std" not in result.summary()
+    assert "tolerance.cycle.torque.rms.mean" in result.summary()
+    row = [line for line in markdown(build_document(result, {})).splitlines()
+           if line.startswith("| cycle.torque.rms")][0]
+    assert row.split("|")[4].strip() == "—"
+    fig, ax = plt.subplots()
+    draw_histogram(ax, hist_data(result, 0))
+    said = " ".join(t.get_text() for t in ax.texts)
+    plt.close(fig)
+    assert "one ok sample only" in said and "do not move" not in said
