@@ -300,6 +300,11 @@ def run_optimize(base: BaseSpec, *, method: str | None = None, jobs: int = 1, cl
         size_pop = max(5, de_budget)
         init = _latin_hypercube(size_pop, d, seed)
     maxiter = max(0, de_budget // size_pop - 1)
+    # the spec's own design, where it lies in the box, is a member of the first population:
+    # the search never reports a box as infeasible, nor an optimum worse than the original,
+    # when the original is a feasible design of that box
+    u_start = (np.array([start_values(base)[v.key] for v in opt.vary]) - lo) / (hi - lo)
+    x0 = u_start if np.all((u_start >= 0.0) & (u_start <= 1.0)) else None
     if client is not None:
         from .cluster import dask_workers
         parts = dask_workers(client)
@@ -346,7 +351,7 @@ def run_optimize(base: BaseSpec, *, method: str | None = None, jobs: int = 1, cl
     try:
         try:
             how = dict(popsize=pop, maxiter=maxiter, tol=DE_TOL, polish=False,
-                       vectorized=True, updating="deferred", init=init)
+                       vectorized=True, updating="deferred", init=init, x0=x0)
             try:
                 res = differential_evolution(population, [(0.0, 1.0)] * d,
                                              rng=np.random.default_rng(seed), **how)

@@ -186,3 +186,23 @@ def test_a_design_that_fails_its_proof_is_not_the_optimum(monkeypatch):
     assert not first.ok and "the methods disagree" in first.why
     assert second.ok and r.optimum == second.index != first.index
     assert r.objective >= r.history.judged[first.index].objective
+
+
+def test_a_feasible_original_in_the_box_is_never_lost():
+    """A wide box in which almost nothing assembles (the crank turns only when it is the
+    shortest link) and a small budget: the first population held no feasible design and the
+    search stopped there, reporting no feasible design although the spec's own design, in
+    the box, is one. The original is a member of the first population."""
+    from optimize_specs import four_bar
+    needle = four_bar(step=8) + """
+optimize:
+  vary:
+    - {key: links.crank.points.B.0, from: 10, to: 2000}
+  minimize: cycle.torque.rms
+  budget: 12
+  seed: 0
+"""
+    r = optimize(needle)
+    assert r.original.feasible
+    assert r.feasible and r.objective <= r.original.objective
+    assert r.history.values[0][0] == pytest.approx(50.0, rel=1e-12)   # the spec's own crank
