@@ -206,3 +206,27 @@ optimize:
     assert r.original.feasible
     assert r.feasible and r.objective <= r.original.objective
     assert r.history.values[0][0] == pytest.approx(50.0, rel=1e-12)   # the spec's own crank
+
+
+def test_without_an_optimum_the_verdict_table_shows_the_least_violating_design():
+    """optimize.md's verdict table had an 'optimum' column left blank when nothing was
+    feasible, while the constraints table gave the least violating design's margins."""
+    from mechreport.report.write_markdown import markdown
+    from mechreport.study.optimize_report import build_document
+    from optimize_specs import four_bar
+    text = four_bar(step=8, design=True) + """
+optimize:
+  vary:
+    - {key: links.coupler.points.C.0, from: 170, to: 190}
+  minimize: cycle.torque.rms
+  subject_to:
+    - {quantity: cycle.transmission_angle.min, min: 85, unit: deg}
+  budget: 10
+"""
+    r = optimize(text)
+    assert not r.feasible and r.judged is not None
+    md = markdown(build_document(r, {}))
+    header = [line for line in md.splitlines() if line.startswith("| design verdict")][0]
+    assert "least violating" in header and "optimum" not in header
+    row = [line for line in md.splitlines() if line.startswith("| limits.joint")][0]
+    assert "pass (+" in row
