@@ -220,7 +220,9 @@ def analyse_samples(base, table, nominal, verdicts, method: str, why: str, secon
     design = table.design_pass
     r.design = _probability("design", int(np.count_nonzero(design == 1)), n,
                             nominal=all(v.passed for v in verdicts))
-    built = n - int(np.count_nonzero(table.has("no assembly") | table.has("invalid")))
+    # known to assemble: a sample lost with its worker, or whose analysis stopped with an
+    # error, is not (as a verdict it is not known to pass, it is not known to assemble)
+    built = int(np.count_nonzero(table.assembled))
     r.assembly = _probability("assembly", built, n)
     x = table.plan.values
     for j, q in enumerate(table.keep):

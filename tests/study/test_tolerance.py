@@ -317,3 +317,33 @@ def test_one_ok_sample_has_no_spread_to_report():
     said = " ".join(t.get_text() for t in ax.texts)
     plt.close(fig)
     assert "one ok sample only" in said and "do not move" not in said
+
+
+def test_a_sample_whose_analysis_failed_is_not_known_to_assemble(monkeypatch):
+    """Samples whose analysis stops with an error (not an assembly error: a solver's, or a
+    worker lost with them) were counted as assembling (every sample but 'no assembly' and
+    'invalid'): the probability of assembly was 100 % with no sample analysed."""
+    from dataclasses import replace
+
+    import mechreport.pipeline.batch as batch
+    real = batch.analyse_variants
+    calls = {"n": 0}
+
+    def failing(specs, method):
+        calls["n"] += 1
+        out = real(specs, method)
+        if calls["n"] == 1:             # the nominal design, analysed first
+            return out
+        return [replace(o, exception=RuntimeError("the solver gave up")) for o in out]
+
+    monkeypatch.setattr(batch, "analyse_variants", failing)
+    text = with_tolerances("""\
+  vary:
+    - {key: links.coupler.mass, tol: 5}
+  count: 4
+  keep: [cycle.torque.rms]
+""")
+    result = mechreport.tolerance(text, jobs=1)
+    assert result.counts["failed"] == 4 and calls["n"] > 1
+    assert result.assembly.k == 0 and result.assembly.p == 0
+    assert result.summary()["tolerance.assembly.p"]["value"] == 0
