@@ -77,7 +77,15 @@ def draw_histogram(ax, h: HistData) -> None:
     lo, hi = (float(np.min(shown)), float(np.max(shown))) if limits is None else limits
     span = hi - lo
     ax.set_xlim(lo - 0.05 * span, hi + 0.05 * span)
-    ax.axvline(h.nominal, color=INK, lw=1.3, label=f"nominal {fmt(h.nominal)}{unit}")
+    if lo - 0.5 * span <= h.nominal <= hi + 0.5 * span:
+        ax.set_xlim(min(lo, h.nominal) - 0.05 * span, max(hi, h.nominal) + 0.05 * span)
+        ax.axvline(h.nominal, color=INK, lw=1.3, label=f"nominal {fmt(h.nominal)}{unit}")
+    else:                   # far from every sample (a range beside the spec's value)
+        right = h.nominal > hi
+        ax.annotate(f"nominal {fmt(h.nominal)}{unit} " + ("→" if right else "←"),
+                    xy=(0.99 if right else 0.01, 0.86), xycoords="axes fraction",
+                    ha="right" if right else "left", va="top", fontsize=7.5, color=INK,
+                    bbox=dict(facecolor="white", edgecolor="none", alpha=0.85, pad=1.0))
     for x, name in ((h.p5, "5th"), (h.p95, "95th")):
         ax.axvline(x, color=GREY, lw=1.0, ls=(0, (1.5, 1.5)),
                    label="5th and 95th percentiles" if name == "5th" else "_nolegend_")
@@ -85,8 +93,8 @@ def draw_histogram(ax, h: HistData) -> None:
         side = "lower limit" if h.at_least else "limit"
         reach = 0.5 * span
         if lo - reach <= h.limit <= hi + reach:
-            ax.set_xlim(min(lo - 0.05 * span, h.limit - 0.05 * span),
-                        max(hi + 0.05 * span, h.limit + 0.05 * span))
+            left, right_end = ax.get_xlim()
+            ax.set_xlim(min(left, h.limit - 0.05 * span), max(right_end, h.limit + 0.05 * span))
             ax.axvline(h.limit, color=LIMIT_COLOR, lw=1.4, ls=(0, (5, 2)),
                        label=f"{side} {fmt(h.limit)}{unit}")
         else:

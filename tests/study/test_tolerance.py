@@ -347,3 +347,26 @@ def test_a_sample_whose_analysis_failed_is_not_known_to_assemble(monkeypatch):
     assert result.counts["failed"] == 4 and calls["n"] > 1
     assert result.assembly.k == 0 and result.assembly.p == 0
     assert result.summary()["tolerance.assembly.p"]["value"] == 0
+
+
+@pytest.mark.parametrize("nominal, drawn", [(3.841, False), (2.9905, True)])
+def test_the_histogram_shows_the_nominal_value_wherever_it_lies(nominal, drawn):
+    """A range beside the spec's value (tolerances.vary from/to need not hold it): the
+    legend named a nominal line that lay outside the axes. Near the samples the axes take
+    it in; far from them an arrow at the edge says where it is."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from mechreport.study.tolerance_report import HistData, draw_histogram
+    values = np.linspace(2.976, 2.988, 200)
+    fig, ax = plt.subplots()
+    draw_histogram(ax, HistData("cycle.torque.max", "N·m", values, nominal, 2.9766, 2.9874))
+    left, right = ax.get_xlim()
+    said = " ".join(t.get_text() for t in ax.texts)
+    lines = [ln.get_xdata()[0] for ln in ax.get_lines()]
+    plt.close(fig)
+    if drawn:
+        assert nominal in lines and left < nominal < right
+    else:
+        assert nominal not in lines and "nominal 3.841 N·m →" in said
