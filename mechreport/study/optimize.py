@@ -164,8 +164,19 @@ class OptimizeResult:
 
     @property
     def judged(self) -> Judged | None:
+        """The optimum's (else the least violating design's) judgement; a least violating
+        design that the search found feasible but whose proof failed carries that failure
+        as a fault (so that what it misses is told)."""
         i = self.best
-        return None if i is None else self.history.judged[i]
+        if i is None:
+            return None
+        j = self.history.judged[i]
+        if self.optimum is None:
+            why = next((p.why for p in self.proofs if p.index == i and not p.ok), None)
+            if why is not None:
+                from dataclasses import replace
+                j = replace(j, faults=j.faults + (f"its proof failed: {why}",))
+        return j
 
     @property
     def objective(self) -> float:
@@ -473,7 +484,11 @@ def prove(result: OptimizeResult) -> None:
             return
         why = "; ".join(problems(a, a.tol)[:3] + j.missed(problem)[:3]) or "the check fails"
         result.proofs.append(Proof(i, False, why))
-    result.least = history.least_violating() if result.optimum is None else None
+    # without a proven optimum: the best design the search found feasible whose proof failed
+    # (it misses only its proof, which says why), else the least violating one
+    refused = [p.index for p in result.proofs if not p.ok]
+    result.least = None if result.optimum is not None else (
+        refused[0] if refused else history.least_violating())
     if result.optimum is None and result.least is not None:
         try:
             result.text = text_of(result, result.least)

@@ -230,3 +230,30 @@ optimize:
     assert "least violating" in header and "optimum" not in header
     row = [line for line in md.splitlines() if line.startswith("| limits.joint")][0]
     assert "pass (+" in row
+
+
+def test_when_every_proof_fails_the_least_violating_design_says_why(monkeypatch):
+    """Every design the search found feasible fails its proof: the least violating design
+    is one of them, and it was reported as missing nothing (an empty list under 'misses:')."""
+    import dataclasses
+
+    import mechreport.study.optimize as opt
+    from mechreport.report.write_markdown import markdown
+    from mechreport.study.optimize_report import build_document
+    real = opt.judge_outcome
+    calls = {"n": 0}
+
+    def judge(problem, outcome):
+        judged = real(problem, outcome)
+        calls["n"] += 1
+        if calls["n"] >= 2:                  # 1: the original; then every proof
+            return dataclasses.replace(judged, faults=("the methods disagree",),
+                                       violation=1.0)
+        return judged
+    monkeypatch.setattr(opt, "judge_outcome", judge)
+    r = optimize(TRAP, budget=40)
+    assert not r.feasible and r.proofs and not any(p.ok for p in r.proofs)
+    missed = r.judged.missed(r.problem)
+    assert not r.judged.feasible
+    assert any("its proof failed: the methods disagree" in line for line in missed)
+    assert "its proof failed: the methods disagree" in markdown(build_document(r, {}))
