@@ -438,24 +438,37 @@ def _polish(problem: Problem, history: History, lo, hi, budget: int, evaluate) -
 
 # ------------------------------------------------------------------------------ proof
 
-def header_of(result: OptimizeResult, index: int) -> str:
+def header_of(result: OptimizeResult, index: int, optimum: bool = True) -> str:
+    """optimum.yaml's header: where its values come from (``optimum`` False: the least
+    violating design of a search that found no feasible one, and what it misses)."""
     base = result.problem.base
-    lines = [f"The optimum of {Path(base.file).name} found by mechreport optimize "
-             f"({'maximize' if result.problem.maximize else 'minimize'} "
-             f"{result.problem.objective}):"]
+    sense = (f"{'maximize' if result.problem.maximize else 'minimize'} "
+             f"{result.problem.objective}")
+    if optimum:
+        lines = [f"The optimum of {Path(base.file).name} found by mechreport optimize "
+                 f"({sense}):"]
+    else:
+        lines = [f"NOT an optimum: mechreport optimize found no feasible design of "
+                 f"{Path(base.file).name} ({sense}). These are the values of the least "
+                 "violating design, which misses:"]
+        j = result.judged
+        lines += [f"  {line}" for line in (j.missed(result.problem) if j is not None else [])]
+        lines.append("Its values:")
     for k, v in zip(result.keys, result.history.values[index]):
         lines.append(f"  {k} = {v:.12g} (was {result.start[k]:.12g})")
     return "\n".join(lines)
 
 
-def text_of(result: OptimizeResult, index: int) -> str:
+def text_of(result: OptimizeResult, index: int, optimum: bool = True) -> str:
     """The spec text of evaluation ``index``: the user's text with its values written in
-    (:mod:`.optimize_yaml`), checked to read back as that design."""
+    (:mod:`.optimize_yaml`), checked to read back as that design (``optimum``: see
+    :func:`header_of`)."""
     from .optimize_yaml import check_text_gives, optimum_text
     from .variants import replaced, _plain
     base = result.problem.base
     values = dict(zip(result.keys, result.history.values[index]))
-    text = optimum_text(base.source.text, base.paths, values, header_of(result, index))
+    text = optimum_text(base.source.text, base.paths, values,
+                        header_of(result, index, optimum))
     data = replaced(base.source.data, {base.paths[k]: _plain(v) for k, v in values.items()})
     check_text_gives(text, data, base.file)
     return text
@@ -491,7 +504,7 @@ def prove(result: OptimizeResult) -> None:
         refused[0] if refused else history.least_violating())
     if result.optimum is None and result.least is not None:
         try:
-            result.text = text_of(result, result.least)
+            result.text = text_of(result, result.least, optimum=False)
         except Exception:  # noqa: BLE001 - the least violating design's text is a courtesy
             result.text = ""
 

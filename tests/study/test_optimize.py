@@ -47,6 +47,10 @@ def test_infeasible_box_exits_1_with_the_least_violating_design(tmp_path, capsys
     assert (folder / "history.csv").is_file() and (folder / "optimize.pdf").is_file()
     assert "No feasible design was found." in (folder / "optimize.md").read_text("utf-8")
     assert not (folder / "optimum").exists()
+    # optimum.yaml holds the least violating values and says so (it said "The optimum")
+    head = (folder / "optimum.yaml").read_text("utf-8").split("\nmechreport:")[0]
+    assert head.startswith("# NOT an optimum: mechreport optimize found no feasible design")
+    assert "The optimum" not in head and "cycle.transmission_angle.min >= 85 deg" in head
 
 
 def test_optimum_yaml_is_the_users_text_and_check_passes(tmp_path, capsys):
