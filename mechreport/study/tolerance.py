@@ -161,7 +161,9 @@ def _sample_of(outcome, keep, items, file: str) -> Sample:
         locked = _locked(outcome.spec)
         if locked:
             return _failed("no assembly", locked, len(keep), len(items))
-        return Sample(row.values, "failed", row.reason, passes, margins)
+        # not ok: not judged (its verdicts are not counted, so the files do not show them)
+        return Sample(row.values, "failed", row.reason, (-1,) * len(items),
+                      (math.nan,) * len(items))
     return Sample(row.values, "ok", "", passes, margins)
 
 

@@ -370,3 +370,34 @@ def test_the_histogram_shows_the_nominal_value_wherever_it_lies(nominal, drawn):
         assert nominal in lines and left < nominal < right
     else:
         assert nominal not in lines and "nominal 3.841 N·m →" in said
+
+
+def test_a_failed_sample_has_no_verdicts_in_the_files(monkeypatch, tmp_path):
+    """A sample analysed but with a kept quantity undefined is 'failed': the report does not
+    count its verdicts, and tolerance.csv's verdict columns must be empty for it as well
+    (they said true, so counting them gave a higher probability than the report's)."""
+    import csv
+    from dataclasses import replace
+
+    import mechreport.study.tolerance as tol
+    from mechreport.study.tolerance_outputs import write_csv
+    from mechreport.study.tolerance import SampleTable
+    real = tol.row_of
+    monkeypatch.setattr(tol, "row_of", lambda outcome, keep: replace(
+        real(outcome, keep), reason="cycle.efficiency is undefined here"))
+    base = base_of(with_tolerances("""\
+  vary:
+    - {key: links.coupler.mass, tol: 5}
+  count: 2
+  keep: [cycle.torque.rms]
+"""))
+    items = ("motor.rated_torque", "limits.joint_force")
+    (s,) = evaluate_samples(base, [{"links.coupler.mass": 221.0}], "newton_euler",
+                            ("cycle.torque.rms",), items)
+    assert s.status == "failed" and s.passes == (-1, -1)
+    table = SampleTable(tolerance_plan(base.spec.tolerances), ("cycle.torque.rms",), items)
+    table.put(0, [s, s])
+    write_csv(table, tmp_path / "t.csv")
+    with open(tmp_path / "t.csv", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    assert all(r["verdict.motor.rated_torque"] == "" and r["design_pass"] == "" for r in rows)
