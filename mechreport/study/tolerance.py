@@ -149,6 +149,9 @@ def evaluate_samples(base: BaseSpec, samples: Sequence[dict], method: str,
 
 
 def _sample_of(outcome, keep, items, file: str) -> Sample:
+    if getattr(outcome, "locked", ""):    # a machine that cannot turn does not pass,
+        # whatever its member quantities (defined over the angles it reaches) say
+        return _failed("no assembly", outcome.locked, len(keep), len(items))
     row = row_of(outcome, keep)
     by_item = {v.item: v for v in outcome.verdicts}
     passes = tuple(-1 if it not in by_item else int(by_item[it].passed) for it in items)

@@ -261,3 +261,25 @@ def test_when_every_proof_fails_the_least_violating_design_says_why(monkeypatch)
     assert not r.judged.feasible
     assert any("its proof failed: the methods disagree" in line for line in missed)
     assert "its proof failed: the methods disagree" in markdown(build_document(r, {}))
+
+
+def test_a_candidate_that_locks_is_infeasible_even_when_the_original_locks():
+    """Member quantities are defined over the angles a mechanism reaches, so a crank that
+    cannot turn had a fatigue safety, and leaving out no angle the (locking) original did
+    not, it was 'feasible': a proven optimum that locks over half its turn."""
+    from mechreport.study.optimize import load_optimize_base, problem_of
+    from mechreport.study.optimize_eval import judge_chunk
+    from optimize_specs import crank_press
+    base = load_optimize_base(crank_press(430, """
+optimize:
+  vary:
+    - {key: links.crank.points.B.0, from: 300, to: 450}
+  maximize: member.rod.fatigue_safety
+  budget: 10
+"""))
+    problem, original, _ = problem_of(base)
+    assert not original.kinematics.motion.full            # the original locks too
+    _, (locks, turns) = judge_chunk(problem, 0, np.array([[410.0], [300.0]]))
+    assert not locks.feasible and any("cannot make a full turn" in f for f in locks.faults)
+    assert math.isfinite(locks.objective)                  # it had a value: the trap
+    assert turns.feasible

@@ -401,3 +401,29 @@ def test_a_failed_sample_has_no_verdicts_in_the_files(monkeypatch, tmp_path):
     with open(tmp_path / "t.csv", encoding="utf-8") as fh:
         rows = list(csv.DictReader(fh))
     assert all(r["verdict.motor.rated_torque"] == "" and r["design_pass"] == "" for r in rows)
+
+
+def test_a_sample_that_locks_does_not_assemble_whatever_its_member_quantities():
+    """Kept member quantities and member verdicts are defined over the angles a mechanism
+    reaches: a sample whose crank cannot turn (longer than the 400 mm rod) was 'ok' and
+    could pass, and the probability of assembly was 100 %."""
+    from optimize_specs import crank_press
+    text = crank_press(380, """
+design:
+  limits:
+    static_safety: 0.01
+tolerances:
+  vary:
+    - {key: links.crank.points.B.0, from: 370, to: 430}
+  count: 6
+  seed: 2
+  keep: [member.rod.stress_max]
+""")
+    result = mechreport.tolerance(text, jobs=1)
+    crank = result.table.plan.values[:, 0]
+    status = np.array(result.table.status)
+    assert np.all(status[crank > 400.5] == "no assembly")
+    assert np.all(status[crank < 399.5] == "ok")
+    n_turn = int(np.count_nonzero(crank < 400))
+    assert 0 < n_turn < 6
+    assert result.assembly.k == n_turn and result.design.k <= n_turn
