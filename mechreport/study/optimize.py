@@ -243,16 +243,20 @@ def problem_of(base: BaseSpec, method: str | None = None):
     method, why = choose_method(method, quantities, base.spec.design, named="--method")
     original = spec_from_data(base.data, base.source)
     a = analyse(original)
-    from ..checks.expectations import cycle_value
-    values = a.review.values if a.review is not None else {}
+    from .evaluate import row_of
+    # the original's values of the quantities read, cycle and member quantities alike (a
+    # member's stress in Pa scaled by 1 left the search's scores equal to 1e-8: it stopped)
+    got = dict(zip(quantities, row_of(a, quantities).values))
+
+    def size(q: str) -> float:
+        v = got.get(q, math.nan)
+        return abs(v) if math.isfinite(v) else 0.0
     constraints = [Constraint("design", v.item, v.quantity) for v in a.verdicts]
     for b in opt.bounds:
-        got, _ = cycle_value(values, b.quantity)
-        scale = max(abs(b.low or 0.0), abs(b.high or 0.0), abs(got or 0.0)) or 1.0
+        scale = max(abs(b.low or 0.0), abs(b.high or 0.0), size(b.quantity)) or 1.0
         constraints.append(Constraint("bound", b.quantity, b.quantity, b.low, b.high, scale,
                                       b.unit))
-    obj, _ = cycle_value(values, opt.objective)
-    scale = abs(obj) if obj is not None and math.isfinite(obj) and obj != 0 else 1.0
+    scale = size(opt.objective) or 1.0
     problem = Problem(base, method, opt.objective, opt.maximize, quantities,
                       tuple(constraints),
                       tuple((b.dyad, b.sign) for b in a.kinematics.branches

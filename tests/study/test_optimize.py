@@ -283,3 +283,26 @@ optimize:
     assert not locks.feasible and any("cannot make a full turn" in f for f in locks.faults)
     assert math.isfinite(locks.objective)                  # it had a value: the trap
     assert turns.feasible
+
+
+def test_a_member_objective_is_scaled_by_the_original_value():
+    """The objective is scaled by the original's value so that the search's scores resolve
+    it; a member quantity's was not found (looked up among the cycle quantities only): a
+    stress in Pa scaled by 1 gave scores equal to 1e-8 and the search stopped after two
+    generations."""
+    from mechreport.study.optimize import load_optimize_base, problem_of
+    from optimize_specs import crank_press
+    base = load_optimize_base(crank_press(100, """
+optimize:
+  vary:
+    - {key: links.rod.points.C.0, from: 300, to: 600}
+  minimize: member.rod.stress_max
+  subject_to:
+    - {quantity: member.rod.fatigue_safety, min: 0.5}
+  budget: 10
+"""))
+    problem, a, _ = problem_of(base)
+    stress = a.strength.values["member.rod.stress_max"]
+    assert stress > 1e6 and problem.scale == pytest.approx(stress, rel=1e-12)
+    safety = a.strength.values["member.rod.fatigue_safety"]
+    assert safety > 0.5 and problem.constraints[-1].scale == pytest.approx(safety, rel=1e-12)
