@@ -295,7 +295,7 @@ def _ranking_section(doc: Doc, result) -> None:
                     if any(r.r2 is None for r in result.ranking) else ""))
     weak = [r.quantity for r in result.ranking if r.r2 is not None and r.r2 < 0.9]
     if weak:
-        doc.p(Strong("Nonlinear: "), f"the linear fit explains less than 90 % of the variance "
+        doc.p(Strong("Nonlinear:"), f" the linear fit explains less than 90 % of the variance "
               f"of {', '.join(weak)}; its ranking is a first-order guide only.")
 
 

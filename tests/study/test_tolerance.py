@@ -427,3 +427,20 @@ tolerances:
     n_turn = int(np.count_nonzero(crank < 400))
     assert 0 < n_turn < 6
     assert result.assembly.k == n_turn and result.design.k <= n_turn
+
+
+def test_the_nonlinear_note_reads_as_words():
+    """'**Nonlinear:**the linear fit ...': the space was inside the bold, which the
+    Markdown writer trims."""
+    from dataclasses import replace
+
+    from mechreport.report.write_markdown import markdown
+    from mechreport.study.tolerance_report import build_document
+    result = mechreport.tolerance(with_tolerances("""\
+  vary:
+    - {key: links.coupler.mass, tol: 5}
+  count: 4
+  keep: [cycle.torque.rms]
+"""), jobs=1)
+    result.ranking[0] = replace(result.ranking[0], r2=0.5)
+    assert "**Nonlinear:** the linear fit explains" in markdown(build_document(result, {}))
