@@ -63,3 +63,17 @@ optimize:
   budget: 60
   seed: 0
 """
+
+
+def crank_press(crank_mm: float, tail: str) -> str:
+    """specs/crank_press_strength.yaml at 6 degree steps with a ``crank_mm`` crank, no design
+    section, and ``tail`` appended: a crank longer than the 400 mm rod cannot turn (the
+    in-line slider-crank locks near 0 and 180 deg)."""
+    text = (ROOT / "specs" / "crank_press_strength.yaml").read_text(encoding="utf-8")
+    text = text[:text.index("design:")]
+    return (text.replace("mechreport: 1.1", "mechreport: 1.2")
+            .replace("sheet: true", "sheet: false")
+            .replace("step: 1}", "step: 6}").replace("at: [260]", "at: [90]")
+            .replace("points: {A: [0, 0], B: [100, 0]}",
+                     f"points: {{A: [0, 0], B: [{crank_mm}, 0]}}")) + tail
+

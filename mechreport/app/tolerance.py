@@ -217,15 +217,27 @@ def write_tolerance(result, out: Path, name: str, wait: float = 120.0, *, date: 
                   "spec_sha256": sha256, "date": date, "quantities": quantities}
         atomic_write_text(tmp / "tolerance.json", json.dumps(record, indent=2,
                                                              allow_nan=False) + "\n")
-        report = out / name / "summary.json"
-        if report.is_file() and not report.is_symlink():
-            merged = with_tolerance(json.loads(report.read_text(encoding="utf-8")),
-                                    quantities)
+        merged = report_summary(out / name / "summary.json", quantities, sha256)
+        if merged is not None:
             atomic_write_text(tmp / "summary.json", json.dumps(merged, indent=2,
                                                                allow_nan=False) + "\n")
 
     with od.writing(out, wait) as out:
         return od.write_folder(out, name, write, carry=_not_the_tolerance)
+
+
+def report_summary(report: Path, quantities: dict, sha256: str) -> dict | None:
+    """The folder's report summary.json (``report``) with the ``tolerance.*``
+    ``quantities``; None when there is no report, or it is not of this spec's content
+    (``sha256``): another spec of the same file name, or this spec edited since its build,
+    is another design, whose record must not get these figures (as
+    :func:`carry_into_report`)."""
+    if not report.is_file() or report.is_symlink():
+        return None
+    summary = json.loads(report.read_text(encoding="utf-8"))
+    if not isinstance(summary, dict) or not sha256 or summary.get("spec_sha256") != sha256:
+        return None
+    return with_tolerance(summary, quantities)
 
 
 def with_tolerance(summary: dict, quantities: dict) -> dict:

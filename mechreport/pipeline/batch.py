@@ -52,6 +52,7 @@ class Outcome:
     members: dict[str, float] | None = None   # the members' quantities (links with a section)
     left_out: tuple[float, ...] = ()    # the angles left out (flagged) [deg or length unit]
     branches: tuple = ()                # the assembly branch choices (``Kinematics.branches``)
+    locked: str = ""                    # why part of the sweep is out of reach ("" if none)
 
     @property
     def cycle_values(self) -> dict[str, float] | None:
@@ -174,7 +175,16 @@ def _alone(spec: Spec, method: str, plans) -> Outcome:
                                        a.trust_inputs()),
                    members=a.strength.values if a.strength is not None else None,
                    left_out=tuple(f.angle for f in a.kinematics.flags),
-                   branches=a.kinematics.branches)
+                   branches=a.kinematics.branches, locked=locked_text(a.kinematics))
 
 
-__all__ = ["Outcome", "analyse_variants"]
+def locked_text(kin) -> str:
+    """Why part of the sweep of ``kin`` (Kinematics) is out of reach, the mechanism locking
+    ("" when the driver covers it all)."""
+    motion = kin.motion
+    if motion is None or motion.full:
+        return ""
+    return motion.describe() or "part of the sweep is out of reach (the mechanism locks)"
+
+
+__all__ = ["Outcome", "analyse_variants", "locked_text"]

@@ -1108,6 +1108,11 @@ def _optimize(value: Any, ck: _Checker, top: dict, spec: Spec) -> Optimize | Non
             ck.error(path + ("vary", i, "key"), f"'{v.key}': an optimisation varies the "
                                                 "mechanism, not the limits it is judged by")
             vary = None
+        elif v.path[0] in ("sweep", "cycle"):   # the angles judged: a design never passes
+            ck.error(path + ("vary", i, "key"), f"'{v.key}': an optimisation varies the "
+                                                "mechanism, not the angles it is judged at "
+                                                "(sweep and cycle stay as written)")
+            vary = None
     objective = value.get("minimize", value.get("maximize"))
     bounds = []
     for i, body in enumerate(value.get("subject_to") or ()):

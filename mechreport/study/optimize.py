@@ -164,8 +164,19 @@ class OptimizeResult:
 
     @property
     def judged(self) -> Judged | None:
+        """The optimum's (else the least violating design's) judgement; a least violating
+        design that the search found feasible but whose proof failed carries that failure
+        as a fault (so that what it misses is told)."""
         i = self.best
-        return None if i is None else self.history.judged[i]
+        if i is None:
+            return None
+        j = self.history.judged[i]
+        if self.optimum is None:
+            why = next((p.why for p in self.proofs if p.index == i and not p.ok), None)
+            if why is not None:
+                from dataclasses import replace
+                j = replace(j, faults=j.faults + (f"its proof failed: {why}",))
+        return j
 
     @property
     def objective(self) -> float:
@@ -232,16 +243,20 @@ def problem_of(base: BaseSpec, method: str | None = None):
     method, why = choose_method(method, quantities, base.spec.design, named="--method")
     original = spec_from_data(base.data, base.source)
     a = analyse(original)
-    from ..checks.expectations import cycle_value
-    values = a.review.values if a.review is not None else {}
+    from .evaluate import row_of
+    # the original's values of the quantities read, cycle and member quantities alike (a
+    # member's stress in Pa scaled by 1 left the search's scores equal to 1e-8: it stopped)
+    got = dict(zip(quantities, row_of(a, quantities).values))
+
+    def size(q: str) -> float:
+        v = got.get(q, math.nan)
+        return abs(v) if math.isfinite(v) else 0.0
     constraints = [Constraint("design", v.item, v.quantity) for v in a.verdicts]
     for b in opt.bounds:
-        got, _ = cycle_value(values, b.quantity)
-        scale = max(abs(b.low or 0.0), abs(b.high or 0.0), abs(got or 0.0)) or 1.0
+        scale = max(abs(b.low or 0.0), abs(b.high or 0.0), size(b.quantity)) or 1.0
         constraints.append(Constraint("bound", b.quantity, b.quantity, b.low, b.high, scale,
                                       b.unit))
-    obj, _ = cycle_value(values, opt.objective)
-    scale = abs(obj) if obj is not None and math.isfinite(obj) and obj != 0 else 1.0
+    scale = size(opt.objective) or 1.0
     problem = Problem(base, method, opt.objective, opt.maximize, quantities,
                       tuple(constraints),
                       tuple((b.dyad, b.sign) for b in a.kinematics.branches
@@ -300,6 +315,11 @@ def run_optimize(base: BaseSpec, *, method: str | None = None, jobs: int = 1, cl
         size_pop = max(5, de_budget)
         init = _latin_hypercube(size_pop, d, seed)
     maxiter = max(0, de_budget // size_pop - 1)
+    # the spec's own design, where it lies in the box, is a member of the first population:
+    # the search never reports a box as infeasible, nor an optimum worse than the original,
+    # when the original is a feasible design of that box
+    u_start = (np.array([start_values(base)[v.key] for v in opt.vary]) - lo) / (hi - lo)
+    x0 = u_start if np.all((u_start >= 0.0) & (u_start <= 1.0)) else None
     if client is not None:
         from .cluster import dask_workers
         parts = dask_workers(client)
@@ -346,7 +366,7 @@ def run_optimize(base: BaseSpec, *, method: str | None = None, jobs: int = 1, cl
     try:
         try:
             how = dict(popsize=pop, maxiter=maxiter, tol=DE_TOL, polish=False,
-                       vectorized=True, updating="deferred", init=init)
+                       vectorized=True, updating="deferred", init=init, x0=x0)
             try:
                 res = differential_evolution(population, [(0.0, 1.0)] * d,
                                              rng=np.random.default_rng(seed), **how)
@@ -422,24 +442,37 @@ def _polish(problem: Problem, history: History, lo, hi, budget: int, evaluate) -
 
 # ------------------------------------------------------------------------------ proof
 
-def header_of(result: OptimizeResult, index: int) -> str:
+def header_of(result: OptimizeResult, index: int, optimum: bool = True) -> str:
+    """optimum.yaml's header: where its values come from (``optimum`` False: the least
+    violating design of a search that found no feasible one, and what it misses)."""
     base = result.problem.base
-    lines = [f"The optimum of {Path(base.file).name} found by mechreport optimize "
-             f"({'maximize' if result.problem.maximize else 'minimize'} "
-             f"{result.problem.objective}):"]
+    sense = (f"{'maximize' if result.problem.maximize else 'minimize'} "
+             f"{result.problem.objective}")
+    if optimum:
+        lines = [f"The optimum of {Path(base.file).name} found by mechreport optimize "
+                 f"({sense}):"]
+    else:
+        lines = [f"NOT an optimum: mechreport optimize found no feasible design of "
+                 f"{Path(base.file).name} ({sense}). These are the values of the least "
+                 "violating design, which misses:"]
+        j = result.judged
+        lines += [f"  {line}" for line in (j.missed(result.problem) if j is not None else [])]
+        lines.append("Its values:")
     for k, v in zip(result.keys, result.history.values[index]):
         lines.append(f"  {k} = {v:.12g} (was {result.start[k]:.12g})")
     return "\n".join(lines)
 
 
-def text_of(result: OptimizeResult, index: int) -> str:
+def text_of(result: OptimizeResult, index: int, optimum: bool = True) -> str:
     """The spec text of evaluation ``index``: the user's text with its values written in
-    (:mod:`.optimize_yaml`), checked to read back as that design."""
+    (:mod:`.optimize_yaml`), checked to read back as that design (``optimum``: see
+    :func:`header_of`)."""
     from .optimize_yaml import check_text_gives, optimum_text
     from .variants import replaced, _plain
     base = result.problem.base
     values = dict(zip(result.keys, result.history.values[index]))
-    text = optimum_text(base.source.text, base.paths, values, header_of(result, index))
+    text = optimum_text(base.source.text, base.paths, values,
+                        header_of(result, index, optimum))
     data = replaced(base.source.data, {base.paths[k]: _plain(v) for k, v in values.items()})
     check_text_gives(text, data, base.file)
     return text
@@ -468,10 +501,14 @@ def prove(result: OptimizeResult) -> None:
             return
         why = "; ".join(problems(a, a.tol)[:3] + j.missed(problem)[:3]) or "the check fails"
         result.proofs.append(Proof(i, False, why))
-    result.least = history.least_violating() if result.optimum is None else None
+    # without a proven optimum: the best design the search found feasible whose proof failed
+    # (it misses only its proof, which says why), else the least violating one
+    refused = [p.index for p in result.proofs if not p.ok]
+    result.least = None if result.optimum is not None else (
+        refused[0] if refused else history.least_violating())
     if result.optimum is None and result.least is not None:
         try:
-            result.text = text_of(result, result.least)
+            result.text = text_of(result, result.least, optimum=False)
         except Exception:  # noqa: BLE001 - the least violating design's text is a courtesy
             result.text = ""
 

@@ -18,6 +18,7 @@ fault                                                  violation added
 cannot be built, assembled or analysed                 ``FAILED`` = 10 000
 its one method cannot vouch for its numbers (trust)    ``UNTRUSTED`` = 1 000
 a constraint's quantity is undefined                   ``UNTRUSTED`` = 1 000
+the driver cannot make the whole sweep (it locks)      ``UNTRUSTED`` = 1 000
 a dyad assembles on its other branch (or none chosen)  ``OTHER_BRANCH`` = 100
 angles left out that the original analyses             1 + 10 x (their share of the sweep)
 =====================================================  =========================
@@ -218,6 +219,14 @@ def judge_outcome(problem: Problem, outcome) -> Judged:
                 faults.append(f"dyad {dyad} does not stay on the spec's assembly branch "
                               "over the whole sweep")
                 violation += OTHER_BRANCH
+    if kin is not None:
+        from ..pipeline.batch import locked_text
+        locked = locked_text(kin)
+    else:
+        locked = getattr(outcome, "locked", "")
+    if locked:                  # infeasible however the original fares: it must turn
+        faults.append(locked)
+        violation += UNTRUSTED
     left = (tuple(f.angle for f in kin.flags) if kin is not None
             else getattr(outcome, "left_out", ()))
     extra = sorted(a for a in left if round(float(a), 9) not in problem.left_out)

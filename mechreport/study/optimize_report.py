@@ -239,14 +239,26 @@ def build_document(result: OptimizeResult, figures: dict[str, str], *, sha256: s
           "margin is relative to the limit (positive: it holds).")
     a0, a1 = result.original_analysis, result.analysis
     v1 = {v.item: v for v in a1.verdicts} if a1 is not None else {}
+    # without an optimum, the least violating design's verdicts as it was judged (its
+    # margins: the search's one method; no full analysis of it is made)
+    least = ({c.item: m for c, m in zip(p.constraints, result.judged.margins)
+              if c.kind == "design"} if a1 is None and result.judged is not None else {})
     rows = []
     for v in a0.verdicts:
         w = v1.get(v.item)
+        if w is not None:
+            now = [fmt(w.value), "pass" if w.passed else "FAIL"]
+        elif v.item in least:
+            m = least[v.item]
+            now = ["—", "undefined" if not math.isfinite(m) else
+                   f"{'pass' if m >= 0 else 'FAIL'} ({_margin(m)})"]
+        else:
+            now = ["—", "—"]
         rows.append([v.item, f"{'≥' if v.at_least else '≤'} {fmt(v.limit)} {v.unit}",
-                     fmt(v.value), "pass" if v.passed else "FAIL",
-                     fmt(w.value) if w else "—", ("pass" if w.passed else "FAIL") if w else "—"])
+                     fmt(v.value), "pass" if v.passed else "FAIL", *now])
     if rows:
-        doc.table(["design verdict", "limit", "original", "", "optimum", ""], rows,
+        doc.table(["design verdict", "limit", "original", "",
+                   "optimum" if result.feasible else "least violating", ""], rows,
                   right={2, 4})
     i = result.best
     rows = []

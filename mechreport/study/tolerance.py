@@ -101,18 +101,22 @@ class Sample:
     """One sample's result: the kept ``values`` [SI] (NaN where undefined), ``status`` (one
     of :data:`STATUSES`), ``reason`` ("" when ok), per design verdict (in the spec's order)
     ``passes`` (1 pass, 0 fail, -1 not judged) and ``margins`` (the fraction of the limit
-    left over; NaN where undefined)."""
+    left over; NaN where undefined); ``assembled``: the analysis got far enough to know that
+    the mechanism assembles over its sweep (False for ``no assembly`` and ``invalid``, and
+    for a failure before that was known: an error of the analysis, a lost worker)."""
 
     values: tuple[float, ...]
     status: str
     reason: str = ""
     passes: tuple[int, ...] = ()
     margins: tuple[float, ...] = ()
+    assembled: bool = True
 
 
 def _failed(status: str, reason: str, n_keep: int, n_items: int) -> Sample:
+    """A sample without a result: not known to assemble."""
     return Sample((math.nan,) * n_keep, status, reason or "failed (no message)",
-                  (-1,) * n_items, (math.nan,) * n_items)
+                  (-1,) * n_items, (math.nan,) * n_items, assembled=False)
 
 
 def evaluate_samples(base: BaseSpec, samples: Sequence[dict], method: str,
@@ -145,6 +149,9 @@ def evaluate_samples(base: BaseSpec, samples: Sequence[dict], method: str,
 
 
 def _sample_of(outcome, keep, items, file: str) -> Sample:
+    if getattr(outcome, "locked", ""):    # a machine that cannot turn does not pass,
+        # whatever its member quantities (defined over the angles it reaches) say
+        return _failed("no assembly", outcome.locked, len(keep), len(items))
     row = row_of(outcome, keep)
     by_item = {v.item: v for v in outcome.verdicts}
     passes = tuple(-1 if it not in by_item else int(by_item[it].passed) for it in items)
@@ -157,7 +164,9 @@ def _sample_of(outcome, keep, items, file: str) -> Sample:
         locked = _locked(outcome.spec)
         if locked:
             return _failed("no assembly", locked, len(keep), len(items))
-        return Sample(row.values, "failed", row.reason, passes, margins)
+        # not ok: not judged (its verdicts are not counted, so the files do not show them)
+        return Sample(row.values, "failed", row.reason, (-1,) * len(items),
+                      (math.nan,) * len(items))
     return Sample(row.values, "ok", "", passes, margins)
 
 
@@ -203,7 +212,8 @@ def nominal_sample(base: BaseSpec, method: str, keep, items=None) -> tuple[Sampl
 class SampleTable:
     """Every sample of ``plan``: ``values`` (n, len(keep)) [SI], ``status`` and ``reason``
     per sample, ``passes`` (n, len(items)) int8 (1 pass, 0 fail, -1 not judged) and
-    ``margins`` (n, len(items)), ``done`` (n,) whether the row has arrived."""
+    ``margins`` (n, len(items)), ``done`` (n,) whether the row has arrived, ``assembled``
+    (n,) whether the sample is known to assemble (see :class:`Sample`)."""
 
     plan: Plan
     keep: tuple[str, ...]
@@ -214,6 +224,7 @@ class SampleTable:
     passes: np.ndarray = field(init=False)
     margins: np.ndarray = field(init=False)
     done: np.ndarray = field(init=False)
+    assembled: np.ndarray = field(init=False)
 
     def __post_init__(self):
         n = self.plan.n
@@ -223,6 +234,7 @@ class SampleTable:
         self.passes = np.full((n, len(self.items)), -1, np.int8)
         self.margins = np.full((n, len(self.items)), math.nan)
         self.done = np.zeros(n, bool)
+        self.assembled = np.zeros(n, bool)
 
     @property
     def n(self) -> int:
@@ -239,6 +251,7 @@ class SampleTable:
                 self.passes[i] = row.passes
                 self.margins[i] = row.margins
             self.done[i] = True
+            self.assembled[i] = row.assembled
             bad += row.status != "ok"
         return bad
 

@@ -60,9 +60,11 @@ def draw_histogram(ax, h: HistData) -> None:
         ax.text(0.5, 0.5, "no sample with a value", transform=ax.transAxes, ha="center")
         return
     unit = f" {h.unit}" if h.unit else ""
-    if not varies(float(np.std(v)), v):
-        ax.text(0.5, 0.5, f"every sample: {fmt(float(np.mean(v)))}{unit} (the tolerances do "
-                "not move it)", transform=ax.transAxes, ha="center", va="center")
+    if len(v) < 2 or not varies(float(np.std(v)), v):
+        text = (f"one ok sample only: {fmt(float(v[0]))}{unit} (no spread to show)"
+                if len(v) < 2 else f"every sample: {fmt(float(np.mean(v)))}{unit} (the "
+                "tolerances do not move it)")
+        ax.text(0.5, 0.5, text, transform=ax.transAxes, ha="center", va="center")
         ax.set_xticks([])
         ax.set_yticks([])
         ax.grid(False)
@@ -75,7 +77,15 @@ def draw_histogram(ax, h: HistData) -> None:
     lo, hi = (float(np.min(shown)), float(np.max(shown))) if limits is None else limits
     span = hi - lo
     ax.set_xlim(lo - 0.05 * span, hi + 0.05 * span)
-    ax.axvline(h.nominal, color=INK, lw=1.3, label=f"nominal {fmt(h.nominal)}{unit}")
+    if lo - 0.5 * span <= h.nominal <= hi + 0.5 * span:
+        ax.set_xlim(min(lo, h.nominal) - 0.05 * span, max(hi, h.nominal) + 0.05 * span)
+        ax.axvline(h.nominal, color=INK, lw=1.3, label=f"nominal {fmt(h.nominal)}{unit}")
+    else:                   # far from every sample (a range beside the spec's value)
+        right = h.nominal > hi
+        ax.annotate(f"nominal {fmt(h.nominal)}{unit} " + ("→" if right else "←"),
+                    xy=(0.99 if right else 0.01, 0.86), xycoords="axes fraction",
+                    ha="right" if right else "left", va="top", fontsize=7.5, color=INK,
+                    bbox=dict(facecolor="white", edgecolor="none", alpha=0.85, pad=1.0))
     for x, name in ((h.p5, "5th"), (h.p95, "95th")):
         ax.axvline(x, color=GREY, lw=1.0, ls=(0, (1.5, 1.5)),
                    label="5th and 95th percentiles" if name == "5th" else "_nolegend_")
@@ -83,8 +93,8 @@ def draw_histogram(ax, h: HistData) -> None:
         side = "lower limit" if h.at_least else "limit"
         reach = 0.5 * span
         if lo - reach <= h.limit <= hi + reach:
-            ax.set_xlim(min(lo - 0.05 * span, h.limit - 0.05 * span),
-                        max(hi + 0.05 * span, h.limit + 0.05 * span))
+            left, right_end = ax.get_xlim()
+            ax.set_xlim(min(left, h.limit - 0.05 * span), max(right_end, h.limit + 0.05 * span))
             ax.axvline(h.limit, color=LIMIT_COLOR, lw=1.4, ls=(0, (5, 2)),
                        label=f"{side} {fmt(h.limit)}{unit}")
         else:
@@ -285,7 +295,7 @@ def _ranking_section(doc: Doc, result) -> None:
                     if any(r.r2 is None for r in result.ranking) else ""))
     weak = [r.quantity for r in result.ranking if r.r2 is not None and r.r2 < 0.9]
     if weak:
-        doc.p(Strong("Nonlinear: "), f"the linear fit explains less than 90 % of the variance "
+        doc.p(Strong("Nonlinear:"), f" the linear fit explains less than 90 % of the variance "
               f"of {', '.join(weak)}; its ranking is a first-order guide only.")
 
 

@@ -205,7 +205,9 @@ def analyse_samples(base, table, nominal, verdicts, method: str, why: str, secon
         limit, at_least, item = limit_of(q, verdicts)
         if len(col):
             p5, p95, p99 = (float(x) for x in np.percentile(col, PERCENTILES))
-            std = float(np.std(col, ddof=1)) if len(col) > 1 else 0.0
+            # one ok sample has no spread to measure: undefined (never a 0 that says the
+            # tolerances do not move the quantity)
+            std = float(np.std(col, ddof=1)) if len(col) > 1 else math.nan
             stats = (float(np.mean(col)), std, p5, p95, p99, float(col.min()), float(col.max()))
         else:
             stats = (math.nan,) * 7
@@ -218,7 +220,9 @@ def analyse_samples(base, table, nominal, verdicts, method: str, why: str, secon
     design = table.design_pass
     r.design = _probability("design", int(np.count_nonzero(design == 1)), n,
                             nominal=all(v.passed for v in verdicts))
-    built = n - int(np.count_nonzero(table.has("no assembly") | table.has("invalid")))
+    # known to assemble: a sample lost with its worker, or whose analysis stopped with an
+    # error, is not (as a verdict it is not known to pass, it is not known to assemble)
+    built = int(np.count_nonzero(table.assembled))
     r.assembly = _probability("assembly", built, n)
     x = table.plan.values
     for j, q in enumerate(table.keep):

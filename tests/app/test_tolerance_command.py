@@ -31,9 +31,11 @@ def test_the_command_writes_every_file_and_keeps_the_report(tmp_path, capsys):
     out = tmp_path / "out"
     folder = out / "four_bar"
     folder.mkdir(parents=True)             # a report there, as `mechreport build` leaves it
+    from mechreport.report.model import spec_sha256
     (folder / "summary.json").write_text(json.dumps(
-        {"status": "PASS", "quantities": {"cycle.torque.rms": {"value": 2.3, "unit": "N·m"},
-                                          "tolerance.old.p95": {"value": 1, "unit": ""}}}),
+        {"status": "PASS", "spec_sha256": spec_sha256(spec),
+         "quantities": {"cycle.torque.rms": {"value": 2.3, "unit": "N·m"},
+                        "tolerance.old.p95": {"value": 1, "unit": ""}}}),
         encoding="utf-8")
     (folder / "report.md").write_text("the report", encoding="utf-8")
     assert main(["tolerance", str(spec), "-o", str(out), "--jobs", "1"]) == 0
@@ -111,3 +113,21 @@ def test_a_rebuild_keeps_the_tolerance_quantities_of_the_same_spec_only(tmp_path
     record.write_text("not json", encoding="utf-8")        # unreadable: left alone
     carry_into_report(summary, record, "abc")
     carry_into_report(summary, tmp_path / "missing.json", "abc")
+
+
+
+def test_a_report_of_another_spec_does_not_get_the_tolerance_quantities(tmp_path):
+    """OUT/<name>/summary.json of another spec of the same file name (or of this spec before
+    an edit) got this analysis's tolerance.* figures: numbers of one design in the record of
+    another. Only a report whose spec_sha256 is this spec's gets them."""
+    from mechreport.app.tolerance import report_summary
+    report = tmp_path / "summary.json"
+    report.write_text(json.dumps({"status": "PASS", "spec_sha256": "0" * 64, "quantities": {
+        "cycle.torque.rms": {"value": 2.3, "unit": "N·m"}}}), encoding="utf-8")
+    quantities = {"tolerance.samples": {"value": 24, "unit": ""}}
+    assert report_summary(report, quantities, "1" * 64) is None
+    assert report_summary(report, quantities, "") is None
+    assert report_summary(tmp_path / "none.json", quantities, "0" * 64) is None
+    merged = report_summary(report, quantities, "0" * 64)
+    assert merged["quantities"]["tolerance.samples"] == {"value": 24, "unit": ""}
+    assert merged["quantities"]["cycle.torque.rms"]["value"] == 2.3

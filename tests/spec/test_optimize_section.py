@@ -63,6 +63,11 @@ optimize:
     ("{key: driver.rpm, from: 200, to: 400}",
      "{key: design.limits.transmission_angle, from: 20, to: 40}",
      "an optimisation varies the mechanism, not the limits it is judged by"),
+    # a coarser or shorter sweep would pass by not looking at the worst angles
+    ("{key: driver.rpm, from: 200, to: 400}", "{key: sweep.step, from: 1, to: 30}",
+     "not the angles it is judged at"),
+    ("{key: driver.rpm, from: 200, to: 400}", "{key: sweep.stop, from: 90, to: 360}",
+     "not the angles it is judged at"),
 ])
 def test_mistakes_are_told_with_their_key_path(old, new, message):
     text = four_bar(design=True) + SECTION

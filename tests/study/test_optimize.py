@@ -47,6 +47,10 @@ def test_infeasible_box_exits_1_with_the_least_violating_design(tmp_path, capsys
     assert (folder / "history.csv").is_file() and (folder / "optimize.pdf").is_file()
     assert "No feasible design was found." in (folder / "optimize.md").read_text("utf-8")
     assert not (folder / "optimum").exists()
+    # optimum.yaml holds the least violating values and says so (it said "The optimum")
+    head = (folder / "optimum.yaml").read_text("utf-8").split("\nmechreport:")[0]
+    assert head.startswith("# NOT an optimum: mechreport optimize found no feasible design")
+    assert "The optimum" not in head and "cycle.transmission_angle.min >= 85 deg" in head
 
 
 def test_optimum_yaml_is_the_users_text_and_check_passes(tmp_path, capsys):
@@ -186,3 +190,119 @@ def test_a_design_that_fails_its_proof_is_not_the_optimum(monkeypatch):
     assert not first.ok and "the methods disagree" in first.why
     assert second.ok and r.optimum == second.index != first.index
     assert r.objective >= r.history.judged[first.index].objective
+
+
+def test_a_feasible_original_in_the_box_is_never_lost():
+    """A wide box in which almost nothing assembles (the crank turns only when it is the
+    shortest link) and a small budget: the first population held no feasible design and the
+    search stopped there, reporting no feasible design although the spec's own design, in
+    the box, is one. The original is a member of the first population."""
+    from optimize_specs import four_bar
+    needle = four_bar(step=8) + """
+optimize:
+  vary:
+    - {key: links.crank.points.B.0, from: 10, to: 2000}
+  minimize: cycle.torque.rms
+  budget: 12
+  seed: 0
+"""
+    r = optimize(needle)
+    assert r.original.feasible
+    assert r.feasible and r.objective <= r.original.objective
+    assert r.history.values[0][0] == pytest.approx(50.0, rel=1e-12)   # the spec's own crank
+
+
+def test_without_an_optimum_the_verdict_table_shows_the_least_violating_design():
+    """optimize.md's verdict table had an 'optimum' column left blank when nothing was
+    feasible, while the constraints table gave the least violating design's margins."""
+    from mechreport.report.write_markdown import markdown
+    from mechreport.study.optimize_report import build_document
+    from optimize_specs import four_bar
+    text = four_bar(step=8, design=True) + """
+optimize:
+  vary:
+    - {key: links.coupler.points.C.0, from: 170, to: 190}
+  minimize: cycle.torque.rms
+  subject_to:
+    - {quantity: cycle.transmission_angle.min, min: 85, unit: deg}
+  budget: 10
+"""
+    r = optimize(text)
+    assert not r.feasible and r.judged is not None
+    md = markdown(build_document(r, {}))
+    header = [line for line in md.splitlines() if line.startswith("| design verdict")][0]
+    assert "least violating" in header and "optimum" not in header
+    row = [line for line in md.splitlines() if line.startswith("| limits.joint")][0]
+    assert "pass (+" in row
+
+
+def test_when_every_proof_fails_the_least_violating_design_says_why(monkeypatch):
+    """Every design the search found feasible fails its proof: the least violating design
+    is one of them, and it was reported as missing nothing (an empty list under 'misses:')."""
+    import dataclasses
+
+    import mechreport.study.optimize as opt
+    from mechreport.report.write_markdown import markdown
+    from mechreport.study.optimize_report import build_document
+    real = opt.judge_outcome
+    calls = {"n": 0}
+
+    def judge(problem, outcome):
+        judged = real(problem, outcome)
+        calls["n"] += 1
+        if calls["n"] >= 2:                  # 1: the original; then every proof
+            return dataclasses.replace(judged, faults=("the methods disagree",),
+                                       violation=1.0)
+        return judged
+    monkeypatch.setattr(opt, "judge_outcome", judge)
+    r = optimize(TRAP, budget=40)
+    assert not r.feasible and r.proofs and not any(p.ok for p in r.proofs)
+    missed = r.judged.missed(r.problem)
+    assert not r.judged.feasible
+    assert any("its proof failed: the methods disagree" in line for line in missed)
+    assert "its proof failed: the methods disagree" in markdown(build_document(r, {}))
+
+
+def test_a_candidate_that_locks_is_infeasible_even_when_the_original_locks():
+    """Member quantities are defined over the angles a mechanism reaches, so a crank that
+    cannot turn had a fatigue safety, and leaving out no angle the (locking) original did
+    not, it was 'feasible': a proven optimum that locks over half its turn."""
+    from mechreport.study.optimize import load_optimize_base, problem_of
+    from mechreport.study.optimize_eval import judge_chunk
+    from optimize_specs import crank_press
+    base = load_optimize_base(crank_press(430, """
+optimize:
+  vary:
+    - {key: links.crank.points.B.0, from: 300, to: 450}
+  maximize: member.rod.fatigue_safety
+  budget: 10
+"""))
+    problem, original, _ = problem_of(base)
+    assert not original.kinematics.motion.full            # the original locks too
+    _, (locks, turns) = judge_chunk(problem, 0, np.array([[410.0], [300.0]]))
+    assert not locks.feasible and any("cannot make a full turn" in f for f in locks.faults)
+    assert math.isfinite(locks.objective)                  # it had a value: the trap
+    assert turns.feasible
+
+
+def test_a_member_objective_is_scaled_by_the_original_value():
+    """The objective is scaled by the original's value so that the search's scores resolve
+    it; a member quantity's was not found (looked up among the cycle quantities only): a
+    stress in Pa scaled by 1 gave scores equal to 1e-8 and the search stopped after two
+    generations."""
+    from mechreport.study.optimize import load_optimize_base, problem_of
+    from optimize_specs import crank_press
+    base = load_optimize_base(crank_press(100, """
+optimize:
+  vary:
+    - {key: links.rod.points.C.0, from: 300, to: 600}
+  minimize: member.rod.stress_max
+  subject_to:
+    - {quantity: member.rod.fatigue_safety, min: 0.5}
+  budget: 10
+"""))
+    problem, a, _ = problem_of(base)
+    stress = a.strength.values["member.rod.stress_max"]
+    assert stress > 1e6 and problem.scale == pytest.approx(stress, rel=1e-12)
+    safety = a.strength.values["member.rod.fatigue_safety"]
+    assert safety > 0.5 and problem.constraints[-1].scale == pytest.approx(safety, rel=1e-12)

@@ -284,3 +284,163 @@ def test_the_limit_of_a_quantity_is_the_verdict_judged_on_it():
                                                                "limits.fatigue_safety")
     assert limit_of("cycle.torque.rms", verdicts) == (4.0, False, "motor.rated_torque")
     assert limit_of("cycle.torque.max", verdicts) == (None, False, "")
+
+
+def test_one_ok_sample_has_no_spread_to_report():
+    """Only one sample assembles (a rocker below 70 mm locks the crank): its standard
+    deviation is undefined, not 0, and the histogram does not say that the tolerances do not
+    move the quantity (the nominal 2.28 N·m is far from that sample's value)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from mechreport.report.write_markdown import markdown
+    from mechreport.study.tolerance_report import build_document, draw_histogram, hist_data
+    text = with_tolerances("""\
+  vary:
+    - {key: links.rocker.points.C.0, from: 55, to: 78}
+  count: 2
+  seed: 1
+  keep: [cycle.torque.rms]
+""")
+    result = mechreport.tolerance(text, jobs=1)
+    assert result.counts["ok"] == 1, result.table.status
+    s = result.quantities[0]
+    assert s.n == 1 and math.isnan(s.std)
+    assert "tolerance.cycle.torque.rms.std" not in result.summary()
+    assert "tolerance.cycle.torque.rms.mean" in result.summary()
+    row = [line for line in markdown(build_document(result, {})).splitlines()
+           if line.startswith("| cycle.torque.rms")][0]
+    assert row.split("|")[4].strip() == "—"
+    fig, ax = plt.subplots()
+    draw_histogram(ax, hist_data(result, 0))
+    said = " ".join(t.get_text() for t in ax.texts)
+    plt.close(fig)
+    assert "one ok sample only" in said and "do not move" not in said
+
+
+def test_a_sample_whose_analysis_failed_is_not_known_to_assemble(monkeypatch):
+    """Samples whose analysis stops with an error (not an assembly error: a solver's, or a
+    worker lost with them) were counted as assembling (every sample but 'no assembly' and
+    'invalid'): the probability of assembly was 100 % with no sample analysed."""
+    from dataclasses import replace
+
+    import mechreport.pipeline.batch as batch
+    real = batch.analyse_variants
+    calls = {"n": 0}
+
+    def failing(specs, method):
+        calls["n"] += 1
+        out = real(specs, method)
+        if calls["n"] == 1:             # the nominal design, analysed first
+            return out
+        return [replace(o, exception=RuntimeError("the solver gave up")) for o in out]
+
+    monkeypatch.setattr(batch, "analyse_variants", failing)
+    text = with_tolerances("""\
+  vary:
+    - {key: links.coupler.mass, tol: 5}
+  count: 4
+  keep: [cycle.torque.rms]
+""")
+    result = mechreport.tolerance(text, jobs=1)
+    assert result.counts["failed"] == 4 and calls["n"] > 1
+    assert result.assembly.k == 0 and result.assembly.p == 0
+    assert result.summary()["tolerance.assembly.p"]["value"] == 0
+
+
+@pytest.mark.parametrize("nominal, drawn", [(3.841, False), (2.9905, True)])
+def test_the_histogram_shows_the_nominal_value_wherever_it_lies(nominal, drawn):
+    """A range beside the spec's value (tolerances.vary from/to need not hold it): the
+    legend named a nominal line that lay outside the axes. Near the samples the axes take
+    it in; far from them an arrow at the edge says where it is."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from mechreport.study.tolerance_report import HistData, draw_histogram
+    values = np.linspace(2.976, 2.988, 200)
+    fig, ax = plt.subplots()
+    draw_histogram(ax, HistData("cycle.torque.max", "N·m", values, nominal, 2.9766, 2.9874))
+    left, right = ax.get_xlim()
+    said = " ".join(t.get_text() for t in ax.texts)
+    lines = [ln.get_xdata()[0] for ln in ax.get_lines()]
+    plt.close(fig)
+    if drawn:
+        assert nominal in lines and left < nominal < right
+    else:
+        assert nominal not in lines and "nominal 3.841 N·m →" in said
+
+
+def test_a_failed_sample_has_no_verdicts_in_the_files(monkeypatch, tmp_path):
+    """A sample analysed but with a kept quantity undefined is 'failed': the report does not
+    count its verdicts, and tolerance.csv's verdict columns must be empty for it as well
+    (they said true, so counting them gave a higher probability than the report's)."""
+    import csv
+    from dataclasses import replace
+
+    import mechreport.study.tolerance as tol
+    from mechreport.study.tolerance_outputs import write_csv
+    from mechreport.study.tolerance import SampleTable
+    real = tol.row_of
+    monkeypatch.setattr(tol, "row_of", lambda outcome, keep: replace(
+        real(outcome, keep), reason="cycle.efficiency is undefined here"))
+    base = base_of(with_tolerances("""\
+  vary:
+    - {key: links.coupler.mass, tol: 5}
+  count: 2
+  keep: [cycle.torque.rms]
+"""))
+    items = ("motor.rated_torque", "limits.joint_force")
+    (s,) = evaluate_samples(base, [{"links.coupler.mass": 221.0}], "newton_euler",
+                            ("cycle.torque.rms",), items)
+    assert s.status == "failed" and s.passes == (-1, -1)
+    table = SampleTable(tolerance_plan(base.spec.tolerances), ("cycle.torque.rms",), items)
+    table.put(0, [s, s])
+    write_csv(table, tmp_path / "t.csv")
+    with open(tmp_path / "t.csv", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    assert all(r["verdict.motor.rated_torque"] == "" and r["design_pass"] == "" for r in rows)
+
+
+def test_a_sample_that_locks_does_not_assemble_whatever_its_member_quantities():
+    """Kept member quantities and member verdicts are defined over the angles a mechanism
+    reaches: a sample whose crank cannot turn (longer than the 400 mm rod) was 'ok' and
+    could pass, and the probability of assembly was 100 %."""
+    from optimize_specs import crank_press
+    text = crank_press(380, """
+design:
+  limits:
+    static_safety: 0.01
+tolerances:
+  vary:
+    - {key: links.crank.points.B.0, from: 370, to: 430}
+  count: 6
+  seed: 2
+  keep: [member.rod.stress_max]
+""")
+    result = mechreport.tolerance(text, jobs=1)
+    crank = result.table.plan.values[:, 0]
+    status = np.array(result.table.status)
+    assert np.all(status[crank > 400.5] == "no assembly")
+    assert np.all(status[crank < 399.5] == "ok")
+    n_turn = int(np.count_nonzero(crank < 400))
+    assert 0 < n_turn < 6
+    assert result.assembly.k == n_turn and result.design.k <= n_turn
+
+
+def test_the_nonlinear_note_reads_as_words():
+    """'**Nonlinear:**the linear fit ...': the space was inside the bold, which the
+    Markdown writer trims."""
+    from dataclasses import replace
+
+    from mechreport.report.write_markdown import markdown
+    from mechreport.study.tolerance_report import build_document
+    result = mechreport.tolerance(with_tolerances("""\
+  vary:
+    - {key: links.coupler.mass, tol: 5}
+  count: 4
+  keep: [cycle.torque.rms]
+"""), jobs=1)
+    result.ranking[0] = replace(result.ranking[0], r2=0.5)
+    assert "**Nonlinear:** the linear fit explains" in markdown(build_document(result, {}))
