@@ -31,7 +31,7 @@ from ..forces import METHODS
 from ..quantities import unit_of
 from ..spec import GROUND, profile_at
 from ..checks.failures import failed_expectations
-from ..units import DASH, SIG_DIGITS, Display, clean, deg, fmt, kind_of
+from ..units import DASH, PRESSURE_UNITS, SIG_DIGITS, Display, clean, deg, fmt, kind_of
 from .check_text import failure_rows, summary_line
 from .dynamics import dynamics_json, dynamics_section
 from .frames import Animation, animation_data
@@ -1161,11 +1161,13 @@ def _design(analysis, d: Display) -> DesignSummary:
 
 def _pressures(spec, angles: np.ndarray) -> tuple[dict[str, np.ndarray], str]:
     """Each pressure load's pressure at ``angles`` [deg] as written (the profile's values,
-    phased by its shift), in the first pressure load's unit, and that unit."""
+    phased by its shift; absolute or gauge as the profile is), in ``report.units.pressure``
+    (default: the first pressure load's unit), and that unit."""
     loads = [ld for ld in spec.loads if ld.pressure is not None]
     if not loads:
         return {}, "Pa"
-    unit, scale = loads[0].pressure.unit, loads[0].pressure.scale
+    unit = (spec.report.units or {}).get("pressure", loads[0].pressure.unit)
+    scale = PRESSURE_UNITS[unit]
     return ({ld.label: profile_at(ld.pressure.profile, angles, spec.cycle, ld.shift)
              * (ld.pressure.scale / scale) for ld in loads}, unit)
 
