@@ -1495,7 +1495,7 @@ def _design_figures(design: DesignSummary, d: Display) -> dict[str, Figure]:
         figs["pressure"] = Figure("pressure", f"Pressure diagram: the pressure on "
                                   f"{'each piston' if several else 'the piston'} against the "
                                   f"crank angle over {span}, as the spec gives it "
-                                  f"({cd.pressure_unit}).", "pressure")
+                                  f"(absolute or gauge), in {cd.pressure_unit}.", "pressure")
         figs["turning_moment"] = Figure(
             "turning_moment", f"Turning-moment diagram: the crank effort (what the "
             f"{'cylinders give' if several else 'cylinder gives'} the shaft, minus the driver "

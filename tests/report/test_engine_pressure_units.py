@@ -54,3 +54,11 @@ def test_without_a_report_unit_the_diagram_keeps_the_load_unit():
     x, y, label = _line("")
     assert "bar" in label
     assert y[np.argmin(np.abs(x - 360))] == pytest.approx(50, rel=1e-12)
+
+
+def test_the_pressure_caption_names_the_unit_drawn():
+    from mechreport.report.model import build_model
+    m = build_model(mechreport.analyse(ENGINE.replace("REPORT", "report: {units: {pressure: "
+                                                                "psi}}")), animation=False)
+    caption = m.figures["pressure"].caption
+    assert caption.endswith("in psi.") and "bar" not in caption
