@@ -105,3 +105,11 @@ def test_a_question_states_the_drive_once_and_how_the_torque_is_signed(tmp_path)
     torque = [t for t, ans in zip(texts, v.answers) if ans.quantity == "driver.torque"]
     assert len(torque) == 1 and "counter-clockwise positive" in torque[0]
     assert all("counter-clockwise positive" not in t for t in texts if t not in torque)
+
+
+def test_the_key_says_the_problems_print_their_data_in_si(bank):
+    """A mm or inch spec's key lists its varied data in the spec's units while each problem
+    prints SI (the key said 'as printed on each problem')."""
+    _, out = bank
+    key = (out / "answers.md").read_text(encoding="utf-8")
+    assert "each problem gives its data in SI units" in key

@@ -91,8 +91,9 @@ def key_document(variants, name: str) -> Doc:
     """The one-page key: a row per variant with its varied data and every answer."""
     doc = Doc(f"Answer key: {name}", layout=KEY_LAYOUT)
     first = variants[0].answers if variants else []
-    doc.p("Data in the spec's units as printed on each problem; answers in SI units, "
-          "computed from the printed data (tolerance ±1 %).")
+    doc.p("Varied data in the spec's units, rounded as printed (each problem gives its "
+          "data in SI units); answers in SI units, computed from the printed data "
+          "(tolerance ±1 %).")
     header = ["variant", "data"] + [f"{a.label} [{a.unit}]" for a in first]
     rows = [[folder_of(v.number), _data_text(v)] + [fmt(a.value) for a in v.answers]
             for v in variants]
