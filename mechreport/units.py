@@ -59,7 +59,7 @@ EXPECT_UNITS = {
     "N": FORCE_UNITS,
     "N·m": {**MOMENT_UNITS, "N·m": 1.0},
     "m/s": {"m/s": 1.0, "mm/s": 0.001, "in/s": INCH, "ft/s": FOOT},
-    "m/s^2": {"m/s^2": 1.0, "in/s^2": INCH, "ft/s^2": FOOT},
+    "m/s^2": {"m/s^2": 1.0, "mm/s^2": 0.001, "in/s^2": INCH, "ft/s^2": FOOT},
     "deg": {"deg": 1.0, "rad": 57.29577951308232},
     "rad/s": {"rad/s": 1.0, "rpm": RPM},
     "Pa": STRESS_UNITS,

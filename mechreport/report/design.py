@@ -10,7 +10,7 @@ import numpy as np
 from ..post.balance import NOTICEABLE
 from ..quantities import unit_of
 from ..spec import profile_at
-from ..units import DASH, Display, deg, fmt, kind_of
+from ..units import DASH, PRESSURE_UNITS, Display, deg, fmt, kind_of
 from .section import Figure
 
 
@@ -131,11 +131,13 @@ def design_summary(analysis, d: Display) -> DesignSummary:
 
 def _pressures(spec, angles: np.ndarray) -> tuple[dict[str, np.ndarray], str]:
     """Each pressure load's pressure at ``angles`` [deg] as written (the profile's values,
-    phased by its shift), in the first pressure load's unit, and that unit."""
+    phased by its shift; absolute or gauge as the profile is), in ``report.units.pressure``
+    (default: the first pressure load's unit), and that unit."""
     loads = [ld for ld in spec.loads if ld.pressure is not None]
     if not loads:
         return {}, "Pa"
-    unit, scale = loads[0].pressure.unit, loads[0].pressure.scale
+    unit = (spec.report.units or {}).get("pressure", loads[0].pressure.unit)
+    scale = PRESSURE_UNITS[unit]
     return ({ld.label: profile_at(ld.pressure.profile, angles, spec.cycle, ld.shift)
              * (ld.pressure.scale / scale) for ld in loads}, unit)
 
@@ -233,7 +235,7 @@ def design_figures(design: DesignSummary, d: Display) -> dict[str, Figure]:
         figs["pressure"] = Figure("pressure", f"Pressure diagram: the pressure on "
                                   f"{'each piston' if several else 'the piston'} against the "
                                   f"crank angle over {span}, as the spec gives it "
-                                  f"({cd.pressure_unit}).", "pressure")
+                                  f"(absolute or gauge), in {cd.pressure_unit}.", "pressure")
         figs["turning_moment"] = Figure(
             "turning_moment", f"Turning-moment diagram: the crank effort (what the "
             f"{'cylinders give' if several else 'cylinder gives'} the shaft, minus the driver "

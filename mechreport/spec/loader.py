@@ -1643,9 +1643,9 @@ def _load(kind: str, item: dict, i: int, path: tuple, ck: _Checker,
         return None
     point = None
     if kind == "force":
+        if ck.refused(path + ("point",)) or "point" not in item:
+            return None                 # the models say what is missing or wrong
         point = item["point"]
-        if ck.refused(path + ("point",)):
-            return None
         if point not in links[lname].points:
             ck.error(path + ("point",), f"'{point}' is not a point of link '{lname}'")
             return None

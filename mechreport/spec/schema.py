@@ -1428,6 +1428,12 @@ class SheetVary(_Model):
         if ranged and self.from_ == self.to:
             raise PydanticCustomError("vary_range", "'to' equals 'from': for one value write "
                                                     "values: [x]")
+        if self.key == "at" or self.key.startswith("at."):
+            # the answers are taken at the sheet's angles, the spec's `at` as written: a
+            # varied `at` printed one angle on the problem and keyed the answers at another
+            raise PydanticCustomError(WORDED, "the sheet's angles (at) are not varied: every "
+                                              "variant is asked at the spec's 'at'; vary the "
+                                              "data", {"key": "key"})
         return self
 
 

@@ -83,3 +83,33 @@ def test_moodle_xml_alone_is_valid_for_no_figure():
     v = SimpleNamespace(number=1, answers=[a])
     root = ET.fromstring(moodle_xml([v], [{"html": "<p>x &amp; y</p>", "figures": {}}], "a&b"))
     assert root.find("question[@type='numerical']/name/text").text.endswith("M at φ = 0° <&>")
+
+
+def test_a_question_states_the_drive_once_and_how_the_torque_is_signed(tmp_path):
+    """A statement written from the data already says how the mechanism is driven (the
+    question text said it twice); the driver torque is asked signed, and the question says
+    so (a student who finds 694.9 N·m for a torque of -694.9 N·m must know the sign counts)."""
+    from types import SimpleNamespace
+    import html as _html
+    import mechreport
+    from mechreport.report.sheet.model import build_problem, build_sheet
+    from mechreport.report.sheet.statement import driver_statement
+    from mechreport.report.sheet.variants_out import problem_html
+    from mechreport.study.sheet_variants import answers_of
+    a = mechreport.analyse(ROOT / "specs" / "slider_crank.yaml")
+    prob = problem_html(build_sheet(a), build_problem(a), tmp_path, a.spec)
+    assert prob["html"].count(_html.escape(driver_statement(a.spec))) == 1
+    v = SimpleNamespace(number=1, answers=answers_of(a, [45.0]))
+    root = ET.fromstring(moodle_xml([v], [prob], "slider-crank"))
+    texts = [q.findtext("questiontext/text") for q in root.findall("question[@type='numerical']")]
+    torque = [t for t, ans in zip(texts, v.answers) if ans.quantity == "driver.torque"]
+    assert len(torque) == 1 and "counter-clockwise positive" in torque[0]
+    assert all("counter-clockwise positive" not in t for t in texts if t not in torque)
+
+
+def test_the_key_says_the_problems_print_their_data_in_si(bank):
+    """A mm or inch spec's key lists its varied data in the spec's units while each problem
+    prints SI (the key said 'as printed on each problem')."""
+    _, out = bank
+    key = (out / "answers.md").read_text(encoding="utf-8")
+    assert "each problem gives its data in SI units" in key

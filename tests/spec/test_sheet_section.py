@@ -59,6 +59,10 @@ def test_defaults():
     ("sheet: {variants: {vary: [{key: driver.rpm, values: [1]}], require: {mu_min: 1}}}",
      "sheet.variants.require.mu_min", "unknown key"),
     ("sheet: {statement: 3}", "sheet.statement", "text"),
+    # a varied `at` printed one angle on the problem while the key took the answers at the
+    # spec's `at`: the sheet's angles are not varied
+    ("sheet: {variants: {vary: [{key: at.0, values: [30, 60]}]}}",
+     "sheet.variants.vary[0].key", "the sheet's angles (at) are not varied"),
 ])
 def test_mistakes_name_the_key(extra, where, says):
     with pytest.raises(SpecError) as err:

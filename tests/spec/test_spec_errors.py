@@ -882,3 +882,13 @@ def test_cli_validate_good_specs(repo_root):
     assert run.returncode == 0, run.stderr
     assert run.stderr == ""
     assert "slider_crank.yaml: OK" in run.stdout
+
+
+def test_a_force_load_whose_point_key_is_misspelt_is_reported_not_an_internal_error():
+    """The loader read loads[i]["point"] before asking whether the models had refused the
+    load (KeyError: 'point', reported as an internal error)."""
+    text = edit(BASE, "point: C, value: [100, 0]", "pint: C, value: [100, 0]")
+    messages = [f"{p.path}: {p.message}" for p in problems(text)]
+    assert not any("internal" in m for m in messages), messages
+    assert any("missing required key 'point'" in m for m in messages), messages
+    assert any(m.startswith("loads[0].pint: unknown key") for m in messages), messages

@@ -137,3 +137,18 @@ def test_the_solution_sheet_works_the_rankine_check_of_the_rod():
     # a link without buckling data: no column check in its cut (its report gives P_cr)
     crank = next(c for c in cuts(a, 0) if c.title == "Cut of member crank")
     assert not any("Column check" in x for x in crank.result if isinstance(x, str))
+
+
+def test_the_sheet_column_check_writes_powers_of_ten_as_a_textbook():
+    """Sheets write 2.88·10⁻⁹ m⁴, never 2.88e-09 (the out-of-plane I of a 12 x 20 mm rod)."""
+    from mechreport.report.sheet.strength import cuts
+    base = (ROOT / "specs" / "crank_press_strength.yaml").read_text(encoding="utf-8")
+    text = base.replace("mechreport: 1.1", "mechreport: 1.2").replace(
+        "  rod:\n", "  rod:\n    buckling: {k: 1, k_out: 0.5, formula: rankine, "
+                    "rankine: {crushing: 320e6, a: 1.3333e-4}}\n", 1)
+    a = analyse(parse_spec(text, "press.yaml"))
+    rod = next(c for c in cuts(a, 0) if c.title == "Cut of member rod")
+    words = " ".join(x for x in rod.result if isinstance(x, str))
+    check = words[words.index("Column check"):]
+    assert "I_out = 2.88·10⁻⁹ m⁴" in check
+    assert "e-0" not in check and "e+" not in check

@@ -168,3 +168,13 @@ def test_report_and_expect_units_of_format_1_2():
     assert spec.expect[1].value == -FOOT and spec.expect[1].tol == FOOT
     # without report.units, forces and moments are shown in the spec's own units
     assert parse_spec(written("in-lb"), "in.yaml").report.units == {}
+
+
+def test_an_acceleration_may_be_expected_in_mm_per_s2_as_the_reports_show_it():
+    """A mm spec's report shows accelerations in mm/s²; expect takes that unit too (mm/s was
+    accepted, mm/s^2 refused)."""
+    text = written("SI") + (
+        "expect:\n"
+        "  - {angle: 0, quantity: point.C.ax, value: -1500, unit: mm/s^2, tol: 2}\n")
+    (entry,) = parse_spec(text, "si.yaml").expect
+    assert entry.scale == 0.001 and entry.value == -1.5 and entry.tol == 0.002

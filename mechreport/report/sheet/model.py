@@ -25,6 +25,7 @@ from .expr import (ZERO, Equation, Expr, Num, Op, Paren, Point, Raw, Sym, fmt, r
                    sheet_zero)
 from ..spec_items import JOINT_KINDS, LoadItem, driver_item, link_label, load_items
 from .kinematics import derive, scalar, vec_expr
+from .pressure import pressure_rule
 from .statement import eng, sci, statement
 from .symbols import (M_, N_, NM_, R, Names, alpha, axis_atom, comp_sym, omega, scalar_sym,
                       unit_atom, vec_sym)
@@ -456,7 +457,9 @@ def _load_rows(analysis, k: int) -> list:
         if ld.force is not None:
             v = kin.named_point(ld.point, ld.link).v[k]
             rule = (f"opposes the velocity of {ld.point}, v = {_vec(v)} m/s"
-                    if load.oppose == "velocity" else elements.get(load.kind, "as given"))
+                    if load.oppose == "velocity" else
+                    pressure_rule(load, float(kin.angles[k]), spec.cycle)
+                    if load.pressure is not None else elements.get(load.kind, "as given"))
             rows.append([vec_sym(ld.symbol), f"{link.number} ({link.name})", ld.point or "",
                          f"{_vec(ld.force[k])} N", rule])
         else:

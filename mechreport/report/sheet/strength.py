@@ -136,13 +136,14 @@ def column_check(m, b, given: bool = True) -> list:
     if m.buckling_safety is None or m.column is None or not given:
         return []
     sec = m.section
-    formula = (f"Rankine, σc = {_v(b.crushing / 1e6)} MPa, a = {_v(b.a)}"
+    formula = (f"Rankine, σc = {_v(b.crushing / 1e6)} MPa, a = {sci(b.a)}"
                if b.formula == "rankine" else "Euler, or Johnson below the transition "
                "slenderness π √(2E/S_y)")
-    out = [f" Column check over the sweep ({formula}): L = {_v(m.length)} m, A = {_v(sec.area)} m², r = √(I/A) = "
-           f"{_v((sec.inertia / sec.area) ** 0.5)} m in the plane and "
-           f"{_v((sec.inertia_out / sec.area) ** 0.5)} m out of it (I_out = "
-           f"{_v(sec.inertia_out)} m⁴)."]
+    out = [f" Column check over the sweep ({formula}): L = {sci(m.length)} m, "
+           f"A = {sci(sec.area)} m², r = √(I/A) = "
+           f"{sci((sec.inertia / sec.area) ** 0.5)} m in the plane and "
+           f"{sci((sec.inertia_out / sec.area) ** 0.5)} m out of it (I_out = "
+           f"{sci(sec.inertia_out)} m⁴)."]
     for (load, slender, rule), k, where in zip(m.column.planes, (b.k, b.k_out),
                                                ("In the plane", "Out of the plane")):
         out += [f" {where}, k = {_v(k)}: kL/r = {_v(slender)}, ", R(*RULES[rule]),

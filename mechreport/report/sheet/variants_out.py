@@ -91,8 +91,9 @@ def key_document(variants, name: str) -> Doc:
     """The one-page key: a row per variant with its varied data and every answer."""
     doc = Doc(f"Answer key: {name}", layout=KEY_LAYOUT)
     first = variants[0].answers if variants else []
-    doc.p("Data in the spec's units as printed on each problem; answers in SI units, "
-          "computed from the printed data (tolerance ±1 %).")
+    doc.p("Varied data in the spec's units, rounded as printed (each problem gives its "
+          "data in SI units); answers in SI units, computed from the printed data "
+          "(tolerance ±1 %).")
     header = ["variant", "data"] + [f"{a.label} [{a.unit}]" for a in first]
     rows = [[folder_of(v.number), _data_text(v)] + [fmt(a.value) for a in v.answers]
             for v in variants]
@@ -137,8 +138,9 @@ def problem_html(sheet, p, folder: Path, spec) -> dict:
             "F_d: the actuator force"
         symbols = [effort] + [f"{names.vec[j.name]}: the force of {j.links[0]} on "
                               f"{j.links[1]} at joint {j.written}" for j in spec.joints]
-        parts.append(f"<p>{html.escape(driver_statement(spec))}</p><p>Symbols: "
-                     f"{html.escape('; '.join(symbols))}.</p>")
+        # a statement written from the data already says how the mechanism is driven
+        drive = f"<p>{html.escape(driver_statement(spec))}</p>" if p.own_statement else ""
+        parts.append(f"{drive}<p>Symbols: {html.escape('; '.join(symbols))}.</p>")
         parts.append(f"<p>Ground points [m]: {html.escape(', '.join(p.ground))}. Gravity: "
                      f"g = {html.escape(p.gravity)}.</p>" + (f"<ul>{loads}</ul>" if loads
                                                              else ""))
@@ -156,6 +158,14 @@ def _text(parent, tag: str, value: str, **attrs) -> ET.Element:
     return el
 
 
+#: how the signed answers are signed (one number is marked: a student who finds the
+#: magnitude of a negative torque must know the sign is asked for)
+SIGNS = {"driver.torque": " (signed: the torque the driver applies, counter-clockwise "
+                          "positive)",
+         "driver.force": " (signed: the driver's push along its line's direction, positive "
+                         "when it pushes the slider that way)"}
+
+
 def moodle_xml(variants, problems: list[dict], name: str) -> bytes:
     """The Moodle XML question bank (UTF-8 bytes)."""
     quiz = ET.Element("quiz")
@@ -168,8 +178,9 @@ def moodle_xml(variants, problems: list[dict], name: str) -> bytes:
             figs = [prob["figures"][a.angle]] if a.angle in prob["figures"] else []
             imgs = "".join(f'<p><img src="@@PLUGINFILE@@/{html.escape(f[0])}" '
                            f'alt="{html.escape(f[2])}: the mechanism" /></p>' for f in figs)
+            sign = SIGNS.get(getattr(a, "quantity", ""), "")
             ask = (f"<p><strong>Find</strong> {html.escape(a.label)}, in "
-                   f"{html.escape(a.unit)}.</p>")
+                   f"{html.escape(a.unit)}{html.escape(sign)}.</p>")
             qt = _text(q, "questiontext", prob["html"] + imgs + ask, format="html")
             for fname, data, _ in figs:
                 el = ET.SubElement(qt, "file", {"name": fname, "path": "/",
