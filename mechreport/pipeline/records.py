@@ -16,7 +16,7 @@ from ..post.records import (friction_symbol, jnum, key_quantities, largest, peak
                             reaction_symbols)
 from ..post.sweep import PowerCheck
 from ..quantities import unit_of
-from ..units import deg, kind_of
+from ..units import RPM, deg, kind_of
 
 
 def results_table(analysis) -> tuple[list[str], list[list[str]]]:
@@ -44,7 +44,7 @@ def power_record(pc: PowerCheck | None) -> dict | None:
 
 
 def summary_record(analysis) -> dict:
-    """summary.json's results, from ``reference_method`` to ``friction`` (the report puts its
+    """summary.json's results, from ``reference_method`` to ``strength`` (the report puts its
     title block and check line before them)."""
     spec = analysis.spec
     summary = analysis.sweep_summary()
@@ -120,6 +120,8 @@ def summary_record(analysis) -> dict:
         "quantities": key_quantities(summary, cycle, sc, EU),
         "design": design_record(analysis, sc),
         "friction": friction_record(analysis, sc),
+        "dynamics": dynamics_record(analysis),
+        "strength": strength_record(analysis),
     }
 
 
@@ -178,3 +180,54 @@ def friction_record(analysis, sc: dict) -> dict | None:
             "reversed_by_friction_deg": [float(a) for a in
                                          analysis.kinematics.reversed_by_friction],
             "left_out_deg": [f.angle for f in analysis.flags if f.by_friction]}
+
+
+def dynamics_record(analysis) -> dict | None:
+    """summary.json's ``dynamics`` (None without ``dynamics:``): the simulation's outcome,
+    the ``dynamics.*`` quantities and the estimate (SI, with units)."""
+    dyn = analysis.dynamics
+    if dyn is None:
+        return None
+    sim, cycle = dyn.simulation, dyn.simulation.steady
+    out = {"turns": sim.turns, "end_time": {"value": float(sim.time[-1]), "unit": "s"},
+           "steady": cycle is not None, "histories": "dynamics.csv"}
+    if cycle is not None:
+        swing, inertia, estimate = dyn.estimate
+        out.update({
+            "quantities": {k: {"value": float(x), "unit": unit_of(k) or ""}
+                           for k, x in dyn.values.items()},
+            "period": {"value": cycle.period, "unit": "s"},
+            "rpm_min": {"value": cycle.omega_min / RPM, "unit": "rpm"},
+            "rpm_max": {"value": cycle.omega_max / RPM, "unit": "rpm"},
+            "flywheel_estimate": {"speed_fluctuation": {"value": estimate, "unit": ""},
+                                  "energy_fluctuation": {"value": swing, "unit": "J"},
+                                  "inertia": {"value": inertia, "unit": "kg·m^2"}},
+            "verdicts": [{"item": v.item, "passed": v.passed,
+                          "value": None if v.value is None else float(v.value),
+                          "limit": v.limit, "unit": v.unit}
+                         for v in dyn.verdicts]})
+    return out
+
+
+def strength_record(analysis) -> dict | None:
+    """summary.json's ``strength`` (None without a section): per member its quantities and
+    where they occur, SI with units."""
+    st = analysis.strength
+    if st is None:
+        return None
+    out = {}
+    for m in st.members.values():
+        out[m.name] = {
+            "link": m.link, "from": m.P, "to": m.Q, "length": {"value": m.length, "unit": "m"},
+            "stress_max": {"value": m.stress_max, "unit": "Pa", "angle_deg": m.stress_angle,
+                           "s_m": m.stress_s},
+            "static_safety": m.static_safety,
+            "fatigue_safety": m.fatigue_safety,
+            "fatigue": {"s_m": m.fatigue_s, "sigma_a_Pa": m.sigma_a, "sigma_m_Pa": m.sigma_m},
+            "buckling_safety": m.buckling_safety,
+            "buckling": {"compression_N": m.compression,
+                         "angle_deg": m.compression_angle,
+                         "critical_load_N": m.critical_load, "slenderness": m.slenderness,
+                         "rule": m.buckling_rule, "plane": m.buckling_plane},
+            "note": m.note or None}
+    return {"method": st.method, "members": out}

@@ -230,38 +230,6 @@ def _compared(analysis, steady, d: Display) -> list[list[str]]:
     return rows
 
 
-def dynamics_json(analysis) -> dict | None:
-    """summary.json's ``dynamics`` (None without ``dynamics:``): the simulation's outcome,
-    the ``dynamics.*`` quantities and the estimate (SI, with units)."""
-    dyn = analysis.dynamics
-    if dyn is None:
-        return None
-    sim, cycle = dyn.simulation, dyn.simulation.steady
-    out = {"turns": sim.turns, "end_time": {"value": float(sim.time[-1]), "unit": "s"},
-           "steady": cycle is not None, "histories": "dynamics.csv"}
-    if cycle is not None:
-        swing, inertia, estimate = dyn.estimate
-        out.update({
-            "quantities": {k: {"value": float(x), "unit": _unit(k)}
-                           for k, x in dyn.values.items()},
-            "period": {"value": cycle.period, "unit": "s"},
-            "rpm_min": {"value": cycle.omega_min / RPM, "unit": "rpm"},
-            "rpm_max": {"value": cycle.omega_max / RPM, "unit": "rpm"},
-            "flywheel_estimate": {"speed_fluctuation": {"value": estimate, "unit": ""},
-                                  "energy_fluctuation": {"value": swing, "unit": "J"},
-                                  "inertia": {"value": inertia, "unit": "kg·m^2"}},
-            "verdicts": [{"item": v.item, "passed": v.passed,
-                          "value": None if v.value is None else float(v.value),
-                          "limit": v.limit, "unit": v.unit}
-                         for v in dyn.verdicts]})
-    return out
-
-
-def _unit(quantity: str) -> str:
-    from ..quantities import unit_of
-    return unit_of(quantity) or ""
-
-
 def write_histories(histories: list[np.ndarray], folder: Path) -> list[Path]:
     """dynamics.csv and dynamics.parquet of the time ``histories`` (:func:`histories_of`)
     in ``folder``."""
@@ -281,5 +249,5 @@ def write_histories(histories: list[np.ndarray], folder: Path) -> list[Path]:
     return out
 
 
-__all__ = ["DynamicsPlot", "DynamicsSection", "HISTORY_COLUMNS", "dynamics_json",
+__all__ = ["DynamicsPlot", "DynamicsSection", "HISTORY_COLUMNS",
            "dynamics_section", "histories_of", "write_histories"]

@@ -1,13 +1,11 @@
 """summary.json as the report writes it: the title block and the check line (the report's
 words), then the analysis's summary record (``Analysis.summary_record``, built once in the
-pipeline, :mod:`mechreport.pipeline.records`) and the dynamics and strength records; and the
-index row read back from a summary."""
+pipeline, :mod:`mechreport.pipeline.records`, the dynamics and strength records included);
+and the index row read back from a summary."""
 from __future__ import annotations
 
 from ..units import DASH, deg, fmt
-from .dynamics import dynamics_json
 from .provenance import Meta
-from .strength import strength_json
 
 
 def summary_json(analysis, meta: Meta, status_line: str, fails: list[dict]) -> dict:
@@ -22,9 +20,7 @@ def summary_json(analysis, meta: Meta, status_line: str, fails: list[dict]) -> d
         "revision": meta.revision or None,
         "status": "PASS" if analysis.passed else "FAIL", "check": status_line,
         "failures": fails,
-        **analysis.summary_record(),
-        "dynamics": dynamics_json(analysis),
-        "strength": strength_json(analysis)}
+        **analysis.summary_record()}
 
 
 def _away_value(big: dict | None) -> float | None:

@@ -143,28 +143,4 @@ def strength_section(analysis, d: Display, axis: str = "deg") -> StrengthSection
     return StrengthSection(intro, links, rows, text, notes, plot)
 
 
-def strength_json(analysis) -> dict | None:
-    """summary.json's ``strength`` (None without a section): per member its quantities and
-    where they occur, SI with units."""
-    st = analysis.strength
-    if st is None:
-        return None
-    out = {}
-    for m in st.members.values():
-        out[m.name] = {
-            "link": m.link, "from": m.P, "to": m.Q, "length": {"value": m.length, "unit": "m"},
-            "stress_max": {"value": m.stress_max, "unit": "Pa", "angle_deg": m.stress_angle,
-                           "s_m": m.stress_s},
-            "static_safety": m.static_safety,
-            "fatigue_safety": m.fatigue_safety,
-            "fatigue": {"s_m": m.fatigue_s, "sigma_a_Pa": m.sigma_a, "sigma_m_Pa": m.sigma_m},
-            "buckling_safety": m.buckling_safety,
-            "buckling": {"compression_N": m.compression,
-                         "angle_deg": m.compression_angle,
-                         "critical_load_N": m.critical_load, "slenderness": m.slenderness,
-                         "rule": m.buckling_rule, "plane": m.buckling_plane},
-            "note": m.note or None}
-    return {"method": st.method, "members": out}
-
-
-__all__ = ["StrengthPlot", "StrengthSection", "strength_json", "strength_section"]
+__all__ = ["StrengthPlot", "StrengthSection", "strength_section"]
