@@ -33,11 +33,11 @@ def optimize_command(path, out="out", scheduler: str | None = None, jobs: int | 
     KeyboardInterrupt when interrupted."""
     from functools import partial
 
-    from ..study.cluster import close_client, connect, dask_workers
+    from ..study.cluster import close_client, connect
     from ..study.optimize import load_optimize_base, problem_of, run_optimize
-    from ..study.run import local_jobs
     from .process import check_stop, stop_requests
     from .progress import StudyProgress, duration
+    from .study import placement
     from .workers import worker_init
 
     err = stream or sys.stderr
@@ -52,15 +52,7 @@ def optimize_command(path, out="out", scheduler: str | None = None, jobs: int | 
         problem = prepared[0]
         client = connect(scheduler) if scheduler is not None else None
         try:
-            if client is not None:
-                workers = dask_workers(client)
-                where = f"the Dask cluster at {scheduler} ({workers} worker thread(s))"
-            else:
-                workers, _size, lowered = local_jobs(10**6, jobs, None)
-                if lowered:
-                    print(f"--jobs {jobs}: using {workers} process(es), because {lowered}",
-                          file=err, flush=True)
-                where = "this process" if workers == 1 else f"{workers} local processes"
+            workers, _size, where = placement(client, scheduler, 10**6, jobs, None, err)
             sense = "maximize" if opt.maximize else "minimize"
             print(f"optimize {path}: {sense} {opt.objective} over {len(opt.vary)} key(s), "
                   f"{len(problem.constraints)} constraint(s); budget {total} evaluations; "

@@ -44,6 +44,24 @@ from ..errors import describe_failure
 from . import outdir as od
 
 
+def placement(client, scheduler: str | None, n: int, jobs: int | None, chunk: int | None,
+              err) -> tuple[int, int, str]:
+    """Where ``n`` items run, for `study`, `tolerance` and `optimize`: the workers, the chunk
+    size and the words for them: the Dask cluster of ``client`` (at ``scheduler``), else local
+    processes (``--jobs``, saying on ``err`` why fewer were taken)."""
+    from ..study.cluster import dask_workers
+    from ..study.run import auto_chunk, local_jobs
+    if client is not None:
+        workers = dask_workers(client)
+        return (workers, chunk or auto_chunk(n, workers),
+                f"the Dask cluster at {scheduler} ({workers} worker thread(s))")
+    workers, size, lowered = local_jobs(n, jobs, chunk)
+    if lowered:
+        print(f"--jobs {jobs}: using {workers} process(es), because {lowered}", file=err,
+              flush=True)
+    return workers, size, "this process" if workers == 1 else f"{workers} local processes"
+
+
 def study_command(path, out="out", method: str | None = None, scheduler: str | None = None,
                   jobs: int | None = None, reports: int = 0, cross: int = 0,
                   chunk: int | None = None, wait: float = 120.0, stream=None) -> int:
@@ -52,10 +70,10 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     KeyboardInterrupt when interrupted."""
     from functools import partial
 
-    from ..study.cluster import close_client, connect, dask_workers
+    from ..study.cluster import close_client, connect
     from ..study.methods import choose_method
     from ..study.plan import plan_of
-    from ..study.run import auto_chunk, local_jobs, run_variants
+    from ..study.run import run_variants
     from ..study.variants import load_base
     from .process import check_stop, stop_requests
     from .progress import StudyProgress, duration
@@ -73,16 +91,7 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     with stop_requests():
         client = connect(scheduler) if scheduler is not None else None
         try:
-            if client is not None:
-                workers = dask_workers(client)
-                size = chunk or auto_chunk(plan.n, workers)
-                where = f"the Dask cluster at {scheduler} ({workers} worker thread(s))"
-            else:
-                workers, size, lowered = local_jobs(plan.n, jobs, chunk)
-                if lowered:
-                    print(f"--jobs {jobs}: using {workers} process(es), because {lowered}",
-                          file=err, flush=True)
-                where = ("this process" if workers == 1 else f"{workers} local processes")
+            workers, size, where = placement(client, scheduler, plan.n, jobs, chunk, err)
             note = (" (study.count is for random and lhs sampling: not used by grid)"
                     if study.sample == "grid" and study.count else "")
             print(f"study {path}: {plan.n} variant(s), {study.sample} sampling{note}; method "

@@ -94,15 +94,14 @@ def tolerance_command(path, out="out", method: str | None = None,
     from functools import partial
 
     from ..report.model import build_time, spec_sha256
-    from ..study.cluster import close_client, connect, dask_workers
+    from ..study.cluster import close_client, connect
     from ..study.methods import choose_method
-    from ..study.run import auto_chunk, local_jobs
     from ..study.tolerance import (checked_nominal, load_tolerance_base, run_samples,
                                    tolerance_plan)
     from ..study.tolerance_stats import analyse_samples
     from .process import check_stop, stop_requests
     from .progress import StudyProgress, duration
-    from .study import lost_line
+    from .study import lost_line, placement
     from .workers import worker_init
 
     err = stream or sys.stderr
@@ -118,16 +117,7 @@ def tolerance_command(path, out="out", method: str | None = None,
     with stop_requests():
         client = connect(scheduler) if scheduler is not None else None
         try:
-            if client is not None:
-                workers = dask_workers(client)
-                size = chunk or auto_chunk(plan.n, workers)
-                where = f"the Dask cluster at {scheduler} ({workers} worker thread(s))"
-            else:
-                workers, size, lowered = local_jobs(plan.n, jobs, chunk)
-                if lowered:
-                    print(f"--jobs {jobs}: using {workers} process(es), because {lowered}",
-                          file=err, flush=True)
-                where = "this process" if workers == 1 else f"{workers} local processes"
+            workers, size, where = placement(client, scheduler, plan.n, jobs, chunk, err)
             kind = "Latin hypercube" if plan.sample == "lhs" else "random"
             print(f"tolerance {path}: {plan.n} sample(s) of {len(plan.keys)} uncertain "
                   f"value(s), {kind} sampling; method {method} ({why}); on {where}, chunks "
