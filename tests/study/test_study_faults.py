@@ -86,6 +86,10 @@ def _fault(start: int) -> None:
     if how == "close-worker":
         from distributed import get_worker
         worker = get_worker()
+        # the chunks done before this one reach the client first (their results travel on the
+        # worker's event loop while this task sleeps; on a busy machine, closing at once could
+        # also lose the first chunk's rows, which the test counts as kept)
+        time.sleep(1.0)
         worker.loop.add_callback(worker.close)
         time.sleep(2.0)
         return
