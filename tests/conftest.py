@@ -22,6 +22,22 @@ SPEC_FILES = sorted(SPEC_DIR.glob("*.yaml"))
 DATA_SPEC_FILES = sorted((ROOT / "tests" / "data").glob("*.yaml"))
 
 
+#: shipped specs whose whole-cycle analyses and dynamics are the costliest (720 angles, a
+#: mean-speed simulation): the property tests run over every spec parametrise them in the slow
+#: tier (``make test`` runs it), so that ``pytest -m "not slow"`` stays under a minute; the
+#: tests written for them (tests/validation, the engine and flywheel tests) are not
+#: parametrised by name and stay in the fast tier
+HEAVY_SPECS = ("single_cylinder_engine", "inline_four_engine", "punching_press", "four_bar_motor")
+
+
+def pytest_collection_modifyitems(config, items) -> None:
+    for item in items:
+        callspec = getattr(item, "callspec", None)
+        if callspec is not None and any(name in callspec.id.split("-")
+                                        for name in HEAVY_SPECS):
+            item.add_marker(pytest.mark.slow)
+
+
 def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
     if "spec_path" in metafunc.fixturenames:
         paths = SPEC_FILES + DATA_SPEC_FILES

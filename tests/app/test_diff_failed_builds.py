@@ -7,11 +7,15 @@ import json
 import shutil
 from pathlib import Path
 
+import pytest
+
 from mechreport.app import outdir as od
 from mechreport.app.build import build_files
 from mechreport.app.cli import main
 
 from helpers import tiny_spec
+
+pytestmark = pytest.mark.slow     # several builds each: the slow tier
 
 REPORT = ("report.md", "report.pdf", "results.csv", "summary.json")
 

@@ -735,6 +735,7 @@ WORST_CASES = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", list(WORST_CASES))
 def test_worst_case_input_at_the_size_cap_costs_one_event_per_byte_at_most(name, events):
     """The reader's work grows with the file, not faster: at most one YAML event per byte,
