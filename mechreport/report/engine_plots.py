@@ -7,12 +7,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..post.flywheel import energy_areas
 from ..units import fmt
 from .cycle_plots import cycle_axis
 from .mpl import BLUE, INK, ORANGE, PALETTE, SKY, STYLES, figure, legend_top, literal
 
 __all__ = ["pressure_figure", "draw_pressure", "turning_moment_figure",
-           "draw_turning_moment", "draw_shares", "energy_areas"]
+           "draw_turning_moment", "draw_shares"]
 
 #: an area of the turning-moment diagram below this share of the largest is not labelled
 LABEL_SHARE = 0.04
@@ -35,39 +36,6 @@ def draw_pressure(ax, cd, d=None) -> None:
     ax.set_ylabel(f"pressure [{cd.pressure_unit}]")
     legend_top(ax, 4)
     cycle_axis(ax, cd)
-
-
-def energy_areas(angles: np.ndarray, effort: np.ndarray, mean: float, period: float
-                 ) -> list[tuple[float, float, float]]:
-    """The areas of a turning-moment diagram between its crossings with the mean, over one
-    periodic cycle: (start, end [deg], energy [J]) each, in crank order; the area that spans
-    the cycle's end is one area (its end beyond ``period``). Trapezoids on the grid, the
-    crossings interpolated linearly; the energies sum to zero."""
-    a = np.append(angles, angles[0] + period)
-    y = np.append(effort, effort[0]) - mean
-    # the crossings: where y changes sign between two grid angles (or is 0 at one)
-    pieces, cuts = [], []
-    for k in range(len(a) - 1):
-        if y[k] == 0 or y[k] * y[k + 1] < 0:
-            x = a[k] if y[k] == 0 else a[k] - y[k] * (a[k + 1] - a[k]) / (y[k + 1] - y[k])
-            cuts.append((k, x))
-    if not cuts:
-        return [(float(a[0]), float(a[-1]), float(np.sum(0.5 * (y[1:] + y[:-1])
-                                                         * np.radians(np.diff(a)))))]
-    for (k0, x0), (k1, x1) in zip(cuts, cuts[1:] + [(cuts[0][0] + len(a) - 1,
-                                                     cuts[0][1] + period)]):
-        xs = [x0]
-        ys = [0.0]
-        for k in range(k0 + 1, k1 + 1):
-            i = k % (len(a) - 1)
-            xs.append(a[i] + period * (k // (len(a) - 1)))
-            ys.append(y[i])
-        xs.append(x1)
-        ys.append(0.0)
-        xs, ys = np.array(xs), np.array(ys)
-        energy = float(np.sum(0.5 * (ys[1:] + ys[:-1]) * np.radians(np.diff(xs))))
-        pieces.append((float(x0), float(x1), energy))
-    return pieces
 
 
 def turning_moment_figure(cd, d):
@@ -101,7 +69,7 @@ def draw_turning_moment(ax, cd, d, label: bool = True) -> None:
                     label="above the mean (+ΔE)")
     ax.fill_between(a, t, m, where=t < m, interpolate=True, color=SKY, alpha=0.35, lw=0,
                     label="below the mean (−ΔE)")
-    areas = energy_areas(a, effort, mean, cd.period)
+    areas = [(x.start, x.end, x.energy) for x in energy_areas(a, effort, mean, cd.period)]
     largest = max(abs(e) for _, _, e in areas) or 1.0
     lo, hi = ax.get_ylim()
     for x0, x1, energy in areas:
