@@ -253,17 +253,22 @@ def _dynamics(doc: Doc, m, y) -> None:
     else:
         doc.add(Gap())
     _figure(doc, m, "dynamics")
+    # a 720° engine cycle is a cycle, not a turn; with mean_rpm the drive is no motor
+    span = "turn" if y.plot.cycle == 360 else f"{y.plot.cycle:g}° cycle"
+    drive = "motor's" if y.plot.startup_shown else "constant driving torque's"
     if y.compared:
-        doc.p(Wording("The forces at that motion: the steady turn analysed like the sweep, by "
-                      "every method, with the crank's true speed and acceleration at each angle, "
-                      "beside the sweep at the driver's constant speed:"))
-        doc.add(_table(["quantity", "constant speed (sweep)", "steady turn"], y.compared,
+        doc.p(Wording(f"The forces at that motion: the steady {span} analysed like the sweep, "
+                      "by every method, with the crank's true speed and acceleration at each "
+                      "angle, beside the sweep at the driver's constant speed:"))
+        doc.add(_table(["quantity", "constant speed (sweep)", f"steady {span}"], y.compared,
                        {1, 2}))
     if y.verdicts:
         doc.items(list(y.verdicts), intro=[
-            Wording("Design verdicts over the steady turn (the motor's against its own torque "
-                    "and power: with a flywheel the crank shaft's torque, "),
-            Code("cycle.torque.*"), Wording(", is the motor's and the flywheel's together):")])
+            Wording(f"Design verdicts over the steady {span} ("
+                    + ("the motor's against its own torque and power: " if y.plot.startup_shown
+                       else "")
+                    + "with a flywheel the crank shaft's torque, "),
+            Code("cycle.torque.*"), Wording(f", is the {drive} and the flywheel's together):")])
     doc.p("Time histories: ", Code("dynamics.csv"), " and ", Code("dynamics.parquet"),
           " (time, crank angle unwrapped, speed, acceleration, motor torque; SI).")
 
