@@ -14,4 +14,6 @@ def test_allocator_setting_respects_the_environment(monkeypatch):
             assert process.keep_freed_memory() is False
     import platform
     if platform.libc_ver()[0] == "glibc":        # applied where it can be
+        for name in ("MECHREPORT_MALLOC", "MALLOC_TRIM_THRESHOLD_", "MALLOC_MMAP_THRESHOLD_"):
+            monkeypatch.delenv(name, raising=False)     # as an earlier in-process CLI run left
         assert process.keep_freed_memory() is True
