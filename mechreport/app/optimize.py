@@ -33,11 +33,10 @@ def optimize_command(path, out="out", scheduler: str | None = None, jobs: int | 
     KeyboardInterrupt when interrupted."""
     from functools import partial
 
-    from ..study.cluster import close_client, connect
     from ..study.optimize import load_optimize_base, problem_of, run_optimize
     from .process import check_stop, stop_requests
     from .progress import StudyProgress, duration
-    from .study import placement
+    from .study import cluster_client, placement, stop_said
     from .workers import worker_init
 
     err = stream or sys.stderr
@@ -50,8 +49,7 @@ def optimize_command(path, out="out", scheduler: str | None = None, jobs: int | 
     with stop_requests():
         prepared = problem_of(base)
         problem = prepared[0]
-        client = connect(scheduler) if scheduler is not None else None
-        try:
+        with cluster_client(scheduler, err) as client:
             workers, _size, where = placement(client, scheduler, 10**6, jobs, None, err)
             sense = "maximize" if opt.maximize else "minimize"
             print(f"optimize {path}: {sense} {opt.objective} over {len(opt.vary)} key(s), "
@@ -66,33 +64,21 @@ def optimize_command(path, out="out", scheduler: str | None = None, jobs: int | 
             def notify(line: str) -> None:
                 progress.close()
                 print(line, file=err, flush=True)
-            try:
+            with stop_said(err, lambda: f"interrupted after {progress.done} evaluation(s); "
+                                        "nothing was written", progress.close):
                 result = run_optimize(base, jobs=workers if client is None else 1,
                                       client=client, budget=budget, seed=seed,
                                       progress=tick, notify=notify, stop_check=check_stop,
                                       setup=partial(worker_init, os.getpid()),
                                       prepared=prepared)
                 progress.close()
-            except KeyboardInterrupt as exc:
-                progress.close()
-                print(f"interrupted after {progress.done} evaluation(s); nothing was written",
-                      file=err)
-                exc.reported = True
-                raise
-        finally:
-            trouble = close_client(client)
-            if trouble:
-                print(f"warning: {trouble}", file=err, flush=True)
         result.where = where
         print(f"{result.history.n} evaluation(s) in {duration(result.seconds)}; "
               f"{int(result.history.feasible().sum())} feasible", file=err, flush=True)
         print(f"writing {out / name}/ ...", file=err, flush=True)
-        try:
+        with stop_said(err, lambda: f"interrupted while writing; {out / name} was left as it "
+                                    "was"):
             final = write_optimize(result, path, out, name, wait, err)
-        except KeyboardInterrupt as exc:
-            print(f"interrupted while writing; {out / name} was left as it was", file=err)
-            exc.reported = True
-            raise
     return report_lines(result, final, err)
 
 

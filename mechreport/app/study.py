@@ -38,6 +38,7 @@ from __future__ import annotations
 import os
 import sys
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import describe_failure
@@ -62,6 +63,35 @@ def placement(client, scheduler: str | None, n: int, jobs: int | None, chunk: in
     return workers, size, "this process" if workers == 1 else f"{workers} local processes"
 
 
+@contextmanager
+def stop_said(err, words, before=None):
+    """Ctrl-C or SIGTERM inside the block: ``before()`` (a progress bar's line ended), then
+    ``words()`` on ``err``, the stop marked as reported (the CLI adds nothing) and raised
+    again. For `study`, `tolerance` and `optimize` alike."""
+    try:
+        yield
+    except KeyboardInterrupt as exc:
+        if before is not None:
+            before()
+        print(words(), file=err)
+        exc.reported = True
+        raise
+
+
+@contextmanager
+def cluster_client(scheduler: str | None, err):
+    """The Dask client of ``scheduler`` (None: local processes), closed when the block ends
+    however it ends, a trouble in closing said on ``err`` as a warning."""
+    from ..study.cluster import close_client, connect
+    client = connect(scheduler) if scheduler is not None else None
+    try:
+        yield client
+    finally:
+        trouble = close_client(client)
+        if trouble:
+            print(f"warning: {trouble}", file=err, flush=True)
+
+
 def study_command(path, out="out", method: str | None = None, scheduler: str | None = None,
                   jobs: int | None = None, reports: int = 0, cross: int = 0,
                   chunk: int | None = None, wait: float = 120.0, stream=None) -> int:
@@ -70,7 +100,6 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     KeyboardInterrupt when interrupted."""
     from functools import partial
 
-    from ..study.cluster import close_client, connect
     from ..study.methods import choose_method
     from ..study.plan import plan_of
     from ..study.run import run_variants
@@ -89,8 +118,7 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     name = od.safe_stem(path)
     lost: list = []
     with stop_requests():
-        client = connect(scheduler) if scheduler is not None else None
-        try:
+        with cluster_client(scheduler, err) as client:
             workers, size, where = placement(client, scheduler, plan.n, jobs, chunk, err)
             note = (" (study.count is for random and lhs sampling: not used by grid)"
                     if study.sample == "grid" and study.count else "")
@@ -102,22 +130,13 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
                 progress.close()           # a bar being drawn on a terminal ends its line
                 print(line, file=err, flush=True)
             start = time.perf_counter()
-            try:
+            with stop_said(err, lambda: f"interrupted after {progress.done} of {plan.n} "
+                                        "variant(s); nothing was written", progress.close):
                 table = run_variants(base, plan, method, study.keep, jobs=workers,
                                      chunk=size, client=client, progress=progress.update,
                                      lost=lost, notify=notify, stop_check=check_stop,
                                      setup=partial(worker_init, os.getpid()))
                 progress.close()
-            except KeyboardInterrupt as exc:
-                progress.close()
-                print(f"interrupted after {progress.done} of {plan.n} variant(s); nothing "
-                      "was written", file=err)
-                exc.reported = True
-                raise
-        finally:
-            trouble = close_client(client)
-            if trouble:
-                print(f"warning: {trouble}", file=err, flush=True)
         seconds = time.perf_counter() - start
         n_ok = int(table.ok.sum())
         n_pass = int(table.passing.sum())
@@ -138,12 +157,9 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
                        sha256=spec_sha256(path), cross=cc,
                        date=build_time().strftime("%Y-%m-%d %H:%M UTC"))
         print(f"writing {out / name}/ ...", file=err, flush=True)
-        try:
+        with stop_said(err, lambda: f"interrupted while writing; {out / name} was left as it "
+                                    "was"):
             final = write_study(run, out, name, reports, wait, err)
-        except KeyboardInterrupt as exc:
-            print(f"interrupted while writing; {out / name} was left as it was", file=err)
-            exc.reported = True
-            raise
     failed_reports = [r for r in run.reports if not r[2]]
     print(f"{spec_line(run)}; written to {final}/ (study.parquet, study.csv, study.md, "
           f"study.pdf{', study-reports/' if run.reports else ''})")

@@ -94,14 +94,13 @@ def tolerance_command(path, out="out", method: str | None = None,
     from functools import partial
 
     from ..report.model import build_time, spec_sha256
-    from ..study.cluster import close_client, connect
     from ..study.methods import choose_method
     from ..study.tolerance import (checked_nominal, load_tolerance_base, run_samples,
                                    tolerance_plan)
     from ..study.tolerance_stats import analyse_samples
     from .process import check_stop, stop_requests
     from .progress import StudyProgress, duration
-    from .study import lost_line, placement
+    from .study import cluster_client, lost_line, placement, stop_said
     from .workers import worker_init
 
     err = stream or sys.stderr
@@ -115,8 +114,7 @@ def tolerance_command(path, out="out", method: str | None = None,
     name = od.safe_stem(path)
     lost: list = []
     with stop_requests():
-        client = connect(scheduler) if scheduler is not None else None
-        try:
+        with cluster_client(scheduler, err) as client:
             workers, size, where = placement(client, scheduler, plan.n, jobs, chunk, err)
             kind = "Latin hypercube" if plan.sample == "lhs" else "random"
             print(f"tolerance {path}: {plan.n} sample(s) of {len(plan.keys)} uncertain "
@@ -128,23 +126,14 @@ def tolerance_command(path, out="out", method: str | None = None,
                 progress.close()
                 print(line, file=err, flush=True)
             start = time.perf_counter()
-            try:
+            with stop_said(err, lambda: f"interrupted after {progress.done} of {plan.n} "
+                                        "sample(s); nothing was written", progress.close):
                 table = run_samples(base, plan, method, tol.keep, [v.item for v in verdicts],
                                     jobs=workers, chunk=size, client=client,
                                     progress=progress.update, lost=lost, notify=notify,
                                     stop_check=check_stop,
                                     setup=partial(worker_init, os.getpid()))
                 progress.close()
-            except KeyboardInterrupt as exc:
-                progress.close()
-                print(f"interrupted after {progress.done} of {plan.n} sample(s); nothing "
-                      "was written", file=err)
-                exc.reported = True
-                raise
-        finally:
-            trouble = close_client(client)
-            if trouble:
-                print(f"warning: {trouble}", file=err, flush=True)
         seconds = time.perf_counter() - start
         result = analyse_samples(base, table, nominal, verdicts, method, why, seconds, lost)
         print(f"{plan.n} sample(s) in {duration(seconds)}: "
@@ -153,13 +142,10 @@ def tolerance_command(path, out="out", method: str | None = None,
         date = build_time().strftime("%Y-%m-%d %H:%M UTC")
         sha = spec_sha256(path)
         print(f"writing {out / name}/ ...", file=err, flush=True)
-        try:
+        with stop_said(err, lambda: f"interrupted while writing; {out / name} was left as it "
+                                    "was"):
             final = write_tolerance(result, out, name, wait, date=date, sha256=sha,
                                     where=where, chunk=size)
-        except KeyboardInterrupt as exc:
-            print(f"interrupted while writing; {out / name} was left as it was", file=err)
-            exc.reported = True
-            raise
     print(result_line(result) + f"; written to {final}/ (tolerance.parquet, tolerance.csv, "
           "tolerance.md, tolerance.pdf, tolerance.json)")
     if lost:
