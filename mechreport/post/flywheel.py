@@ -33,9 +33,11 @@ def energy_areas(angles: np.ndarray, torque: np.ndarray, mean: float, period: fl
     a = np.append(np.asarray(angles, float), float(angles[0]) + period)
     y = np.append(np.asarray(torque, float), float(torque[0])) - mean
     n = len(a) - 1
-    cuts = [(k, float(a[k]) if y[k] == 0 else
-             float(a[k] - y[k] * (a[k + 1] - a[k]) / (y[k + 1] - y[k])))
-            for k in range(n) if y[k] == 0 or y[k] * y[k + 1] < 0]
+    ks = np.flatnonzero((y[:-1] == 0) | (y[:-1] * y[1:] < 0))     # the grid steps crossed
+    with np.errstate(divide="ignore", invalid="ignore"):          # y == 0 there: exact
+        at = np.where(y[ks] == 0, a[ks],
+                      a[ks] - y[ks] * (a[ks + 1] - a[ks]) / (y[ks + 1] - y[ks]))
+    cuts = [(int(k), float(x)) for k, x in zip(ks, at)]
     if not cuts:
         energy = float(np.sum(0.5 * (y[1:] + y[:-1]) * np.radians(np.diff(a))))
         return [EnergyArea(float(a[0]), float(a[-1]), energy, energy)]
