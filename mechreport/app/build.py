@@ -40,7 +40,7 @@ def build_key(path: Path, sheet: bool, exact: bool, sheet_options=None,
     mechreport version and the options that change the output (``sheet_options``: the
     sheets' methods and angles, a :class:`~mechreport.report.sheet.SheetOptions`;
     ``animation`` False: ``--no-animation``)."""
-    from ..report.model import spec_sha256
+    from ..report.provenance import spec_sha256
     from ..version import __version__
     key = {"spec": str(path), "spec_sha256": spec_sha256(path),
            "mechreport_version": __version__, "sheet": bool(sheet), "exact": bool(exact),
@@ -233,7 +233,7 @@ def index_rows(out: Path, failures: dict[str, dict] | None = None) -> list[dict]
     """The index of ``out``: one row per report folder on disk (from its summary.json; a FAIL
     row for one marked out of date), with ``failures`` (folder name -> this run's FAIL row)
     in place of, or beside, the folders."""
-    from ..report.model import index_row
+    from ..report.records import index_row
 
     failures = failures or {}
     disk = od.report_folders(out)
@@ -330,7 +330,7 @@ def build_files(paths: list[Path], out: Path, jobs: int | None = None, sheet: bo
             same = None if force else up_to_date(out, name, build_key(
                 path, sheet, exact, sheet_options, animation))
             if same is not None:
-                from ..report.model import index_row
+                from ..report.records import index_row
                 try:
                     row = dict(index_row(same, name), folder=name, spec=shown_path(path),
                                skipped=True, seconds=0.0)

@@ -113,7 +113,7 @@ def write_optimize(result, path: Path, out: Path, name: str, wait: float = 120.0
     """Write every file of ``result`` into ``OUT/name``; the folder."""
     from ..report.build import write_report_folder
     from ..report.files import atomic_write_text
-    from ..report.model import build_time, spec_sha256
+    from ..report.provenance import build_time, spec_sha256
     from ..report.pdf import compile_typst
     from ..report.write_markdown import markdown
     from ..report.write_typst import typst

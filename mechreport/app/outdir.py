@@ -422,7 +422,7 @@ def mark_failed(out: Path, name: str, spec: str, message: str) -> bool:
     folder; whether it was written. Never through a symbolic link. Raises OSError if it
     cannot be written."""
     from ..report.files import atomic_write_text
-    from ..report.model import build_time
+    from ..report.provenance import build_time
     from ..version import __version__
     folder = Path(out) / name
     if occupied(out, name) is not None or not (folder / "summary.json").is_file():

@@ -152,7 +152,7 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
             never = [i for x in lost for i in range(x.start, x.stop)]
             cc = cross_check(base, table, cross, study.seed, progress=tick, skip=never)
         from ..study.report import StudyRun
-        from ..report.model import build_time, spec_sha256
+        from ..report.provenance import build_time, spec_sha256
         run = StudyRun(base, table, method, why, seconds, where, size,
                        sha256=spec_sha256(path), cross=cc,
                        date=build_time().strftime("%Y-%m-%d %H:%M UTC"))
@@ -254,7 +254,7 @@ def variant_report(run, i: int, rank: int, tmp: Path, folder: str) -> None:
     from ..pipeline import analyse
     from ..report.build import write_report_folder
     from ..report.files import atomic_write_text
-    from ..report.model import spec_sha256
+    from ..report.provenance import spec_sha256
     from ..spec import load_spec
     from ..study.variants import variant_yaml
     base, plan = run.base, run.plan

@@ -93,7 +93,7 @@ def tolerance_command(path, out="out", method: str | None = None,
     KeyboardInterrupt when interrupted."""
     from functools import partial
 
-    from ..report.model import build_time, spec_sha256
+    from ..report.provenance import build_time, spec_sha256
     from ..study.methods import choose_method
     from ..study.tolerance import (checked_nominal, load_tolerance_base, run_samples,
                                    tolerance_plan)

@@ -25,11 +25,10 @@ from ..forces import METHODS
 from ..units import Display, deg, fmt
 from ..version import __version__
 from .check_text import failure_rows, summary_line
-from .design import MEANING, DesignSummary, design_figures, design_summary
+from .design import DesignSummary, design_figures, design_summary
 from .dynamics import dynamics_section
 from .frames import Animation, animation_data
-from .friction import FrictionSection, friction_data, friction_figures, friction_section
-from .mpl import PALETTE
+from .friction import FrictionSection, friction_figures, friction_section
 from .provenance import Meta, build_time, spec_sha256
 from .records import index_row, summary_json
 from .ref_angles import DxfData, RefAngle, dxf_data, reference_angles
@@ -39,12 +38,11 @@ from .spec_text import (MethodRow, branch_rows, driver_text, joint_rows, link_ro
                         load_texts, method_row)
 from .strength import StrengthSection, strength_section
 from .sweep_section import (SweepData, agreement_rows, bearing_rows, flag_rows,
-                            left_out_text, peak_text, power_check_text, sweep_data,
+                            left_out_text, peak_text, power_check_text,
                             sweep_figures, sweep_series, torque_texts)
 
-#: names other modules import from here (the sections' homes are the modules above)
-__all__ = ["MEANING", "PALETTE", "ReportModel", "build_model", "build_time", "display_of",
-           "friction_data", "index_row", "spec_sha256", "sweep_data"]
+#: what other modules import from here (a section's own names from its module above)
+__all__ = ["ReportModel", "build_model"]
 
 
 @dataclass

@@ -104,7 +104,7 @@ def _nothing(analysis, what: str):
 def _sweep(analysis):
     """The report's sweep records of ``analysis`` and its display units; ValueError when no
     position of the sweep was solved."""
-    from .model import sweep_data
+    from .sweep_section import sweep_data
     sw, d = sweep_data(analysis)
     if len(sw.angles) == 0:
         raise _nothing(analysis, "solved position in the sweep")
@@ -127,7 +127,7 @@ def plot_torque(analysis, ax=None):
         fig, ax = plt.subplots()
         mechreport.report.plots.plot_torque(mechreport.analyse("specs/four_bar.yaml"), ax=ax)
     """
-    from .model import sweep_data
+    from .sweep_section import sweep_data
     sw, d = sweep_data(analysis)
     ax = _axes(ax, 2.9)
     draw_torque(ax, sw, d)
@@ -138,7 +138,7 @@ def plot_torque(analysis, ax=None):
 def plot_reactions(analysis, ax=None):
     """Every joint's reaction magnitude over the sweep of ``analysis`` as the report draws
     it, on ``ax`` (default: a new figure's); returns the Axes."""
-    from .model import sweep_data
+    from .sweep_section import sweep_data
     sw, d = sweep_data(analysis)
     ax = _axes(ax, 3.0)
     draw_reactions(ax, sw, d)
@@ -284,7 +284,7 @@ def plot_friction(analysis, ax=None):
     """The driver's effort with and without friction in the joints of ``analysis`` as the
     report draws it, on ``ax`` (default: a new figure's); returns the Axes. Raises
     ValueError when the spec has no friction."""
-    from .model import friction_data
+    from .friction import friction_data
     fp, d = friction_data(analysis)
     if fp is None:
         raise ValueError(f"{analysis.spec.file}: no friction in its joints (a 'friction:' "

@@ -54,7 +54,7 @@ def write_index(rows: list[dict], out: Path, title: str = "mechreport batch") ->
     their message); the CSV and JSON are SI with the unit in each field name, for CI."""
     from ..version import __version__
     from .index_doc import index_document
-    from .model import build_time
+    from .provenance import build_time
 
     out = Path(out)
     when = build_time().strftime("%Y-%m-%d %H:%M UTC")

@@ -31,7 +31,7 @@ def test_the_command_writes_every_file_and_keeps_the_report(tmp_path, capsys):
     out = tmp_path / "out"
     folder = out / "four_bar"
     folder.mkdir(parents=True)             # a report there, as `mechreport build` leaves it
-    from mechreport.report.model import spec_sha256
+    from mechreport.report.provenance import spec_sha256
     (folder / "summary.json").write_text(json.dumps(
         {"status": "PASS", "spec_sha256": spec_sha256(spec),
          "quantities": {"cycle.torque.rms": {"value": 2.3, "unit": "N·m"},

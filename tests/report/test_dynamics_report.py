@@ -113,7 +113,8 @@ def test_design_summary_rows_of_the_dynamics_have_a_meaning_and_a_unit():
     said only their name and "293.5", "0.7632": each now says what it is and its unit,
     like the other cycle-quantity rows."""
     from mechreport.quantities import DYNAMICS_QUANTITIES, unit_of
-    from mechreport.report.model import MEANING, build_model
+    from mechreport.report.design import MEANING
+    from mechreport.report.model import build_model
     m = build_model(mechreport.analyse(MOTOR))
     rows = {name: (meaning, value) for meaning, name, value in m.design.values}
     assert set(DYNAMICS_QUANTITIES) <= set(rows)

@@ -40,7 +40,8 @@ def test_a_counterweight_that_helps_is_recommended_with_its_gain():
 def test_a_joint_peak_is_one_value_in_every_output(path):
     """The report's bearing table, its design summary, summary.json and the index give one
     peak per joint; the peak away from left-out angles is a second, labelled value."""
-    from mechreport.report.model import display_of, index_row
+    from mechreport.report.records import index_row
+    from mechreport.report.section import display_of
     a = mechreport.analyse(path)
     m = build_model(a)
     s = m.summary
@@ -70,7 +71,7 @@ def test_the_mean_and_rms_effort_are_one_value_in_every_output(path):
     summary once showed an RMS torque of 141.6 N·m and the "Over the sweep" table, the plot
     legends and the index 141.2 N·m. One definition (the cycle's: a left-out angle counts
     with its interpolated value), one value, one name in summary.json."""
-    from mechreport.report.model import index_row
+    from mechreport.report.records import index_row
     a = mechreport.analyse(path)
     m = build_model(a)
     s = m.summary

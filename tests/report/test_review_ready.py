@@ -23,7 +23,8 @@ from mechreport.app import cli
 from mechreport.pipeline.analysis import analyse
 from mechreport.errors import SpecError
 from mechreport.app.build import build_files
-from mechreport.report.model import PALETTE, build_model
+from mechreport.report.model import build_model
+from mechreport.report.mpl import PALETTE
 from mechreport.spec import parse_spec
 from mechreport.units import Display, fmt
 
