@@ -93,14 +93,14 @@ _sheet_count = _checked(int, lambda v: 1 <= v <= 500, "a whole number from 1 to 
 
 def _sheet_methods(text: str) -> tuple[str, ...]:
     """``--sheet-methods``: comma-separated method names, each known, none twice."""
-    from ..forces import METHODS
+    from ..quantities import METHOD_NAMES
     names = [t.strip() for t in text.split(",")]
-    bad = [n for n in names if n not in METHODS]
+    bad = [n for n in names if n not in METHOD_NAMES]
     if not text.strip() or bad or len(set(names)) != len(names):
         what = f"unknown method {bad[0]!r}; " if bad and bad[0] else ""
         raise argparse.ArgumentTypeError(
             f"{what}must be method names separated by commas, each once, from: "
-            f"{', '.join(METHODS)}; got {text!r}")
+            f"{', '.join(METHOD_NAMES)}; got {text!r}")
     return tuple(names)
 
 

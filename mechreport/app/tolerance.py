@@ -50,7 +50,7 @@ def add_parser(sub, filled, at_least_1, seconds) -> None:
     import argparse
     import textwrap
 
-    from ..forces import METHODS
+    from ..quantities import METHOD_NAMES     # (not the methods: no solver on start-up)
     p = sub.add_parser("tolerance", help="the chance the built machine passes (a spec's "
                        "tolerances: section)",
                        description=textwrap.fill(
@@ -62,7 +62,7 @@ def add_parser(sub, filled, at_least_1, seconds) -> None:
                        epilog=filled(EPILOG), formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--out", default="out", help="output folder (default: out)")
-    p.add_argument("--method", choices=list(METHODS), default=None,
+    p.add_argument("--method", choices=list(METHOD_NAMES), default=None,
                    help="the force method for every sample (default: the fastest that gives "
                    "every kept quantity and design verdict)")
     p.add_argument("--scheduler", metavar="ADDRESS", default=None,

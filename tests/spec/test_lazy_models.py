@@ -7,14 +7,16 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[2]
 HEAVY = ("pydantic", "mechreport.spec.schema", "mechreport.spec.loader")
 
 
-def _loaded_after(code: str) -> list[str]:
-    """The heavy modules loaded after running ``code`` in a fresh interpreter."""
+def _loaded_after(code: str, heavy: tuple[str, ...] = HEAVY) -> list[str]:
+    """The ``heavy`` modules loaded after running ``code`` in a fresh interpreter."""
     probe = (code + "\nimport sys\n"
-             f"print(' '.join(m for m in {HEAVY!r} if m in sys.modules), file=sys.stderr)")
+             f"print(' '.join(m for m in {heavy!r} if m in sys.modules), file=sys.stderr)")
     out = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True,
                          text=True, check=True, env={"PYTHONPATH": str(ROOT), "PATH": ""})
     return out.stderr.split()
@@ -24,11 +26,23 @@ def test_importing_the_records_builds_no_model():
     assert _loaded_after("import mechreport.spec; from mechreport.spec import Spec") == []
 
 
-def test_the_version_builds_no_model():
-    code = ("import runpy, sys\nsys.argv = ['mechreport', '--version']\n"
+def _command(*argv: str) -> str:
+    """Code running ``mechreport ARGV`` as the console script does."""
+    return (f"import runpy, sys\nsys.argv = ['mechreport', *{argv!r}]\n"
             "try:\n    runpy.run_module('mechreport', run_name='__main__')\n"
             "except SystemExit:\n    pass")
-    assert _loaded_after(code) == []
+
+
+def test_the_version_builds_no_model():
+    assert _loaded_after(_command("--version")) == []
+
+
+@pytest.mark.parametrize("argv", [("--version",), ("--help",), ("tolerance", "--help"),
+                                  ("study", "--help"), ("optimize", "--help"),
+                                  ("build", "--help")])
+def test_the_command_line_help_loads_no_solver(argv):
+    """The parsers offer the force methods' names without importing the methods (numpy)."""
+    assert _loaded_after(_command(*argv), ("numpy", "mechreport.forces")) == []
 
 
 def test_loading_a_spec_builds_them():
