@@ -16,7 +16,7 @@ import numpy as np
 from ..report.document import Code, Doc, Print, Strong
 from ..units import fmt
 from .optimize import OptimizeResult, Profile
-from .report import METHOD_TITLES, key_units
+from .report import key_units, method_title
 from .table import column_name, with_unit
 
 FIGURES = "optimize-figures"
@@ -214,7 +214,7 @@ def build_document(result: OptimizeResult, figures: dict[str, str], *, sha256: s
           f" {n_feas} feasible, in {result.seconds:.1f} s on {result.where}: differential "
           f"evolution (scipy, seed {result.seed}, {result.generations} generations of "
           "the whole population evaluated as one batch, each candidate analysed by ",
-          Strong(METHOD_TITLES.get(p.method, p.method)),
+          Strong(method_title(p.method)),
           f" with the study's trust test){'' if not n_pol else f', then {n_pol} evaluations of an SLSQP polish' + (' (kept)' if result.polished else ' (no better feasible design)')}. "
           f"scipy says: {(result.message or '—').rstrip('.')}.")
     rows = []

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..forces import METHODS
 from ..report.plots import styled
 from ..units import fmt, pretty
 from ..report.document import Code, Doc, Print, Strong
@@ -327,7 +328,7 @@ def build_document(run: StudyRun, figures: dict[str, str]) -> Doc:
     doc.p("Spec ", Code(spec.file), f"{sha}; mechreport {__version__}",
           f"; {run.date}." if run.date else ".")
     doc.p(Strong(f"{t.n} variants"), f" ({_sampling_text(run)}), analysed by ",
-          Strong(METHOD_TITLES.get(run.method, run.method)), f" ({run.method}: {run.method_why})"
+          Strong(method_title(run.method)), f" ({run.method}: {run.method_why})"
           f" on {run.where}, in chunks of {run.chunk}, in {run.seconds:.1f} s. A study runs one "
           "force method for every variant; the full cross-check of all methods is for single "
           "reports (mechreport build), and --cross-check N re-runs N variants with every "
@@ -389,9 +390,10 @@ def build_document(run: StudyRun, figures: dict[str, str]) -> Doc:
     return doc
 
 
-METHOD_TITLES = {"newton_euler": "Newton-Euler", "dalembert": "D'Alembert",
-                 "dyad": "Dyad (Assur groups)", "contour": "Contour",
-                 "power": "Power balance"}
+def method_title(name: str) -> str:
+    """The force method's title as the reports print it ("Newton-Euler"), the name itself
+    for one that is not a method."""
+    return METHODS[name].TITLE if name in METHODS else name
 
 
 def _variant_cells(run: StudyRun, i: int) -> list[str]:

@@ -16,7 +16,7 @@ import numpy as np
 from ..report.document import Code, Doc, Strong
 from ..report.plots import styled
 from ..units import fmt
-from .report import METHOD_TITLES, StudyDoc, key_units, robust_limits
+from .report import StudyDoc, key_units, method_title, robust_limits
 from .table import column_name, with_unit
 from .tolerance_stats import varies
 
@@ -183,7 +183,7 @@ def build_document(result, figures: dict[str, str], date: str = "", sha256: str 
     ran = f" on {where}" + (f", in chunks of {chunk}" if chunk else "") if where else ""
     doc.p(Strong(f"{t.n} samples"), f" ({what}, seed {plan.seed}) of the spec's uncertain "
           "values, each analysed as a whole machine by ",
-          Strong(METHOD_TITLES.get(result.method, result.method)),
+          Strong(method_title(result.method)),
           f" ({result.method}: {result.method_why}){ran}, in {result.seconds:.1f} s, each "
           "with the trust test of a study (a sample whose one method cannot vouch for its "
           "numbers is counted as untrusted, not used). The spec as written was solved by "
