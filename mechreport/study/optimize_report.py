@@ -16,6 +16,7 @@ import numpy as np
 from ..report.document import Code, Doc, Print, Strong
 from ..units import fmt
 from .optimize import OptimizeResult, Profile
+from .outputs import csv_cell
 from .report import key_units, method_title
 from .table import column_name, with_unit
 
@@ -23,15 +24,6 @@ FIGURES = "optimize-figures"
 
 
 # ------------------------------------------------------------------------------ history
-
-def _cell(x) -> str:
-    if x is None:
-        return ""
-    x = float(x)
-    if not math.isfinite(x):
-        return ""
-    return str(int(x)) if x.is_integer() and abs(x) < 1e15 else repr(x)
-
 
 def history_columns(result: OptimizeResult) -> list[str]:
     p = result.problem
@@ -51,9 +43,9 @@ def write_history(result: OptimizeResult, path: Path) -> Path:
         w.writerow(history_columns(result))
         for i, j in enumerate(h.judged):
             w.writerow([str(i + 1), h.phase[i], str(h.generation[i])]
-                       + [_cell(v) for v in h.values[i]] + [_cell(v) for v in j.values]
-                       + [_cell(m) for m in j.margins]
-                       + [_cell(j.violation), "true" if j.feasible else "false",
+                       + [csv_cell(v) for v in h.values[i]] + [csv_cell(v) for v in j.values]
+                       + [csv_cell(m) for m in j.margins]
+                       + [csv_cell(j.violation), "true" if j.feasible else "false",
                           "; ".join(j.faults)])
     return Path(path)
 
