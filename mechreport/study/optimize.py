@@ -41,6 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from .optimize_eval import Constraint, Judged, Problem, judge_chunk, judge_outcome, score
+from .plan import _latin_hypercube
 from .variants import BaseSpec
 
 #: share of the budget kept for the polish, and its most evaluations
@@ -313,7 +314,7 @@ def run_optimize(base: BaseSpec, *, method: str | None = None, jobs: int = 1, cl
     init = "latinhypercube"
     if size_pop > de_budget:          # many keys, a small budget: a smaller first population
         size_pop = max(5, de_budget)
-        init = _latin_hypercube(size_pop, d, seed)
+        init = _latin_hypercube(d, size_pop, np.random.default_rng([seed, 1]))
     maxiter = max(0, de_budget // size_pop - 1)
     # the spec's own design, where it lies in the box, is a member of the first population:
     # the search never reports a box as infeasible, nor an optimum worse than the original,
@@ -388,17 +389,6 @@ def run_optimize(base: BaseSpec, *, method: str | None = None, jobs: int = 1, cl
     prove(result)
     result.seconds = time.perf_counter() - t0
     return result
-
-
-def _latin_hypercube(n: int, d: int, seed: int) -> np.ndarray:
-    """``n`` points of a Latin hypercube in [0, 1]^d drawn from ``seed``."""
-    from scipy.stats import qmc
-    rng = np.random.default_rng([seed, 1])
-    try:
-        sampler = qmc.LatinHypercube(d=d, rng=rng)
-    except TypeError:                       # scipy < 1.15 names it ``seed``
-        sampler = qmc.LatinHypercube(d=d, seed=rng)
-    return sampler.random(n)
 
 
 def _polish(problem: Problem, history: History, lo, hi, budget: int, evaluate) -> bool:
