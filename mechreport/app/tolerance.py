@@ -95,6 +95,7 @@ def tolerance_command(path, out="out", method: str | None = None,
 
     from ..report.provenance import build_time, spec_sha256
     from ..study.methods import choose_method
+    from ..study.plan import SAMPLING_NAMES
     from ..study.tolerance import (checked_nominal, load_tolerance_base, run_samples,
                                    tolerance_plan)
     from ..study.tolerance_stats import analyse_samples
@@ -116,9 +117,8 @@ def tolerance_command(path, out="out", method: str | None = None,
     with stop_requests():
         with cluster_client(scheduler, err) as client:
             workers, size, where = placement(client, scheduler, plan.n, jobs, chunk, err)
-            kind = "Latin hypercube" if plan.sample == "lhs" else "random"
             print(f"tolerance {path}: {plan.n} sample(s) of {len(plan.keys)} uncertain "
-                  f"value(s), {kind} sampling; method {method} ({why}); on {where}, chunks "
+                  f"value(s), {SAMPLING_NAMES[plan.sample]} sampling; method {method} ({why}); on {where}, chunks "
                   f"of {size}", file=err, flush=True)
             progress = StudyProgress(plan.n, err, items="samples")
 

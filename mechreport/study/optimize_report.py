@@ -17,7 +17,7 @@ from ..report.document import Code, Doc, Print, Strong
 from ..units import fmt
 from .optimize import OptimizeResult, Profile
 from .outputs import csv_cell
-from .report import key_units, method_title
+from .report import key_units, method_title, provenance
 from .table import column_name, with_unit
 
 FIGURES = "optimize-figures"
@@ -170,15 +170,12 @@ def _margin(m: float) -> str:
 
 def build_document(result: OptimizeResult, figures: dict[str, str], *, sha256: str = "",
                    date: str = "", report: str = "") -> Doc:
-    from ..version import __version__
     p, h = result.problem, result.history
     spec = p.base.spec
     opt = spec.optimize
     units = key_units(p.base)
     doc = OptimizeDoc(f"Design optimisation: {spec.name}")
-    sha = f" (SHA-256 {sha256[:16]}...)" if sha256 else ""
-    doc.p("Spec ", Code(spec.file), f"{sha}; mechreport {__version__}",
-          f"; {date}." if date else ".")
+    provenance(doc, spec.file, sha256, date)
     sense = "maximize" if p.maximize else "minimize"
     j0 = result.original
     if result.feasible:

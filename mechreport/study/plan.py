@@ -23,6 +23,9 @@ import numpy as np
 
 from ..spec import Study, Vary
 
+#: how the reports and the terminal name a ``sample`` method (``<name> sampling``)
+SAMPLING_NAMES = {"grid": "grid", "random": "random", "lhs": "Latin hypercube"}
+
 
 @dataclass(frozen=True)
 class Plan:

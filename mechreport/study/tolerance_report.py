@@ -16,7 +16,8 @@ import numpy as np
 from ..report.document import Code, Doc, Strong
 from ..report.plots import styled
 from ..units import fmt
-from .report import StudyDoc, key_units, method_title, robust_limits
+from .plan import SAMPLING_NAMES
+from .report import StudyDoc, key_units, method_title, provenance, robust_limits
 from .table import column_name, with_unit
 from .tolerance_stats import varies
 
@@ -175,11 +176,8 @@ def build_document(result, figures: dict[str, str], date: str = "", sha256: str 
     tol = spec.tolerances
     units = key_units(result.base)
     doc = StudyDoc(f"Tolerance analysis: {spec.name}")
-    from ..version import __version__
-    sha = f" (SHA-256 {sha256[:16]}...)" if sha256 else ""
-    doc.p("Spec ", Code(spec.file), f"{sha}; mechreport {__version__}",
-          f"; {date}." if date else ".")
-    what = "Latin hypercube sampling" if plan.sample == "lhs" else "random sampling"
+    provenance(doc, spec.file, sha256, date)
+    what = f"{SAMPLING_NAMES[plan.sample]} sampling"
     ran = f" on {where}" + (f", in chunks of {chunk}" if chunk else "") if where else ""
     doc.p(Strong(f"{t.n} samples"), f" ({what}, seed {plan.seed}) of the spec's uncertain "
           "values, each analysed as a whole machine by ",
