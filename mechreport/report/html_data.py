@@ -1,7 +1,9 @@
 """The data of report.html's interactive parts, as one JSON-ready dict: the mechanism at every
 analysed angle (each link's points, each joint's point, the applied forces), the reference
 method's joint reactions and the driver's effort there, read from the analysis' result
-records (the kinematics' point paths, the report model's sweep series), never recomputed.
+records (the kinematics' point paths, the report model's sweep series), never recomputed;
+their colours are the figures' (:mod:`.mpl`'s palette: the joints', the driver's wine,
+the loads' black, the shaking force's ink).
 
 Values are in the report's display units; the numbers the page shows beside the slider are
 formatted here by the report's one formatter (so they read as report.md's), the plotted ones
@@ -16,7 +18,7 @@ import numpy as np
 from ..kinematics.frames import rotate
 from ..spec import GROUND
 from ..units import deg
-from .mpl import MOMENT_COLOR
+from .mpl import INK, LOAD_COLOR, MOMENT_COLOR
 
 #: positions are stored as whole numbers of extent / GRID
 GRID = 10000
@@ -136,7 +138,7 @@ def html_data(analysis, model) -> dict:
         "method": sw.method_title,
         "units": {"force": d.unit("force"), "effort": d.unit(effort_kind),
                   "length": d.unit("length")},
-        "effort": {"label": model.effort, "kind": effort_kind,
+        "effort": {"label": model.effort, "kind": effort_kind, "color": MOMENT_COLOR,
                    "values": _floats(d.value(np.asarray(sw.torque, float), effort_kind)),
                    "text": _texts(sw.torque, effort_kind, d)},
         "geometry": {"grid": GRID, "extent": extent, "force_ref": force_ref,
@@ -146,6 +148,7 @@ def html_data(analysis, model) -> dict:
                                for link in spec.links],
                      "ground": [grid(g[:1])[0] for g in ground.values()],
                      "loads": [{"symbol": ld.symbol, "at": grid(load_at[ld.symbol]),
+                                "color": LOAD_COLOR,
                                 "fx": _floats(np.asarray(ld.force, float)[:, 0]),
                                 "fy": _floats(np.asarray(ld.force, float)[:, 1])}
                                for ld in loads]
@@ -156,7 +159,7 @@ def html_data(analysis, model) -> dict:
                      "driver": spec.driver.joint},
         "joints": joints,
         "shaking": None if shaking is None or len(shaking) != n else {
-            "label": "shaking force on the frame |F|",
+            "label": "shaking force on the frame |F|", "color": INK,
             "values": _floats(d.value(shaking, "force")), "text": _texts(shaking, "force", d)},
     }
     if n <= MAX_ANGLES:

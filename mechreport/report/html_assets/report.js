@@ -151,7 +151,7 @@
         if (p) svg("circle", { cx: p[0], cy: -p[1], r: 0.012 * G, fill: "#fff", stroke: "#222", "stroke-width": 1.5 * w }, layer);
       });
       data.joints.forEach(function (j) { arrow(layer, j.at[k], j.fx[k], j.fy[k], j.color, j.symbol); });
-      g.loads.forEach(function (l) { arrow(layer, l.at[k], l.fx[k], l.fy[k], l.color || "#111", l.symbol); });
+      g.loads.forEach(function (l) { arrow(layer, l.at[k], l.fx[k], l.fy[k], l.color, l.symbol); });
     });
   }
 
@@ -174,12 +174,12 @@
   function charts(data, listeners, setIndex, nearestIndex) {
     var box = document.getElementById("charts");
     var plots = [{ title: data.effort.label + " over the sweep", unit: data.units.effort,
-                   series: [{ name: data.effort.label.split(" ").pop(), color: "#7b1f3a", values: data.effort.values }] },
+                   series: [{ name: data.effort.label.split(" ").pop(), color: data.effort.color, values: data.effort.values }] },
                  { title: "Joint reactions (magnitude) over the sweep", unit: data.units.force,
                    series: data.joints.map(function (j) { return { name: j.symbol, color: j.color, values: j.f }; }) }];
     if (data.shaking) {
       plots.push({ title: "Shaking force on the frame (magnitude) over the sweep", unit: data.units.force,
-                   series: [{ name: "|F|", color: "#444", values: data.shaking.values }] });
+                   series: [{ name: "|F|", color: data.shaking.color, values: data.shaking.values }] });
     }
     plots.forEach(function (p) { if (p.series.length) chart(box, data, p, listeners, setIndex, nearestIndex); });
   }
