@@ -18,12 +18,11 @@ import numpy as np
 from ..kinematics.frames import rotate
 from ..spec import GROUND
 from ..units import deg
+from .drawing import ARROW_LEN     # an arrow of the reference force: as animation.gif
 from .mpl import INK, LOAD_COLOR, MOMENT_COLOR
 
 #: positions are stored as whole numbers of extent / GRID
 GRID = 10000
-#: an arrow of the reference force is this fraction of the drawing's size (as animation.gif)
-ARROW_LEN = 0.26
 #: a finer sweep is thinned to about this many angles (the page stays under 1 MB; a 0.25
 #: degree sweep keeps every angle), keeping every peak and reference angle
 MAX_ANGLES = 1441
