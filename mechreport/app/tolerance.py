@@ -118,8 +118,8 @@ def tolerance_command(path, out="out", method: str | None = None,
         with cluster_client(scheduler, err) as client:
             workers, size, where = placement(client, scheduler, plan.n, jobs, chunk, err)
             print(f"tolerance {path}: {plan.n} sample(s) of {len(plan.keys)} uncertain "
-                  f"value(s), {SAMPLING_NAMES[plan.sample]} sampling; method {method} ({why}); on {where}, chunks "
-                  f"of {size}", file=err, flush=True)
+                  f"value(s), {SAMPLING_NAMES[plan.sample]} sampling; method {method} ({why}); "
+                  f"on {where}, chunks of {size}", file=err, flush=True)
             progress = StudyProgress(plan.n, err, items="samples")
 
             def notify(line: str) -> None:
