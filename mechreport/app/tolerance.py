@@ -155,12 +155,12 @@ def tolerance_command(path, out="out", method: str | None = None,
 
 def result_line(result) -> str:
     """One line: the samples, the probability of assembly and of passing every verdict."""
+    from ..study.tolerance_report import interval, percent   # as tolerance.md prints them
     a, d = result.assembly, result.design
     text = (f"{result.spec.file}: {result.table.n} sample(s): assembles "
-            f"{100 * a.p:.1f} % (95 % interval {100 * a.low:.1f}-{100 * a.high:.1f} %)")
+            f"{percent(a.p)} (95 % interval {interval(a)})")
     if result.verdicts:
-        text += (f"; passes every design verdict {100 * d.p:.1f} % "
-                 f"({100 * d.low:.1f}-{100 * d.high:.1f} %)")
+        text += f"; passes every design verdict {percent(d.p)} ({interval(d)})"
     return text
 
 
