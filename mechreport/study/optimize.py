@@ -432,6 +432,13 @@ def _polish(problem: Problem, history: History, lo, hi, budget: int, evaluate) -
 
 # ------------------------------------------------------------------------------ proof
 
+def value_change(key: str, value: float, start: float) -> str:
+    """``ground.D.0 = 183.3340996 (was 200)``: a varied key's value and the spec's own, in
+    the spec's units, as the terminal, the optimum's report and optimum.yaml's header say
+    it."""
+    return f"{key} = {value:.10g} (was {start:.10g})"
+
+
 def header_of(result: OptimizeResult, index: int, optimum: bool = True) -> str:
     """optimum.yaml's header: where its values come from (``optimum`` False: the least
     violating design of a search that found no feasible one, and what it misses)."""
@@ -449,7 +456,7 @@ def header_of(result: OptimizeResult, index: int, optimum: bool = True) -> str:
         lines += [f"  {line}" for line in (j.missed(result.problem) if j is not None else [])]
         lines.append("Its values:")
     for k, v in zip(result.keys, result.history.values[index]):
-        lines.append(f"  {k} = {v:.12g} (was {result.start[k]:.12g})")
+        lines.append(f"  {value_change(k, v, result.start[k])}")
     return "\n".join(lines)
 
 
