@@ -150,6 +150,8 @@ def test_the_page_draws_in_the_figures_colours(four_bar):
     script = asset_bytes("report.js").decode()
     assert "data.effort.color" in script and "data.shaking.color" in script
     assert not re.findall(r"color: \"#|color \|\|", script)
+    # a value under the pointer is the report's text of it, not the script's own formatting
+    assert "s.text[i]" in script and "fmt(s.values" not in script
 
 
 @pytest.mark.slow
