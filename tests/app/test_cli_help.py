@@ -36,3 +36,15 @@ def test_check_s_stated_default_tolerance_is_the_agreement_check_s(capsys, monke
         main(["check", "--help"])
     stated = re.search(r"--tol TOL\s+.*\(default ([0-9.e+-]+)\)", capsys.readouterr().out)
     assert stated and float(stated.group(1)) == DEFAULT_TOL
+
+
+def test_diff_s_stated_default_tolerance_is_the_trust_tolerance(capsys, monkeypatch):
+    """``diff --rtol`` defaults to what every printed value promises, the one owner of it."""
+    import re
+
+    from mechreport.kinematics import TRUST_RTOL
+    monkeypatch.setenv("COLUMNS", "200")
+    with pytest.raises(SystemExit):
+        main(["diff", "--help"])
+    stated = re.search(r"--rtol RTOL\s+.*\(default ([0-9.e+-]+):", capsys.readouterr().out)
+    assert stated and float(stated.group(1)) == TRUST_RTOL
