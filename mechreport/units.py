@@ -91,6 +91,12 @@ UNIT_TABLES = {"length": LENGTH_UNITS, "force": FORCE_UNITS, "moment": MOMENT_UN
                "pressure": PRESSURE_UNITS}
 
 
+def with_unit(label: str, unit: str) -> str:
+    """A column heading or name with its unit: ``x [mm]``, ``cycle.torque.rms [N·m]``; the
+    label alone for a quantity without a unit."""
+    return f"{label} [{unit}]" if unit else label
+
+
 def pretty(unit: str) -> str:
     """``N*m`` -> ``N·m`` (how a unit is printed)."""
     return unit.replace("*", "·")
@@ -213,8 +219,7 @@ class Display:
 
     def head(self, label: str, kind: str) -> str:
         """A column heading with the unit: ``x [mm]``."""
-        unit = self.unit(kind)
-        return f"{label} [{unit}]" if unit else label
+        return with_unit(label, self.unit(kind))
 
     def describe(self) -> str:
         """``lengths in mm, forces in kN, moments in N·m, masses in g``."""

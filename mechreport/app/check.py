@@ -8,8 +8,13 @@ from ..errors import describe_failure
 from .console import attempt, spec_files
 
 
-def check_command(args: list[str], tol: float, junit: str | Path | None = None) -> int:
-    """``mechreport check`` on the SPEC|DIR arguments ``args``."""
+def check_command(args: list[str], tol: float | None = None,
+                  junit: str | Path | None = None) -> int:
+    """``mechreport check`` on the SPEC|DIR arguments ``args``; ``tol`` None: the agreement
+    check's default (:data:`mechreport.checks.agreement.DEFAULT_TOL`)."""
+    if tol is None:
+        from ..checks.agreement import DEFAULT_TOL
+        tol = DEFAULT_TOL
     return check_files(spec_files(args), tol, junit)
 
 

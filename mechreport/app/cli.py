@@ -322,7 +322,7 @@ def _main(argv: list[str] | None) -> int:
                        "spec's expectations: one PASS/FAIL line per spec. Exit status 1 if any "
                        "spec fails or none is given.")
     p.add_argument("specs", nargs="+", metavar="SPEC|DIR")
-    p.add_argument("--tol", type=_number_above_0, default=1e-6,
+    p.add_argument("--tol", type=_number_above_0, default=None,   # checks.agreement.DEFAULT_TOL
                    help="largest relative disagreement between methods (default 1e-6)")
     p.add_argument("--junit", metavar="FILE",
                    help="also write JUnit XML to FILE: one test suite per spec, one test case "
@@ -378,7 +378,7 @@ def _main(argv: list[str] | None) -> int:
                        "cannot be read or is not mechreport's.")
     p.add_argument("old", metavar="OLD_OUT")
     p.add_argument("new", metavar="NEW_OUT")
-    p.add_argument("--rtol", type=_number_above_0, default=1e-6,
+    p.add_argument("--rtol", type=_number_above_0, default=None,   # kinematics.TRUST_RTOL
                    help="relative tolerance (default 1e-6: what every printed value promises)")
     p.add_argument("--html", action="store_true",
                    help="print the table as an HTML page of its own (no script, works "

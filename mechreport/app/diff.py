@@ -507,7 +507,11 @@ def _badge(value: str):
     return Verdict(value) if value in ("PASS", "FAIL") else value
 
 
-def diff_command(old: Path, new: Path, rtol: float, as_html: bool = False) -> int:
+def diff_command(old: Path, new: Path, rtol: float | None = None, as_html: bool = False) -> int:
+    """``rtol`` None: the accuracy every printed value promises (``kinematics.TRUST_RTOL``)."""
+    if rtol is None:
+        from ..kinematics import TRUST_RTOL
+        rtol = TRUST_RTOL
     try:
         a, b = read_build(old), read_build(new)
     except MechreportError as exc:

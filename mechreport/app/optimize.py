@@ -84,6 +84,7 @@ def optimize_command(path, out="out", scheduler: str | None = None, jobs: int | 
 
 def report_lines(result, final: Path, err) -> int:
     """The result on stdout (stderr for the misses); the exit status."""
+    from ..study.optimize import value_change
     from ..units import fmt
     p = result.problem
     if result.feasible:
@@ -92,7 +93,7 @@ def report_lines(result, final: Path, err) -> int:
               f"(original {fmt(result.original.objective)}); written to {final}/ "
               "(optimum.yaml, history.csv, optimize.md, optimize.pdf, optimum/)")
         for k, v in result.values.items():
-            print(f"  {k} = {v:.10g} (was {result.start[k]:.10g})")
+            print(f"  {value_change(k, v, result.start[k])}")
         active = [c.name for c, _ in result.active()] + result.at_box()
         print(f"  active: {', '.join(active) if active else 'none'}")
         return 0
@@ -150,8 +151,8 @@ def _described(result):
     own description follows, whose numbers are the original design's)."""
     from dataclasses import replace
     a = result.analysis
-    changed = ", ".join(f"{k} = {v:.10g} (was {result.start[k]:.10g})"
-                        for k, v in result.values.items())
+    from ..study.optimize import value_change
+    changed = ", ".join(value_change(k, v, result.start[k]) for k, v in result.values.items())
     sense = "maximize" if result.problem.maximize else "minimize"
     about = (f"The optimum found by mechreport optimize ({sense} {result.problem.objective}): "
              f"{changed}. The spec's own description follows; its numbers are the original "

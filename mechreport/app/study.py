@@ -101,7 +101,7 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     from functools import partial
 
     from ..study.methods import choose_method
-    from ..study.plan import plan_of
+    from ..study.plan import SAMPLING_NAMES, plan_of
     from ..study.run import run_variants
     from ..study.variants import load_base
     from .process import check_stop, stop_requests
@@ -122,8 +122,9 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
             workers, size, where = placement(client, scheduler, plan.n, jobs, chunk, err)
             note = (" (study.count is for random and lhs sampling: not used by grid)"
                     if study.sample == "grid" and study.count else "")
-            print(f"study {path}: {plan.n} variant(s), {study.sample} sampling{note}; method "
-                  f"{method} ({why}); on {where}, chunks of {size}", file=err, flush=True)
+            print(f"study {path}: {plan.n} variant(s), {SAMPLING_NAMES[study.sample]} "
+                  f"sampling{note}; method {method} ({why}); on {where}, chunks of {size}",
+                  file=err, flush=True)
             progress = StudyProgress(plan.n, err)
 
             def notify(line: str) -> None:

@@ -95,6 +95,7 @@ def tolerance_command(path, out="out", method: str | None = None,
 
     from ..report.provenance import build_time, spec_sha256
     from ..study.methods import choose_method
+    from ..study.plan import SAMPLING_NAMES
     from ..study.tolerance import (checked_nominal, load_tolerance_base, run_samples,
                                    tolerance_plan)
     from ..study.tolerance_stats import analyse_samples
@@ -116,10 +117,9 @@ def tolerance_command(path, out="out", method: str | None = None,
     with stop_requests():
         with cluster_client(scheduler, err) as client:
             workers, size, where = placement(client, scheduler, plan.n, jobs, chunk, err)
-            kind = "Latin hypercube" if plan.sample == "lhs" else "random"
             print(f"tolerance {path}: {plan.n} sample(s) of {len(plan.keys)} uncertain "
-                  f"value(s), {kind} sampling; method {method} ({why}); on {where}, chunks "
-                  f"of {size}", file=err, flush=True)
+                  f"value(s), {SAMPLING_NAMES[plan.sample]} sampling; method {method} ({why}); "
+                  f"on {where}, chunks of {size}", file=err, flush=True)
             progress = StudyProgress(plan.n, err, items="samples")
 
             def notify(line: str) -> None:
@@ -155,12 +155,12 @@ def tolerance_command(path, out="out", method: str | None = None,
 
 def result_line(result) -> str:
     """One line: the samples, the probability of assembly and of passing every verdict."""
+    from ..study.tolerance_report import interval, percent   # as tolerance.md prints them
     a, d = result.assembly, result.design
     text = (f"{result.spec.file}: {result.table.n} sample(s): assembles "
-            f"{100 * a.p:.1f} % (95 % interval {100 * a.low:.1f}-{100 * a.high:.1f} %)")
+            f"{percent(a.p)} (95 % interval {interval(a)})")
     if result.verdicts:
-        text += (f"; passes every design verdict {100 * d.p:.1f} % "
-                 f"({100 * d.low:.1f}-{100 * d.high:.1f} %)")
+        text += f"; passes every design verdict {percent(d.p)} ({interval(d)})"
     return text
 
 

@@ -29,6 +29,9 @@ from ..forces import ForceResult
 from ..quantities import load_scales, unit_kind
 
 SCALE_FLOOR = 1e-3
+#: the largest relative disagreement between methods a spec passes with (``check --tol``'s
+#: default; every analysis, its machine-dynamics turn and a study's cross-check use it)
+DEFAULT_TOL = 1e-6
 STACK_LIMIT = 1 << 21   # most values (16 MB) judged at once
 
 

@@ -26,15 +26,13 @@ import numpy as np
 
 from ..errors import AnalysisError
 from ..forces.context import ForceContext, reaction_unknowns
+from ..forces.friction import MAX_STEPS, TOL    # Newton's convergence, as the sweep's
 from ..forces.friction_law import magnitude, relative_rate
 from ..forces.newton_euler import build_steps as newton_euler_steps
 from ..forces.sources import split_by_source
 from ..kinematics import Kinematics, at_unit_rate, with_rates
 from .motor import motor_function, motor_torque
 from .pieces import DEGREE, GRID_STEP_DEG, periodic_pieces, values_at
-
-TOL = 1e-13          # Newton's convergence: the last step, relative to the friction's scale
-MAX_STEPS = 50
 
 
 @dataclass(frozen=True)

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kinematics import EPS, TRUST_RTOL, Kinematics
+from ..kinematics.constraints import wrap_angle
 from ..spec import Load, profile_at
 
 SPEED_EPS = 1e-9   # [m/s] and [rad/s]
@@ -119,7 +120,7 @@ def _evaluate(kin: Kinematics, load: Load):
         joint = spec.joint(load.joint)
         a, b = joint.links
         rel = kin.theta[:, spec.number(b)] - kin.theta[:, spec.number(a)]
-        delta = (rel - np.radians(load.free_angle) + np.pi) % (2 * np.pi) - np.pi
+        delta = wrap_angle(rel - np.radians(load.free_angle))
         m = load.stiffness * delta
         return [(load, b, None, None, -m), (load, a, None, None, m)]
     num = spec.number(load.link)

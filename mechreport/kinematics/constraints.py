@@ -119,6 +119,7 @@ def joint_residual(spec: Spec, joint: Joint, frames: LinkFrames,
 
 
 def wrap_angle(angle: np.ndarray) -> np.ndarray:
+    """``angle`` [rad] wrapped into [-pi, pi) (the one wrap of an angle difference)."""
     return (angle + np.pi) % (2 * np.pi) - np.pi
 
 

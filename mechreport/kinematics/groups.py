@@ -332,7 +332,7 @@ def _continues(sol: np.ndarray, guess: np.ndarray, q_coarse: np.ndarray, t_coars
     def size(dq):   # dimensionless: lengths over the mechanism's size, angles wrapped
         d = dq.reshape(len(dq), -1, 3).copy()
         d[:, :, :2] /= scale
-        d[:, :, 2] = (d[:, :, 2] + np.pi) % (2 * np.pi) - np.pi
+        d[:, :, 2] = wrap_angle(d[:, :, 2])
         return np.sqrt(np.sum(d ** 2, axis=(1, 2)))
     hi = np.clip(np.searchsorted(t_coarse, t_fine), 1, len(t_coarse) - 1)
     step = size(q_coarse[hi] - q_coarse[hi - 1])

@@ -16,6 +16,7 @@ import numpy as np
 
 from ..checks import (Agreement, ExpectationResult, Residual, agreement, check_expectations,
                      residuals)
+from ..checks.agreement import DEFAULT_TOL
 from ..checks.trust import Inputs, inputs_of
 from ..errors import AnalysisError
 from ..forces import METHODS, ForceContext, ForceResult, Step, solve_forces, worked_steps
@@ -37,9 +38,6 @@ from ..quantities import MECHANISM_UNITS
 from ..post.sweep import SweepSummary, sweep_summary
 from ..spec import Spec, load_spec, parse_spec
 from .dynamics import run_dynamics, steady_rates
-
-DEFAULT_TOL = 1e-6
-
 
 class Checked:
     """The check's verdict on a result with ``agreement`` (worst first), ``expectations``,

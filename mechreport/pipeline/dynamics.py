@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..checks.agreement import DEFAULT_TOL
 from ..dynamics import (EquationOfMotion, Simulation, equation_of_motion, flywheel_estimate,
                         motion, spec_at_speed)
 from ..dynamics.motor import constant_drive
@@ -79,8 +80,8 @@ def steady_values(sim: Simulation, estimate: tuple[float, float, float]
     return {k: v for k, v in values.items() if v is not None}
 
 
-def run_dynamics(mech: Mechanism, analyse_turn, methods=None, tol: float = 1e-6, plans=None,
-                 kin: Kinematics | None = None) -> DynamicsResult:
+def run_dynamics(mech: Mechanism, analyse_turn, methods=None, tol: float = DEFAULT_TOL,
+                 plans=None, kin: Kinematics | None = None) -> DynamicsResult:
     """The machine dynamics of ``mech``'s spec (its ``dynamics:``), its steady turn analysed
     by ``analyse_turn(mech, kin, methods, tol, plans, extra=values)`` (the pipeline's
     :func:`~mechreport.pipeline.analysis.analysis_of`). ``kin``: the sweep's kinematics,

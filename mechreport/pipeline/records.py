@@ -15,7 +15,7 @@ from ..post.friction import efficiency_undefined
 from ..post.records import (friction_symbol, jnum, key_quantities, largest, peak_record,
                             reaction_symbols)
 from ..post.sweep import PowerCheck
-from ..quantities import unit_of
+from ..quantities import joint_unit, unit_of
 from ..units import RPM, deg, kind_of
 
 
@@ -54,7 +54,7 @@ def summary_record(analysis) -> dict:
     ref = summary.method
     F, M = sc["force"], sc["moment"]
     pushed = getattr(spec.driver, "kind", "R") == "T"      # a T driver pushes
-    EU, ES = ("N", F) if pushed else ("N·m", M)
+    EU, ES = (unit_of("driver.force"), F) if pushed else (unit_of("driver.torque"), M)
     effort_key = "driver_force" if pushed else "driver_torque"
     big = summary.largest
     refs = {}
@@ -156,7 +156,7 @@ def friction_record(analysis, sc: dict) -> dict | None:
     joints = {}
     for fr in spec.friction:
         j = spec.joint(fr.joint)
-        unit = "N·m" if j.type == "R" else "N"
+        unit = joint_unit("friction", j.type)
         peak = largest((analysis.kinematics.friction or {}).get(fr.joint), analysis.angles)
         lost = losses.get(fr.joint)
         joints[fr.joint] = {

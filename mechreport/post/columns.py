@@ -12,8 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..quantities import load_scales
-from ..units import ZERO_RTOL
+from ..quantities import (JOINT_UNITS, LINK_UNITS, MECHANISM_UNITS, POINT_UNITS, joint_unit,
+                          load_scales, unit_of)
+from ..units import ZERO_RTOL, with_unit
 from .transmission import smallest_transmission_angle
 
 
@@ -107,44 +108,44 @@ def result_columns(kin, forces: dict, scale: dict[str, float]) -> list[Column]:
         with np.errstate(invalid="ignore"):
             out.append(Column(name, np.where(np.abs(values) <= tol, 0.0, values) + 0.0))
 
+    # the units are the quantities' (mechreport.quantities), the names results.csv's own
+    # (a link's angle is ``L.theta``, a point's ``P.x``: the quantities link.L.angle, point.P.x)
     for ln in spec.links:
         i = ln.number
-        add(f"{ln.name}.theta [deg]", kin.angle_deg(ln.name), "angle")
-        add(f"{ln.name}.omega [rad/s]", kin.omega[:, i], "omega")
-        add(f"{ln.name}.alpha [rad/s^2]", kin.alpha[:, i], "alpha")
+        add(with_unit(f"{ln.name}.theta", LINK_UNITS["angle"]), kin.angle_deg(ln.name), "angle")
+        add(with_unit(f"{ln.name}.omega", LINK_UNITS["omega"]), kin.omega[:, i], "omega")
+        add(with_unit(f"{ln.name}.alpha", LINK_UNITS["alpha"]), kin.alpha[:, i], "alpha")
     for p, owner in spec.named_points():
         s = kin.named_point(p, owner)
-        for lab, arr, unit, kind in (("x", s.r[:, 0], "m", "length"),
-                                     ("y", s.r[:, 1], "m", "length"),
-                                     ("vx", s.v[:, 0], "m/s", "velocity"),
-                                     ("vy", s.v[:, 1], "m/s", "velocity"),
-                                     ("ax", s.a[:, 0], "m/s^2", "acceleration"),
-                                     ("ay", s.a[:, 1], "m/s^2", "acceleration"),
-                                     ("v", np.hypot(s.v[:, 0], s.v[:, 1]), "m/s", "velocity"),
-                                     ("a", np.hypot(s.a[:, 0], s.a[:, 1]), "m/s^2",
-                                      "acceleration")):
-            add(f"{p}.{lab} [{unit}]", arr, kind)
+        for lab, arr, kind in (("x", s.r[:, 0], "length"), ("y", s.r[:, 1], "length"),
+                               ("vx", s.v[:, 0], "velocity"), ("vy", s.v[:, 1], "velocity"),
+                               ("ax", s.a[:, 0], "acceleration"),
+                               ("ay", s.a[:, 1], "acceleration"),
+                               ("v", np.hypot(s.v[:, 0], s.v[:, 1]), "velocity"),
+                               ("a", np.hypot(s.a[:, 0], s.a[:, 1]), "acceleration")):
+            add(with_unit(f"{p}.{lab}", POINT_UNITS[lab]), arr, kind)
     for j in spec.joints:                       # an R joint's relative angle, (-180, 180]
         if j.type == "R":
-            add(f"joint.{j.name}.angle [deg]", kin.relative_angle_deg(*j.links), "angle")
+            add(with_unit(f"joint.{j.name}.angle", JOINT_UNITS["angle"]),
+                kin.relative_angle_deg(*j.links), "angle")
     transmission = smallest_transmission_angle(kin)
     if np.isfinite(transmission).any():
-        add("transmission_angle [deg]", transmission, "angle")
+        add(with_unit("transmission_angle", MECHANISM_UNITS["transmission_angle"]),
+            transmission, "angle")
     for m, res in forces.items():
-        effort = ("driver.torque [N·m]", "moment") if spec.driver.kind == "R" else \
-            ("driver.force [N]", "force")
-        add(f"{m}.{effort[0]}", res.driver_torque, effort[1])
+        effort, kind = ("driver.torque", "moment") if spec.driver.kind == "R" else \
+            ("driver.force", "force")
+        add(with_unit(f"{m}.{effort}", unit_of(effort)), res.driver_torque, kind)
         for name in spec.reported_reactions():
             r = res.reactions.get(name)
             if r is None:
                 continue
-            for attr, unit, kind in (("fx", "N", "force"), ("fy", "N", "force"),
-                                     ("moment", "N·m", "moment"), ("px", "m", "length"),
-                                     ("py", "m", "length")):
+            for attr, kind in (("fx", "force"), ("fy", "force"), ("moment", "moment"),
+                               ("px", "length"), ("py", "length")):
                 v = getattr(r, attr)
                 if v is not None:
-                    add(f"{m}.joint.{name}.{attr} [{unit}]", v, kind)
+                    add(with_unit(f"{m}.joint.{name}.{attr}", JOINT_UNITS[attr]), v, kind)
             if r.friction is not None:     # a couple in an R joint, a force in a T joint
-                add(f"{m}.joint.{name}.friction [{'N·m' if r.type == 'R' else 'N'}]",
+                add(with_unit(f"{m}.joint.{name}.friction", joint_unit("friction", r.type)),
                     r.friction, "moment" if r.type == "R" else "force")
     return out

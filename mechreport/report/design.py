@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..dynamics.simulate import STARTUP_FRACTION
 from ..post.balance import NOTICEABLE
 from ..quantities import unit_of
 from ..spec import profile_at
@@ -182,7 +183,7 @@ MEANING = {
     "balance.inertia_shaking.force_rms": "RMS inertial shaking, balanced",
     "dynamics.speed_fluctuation": "speed fluctuation",
     "dynamics.mean_rpm": "mean crank speed",
-    "dynamics.startup_time": "start-up time (to 95 %)",
+    "dynamics.startup_time": f"start-up time (to {100 * STARTUP_FRACTION:g} %)",
     "dynamics.motor_rms_torque": "motor's RMS torque",
     "dynamics.omega_max": "largest crank speed (steady cycle)",
     "dynamics.omega_min": "smallest crank speed (steady cycle)",

@@ -9,6 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..dynamics.mean_speed import RTOL as SHOOTING_RTOL
+from ..dynamics.simulate import RTOL, STARTUP_FRACTION, STEADY_RTOL
 from ..units import RPM, Display, deg, fmt
 
 #: the columns of dynamics.csv / dynamics.parquet, in order, as the format names them
@@ -107,9 +109,9 @@ def dynamics_section(analysis, d: Display) -> DynamicsSection | None:
     how = ("its periodic state at that mean speed is found directly, with no start-up "
            "(shooting one cycle: the starting speed and the torque such that the speed "
            "returns and the cycle takes as long as at the mean speed, by Newton's method on "
-           "the integration, scipy solve_ivp, DOP853, relative tolerance 1e-12)."
+           f"the integration, scipy solve_ivp, DOP853, relative tolerance {SHOOTING_RTOL:g})."
            if mean_speed else
-           "it is integrated in time (scipy solve_ivp, DOP853, relative tolerance 1e-10).")
+           f"it is integrated in time (scipy solve_ivp, DOP853, relative tolerance {RTOL:g}).")
     intro = (f"The crank is driven by {_drive_text(sd, sim)}, with {_flywheel_text(sd)}"
              f"{start}. Its equation of motion, "
              "(J(φ) + I_f) α = M_m(ω) − B(φ) ω² − C(φ) ω − D(φ), has the mechanism's reduced "
@@ -131,8 +133,8 @@ def dynamics_section(analysis, d: Display) -> DynamicsSection | None:
         head = (f"Periodic state found at a time-mean speed of {fmt(sd.mean_rpm)} rpm under the "
                 f"constant driving torque {fmt(sim.drive_torque)} N·m." if mean_speed else
                 f"Steady state after {sim.turns} {cyc}s (t = {fmt(cycle.t0 + cycle.period)} "
-                f"s): two successive {cyc}s agree in speed and period to 1e-6, the speed "
-                "within 1e-6 of its extrapolated limit.")
+                f"s): two successive {cyc}s agree in speed and period to {STEADY_RTOL:g}, the "
+                f"speed within {STEADY_RTOL:g} of its extrapolated limit.")
         outcome = (f"{head} Over the steady {cyc} the crank runs at "
                    f"{fmt(v['dynamics.mean_rpm'])} rpm on average, between "
                    f"{fmt(cycle.omega_min / RPM)} rpm at φ = {fmt(cycle.omega_min_angle, 5)}° and "
@@ -157,7 +159,8 @@ def dynamics_section(analysis, d: Display) -> DynamicsSection | None:
                  f"{fmt(inertia)} kg·m²"]]
         if "dynamics.startup_time" in v:
             rows.append(["dynamics.startup_time", f"{fmt(v['dynamics.startup_time'])} s",
-                         "from the start to 95 % of the steady mean speed"])
+                         f"from the start to {100 * STARTUP_FRACTION:g} % of the steady mean "
+                         "speed"])
         rows.append(["dynamics.motor_rms_torque", f"{fmt(v['dynamics.motor_rms_torque'])} N·m",
                      f"the driving torque (constant)" if mean_speed else
                      f"the motor's RMS torque over the steady {cyc}, in time"])

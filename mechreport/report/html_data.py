@@ -1,7 +1,9 @@
 """The data of report.html's interactive parts, as one JSON-ready dict: the mechanism at every
 analysed angle (each link's points, each joint's point, the applied forces), the reference
 method's joint reactions and the driver's effort there, read from the analysis' result
-records (the kinematics' point paths, the report model's sweep series), never recomputed.
+records (the kinematics' point paths, the report model's sweep series), never recomputed;
+their colours are the figures' (:mod:`.mpl`'s palette: the joints', the driver's wine,
+the loads' black, the shaking force's ink).
 
 Values are in the report's display units; the numbers the page shows beside the slider are
 formatted here by the report's one formatter (so they read as report.md's), the plotted ones
@@ -16,12 +18,11 @@ import numpy as np
 from ..kinematics.frames import rotate
 from ..spec import GROUND
 from ..units import deg
-from .mpl import MOMENT_COLOR
+from .drawing import ARROW_LEN     # an arrow of the reference force: as animation.gif
+from .mpl import INK, LOAD_COLOR, MOMENT_COLOR
 
 #: positions are stored as whole numbers of extent / GRID
 GRID = 10000
-#: an arrow of the reference force is this fraction of the drawing's size (as animation.gif)
-ARROW_LEN = 0.26
 #: a finer sweep is thinned to about this many angles (the page stays under 1 MB; a 0.25
 #: degree sweep keeps every angle), keeping every peak and reference angle
 MAX_ANGLES = 1441
@@ -136,7 +137,7 @@ def html_data(analysis, model) -> dict:
         "method": sw.method_title,
         "units": {"force": d.unit("force"), "effort": d.unit(effort_kind),
                   "length": d.unit("length")},
-        "effort": {"label": model.effort, "kind": effort_kind,
+        "effort": {"label": model.effort, "kind": effort_kind, "color": MOMENT_COLOR,
                    "values": _floats(d.value(np.asarray(sw.torque, float), effort_kind)),
                    "text": _texts(sw.torque, effort_kind, d)},
         "geometry": {"grid": GRID, "extent": extent, "force_ref": force_ref,
@@ -146,6 +147,7 @@ def html_data(analysis, model) -> dict:
                                for link in spec.links],
                      "ground": [grid(g[:1])[0] for g in ground.values()],
                      "loads": [{"symbol": ld.symbol, "at": grid(load_at[ld.symbol]),
+                                "color": LOAD_COLOR,
                                 "fx": _floats(np.asarray(ld.force, float)[:, 0]),
                                 "fy": _floats(np.asarray(ld.force, float)[:, 1])}
                                for ld in loads]
@@ -156,7 +158,7 @@ def html_data(analysis, model) -> dict:
                      "driver": spec.driver.joint},
         "joints": joints,
         "shaking": None if shaking is None or len(shaking) != n else {
-            "label": "shaking force on the frame |F|",
+            "label": "shaking force on the frame |F|", "color": INK,
             "values": _floats(d.value(shaking, "force")), "text": _texts(shaking, "force", d)},
     }
     if n <= MAX_ANGLES:

@@ -9,6 +9,7 @@ from ..units import SIG_DIGITS, Display, fmt
 from ..post.records import reaction_symbols
 from .mpl import PALETTE
 from .spec_items import effort_of
+from .text import spec_display
 
 __all__ = ["Figure", "display_of", "effort_of", "joint_colors", "num", "reaction_symbols"]
 
@@ -38,12 +39,7 @@ class Figure:
 
 def display_of(analysis) -> Display:
     """The spec's display units with the scales [SI] of this analysis (round-off rule)."""
-    units = dict(analysis.spec.report.units) or {}
-    for key, si in (("length", "m"), ("force", "N"), ("moment", "N*m")):
-        units.setdefault(key, analysis.spec.units.get(key, si))    # the spec's own units
-    return Display(units["length"], units["force"], units["moment"], units.get("mass", "kg"),
-                   analysis.scales(), stress=units.get("stress", "MPa"),
-                   pressure=units.get("pressure", "Pa"))
+    return spec_display(analysis.spec, analysis.scales())
 
 
 def joint_colors(spec) -> dict[str, str]:

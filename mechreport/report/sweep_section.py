@@ -10,6 +10,7 @@ import numpy as np
 
 from .. import post as q
 from ..forces import METHODS
+from ..kinematics import TRUST_RTOL
 from ..post.bearings import bearing_carrier
 from ..post.sweep import PowerCheck, SweepSummary
 from ..units import DASH, Display, deg, fmt, kind_of
@@ -201,7 +202,7 @@ def left_out_text(analysis, summary: SweepSummary, sw: SweepData, d: Display) ->
     shown = "; ".join(f"{a}°: {why}" for a, why in rows[:3])
     more = f"; and {len(rows) - 3} more (see Left-out angles)" if len(rows) > 3 else ""
     text = (f"{len(analysis.flags)} angle(s) left out of every table, plot and cycle "
-            f"quantity (values there cannot be trusted to 1e-6): {shown}{more}.")
+            f"quantity (values there cannot be trusted to {TRUST_RTOL:g}): {shown}{more}.")
     jumps = []
     for js in sw.joints:
         pk, fp = summary.joints[js.name].peak, summary.joints[js.name].peak_far

@@ -21,12 +21,19 @@ def kin_display(kin: Kinematics) -> Display:
     0."""
     from ..post.columns import kinematic_scales
 
-    spec = kin.mechanism.spec
+    return spec_display(kin.mechanism.spec, kinematic_scales(kin))
+
+
+def spec_display(spec, scales: dict) -> Display:
+    """The spec's display units (``report.units``; lengths, forces and moments by default in
+    the spec's own units, the rest in :class:`~mechreport.units.Display`'s) with ``scales``
+    [SI] of each kind of quantity (the round-off rule): the one place that reads them, for
+    the reports (:func:`.section.display_of`) and the terminal."""
     units = dict(spec.report.units)
     for key, si in (("length", "m"), ("force", "N"), ("moment", "N*m")):
         units.setdefault(key, spec.units.get(key, si))    # the spec's own units
     return Display(units["length"], units["force"], units["moment"], units.get("mass", "kg"),
-                   scales=kinematic_scales(kin), stress=units.get("stress", "MPa"),
+                   scales, stress=units.get("stress", "MPa"),
                    pressure=units.get("pressure", "Pa"))
 
 

@@ -29,7 +29,8 @@ from ..quantities import (CYCLE_UNITS, DYNAMICS_INSTANT, JOINT_CYCLE_UNITS, MECH
                           split as split_quantity)
 from ..units import EXPECT_UNITS, PRESSURE_UNITS, SPEC_UNITS, UNIT_TABLES, rpm_to_rad_s
 import mechreport.spec.schema as schema   # the models (not `from . import`: spec/__init__)
-from .schema import MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, keys_of, required_of
+from .schema import (MAX_STUDY_VARIANTS, NUMBER_MAX, NUMBER_MIN, _is_whole, keys_of,
+                     required_of)
 from .strength import strength_links
 from .sheet_section import sheet_section
 from .types import ReportSettings
@@ -116,12 +117,6 @@ def _number_problem(value: Any, positive: bool = False) -> str | None:
     if positive and value <= 0:
         return f"must be a positive number, got {_show(value)}"
     return None
-
-
-def _is_whole(value: Any) -> bool:
-    """An int, or a float with a whole value (``3.0``: the same number in JSON, as a YAML
-    language server checks it)."""
-    return type(value) is int or type(value) is float and value.is_integer()
 
 
 def _whole_problem(value: Any, low: int, high: int) -> str | None:

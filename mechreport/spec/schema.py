@@ -278,8 +278,6 @@ Text = Annotated[str, Field(strict=True), Wording("text")]
 #: bidirectional controls: embeddings, overrides, isolates and marks (LRE ... RLO, LRI ... PDI,
 #: LRM, RLM, ALM)
 BIDI_CONTROL = re.compile("[\u202a-\u202e\u2066-\u2069\u200e\u200f\u061c]")
-#: the type of the errors whose message is written here, in the house wording (``msg``)
-WORDED = "spec_worded"
 
 
 def bidi_problem(name: str) -> str | None:

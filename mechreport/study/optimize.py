@@ -41,6 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from .optimize_eval import Constraint, Judged, Problem, judge_chunk, judge_outcome, score
+from .plan import _latin_hypercube
 from .variants import BaseSpec
 
 #: share of the budget kept for the polish, and its most evaluations
@@ -313,7 +314,7 @@ def run_optimize(base: BaseSpec, *, method: str | None = None, jobs: int = 1, cl
     init = "latinhypercube"
     if size_pop > de_budget:          # many keys, a small budget: a smaller first population
         size_pop = max(5, de_budget)
-        init = _latin_hypercube(size_pop, d, seed)
+        init = _latin_hypercube(d, size_pop, np.random.default_rng([seed, 1]))
     maxiter = max(0, de_budget // size_pop - 1)
     # the spec's own design, where it lies in the box, is a member of the first population:
     # the search never reports a box as infeasible, nor an optimum worse than the original,
@@ -390,17 +391,6 @@ def run_optimize(base: BaseSpec, *, method: str | None = None, jobs: int = 1, cl
     return result
 
 
-def _latin_hypercube(n: int, d: int, seed: int) -> np.ndarray:
-    """``n`` points of a Latin hypercube in [0, 1]^d drawn from ``seed``."""
-    from scipy.stats import qmc
-    rng = np.random.default_rng([seed, 1])
-    try:
-        sampler = qmc.LatinHypercube(d=d, rng=rng)
-    except TypeError:                       # scipy < 1.15 names it ``seed``
-        sampler = qmc.LatinHypercube(d=d, seed=rng)
-    return sampler.random(n)
-
-
 def _polish(problem: Problem, history: History, lo, hi, budget: int, evaluate) -> bool:
     """SLSQP from the best feasible design (see the module docstring), evaluations one at a
     time in this process' executor call; whether it found a better feasible design."""
@@ -442,6 +432,13 @@ def _polish(problem: Problem, history: History, lo, hi, budget: int, evaluate) -
 
 # ------------------------------------------------------------------------------ proof
 
+def value_change(key: str, value: float, start: float) -> str:
+    """``ground.D.0 = 183.3340996 (was 200)``: a varied key's value and the spec's own, in
+    the spec's units, as the terminal, the optimum's report and optimum.yaml's header say
+    it."""
+    return f"{key} = {value:.10g} (was {start:.10g})"
+
+
 def header_of(result: OptimizeResult, index: int, optimum: bool = True) -> str:
     """optimum.yaml's header: where its values come from (``optimum`` False: the least
     violating design of a search that found no feasible one, and what it misses)."""
@@ -459,7 +456,7 @@ def header_of(result: OptimizeResult, index: int, optimum: bool = True) -> str:
         lines += [f"  {line}" for line in (j.missed(result.problem) if j is not None else [])]
         lines.append("Its values:")
     for k, v in zip(result.keys, result.history.values[index]):
-        lines.append(f"  {k} = {v:.12g} (was {result.start[k]:.12g})")
+        lines.append(f"  {value_change(k, v, result.start[k])}")
     return "\n".join(lines)
 
 

@@ -16,22 +16,14 @@ import numpy as np
 from ..report.document import Code, Doc, Print, Strong
 from ..units import fmt
 from .optimize import OptimizeResult, Profile
-from .report import key_units, method_title
+from .outputs import csv_cell
+from .report import key_units, method_title, provenance
 from .table import column_name, with_unit
 
 FIGURES = "optimize-figures"
 
 
 # ------------------------------------------------------------------------------ history
-
-def _cell(x) -> str:
-    if x is None:
-        return ""
-    x = float(x)
-    if not math.isfinite(x):
-        return ""
-    return str(int(x)) if x.is_integer() and abs(x) < 1e15 else repr(x)
-
 
 def history_columns(result: OptimizeResult) -> list[str]:
     p = result.problem
@@ -51,9 +43,9 @@ def write_history(result: OptimizeResult, path: Path) -> Path:
         w.writerow(history_columns(result))
         for i, j in enumerate(h.judged):
             w.writerow([str(i + 1), h.phase[i], str(h.generation[i])]
-                       + [_cell(v) for v in h.values[i]] + [_cell(v) for v in j.values]
-                       + [_cell(m) for m in j.margins]
-                       + [_cell(j.violation), "true" if j.feasible else "false",
+                       + [csv_cell(v) for v in h.values[i]] + [csv_cell(v) for v in j.values]
+                       + [csv_cell(m) for m in j.margins]
+                       + [csv_cell(j.violation), "true" if j.feasible else "false",
                           "; ".join(j.faults)])
     return Path(path)
 
@@ -178,15 +170,12 @@ def _margin(m: float) -> str:
 
 def build_document(result: OptimizeResult, figures: dict[str, str], *, sha256: str = "",
                    date: str = "", report: str = "") -> Doc:
-    from ..version import __version__
     p, h = result.problem, result.history
     spec = p.base.spec
     opt = spec.optimize
     units = key_units(p.base)
     doc = OptimizeDoc(f"Design optimisation: {spec.name}")
-    sha = f" (SHA-256 {sha256[:16]}...)" if sha256 else ""
-    doc.p("Spec ", Code(spec.file), f"{sha}; mechreport {__version__}",
-          f"; {date}." if date else ".")
+    provenance(doc, spec.file, sha256, date)
     sense = "maximize" if p.maximize else "minimize"
     j0 = result.original
     if result.feasible:

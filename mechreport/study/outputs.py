@@ -36,8 +36,17 @@ def write_parquet(table: Table, path: Path, metadata: dict[str, str] | None = No
     return Path(path)
 
 
-def _cell(value) -> str:
-    """A number's shortest exact form (``-10``, ``0.125``, ``1e+20``), empty if undefined."""
+#: a pass/fail column's cells in the study's and tolerance analysis's CSV files (1 pass, 0
+#: fail, -1 not judged)
+TRI = {1: "true", 0: "false", -1: ""}
+
+
+def csv_cell(value) -> str:
+    """A number's shortest exact form (``-10``, ``0.125``, ``1e+20``), empty if undefined
+    (None, NaN, infinite); text as it is. The one cell writer of study.csv, tolerance.csv
+    and the optimiser's history.csv."""
+    if value is None:
+        return ""
     if isinstance(value, (float, np.floating)):
         v = float(value)
         if not np.isfinite(v):
@@ -51,7 +60,6 @@ def write_csv(table: Table, path: Path) -> Path:
     round-trip form), undefined values and a failed variant's design_pass as empty cells."""
     cols = table.columns()
     names = list(cols)
-    passed = {1: "true", 0: "false", -1: ""}
     data = [cols[k] for k in names]
     # streamed, row by row, into the study's private folder (no copy of the whole text)
     with open(path, "w", encoding="utf-8", newline="") as fh:
@@ -62,10 +70,10 @@ def write_csv(table: Table, path: Path) -> Path:
             for name, col in zip(names, data):
                 v = col[i]
                 if name == "design_pass":
-                    row.append(passed[int(v)])
+                    row.append(TRI[int(v)])
                 elif name == "variant":
                     row.append(str(int(v)))
                 else:
-                    row.append(_cell(v))
+                    row.append(csv_cell(v))
             w.writerow(row)
     return Path(path)

@@ -23,6 +23,9 @@ import numpy as np
 
 from ..spec import Study, Vary
 
+#: how the reports and the terminal name a ``sample`` method (``<name> sampling``)
+SAMPLING_NAMES = {"grid": "grid", "random": "random", "lhs": "Latin hypercube"}
+
 
 @dataclass(frozen=True)
 class Plan:
@@ -83,6 +86,8 @@ def plan_of(study: Study) -> Plan:
 
 
 def _latin_hypercube(d: int, n: int, rng: np.random.Generator) -> np.ndarray:
+    """``n`` points of a Latin hypercube in [0, 1]^d drawn from ``rng`` (the one sampler of
+    the study's ``lhs``, the tolerance analysis's and the optimiser's first population)."""
     from scipy.stats import qmc
     try:
         sampler = qmc.LatinHypercube(d=d, rng=rng)

@@ -19,6 +19,7 @@ from ..forces import METHODS
 from ..report.plots import styled
 from ..units import fmt, pretty
 from ..report.document import Code, Doc, Print, Strong
+from .plan import SAMPLING_NAMES
 from .table import Table, badness, column_name, larger_is_better, quantity_unit, with_unit
 
 FIGURES = "study-figures"
@@ -294,8 +295,7 @@ def _sampling_text(run: StudyRun) -> str:
         note = (" (study.count is for random and lhs sampling: not used)"
                 if study.count else "")
         return f"grid: every combination of the {len(study.vary)} varied key(s){note}"
-    what = "random sampling" if study.sample == "random" else "Latin hypercube sampling"
-    return f"{what}, seed {study.seed}"
+    return f"{SAMPLING_NAMES[study.sample]} sampling, seed {study.seed}"
 
 
 class StudyDoc(Doc):
@@ -315,6 +315,14 @@ class StudyDoc(Doc):
 MAX_COLUMNS = 8   # columns of a study table that fit a page side by side
 
 
+def provenance(doc: Doc, file: str, sha256: str = "", date: str = "") -> None:
+    """The first line of a study, tolerance or optimisation report: the spec's file, the
+    start of its SHA-256, the mechreport version and the date."""
+    from ..version import __version__
+    sha = f" (SHA-256 {sha256[:16]}...)" if sha256 else ""
+    doc.p("Spec ", Code(file), f"{sha}; mechreport {__version__}", f"; {date}." if date else ".")
+
+
 def build_document(run: StudyRun, figures: dict[str, str]) -> Doc:
     t, plan = run.table, run.plan
     spec = run.base.spec
@@ -323,10 +331,7 @@ def build_document(run: StudyRun, figures: dict[str, str]) -> Doc:
     ok, passing = t.ok, t.passing
     n_ok, n_pass = int(np.count_nonzero(ok)), int(np.count_nonzero(passing))
     n_failed = int(t.n - n_ok)
-    from ..version import __version__
-    sha = f" (SHA-256 {run.sha256[:16]}...)" if run.sha256 else ""
-    doc.p("Spec ", Code(spec.file), f"{sha}; mechreport {__version__}",
-          f"; {run.date}." if run.date else ".")
+    provenance(doc, spec.file, run.sha256, run.date)
     doc.p(Strong(f"{t.n} variants"), f" ({_sampling_text(run)}), analysed by ",
           Strong(method_title(run.method)), f" ({run.method}: {run.method_why})"
           f" on {run.where}, in chunks of {run.chunk}, in {run.seconds:.1f} s. A study runs one "

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..quantities import unit_of
+from ..units import with_unit
 from .evaluate import Row
 from .plan import Plan
 
@@ -39,10 +40,6 @@ def larger_is_better(quantity: str) -> bool:
 def quantity_unit(quantity: str) -> str:
     """The quantity's SI unit as every output spells it (``N·m``); "" when it has none."""
     return unit_of(quantity) or ""
-
-
-def with_unit(label: str, unit: str) -> str:
-    return f"{label} [{unit}]" if unit else label
 
 
 def column_name(quantity: str) -> str:

@@ -18,10 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .outputs import _cell
+from .outputs import TRI, csv_cell
 from .table import column_name
-
-TRI = {1: "true", 0: "false", -1: ""}
 
 
 def columns(table) -> dict[str, tuple[str, object]]:
@@ -80,6 +78,6 @@ def write_csv(table, path: Path) -> Path:
                 elif kind == "int":
                     row.append(str(int(v)))
                 else:
-                    row.append(_cell(v))
+                    row.append(csv_cell(v))
             w.writerow(row)
     return Path(path)

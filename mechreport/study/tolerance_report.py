@@ -16,7 +16,8 @@ import numpy as np
 from ..report.document import Code, Doc, Strong
 from ..report.plots import styled
 from ..units import fmt
-from .report import StudyDoc, key_units, method_title, robust_limits
+from .plan import SAMPLING_NAMES
+from .report import StudyDoc, key_units, method_title, provenance, robust_limits
 from .table import column_name, with_unit
 from .tolerance_stats import varies
 
@@ -156,7 +157,9 @@ def distribution_text(v, unit: str) -> str:
     return f"uniform from {fmt(v.low, 6)} to {fmt(v.high, 6)}{u}"
 
 
-def _pct(p: float) -> str:
+def percent(p: float) -> str:
+    """A probability or share ``p`` (0..1) as the tolerance analysis prints it, in its report
+    and on the terminal: ``57.5 %``, ``99.50 %``, ``100 %``; "—" when undefined."""
     if not np.isfinite(p):
         return "—"
     x = p * PERCENT
@@ -165,8 +168,9 @@ def _pct(p: float) -> str:
     return f"{x:.2f} %" if x < 1 or x > 99 else f"{x:.1f} %"
 
 
-def _interval(p) -> str:
-    return f"{_pct(p.low)} to {_pct(p.high)}"
+def interval(p) -> str:
+    """A :class:`~.tolerance_stats.Probability`'s 95 % interval: ``40.9 % to 73.0 %``."""
+    return f"{percent(p.low)} to {percent(p.high)}"
 
 
 def build_document(result, figures: dict[str, str], date: str = "", sha256: str = "",
@@ -175,11 +179,8 @@ def build_document(result, figures: dict[str, str], date: str = "", sha256: str 
     tol = spec.tolerances
     units = key_units(result.base)
     doc = StudyDoc(f"Tolerance analysis: {spec.name}")
-    from ..version import __version__
-    sha = f" (SHA-256 {sha256[:16]}...)" if sha256 else ""
-    doc.p("Spec ", Code(spec.file), f"{sha}; mechreport {__version__}",
-          f"; {date}." if date else ".")
-    what = "Latin hypercube sampling" if plan.sample == "lhs" else "random sampling"
+    provenance(doc, spec.file, sha256, date)
+    what = f"{SAMPLING_NAMES[plan.sample]} sampling"
     ran = f" on {where}" + (f", in chunks of {chunk}" if chunk else "") if where else ""
     doc.p(Strong(f"{t.n} samples"), f" ({what}, seed {plan.seed}) of the spec's uncertain "
           "values, each analysed as a whole machine by ",
@@ -191,17 +192,18 @@ def build_document(result, figures: dict[str, str], date: str = "", sha256: str 
     c = result.counts
     a = result.assembly
     doc.table(["samples", "count", "share"],
-              [["analysed, every kept quantity (ok)", str(c.get("ok", 0)), _pct(c.get("ok", 0) / t.n)],
+              [["analysed, every kept quantity (ok)", str(c.get("ok", 0)),
+                percent(c.get("ok", 0) / t.n)],
                ["cannot be assembled over the sweep", str(c.get("no assembly", 0)),
-                _pct(c.get("no assembly", 0) / t.n)],
+                percent(c.get("no assembly", 0) / t.n)],
                ["a value the spec refuses", str(c.get("invalid", 0)),
-                _pct(c.get("invalid", 0) / t.n)],
+                percent(c.get("invalid", 0) / t.n)],
                ["untrusted (trust test failed)", str(c.get("untrusted", 0)),
-                _pct(c.get("untrusted", 0) / t.n)],
-               ["failed otherwise", str(c.get("failed", 0)), _pct(c.get("failed", 0) / t.n)]],
+                percent(c.get("untrusted", 0) / t.n)],
+               ["failed otherwise", str(c.get("failed", 0)), percent(c.get("failed", 0) / t.n)]],
               right={1, 2},
-              note=(f"Probability that the mechanism assembles: {_pct(a.p)} (95 % interval "
-                    f"{_interval(a)}). Samples without a result are listed with their reasons "
+              note=(f"Probability that the mechanism assembles: {percent(a.p)} (95 % interval "
+                    f"{interval(a)}). Samples without a result are listed with their reasons "
                     "at the end; every sample is a row of tolerance.csv."))
 
     doc.h("Uncertain values")
@@ -255,10 +257,10 @@ def _verdict_section(doc: Doc, result) -> None:
     for p in result.verdicts:
         unit = f" {p.unit}" if p.unit else ""
         rows.append([p.name, p.quantity, fmt(p.limit) + unit,
-                     "pass" if p.nominal else "FAIL", _pct(p.p), _interval(p)])
+                     "pass" if p.nominal else "FAIL", percent(p.p), interval(p)])
     d = result.design
-    rows.append(["every verdict", "", "", "pass" if d.nominal else "FAIL", _pct(d.p),
-                 _interval(d)])
+    rows.append(["every verdict", "", "", "pass" if d.nominal else "FAIL", percent(d.p),
+                 interval(d)])
     doc.table(["design item", "judged on", "limit", "nominal", "P(pass)", "95 % interval"],
               rows, right={2, 4})
 
@@ -285,7 +287,7 @@ def _ranking_section(doc: Doc, result) -> None:
             if r.r2 is None:
                 cells.append("—")
                 continue
-            text = _pct(share[r.quantity].get(k, 0.0))
+            text = percent(share[r.quantity].get(k, 0.0))
             cells.append(Strong(text) if top[r.quantity] == k else text)
         rows.append(cells)
     rows.append(["R² of the linear fit"] + [("—" if r.r2 is None else f"{r.r2:.4f}")

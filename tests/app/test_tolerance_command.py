@@ -40,7 +40,10 @@ def test_the_command_writes_every_file_and_keeps_the_report(tmp_path, capsys):
     (folder / "report.md").write_text("the report", encoding="utf-8")
     assert main(["tolerance", str(spec), "-o", str(out), "--jobs", "1"]) == 0
     said = capsys.readouterr()
-    assert "24 sample(s): assembles 100.0 %" in said.out
+    # the probabilities as tolerance.md prints them
+    assert "24 sample(s): assembles 100 % (95 % interval " in said.out
+    assert "Probability that the mechanism assembles: 100 % (95 % interval " in \
+        (folder / "tolerance.md").read_text(encoding="utf-8")
     assert "24/24 samples" in said.err
     for name in ("tolerance.csv", "tolerance.parquet", "tolerance.md", "tolerance.pdf",
                  "tolerance.json", "tolerance-figures/histogram-1.svg",

@@ -26,6 +26,8 @@ def test_the_flywheel_problem_is_worked_from_the_turning_moment_diagram(press):
     assert sheet.flywheel is not None
     text = render_markdown(sheet)
     assert "## Flywheel" in text and "| A1 |" in text
+    # the method by its title, as everywhere else in the sheet and the report
+    assert "(the Newton-Euler solution at every analysed angle)" in text
     review = press.review.values
     torque = press.forces["newton_euler"].driver_torque
     areas = energy_areas(press.angles, torque, review["cycle.torque.mean"], 360.0)

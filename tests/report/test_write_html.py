@@ -136,6 +136,24 @@ def test_the_slider_shows_the_report_s_numbers(four_bar):
     assert joint["text"]["f"][k] == m.display.num(big["value"], "force")
 
 
+def test_the_page_draws_in_the_figures_colours(four_bar):
+    """The page's curves and arrows take the figures' colours (report/mpl.py's palette):
+    the script names no colour of a series of its own."""
+    from mechreport.report.html_data import html_data
+    from mechreport.report.html_page import asset_bytes
+    from mechreport.report.mpl import INK, LOAD_COLOR, MOMENT_COLOR
+    a, m = four_bar
+    data = html_data(a, m)
+    assert data["effort"]["color"] == MOMENT_COLOR and data["shaking"]["color"] == INK
+    assert {ld["color"] for ld in data["geometry"]["loads"]} == {LOAD_COLOR}
+    assert [j["color"] for j in data["joints"]] == [j.color for j in m.sweep.joints]
+    script = asset_bytes("report.js").decode()
+    assert "data.effort.color" in script and "data.shaking.color" in script
+    assert not re.findall(r"color: \"#|color \|\|", script)
+    # a value under the pointer is the report's text of it, not the script's own formatting
+    assert "s.text[i]" in script and "fmt(s.values" not in script
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("spec", sorted(p.name for p in (ROOT / "specs").glob("*.yaml")))
 def test_every_shipped_spec_has_its_page(spec):

@@ -151,7 +151,7 @@
         if (p) svg("circle", { cx: p[0], cy: -p[1], r: 0.012 * G, fill: "#fff", stroke: "#222", "stroke-width": 1.5 * w }, layer);
       });
       data.joints.forEach(function (j) { arrow(layer, j.at[k], j.fx[k], j.fy[k], j.color, j.symbol); });
-      g.loads.forEach(function (l) { arrow(layer, l.at[k], l.fx[k], l.fy[k], l.color || "#111", l.symbol); });
+      g.loads.forEach(function (l) { arrow(layer, l.at[k], l.fx[k], l.fy[k], l.color, l.symbol); });
     });
   }
 
@@ -165,7 +165,7 @@
     for (var t = Math.ceil(lo / step) * step; t <= hi + 1e-9 * step; t += step) ticks.push(+t.toPrecision(12));
     return ticks;
   }
-  function fmt(v) {
+  function fmt(v) {        // the axes' tick labels; a value is shown as data's text
     if (v === null || v === undefined) return "—";
     var a = Math.abs(v);
     return (a !== 0 && (a >= 1e5 || a < 1e-3)) ? v.toExponential(3) : String(+v.toPrecision(4));
@@ -174,12 +174,14 @@
   function charts(data, listeners, setIndex, nearestIndex) {
     var box = document.getElementById("charts");
     var plots = [{ title: data.effort.label + " over the sweep", unit: data.units.effort,
-                   series: [{ name: data.effort.label.split(" ").pop(), color: "#7b1f3a", values: data.effort.values }] },
+                   series: [{ name: data.effort.label.split(" ").pop(), color: data.effort.color, values: data.effort.values,
+                               text: data.effort.text }] },
                  { title: "Joint reactions (magnitude) over the sweep", unit: data.units.force,
-                   series: data.joints.map(function (j) { return { name: j.symbol, color: j.color, values: j.f }; }) }];
+                   series: data.joints.map(function (j) { return { name: j.symbol, color: j.color, values: j.f, text: j.text.f }; }) }];
     if (data.shaking) {
       plots.push({ title: "Shaking force on the frame (magnitude) over the sweep", unit: data.units.force,
-                   series: [{ name: "|F|", color: "#444", values: data.shaking.values }] });
+                   series: [{ name: "|F|", color: data.shaking.color, values: data.shaking.values,
+                              text: data.shaking.text }] });
     }
     plots.forEach(function (p) { if (p.series.length) chart(box, data, p, listeners, setIndex, nearestIndex); });
   }
@@ -268,7 +270,7 @@
     }
     function label(i) {
       text(tip, xa[i] + (data.unit === "°" ? "°" : data.unit) + ": " + spec.series.map(function (s) {
-        return s.name + " " + fmt(s.values[i]);
+        return s.name + " " + s.text[i];      // as the report prints it (units.fmt)
       }).join(", ") + " " + spec.unit);
     }
     function angleAt(ev) {

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from ...forces import METHODS
 from ...post.flywheel import energy_areas, largest_fluctuation
 from ..document import Doc, Print, Table
 from ...post.frame import reference_method
@@ -43,7 +44,7 @@ def flywheel_sheet(analysis) -> FlywheelSheet | None:
     intro = [
         "The turning-moment diagram is the driver torque M(φ) that turns the crank "
         f"at the constant speed ω = {fmt(omega)} rad/s ({fmt(spec.driver.rpm)} rpm) over a "
-        f"{over} (the {method.replace('_', '-')} solution at every analysed angle). Its "
+        f"{over} (the {METHODS[method].TITLE} solution at every analysed angle). Its "
         f"mean, M_mean = (1/{fmt(math.radians(period), 4)}) ∫ M dφ = {fmt(mean)} N·m "
         "(cycle.torque.mean), is the uniform torque that does the same work per cycle. "
         "Where M exceeds the mean, the mechanism takes more than a uniform drive gives and "
