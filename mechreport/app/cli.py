@@ -19,6 +19,8 @@ import sys
 import textwrap
 
 from ..errors import describe_failure, internal_error
+from .args import (add_run_options, add_wait, checked, filled, finite_number, int_at_least_0,
+                   int_at_least_1, number_above_0)
 from .console import report_command_failure
 from .process import Terminated
 
@@ -73,22 +75,8 @@ def _cmd_schema(ns: argparse.Namespace) -> int:
 
 # ------------------------------------------------------------------- argument checks
 
-def _checked(convert, ok, what: str):
-    """An argparse type: ``convert`` the text, then require ``ok``; else 'must be what'."""
-    def parse(text: str):
-        try:
-            value = convert(text)
-        except ValueError:
-            value = None
-        if value is None or not ok(value):
-            raise argparse.ArgumentTypeError(f"must be {what}, got {text!r}")
-        return value
-    return parse
-
-
-_int_at_least_1 = _checked(int, lambda v: v >= 1, "a whole number >= 1")
-_sheet_seed = _checked(int, lambda v: 0 <= v < 2**63, "a whole number from 0 to 2^63 - 1")
-_sheet_count = _checked(int, lambda v: 1 <= v <= 500, "a whole number from 1 to 500")
+_sheet_seed = checked(int, lambda v: 0 <= v < 2**63, "a whole number from 0 to 2^63 - 1")
+_sheet_count = checked(int, lambda v: 1 <= v <= 500, "a whole number from 1 to 500")
 
 
 def _sheet_methods(text: str) -> tuple[str, ...]:
@@ -118,17 +106,6 @@ def _sheet_angles(text: str) -> tuple[float, ...]:
     return values
 
 
-_int_at_least_0 = _checked(int, lambda v: v >= 0, "a whole number >= 0")
-_finite_number = _checked(float, math.isfinite, "a finite number")
-_number_above_0 = _checked(float, lambda v: math.isfinite(v) and v > 0, "a finite number > 0")
-_seconds = _checked(float, lambda v: math.isfinite(v) and v >= 0, "a number of seconds >= 0")
-
-
-def _filled(text: str, width: int = 79) -> str:
-    """``text``'s paragraphs (separated by blank lines) filled to ``width`` columns: a
-    terminal of 80 columns shows help text without wrapping it again."""
-    return "\n\n".join(textwrap.fill(" ".join(par.split()), width)
-                       for par in text.split("\n\n"))
 
 
 BUILD_EPILOG = """\
@@ -163,34 +140,20 @@ Writes OUT/<name>/study.parquet, study.csv (one row per variant), study.md and s
 
 
 def _add_study_parser(sub) -> None:
-    from ..quantities import METHOD_NAMES     # (not the methods: no solver on start-up)
     p = sub.add_parser("study", help="run many variants of a spec (its study: section)",
                        description=textwrap.fill(
                            "Run the variants that the spec's study: section describes (one "
                            "force method each), tabulate their cycle quantities and design "
                            "verdicts, and write the table and a study report.", 79),
-                       epilog=_filled(STUDY_EPILOG), formatter_class=argparse.RawDescriptionHelpFormatter)
+                       epilog=filled(STUDY_EPILOG), formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--out", default="out", help="output folder (default: out)")
-    p.add_argument("--method", choices=list(METHOD_NAMES), default=None,
-                   help="the force method for every variant (default: the fastest that gives "
-                   "every kept quantity and design verdict)")
-    p.add_argument("--scheduler", metavar="ADDRESS", default=None,
-                   help="run on an existing Dask cluster at tcp://HOST:PORT or HOST:PORT, e.g. "
-                   "tcp://127.0.0.1:8786 (needs mechreport[dask]); default: a local process "
-                   "pool")
-    p.add_argument("--jobs", type=_int_at_least_1, default=None,
-                   help="local processes, >= 1 (default: cores; ignored with --scheduler)")
-    p.add_argument("--chunk", type=_int_at_least_1, default=None, metavar="N",
-                   help="variants per task, >= 1 (default: about 8 tasks per worker, at most "
-                   "100 variants each)")
-    p.add_argument("--reports", type=_int_at_least_0, default=0, metavar="K",
+    add_run_options(p, "variant")
+    p.add_argument("--reports", type=int_at_least_0, default=0, metavar="K",
                    help="also build full reports (every method) of the K best passing variants")
-    p.add_argument("--cross-check", type=_int_at_least_0, default=0, metavar="N",
+    p.add_argument("--cross-check", type=int_at_least_0, default=0, metavar="N",
                    help="re-run N random variants with every method; exit 1 on disagreement")
-    p.add_argument("--wait", type=_seconds, default=120.0, metavar="SECONDS",
-                   help="how long to wait for a build writing to the same output folder "
-                   "(default 120)")
+    add_wait(p)
     p.set_defaults(func=_cmd_study)
 
 
@@ -220,23 +183,17 @@ def _add_optimize_parser(sub) -> None:
                            "design (every design verdict, every subject_to bound, the spec's "
                            "assembly branch, no angle left out) with the best objective, "
                            "prove it with every force method, and write it and a report.", 79),
-                       epilog=_filled(OPTIMIZE_EPILOG),
+                       epilog=filled(OPTIMIZE_EPILOG),
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--out", default="out", help="output folder (default: out)")
-    p.add_argument("--scheduler", metavar="ADDRESS", default=None,
-                   help="evaluate on an existing Dask cluster at tcp://HOST:PORT or HOST:PORT "
-                   "(needs mechreport[dask]); default: a local process pool")
-    p.add_argument("--jobs", type=_int_at_least_1, default=None,
-                   help="local processes, >= 1 (default: cores; ignored with --scheduler)")
-    p.add_argument("--budget", type=_checked(int, lambda v: v >= 10, "a whole number >= 10"),
+    add_run_options(p, "evaluation", method=False, chunk=False)
+    p.add_argument("--budget", type=checked(int, lambda v: v >= 10, "a whole number >= 10"),
                    default=None, metavar="N",
                    help="evaluations at most, >= 10 (default: the spec's optimize.budget)")
-    p.add_argument("--seed", type=_int_at_least_0, default=None, metavar="S",
+    p.add_argument("--seed", type=int_at_least_0, default=None, metavar="S",
                    help="the search's seed (default: the spec's optimize.seed)")
-    p.add_argument("--wait", type=_seconds, default=120.0, metavar="SECONDS",
-                   help="how long to wait for a build writing to the same output folder "
-                   "(default 120)")
+    add_wait(p)
     p.set_defaults(func=_cmd_optimize)
 
 
@@ -313,7 +270,7 @@ def _main(argv: list[str] | None) -> int:
                        "branch, and any angle left out with its reason. Exit status 1 if the "
                        "spec cannot be read or assembled.")
     p.add_argument("spec", metavar="SPEC")
-    p.add_argument("--angle", type=_finite_number, action="append",
+    p.add_argument("--angle", type=finite_number, action="append",
                    help="crank angle in degrees (repeatable; default: the spec's `at`)")
     p.set_defaults(func=_cmd_kin)
 
@@ -322,7 +279,7 @@ def _main(argv: list[str] | None) -> int:
                        "spec's expectations: one PASS/FAIL line per spec. Exit status 1 if any "
                        "spec fails or none is given.")
     p.add_argument("specs", nargs="+", metavar="SPEC|DIR")
-    p.add_argument("--tol", type=_number_above_0, default=None,   # checks.agreement.DEFAULT_TOL
+    p.add_argument("--tol", type=number_above_0, default=None,   # checks.agreement.DEFAULT_TOL
                    help="largest relative disagreement between methods (default 1e-6)")
     p.add_argument("--junit", metavar="FILE",
                    help="also write JUnit XML to FILE: one test suite per spec, one test case "
@@ -331,10 +288,10 @@ def _main(argv: list[str] | None) -> int:
 
     p = sub.add_parser("build", help="write Markdown and PDF reports",
                        description="Write a Markdown and PDF report per spec, and an index.",
-                       epilog=_filled(BUILD_EPILOG), formatter_class=argparse.RawDescriptionHelpFormatter)
+                       epilog=filled(BUILD_EPILOG), formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("specs", nargs="+", metavar="SPEC|DIR")
     p.add_argument("-o", "--out", default="out", help="output folder (default: out)")
-    p.add_argument("--jobs", type=_int_at_least_1, default=None,
+    p.add_argument("--jobs", type=int_at_least_1, default=None,
                    help="parallel specs, >= 1 (default: cores)")
     p.add_argument("--sheet", action="store_true",
                    help="also write worked solution sheets: solution.md/.pdf (the answer "
@@ -357,9 +314,7 @@ def _main(argv: list[str] | None) -> int:
                    help="leave out animation.gif (the mechanism moving with its forces), "
                    "which every spec with a whole-turn sweep gets unless its report says "
                    "animation: false; builds faster")
-    p.add_argument("--wait", type=_seconds, default=120.0, metavar="SECONDS",
-                   help="how long to wait for another build writing to the same output "
-                   "folder (default 120)")
+    add_wait(p)
     p.add_argument("--force", action="store_true",
                    help="rebuild every spec, even one whose report is up to date (same spec "
                    "bytes, path, options and mechreport version)")
@@ -378,7 +333,7 @@ def _main(argv: list[str] | None) -> int:
                        "cannot be read or is not mechreport's.")
     p.add_argument("old", metavar="OLD_OUT")
     p.add_argument("new", metavar="NEW_OUT")
-    p.add_argument("--rtol", type=_number_above_0, default=None,   # kinematics.TRUST_RTOL
+    p.add_argument("--rtol", type=number_above_0, default=None,   # kinematics.TRUST_RTOL
                    help="relative tolerance (default 1e-6: what every printed value promises)")
     p.add_argument("--html", action="store_true",
                    help="print the table as an HTML page of its own (no script, works "
@@ -387,7 +342,7 @@ def _main(argv: list[str] | None) -> int:
 
     _add_study_parser(sub)
     from .tolerance import add_parser as _add_tolerance_parser
-    _add_tolerance_parser(sub, _filled, _int_at_least_1, _seconds)
+    _add_tolerance_parser(sub)
     _add_optimize_parser(sub)
 
     p = sub.add_parser("dynamics", help="simulate the motion a motor and flywheel give "
@@ -401,9 +356,7 @@ def _main(argv: list[str] | None) -> int:
                    "section")
     p.add_argument("-o", "--out", "--output", dest="out", metavar="OUT", default="out",
                    help="output folder (default: out; --output is the same)")
-    p.add_argument("--wait", type=_seconds, default=120.0, metavar="SECONDS",
-                   help="how long to wait for another command writing to the same output "
-                   "folder (default 120)")
+    add_wait(p)
     p.set_defaults(func=_cmd_dynamics)
 
     p = sub.add_parser("schema", help="print the JSON Schema of a spec file (for editors)",

@@ -44,13 +44,12 @@ tolerance.pdf and tolerance.json, and adds the tolerance.* quantities to a repor
 summary.json there; a report or study there is kept. Progress and an ETA go to stderr."""
 
 
-def add_parser(sub, filled, at_least_1, seconds) -> None:
-    """The ``tolerance`` subcommand's parser (``filled``, ``at_least_1``, ``seconds``: the
-    command line's text and argument helpers)."""
+def add_parser(sub) -> None:
+    """The ``tolerance`` subcommand's parser."""
     import argparse
     import textwrap
 
-    from ..quantities import METHOD_NAMES     # (not the methods: no solver on start-up)
+    from .args import add_run_options, add_wait, filled
     p = sub.add_parser("tolerance", help="the chance the built machine passes (a spec's "
                        "tolerances: section)",
                        description=textwrap.fill(
@@ -62,20 +61,8 @@ def add_parser(sub, filled, at_least_1, seconds) -> None:
                        epilog=filled(EPILOG), formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--out", default="out", help="output folder (default: out)")
-    p.add_argument("--method", choices=list(METHOD_NAMES), default=None,
-                   help="the force method for every sample (default: the fastest that gives "
-                   "every kept quantity and design verdict)")
-    p.add_argument("--scheduler", metavar="ADDRESS", default=None,
-                   help="run on an existing Dask cluster at tcp://HOST:PORT or HOST:PORT "
-                   "(needs mechreport[dask]); default: a local process pool")
-    p.add_argument("--jobs", type=at_least_1, default=None,
-                   help="local processes, >= 1 (default: cores; ignored with --scheduler)")
-    p.add_argument("--chunk", type=at_least_1, default=None, metavar="N",
-                   help="samples per task, >= 1 (default: about 8 tasks per worker, at most "
-                   "100 samples each)")
-    p.add_argument("--wait", type=seconds, default=120.0, metavar="SECONDS",
-                   help="how long to wait for another command writing to the same output "
-                   "folder (default 120)")
+    add_run_options(p, "sample")
+    add_wait(p)
     p.set_defaults(func=_cmd)
 
 
