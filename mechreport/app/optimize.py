@@ -61,14 +61,11 @@ def optimize_command(path, out="out", scheduler: str | None = None, jobs: int | 
             def tick(done: int, infeasible: int, _total: int) -> None:
                 progress.update(done, infeasible)
 
-            def notify(line: str) -> None:
-                progress.close()
-                print(line, file=err, flush=True)
             with stop_said(err, lambda: f"interrupted after {progress.done} evaluation(s); "
                                         "nothing was written", progress.close):
                 result = run_optimize(base, jobs=workers if client is None else 1,
                                       client=client, budget=budget, seed=seed,
-                                      progress=tick, notify=notify, stop_check=check_stop,
+                                      progress=tick, notify=progress.say, stop_check=check_stop,
                                       setup=partial(worker_init, os.getpid()),
                                       prepared=prepared)
                 progress.close()

@@ -72,6 +72,12 @@ class StudyProgress:
             self._tenth = tenth
             print(self.line(), file=self.stream, flush=True)
 
+    def say(self, line: str) -> None:
+        """A line for the user between the bar's updates (the executor's ``notify``): the
+        bar's line ended first, so that the two do not share a line."""
+        self.close()
+        print(line, file=self.stream, flush=True)
+
     def close(self) -> None:
         """End the bar's line (a terminal's cursor goes to a fresh line)."""
         if self.tty and self._open:

@@ -127,15 +127,12 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
                   file=err, flush=True)
             progress = StudyProgress(plan.n, err)
 
-            def notify(line: str) -> None:
-                progress.close()           # a bar being drawn on a terminal ends its line
-                print(line, file=err, flush=True)
             start = time.perf_counter()
             with stop_said(err, lambda: f"interrupted after {progress.done} of {plan.n} "
                                         "variant(s); nothing was written", progress.close):
                 table = run_variants(base, plan, method, study.keep, jobs=workers,
                                      chunk=size, client=client, progress=progress.update,
-                                     lost=lost, notify=notify, stop_check=check_stop,
+                                     lost=lost, notify=progress.say, stop_check=check_stop,
                                      setup=partial(worker_init, os.getpid()))
                 progress.close()
         seconds = time.perf_counter() - start

@@ -109,15 +109,12 @@ def tolerance_command(path, out="out", method: str | None = None,
                   f"on {where}, chunks of {size}", file=err, flush=True)
             progress = StudyProgress(plan.n, err, items="samples")
 
-            def notify(line: str) -> None:
-                progress.close()
-                print(line, file=err, flush=True)
             start = time.perf_counter()
             with stop_said(err, lambda: f"interrupted after {progress.done} of {plan.n} "
                                         "sample(s); nothing was written", progress.close):
                 table = run_samples(base, plan, method, tol.keep, [v.item for v in verdicts],
                                     jobs=workers, chunk=size, client=client,
-                                    progress=progress.update, lost=lost, notify=notify,
+                                    progress=progress.update, lost=lost, notify=progress.say,
                                     stop_check=check_stop,
                                     setup=partial(worker_init, os.getpid()))
                 progress.close()
