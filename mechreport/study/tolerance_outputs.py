@@ -13,12 +13,11 @@ Columns:
 """
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 
 import numpy as np
 
-from .outputs import TRI, csv_cell
+from .outputs import write_columns_csv, write_columns_parquet
 from .table import column_name
 
 
@@ -39,45 +38,11 @@ def columns(table) -> dict[str, tuple[str, object]]:
 
 
 def write_parquet(table, path: Path, metadata: dict[str, str] | None = None) -> Path:
-    import pyarrow as pa
-    import pyarrow.parquet as pq
-    arrays, names = [], []
-    for name, (kind, col) in columns(table).items():
-        if kind == "tri":
-            p = np.asarray(col)
-            arr = pa.array(p == 1, mask=p < 0)
-        elif kind == "float":
-            arr = pa.array(col, mask=~np.isfinite(col))
-        elif kind == "int":
-            arr = pa.array(np.asarray(col).astype(np.int64))
-        else:
-            arr = pa.array(col, type=pa.string())
-        arrays.append(arr)
-        names.append(name)
-    meta = {f"mechreport.{k}".encode(): str(v).encode() for k, v in (metadata or {}).items()}
-    pq.write_table(pa.Table.from_arrays(arrays, names=names).replace_schema_metadata(meta),
-                   str(path))
-    return Path(path)
+    """tolerance.parquet: one row per sample (:func:`columns`)."""
+    return write_columns_parquet(columns(table), path, metadata)
 
 
 def write_csv(table, path: Path) -> Path:
     """tolerance.csv: the columns of tolerance.parquet; numbers written exactly (shortest
     round-trip form), undefined values and unjudged verdicts as empty cells."""
-    cols = columns(table)
-    names = list(cols)
-    with open(path, "w", encoding="utf-8", newline="") as fh:
-        w = csv.writer(fh, lineterminator="\n")
-        w.writerow(names)
-        for i in range(table.n):
-            row = []
-            for name in names:
-                kind, col = cols[name]
-                v = col[i]
-                if kind == "tri":
-                    row.append(TRI[int(v)])
-                elif kind == "int":
-                    row.append(str(int(v)))
-                else:
-                    row.append(csv_cell(v))
-            w.writerow(row)
-    return Path(path)
+    return write_columns_csv(columns(table), table.n, path)
