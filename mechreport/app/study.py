@@ -173,14 +173,18 @@ def study_command(path, out="out", method: str | None = None, scheduler: str | N
     return 1 if (cc is not None and not cc.ok) or failed_reports or lost else 0
 
 
-def lost_line(lost, n: int) -> str:
-    """One line about the chunks that could not be computed (``Lost`` entries)."""
+def lost_line(lost, n: int, words=None) -> str:
+    """One line about the chunks that could not be computed (``Lost`` entries), in
+    ``words`` (the executor's :class:`~mechreport.study.executor.Words`; default: a
+    study's)."""
+    from ..study.executor import STUDY_WORDS
+    w = words or STUDY_WORDS
     count = sum(x.count for x in lost)
     reasons: dict[str, int] = {}
     for x in lost:
         reasons[x.reason] = reasons.get(x.reason, 0) + x.count
-    said = "; ".join(f"{k} variant(s): {r}" for r, k in reasons.items())
-    return (f"{count} of {n} variant(s) could not be computed ({said}); the study was "
+    said = "; ".join(f"{k} {w.item}(s): {r}" for r, k in reasons.items())
+    return (f"{count} of {n} {w.item}(s) could not be computed ({said}); the {w.run} was "
             "written with them as failed rows")
 
 

@@ -83,8 +83,8 @@ def tolerance_command(path, out="out", method: str | None = None,
     from ..report.provenance import build_time, spec_sha256
     from ..study.methods import choose_method
     from ..study.plan import SAMPLING_NAMES
-    from ..study.tolerance import (checked_nominal, load_tolerance_base, run_samples,
-                                   tolerance_plan)
+    from ..study.tolerance import (TOLERANCE_WORDS, checked_nominal, load_tolerance_base,
+                                   run_samples, tolerance_plan)
     from ..study.tolerance_stats import analyse_samples
     from .process import check_stop, stop_requests
     from .progress import StudyProgress, duration
@@ -133,7 +133,7 @@ def tolerance_command(path, out="out", method: str | None = None,
     print(result_line(result) + f"; written to {final}/ (tolerance.parquet, tolerance.csv, "
           "tolerance.md, tolerance.pdf, tolerance.json)")
     if lost:
-        print(f"error: {lost_line(lost, plan.n).replace('variant', 'sample')}", file=err)
+        print(f"error: {lost_line(lost, plan.n, TOLERANCE_WORDS)}", file=err)
     return 1 if lost else 0
 
 
