@@ -1005,30 +1005,11 @@ def _keep(value: Any, path: tuple, ck: _Checker) -> tuple[str, ...] | None:
 def _study_requests(spec: Spec, ck: _Checker, section: str = "study",
                     keep: tuple[str, ...] | None = None) -> None:
     """A study (or the ``section`` keeping ``keep``: ``tolerances``) tabulates cycle
-    quantities: they must be defined for the spec, and each kept one must name a joint of the
-    mechanism and have the design inputs it needs."""
+    quantities: :func:`_kept_requests` of its ``keep``."""
     keep = spec.study.keep if keep is None else keep
-    why = spec.cycle_problem()
-    if why is not None and not (all(is_member(q) for q in keep)
-                                and cycle_design(spec.design).empty):
-        what = "a study tabulates" if section == "study" else f"{section} keeps"
-        ck.error((section,), f"{what} cycle quantities, which are undefined here: {why}")
-        return
-    joints = set(spec.reported_reactions())
-    for i, q in enumerate(keep):
-        kind, name, attr = split_quantity(q) or ("", "", "")
-        if kind == "member":
-            problem = _member_quantity_problem(q, name, attr, list(spec.links), ck)
-            if problem:
-                ck.error((section, "keep", i), problem)
-            continue
-        if kind == "joint" and name not in joints:
-            ck.error((section, "keep", i), f"'{q}': no joint named '{name}' (joints: "
-                                           f"{', '.join(sorted(joints))})")
-            continue
-        need = _cycle_need(spec, q)
-        if need:
-            ck.error((section, "keep", i), need)
+    what = "a study tabulates" if section == "study" else f"{section} keeps"
+    _kept_requests(spec, ck, [((section, "keep", i), q) for i, q in enumerate(keep)],
+                   (section,), what)
 
 
 # ---------------------------------------------------------------------------- tolerances
@@ -1126,7 +1107,7 @@ def _optimize(value: Any, ck: _Checker, top: dict, spec: Spec) -> Optimize | Non
     for i, b in enumerate(bounds):
         where[("subject_to", i, "quantity")] = b.quantity
     _kept_requests(spec, ck, [(path + ((k,) if isinstance(k, str) else k), q)
-                              for k, q in where.items()], "an optimisation")
+                              for k, q in where.items()], path, "an optimisation reads")
     if ck.problems:
         return None
     default = schema.Optimize.model_fields
@@ -1136,14 +1117,14 @@ def _optimize(value: Any, ck: _Checker, top: dict, spec: Spec) -> Optimize | Non
 
 
 def _kept_requests(spec: Spec, ck: _Checker, quantities: list[tuple[tuple, str]],
-                   who: str) -> None:
-    """Cycle quantities (each with its key path) that ``who`` reads must be defined for the
-    spec, name a joint of the mechanism and have the design inputs they need."""
+                   section: tuple, what: str) -> None:
+    """Cycle quantities (each with its key path) that a ``section`` reads ("``what``
+    cycle quantities": "a study tabulates") must be defined for the spec, name a joint of
+    the mechanism and have the design inputs they need."""
     why = spec.cycle_problem()
     if why is not None and not (all(is_member(q) for _, q in quantities)
                                 and cycle_design(spec.design).empty):
-        ck.error(quantities[0][0][:1], f"{who} reads cycle quantities, which are undefined "
-                                       f"here: {why}")
+        ck.error(section, f"{what} cycle quantities, which are undefined here: {why}")
         return
     joints = set(spec.reported_reactions())
     for where, q in quantities:
