@@ -386,8 +386,6 @@ def _value_problem(where: schema.Located, kind: str, value: Any, fallback: str) 
         return f"must be true or false, got {_show(value)}{_text_hint(value, boolean=True)}"
     if kind in ("string_too_long", "string_pattern_mismatch"):
         return f"must be one line of at most {where.constraint('max_length')} characters"
-    if kind.startswith(schema.RULE_PREFIX):  # a model's own rule: its message says it all
-        return fallback
     if where.is_model():
         keys = ", ".join(keys_of(where.annotation))
         return f"must be a mapping of keys ({keys}), got {_show(value)}"

@@ -1260,11 +1260,6 @@ class Study(_Model):
         return self
 
 
-#: the error type prefix of a rule a model checks on several of its keys at once (a
-#: ``model_validator``): the loader reports such an error by its own message
-RULE_PREFIX = "rule_"
-
-
 #: in JSON Schema, what :meth:`TolVary._one_spread` checks
 _ONE_SPREAD = {
     "oneOf": [{"required": ["tol"], "not": {"anyOf": [{"required": [k]}
@@ -1305,15 +1300,15 @@ class TolVary(_Model):
             given.append("from/to")
         if len(given) != 1:
             raise PydanticCustomError(
-                RULE_PREFIX + "tolerance_spread", "give one of 'tol', 'sigma' or 'from' and 'to', got {got}",
+                WORDED, "give one of 'tol', 'sigma' or 'from' and 'to', got {got}",
                 {"got": " and ".join(given) if given else "none"})
         if given == ["from/to"] and (self.from_ is None or self.to is None
                                      or self.from_ == self.to):
             raise PydanticCustomError(
-                RULE_PREFIX + "tolerance_range", "a range needs 'from' and 'to', two different numbers")
+                WORDED, "a range needs 'from' and 'to', two different numbers")
         if self.sigma is not None and self.dist == "uniform":
             raise PydanticCustomError(
-                RULE_PREFIX + "tolerance_sigma", "'sigma' is the standard deviation of a normal "
+                WORDED, "'sigma' is the standard deviation of a normal "
                 "distribution; for a uniform one give 'tol' or 'from' and 'to'")
         return self
 
