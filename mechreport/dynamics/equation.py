@@ -86,16 +86,12 @@ class EquationOfMotion:
         """The motor's own torque [N m] at crank speeds ``omega`` [rad/s] (through its
         gearing, ``drive``); the constant driving torque on the crank without a motor
         (``mean_rpm``)."""
-        if self.drive is None:
-            return motor_torque(self.motor, omega)
-        return own_torque(self.drive, omega)
+        return own_torque(self.drive or self.motor, omega)   # the constant one: ratio 1
 
     def motor_power(self, omega: np.ndarray) -> np.ndarray:
         """The motor's own power [W] at crank speeds ``omega`` [rad/s] (the driving
         torque's on the crank without a motor)."""
-        if self.drive is None:
-            return motor_torque(self.motor, omega) * np.asarray(omega, float)
-        return own_power(self.drive, omega)
+        return own_power(self.drive or self.motor, omega)
 
     def at(self, phi: np.ndarray) -> np.ndarray:
         """(J, B, C, D) at crank angles ``phi`` (n,) [rad], (n, 4)."""
@@ -151,7 +147,7 @@ def equation_of_motion(mech: Mechanism) -> EquationOfMotion:
     Raises ``AnalysisError`` where the crank cannot turn fully (a grid angle unreachable
     or singular: the motion could not continue there)."""
     spec = mech.spec
-    grid = np.arange(0.0, cycle_degrees(spec), GRID_STEP_DEG)
+    grid = np.arange(0.0, float(spec.cycle), GRID_STEP_DEG)   # the loads' period
     unit_spec = replace(spec, driver=replace(spec.driver, omega=1.0, alpha=0.0),
                         friction=(), expect=())
     friction = None
@@ -188,12 +184,6 @@ def equation_of_motion(mech: Mechanism) -> EquationOfMotion:
                             _pieces(np.radians(grid), values),
                             bool(spec.friction) or any(ld.kind == "damper" for ld in spec.loads),
                             friction, spec.file, drive)
-
-
-def cycle_degrees(spec: Spec) -> float:
-    """The crank degrees after which the loads repeat: the period of the equation of
-    motion (360, or the spec's longer ``cycle``)."""
-    return float(spec.cycle)
 
 
 def _pieces(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -260,7 +250,7 @@ def spec_at_speed(spec: Spec, omega: float) -> Spec:
                                         rpm_given=omega / RPM))
 
 
-__all__ = ["EquationOfMotion", "InertiaTerm", "STATES", "cycle_degrees", "equation_of_motion",
+__all__ = ["EquationOfMotion", "InertiaTerm", "STATES", "equation_of_motion",
            "flywheel_estimate", "generalized_inertia", "inertia_terms", "spec_at_speed"]
 
 

@@ -542,7 +542,7 @@ def _build(data: Any, ck: _Checker) -> Spec | None:
                 driver=driver, sweep=sweep, at=at, assembly=assembly, loads=tuple(loads),
                 expect=tuple(expect), sheet=sheet, units=_written_units(units), design=design,
                 report=report, study=study, pins=tuple(pins), friction=friction,
-                dynamics=dynamics, cycle=cycle, tolerances=tolerances,
+                dynamics=dynamics, tolerances=tolerances,
                 sheet_settings=sheet_settings)
     _cycle_requests(spec, ck)
     if study is not None:

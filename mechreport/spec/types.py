@@ -287,11 +287,6 @@ class Sweep:
         span = self.stop - self.start
         return self.wraps and abs(span - self.cycle) < 1e-9
 
-    @property
-    def cycle_name(self) -> str:
-        """What one cycle is called in messages: ``turn``, or ``cycle`` (720 deg ...)."""
-        return "turn" if self.cycle == 360.0 else f"cycle ({self.cycle:g} deg)"
-
     def cycle_problem(self) -> str | None:
         """Why this sweep of a crank has no cycle quantities (None when it is one whole
         cycle, a turn unless ``cycle`` is longer, in steps that divide it evenly)."""
@@ -664,9 +659,6 @@ class Spec:
     # only `mechreport tolerance` uses it (not in the repr: the shipped specs' reference
     # reprs stay as they were)
     tolerances: Tolerances | None = field(default=None, repr=False)
-    # the loads' period, crank degrees (format 1.2 ``cycle:``); out of the repr, so that the
-    # specs written before 1.2 (all 360) keep their reference reprs (tests/spec)
-    cycle: float = field(default=360.0, repr=False)
     # only `mechreport optimize` uses it (format 1.2); out of the repr, which stays the
     # loaded specs' reference (tests/spec/data/loaded_reprs.json)
     optimize: Optimize | None = field(default=None, repr=False)
@@ -722,6 +714,12 @@ class Spec:
                     [(-a / 2, -h / 2), (a / 2, h / 2)]
             bodies.append([*link.points.values(), *extra])
         return max(spread(b) for b in bodies)
+
+    @property
+    def cycle(self) -> float:
+        """The loads' period [crank degrees] (format 1.2 ``cycle:``, 360 by default): the
+        sweep's."""
+        return self.sweep.cycle
 
     def cycle_problem(self) -> str | None:
         """Why cycle quantities are undefined for this spec (None when the sweep is one whole
