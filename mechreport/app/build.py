@@ -22,6 +22,7 @@ import os
 import sys
 import time
 import traceback
+from dataclasses import replace
 from pathlib import Path
 
 from ..errors import MechreportError, describe_failure
@@ -92,10 +93,7 @@ def build_one(path: Path, out: Path, name: str, folder: Path, sheet: bool = Fals
     options = sheet_source = None
     if do_sheet:
         from ..report.sheet import SheetOptions, sheet_spec
-        options = SheetOptions(sheet_options.methods if sheet_options else None,
-                               sheet_options.angles if sheet_options else None, exact,
-                               *((sheet_options.variants, sheet_options.seed)
-                                 if sheet_options else ()))
+        options = replace(sheet_options or SheetOptions(), exact=exact)
         wanted = sheet_spec(spec, options)
         if wanted is not spec:              # the sheet's angles are not all in the sweep
             sheet_source = analyse(wanted, tol=analysis.tol)

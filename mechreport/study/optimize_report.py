@@ -14,11 +14,11 @@ from pathlib import Path
 import numpy as np
 
 from ..report.document import Code, Doc, Print, Strong
-from ..units import fmt
+from ..units import fmt, with_unit
 from .optimize import OptimizeResult, Profile
 from .outputs import csv_cell
 from .report import key_units, method_title, provenance
-from .table import column_name, with_unit
+from .table import column_name, quantity_unit
 
 FIGURES = "optimize-figures"
 
@@ -185,7 +185,7 @@ def build_document(result: OptimizeResult, figures: dict[str, str], *, sha256: s
             change = f" ({100 * (j.objective / j0.objective - 1):+.3g} %)"
         doc.p(Strong("A feasible optimum was found and proven."),
               f" {sense} {p.objective}: {fmt(j0.objective)} → {fmt(j.objective)} "
-              f"{_unit(p.objective)}{change}. It was re-analysed by every force method and "
+              f"{quantity_unit(p.objective)}{change}. It was re-analysed by every force method and "
               "checked as mechreport check does (the methods agree, every design verdict "
               "passes), and it meets every bound, stays on the spec's assembly branch and "
               "leaves out no angle the original analysis did not.")
@@ -253,7 +253,7 @@ def build_document(result: OptimizeResult, figures: dict[str, str], *, sha256: s
     rows = []
     for q_i, q in enumerate(p.quantities):
         now = h.judged[i].values[q_i] if i is not None else math.nan
-        rows.append([q, _unit(q) or "—", fmt(j0.values[q_i]), fmt(now)])
+        rows.append([q, quantity_unit(q) or "—", fmt(j0.values[q_i]), fmt(now)])
     doc.table(["quantity", "unit", "original",
                "optimum" if result.feasible else "least violating"], rows, right={2, 3})
 
@@ -303,6 +303,3 @@ def build_document(result: OptimizeResult, figures: dict[str, str], *, sha256: s
     return doc
 
 
-def _unit(q: str) -> str:
-    from .table import quantity_unit
-    return quantity_unit(q)

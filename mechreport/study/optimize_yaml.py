@@ -11,14 +11,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-
-def number_text(value: float) -> str:
-    """A value as the spec writes numbers: a whole number without ``.0``, else the shortest
-    text that reads back as the same float (``123.45678901234``)."""
-    f = float(value)
-    if f.is_integer() and abs(f) < 2**53:
-        return str(int(f))
-    return repr(f)
+from .variants import _plain
 
 
 def _node_at(root, path: tuple):
@@ -53,7 +46,7 @@ def optimum_text(text: str, paths: Mapping[str, tuple], values: Mapping[str, flo
     for key, path in paths.items():
         node = _node_at(root, path)
         edits.append((_offset(starts, node.start_mark), _offset(starts, node.end_mark),
-                      number_text(values[key])))
+                      str(_plain(values[key]))))     # as the spec writes numbers
     for k, v in root.value:
         if k.value == "expect" and k.start_mark.column == 0:
             a = _offset(starts, k.start_mark)

@@ -17,10 +17,10 @@ import numpy as np
 
 from ..forces import METHODS
 from ..report.plots import styled
-from ..units import fmt, pretty
+from ..units import fmt, pretty, with_unit
 from ..report.document import Code, Doc, Print, Strong
 from .plan import SAMPLING_NAMES
-from .table import Table, badness, column_name, larger_is_better, quantity_unit, with_unit
+from .table import Table, badness, column_name, larger_is_better, quantity_unit
 
 FIGURES = "study-figures"
 BEST = 10                 # variants in the best-variants table

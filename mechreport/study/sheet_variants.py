@@ -16,6 +16,7 @@ analysed by :func:`mechreport.pipeline.analyse` through the executor's serial ru
 from __future__ import annotations
 
 import math
+from collections import Counter
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -23,7 +24,6 @@ import numpy as np
 
 from ..errors import MechreportError, Problem, SpecError
 from ..spec import Spec
-from .executor import run_serial
 from .variants import BaseSpec, variant_spec
 
 #: draws allowed per variant asked for (and at least MIN_DRAWS): redraws are bounded
@@ -240,25 +240,19 @@ def _make(path, count, seed, angles, stop_check) -> tuple[BaseSpec, list[SheetVa
     budget = max(MAX_DRAWS_PER_VARIANT * count, MIN_DRAWS)
     kept: list[SheetVariant] = []
     seen_data, seen_answers = set(), set()
-    reasons: dict[str, int] = {}
-
-    def task(_shared, values):
-        return _candidate(base, values, angles, settings, len(kept) + 1)
-
+    reasons: Counter[str] = Counter()
     draws = 0
     while len(kept) < count and draws < budget:
         values = draw(settings, rng)
         draws += 1
         key = tuple(sorted(values.items()))
         if key in seen_data:
-            reasons["the same data as another variant"] = \
-                reasons.get("the same data as another variant", 0) + 1
+            reasons["the same data as another variant"] += 1
             continue
         seen_data.add(key)
-        got = []
-        run_serial(task, None, [(0, 1)], lambda chunk: (values,),
-                   lambda chunk, result: got.append(result), stop_check)
-        variant, why = got[0]
+        if stop_check is not None:
+            stop_check()
+        variant, why = _candidate(base, values, angles, settings, len(kept) + 1)
         if variant is not None:
             answers = tuple((a.quantity, a.angle, a.value) for a in variant.answers)
             if answers in seen_answers:
@@ -266,11 +260,11 @@ def _make(path, count, seed, angles, stop_check) -> tuple[BaseSpec, list[SheetVa
             else:
                 seen_answers.add(answers)
         if variant is None:
-            reasons[why] = reasons.get(why, 0) + 1
+            reasons[why] += 1
             continue
         kept.append(variant)
     if len(kept) < count:
-        worst = sorted(reasons.items(), key=lambda kv: -kv[1])[:3]
+        worst = reasons.most_common(3)
         why = "; ".join(f"{n} draw{'s' if n > 1 else ''}: {r}" for r, n in worst)
         raise SpecError([Problem(spec.file, settings.line, "sheet.variants",
                                  f"only {len(kept)} of {count} variants found in {draws} "
@@ -283,8 +277,9 @@ def _variant(base: BaseSpec, values: dict, angles, number: int) -> Spec:
     """Variant ``number``'s spec: the varied data in, the sheet's angles analysed, its name
     numbered and without the description (written for the spec's own data, it would
     describe other numbers); raises ``SpecError`` for data not valid there."""
+    from ..report.sheet.model import SheetOptions, sheet_spec
     spec = variant_spec(base, values)
-    return replace(_with_angles(spec, angles), name=f"{spec.name}, variant {number:02d}",
+    return replace(sheet_spec(spec, SheetOptions(angles=tuple(angles))), name=f"{spec.name}, variant {number:02d}",
                    description="")
 
 
@@ -303,10 +298,3 @@ def _candidate(base: BaseSpec, values: dict, angles, settings, number: int):
     if why is not None:
         return None, why
     return SheetVariant(number, dict(values), spec, analysis, answers_of(analysis, angles)), None
-
-
-def _with_angles(spec: Spec, angles: list[float]) -> Spec:
-    """``spec`` with the sheet's angles among its reference angles (analysed)."""
-    have = spec.analysed_angles()
-    missing = tuple(a for a in angles if not np.any(np.abs(have - a) < 1e-9))
-    return replace(spec, at=tuple(spec.at) + missing) if missing else spec

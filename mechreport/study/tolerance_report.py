@@ -15,10 +15,10 @@ import numpy as np
 
 from ..report.document import Code, Doc, Strong
 from ..report.plots import styled
-from ..units import fmt
+from ..units import fmt, with_unit
 from .plan import SAMPLING_NAMES
 from .report import StudyDoc, key_units, method_title, provenance, robust_limits
-from .table import column_name, with_unit
+from .table import column_name
 from .tolerance_stats import varies
 
 FIGURES = "tolerance-figures"
