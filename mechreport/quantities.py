@@ -28,10 +28,10 @@ CYCLE_UNITS = {
 }
 #: the cycle quantities machine dynamics gives (``dynamics:`` with ``until: steady``)
 DYNAMICS_QUANTITIES = tuple(q for q in CYCLE_UNITS if q.startswith("dynamics."))
-#: a member's quantities over the sweep (``member.L.attr``, ``member.L.P_Q.attr``)
 #: the force methods' names, in the order the reports list them (the methods themselves are
 #: mechreport.forces.METHODS; the command line offers these names without importing them)
 METHOD_NAMES = ("newton_euler", "dalembert", "dyad", "contour", "power")
+#: a member's quantities over the sweep (``member.L.attr``, ``member.L.P_Q.attr``)
 MEMBER_UNITS = {"stress_max": "Pa", "static_safety": "", "fatigue_safety": "",
                 "buckling_safety": "", "buckling_plane": ""}   # plane: 1 in it, 2 out of it
 JOINT_CYCLE_UNITS = {"f_max": "N", "f_mean": "N", "f_equivalent": "N", "life_h": "h"}

@@ -1604,24 +1604,38 @@ def _load_label(item: dict, i: int, path: tuple, ck: _Checker,
     return label
 
 
+def _moving_link(lname: str, path: tuple, ck: _Checker, links: dict[str, Link]) -> bool:
+    """Whether the load at ``path`` names a moving link (else said, unless the link itself
+    was refused)."""
+    if lname in links:
+        return True
+    if lname not in ck.invalid_links:
+        ck.error(path + ("link",), f"unknown link '{lname}' (loads act on moving links: "
+                                   f"{', '.join(links)})")
+    return False
+
+
+def _point_of(point: str, lname: str, path: tuple, ck: _Checker,
+              links: dict[str, Link]) -> bool:
+    """Whether the load at ``path`` acts at a point of its link (else said)."""
+    if point in links[lname].points:
+        return True
+    ck.error(path + ("point",), f"'{point}' is not a point of link '{lname}'")
+    return False
+
+
 def _load(kind: str, item: dict, i: int, path: tuple, ck: _Checker,
           links: dict[str, Link], units: dict[str, str]) -> Load | None:
     """A force or a moment the models validated, on a moving link (at one of its points)."""
-    if ck.refused(path + ("link",)):
+    if ck.refused(path + ("link",)) or not _moving_link(item["link"], path, ck, links):
         return None
     lname = item["link"]
-    if lname not in links:
-        if lname not in ck.invalid_links:
-            ck.error(path + ("link",), f"unknown link '{lname}' (loads act on moving links: "
-                                       f"{', '.join(links)})")
-        return None
     point = None
     if kind == "force":
         if ck.refused(path + ("point",)) or "point" not in item:
             return None                 # the models say what is missing or wrong
         point = item["point"]
-        if point not in links[lname].points:
-            ck.error(path + ("point",), f"'{point}' is not a point of link '{lname}'")
+        if not _point_of(point, lname, path, ck, links):
             return None
     if ck.refused(path):
         return None
@@ -1654,13 +1668,7 @@ def _pressure(item: dict, i: int, path: tuple, ck: _Checker, links: dict[str, Li
     if ck.refused(path) or ck.refused(path + ("link",)) or ck.refused(path + ("point",)):
         return None
     lname, point = item["link"], item["point"]
-    if lname not in links:
-        if lname not in ck.invalid_links:
-            ck.error(path + ("link",), f"unknown link '{lname}' (loads act on moving links: "
-                                       f"{', '.join(links)})")
-        return None
-    if point not in links[lname].points:
-        ck.error(path + ("point",), f"'{point}' is not a point of link '{lname}'")
+    if not _moving_link(lname, path, ck, links) or not _point_of(point, lname, path, ck, links):
         return None
     model = schema.PressureLoad.model_fields
     unit = item.get("unit", model["unit"].default)
@@ -1677,9 +1685,7 @@ def _pressure(item: dict, i: int, path: tuple, ck: _Checker, links: dict[str, Li
         ck.error(path + ("profile",), "gives forces (p - ambient) x area beyond the range of "
                                       f"numbers ({NUMBER_RANGE}) in SI units")
         return None
-    dx, dy = (float(v) for v in item["direction"])
-    norm = math.hypot(dx, dy)
-    return Load("force", lname, i, point, None, (dx / norm, dy / norm), force, None,
+    return Load("force", lname, i, point, None, _direction(item["direction"]), force, None,
                 item.get("name"), item.get("reacts_on", GROUND),
                 shift=float(item.get("shift", 0.0)), pressure=pressure)
 
