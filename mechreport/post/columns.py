@@ -14,7 +14,7 @@ import numpy as np
 
 from ..quantities import (JOINT_UNITS, LINK_UNITS, MECHANISM_UNITS, POINT_UNITS, joint_unit,
                           load_scales, unit_of)
-from ..units import ZERO_RTOL, with_unit
+from ..units import ZERO_RTOL, kind_of, with_unit
 from .transmission import smallest_transmission_angle
 
 
@@ -103,49 +103,44 @@ def result_columns(kin, forces: dict, scale: dict[str, float]) -> list[Column]:
     spec = kin.mechanism.spec
     out: list[Column] = []
 
-    def add(name: str, values: np.ndarray, kind: str) -> None:
-        tol = ZERO_RTOL * scale.get(kind, 0.0)
+    def add(name: str, unit: str, values: np.ndarray) -> None:
+        """The column ``name [unit]``; round-off of the unit's kind of quantity made 0."""
+        tol = ZERO_RTOL * scale.get(kind_of(unit), 0.0)
         with np.errstate(invalid="ignore"):
-            out.append(Column(name, np.where(np.abs(values) <= tol, 0.0, values) + 0.0))
+            out.append(Column(with_unit(name, unit),
+                              np.where(np.abs(values) <= tol, 0.0, values) + 0.0))
 
     # the units are the quantities' (mechreport.quantities), the names results.csv's own
     # (a link's angle is ``L.theta``, a point's ``P.x``: the quantities link.L.angle, point.P.x)
     for ln in spec.links:
         i = ln.number
-        add(with_unit(f"{ln.name}.theta", LINK_UNITS["angle"]), kin.angle_deg(ln.name), "angle")
-        add(with_unit(f"{ln.name}.omega", LINK_UNITS["omega"]), kin.omega[:, i], "omega")
-        add(with_unit(f"{ln.name}.alpha", LINK_UNITS["alpha"]), kin.alpha[:, i], "alpha")
+        add(f"{ln.name}.theta", LINK_UNITS["angle"], kin.angle_deg(ln.name))
+        add(f"{ln.name}.omega", LINK_UNITS["omega"], kin.omega[:, i])
+        add(f"{ln.name}.alpha", LINK_UNITS["alpha"], kin.alpha[:, i])
     for p, owner in spec.named_points():
         s = kin.named_point(p, owner)
-        for lab, arr, kind in (("x", s.r[:, 0], "length"), ("y", s.r[:, 1], "length"),
-                               ("vx", s.v[:, 0], "velocity"), ("vy", s.v[:, 1], "velocity"),
-                               ("ax", s.a[:, 0], "acceleration"),
-                               ("ay", s.a[:, 1], "acceleration"),
-                               ("v", np.hypot(s.v[:, 0], s.v[:, 1]), "velocity"),
-                               ("a", np.hypot(s.a[:, 0], s.a[:, 1]), "acceleration")):
-            add(with_unit(f"{p}.{lab}", POINT_UNITS[lab]), arr, kind)
+        for lab, arr in (("x", s.r[:, 0]), ("y", s.r[:, 1]), ("vx", s.v[:, 0]),
+                         ("vy", s.v[:, 1]), ("ax", s.a[:, 0]), ("ay", s.a[:, 1]),
+                         ("v", np.hypot(s.v[:, 0], s.v[:, 1])),
+                         ("a", np.hypot(s.a[:, 0], s.a[:, 1]))):
+            add(f"{p}.{lab}", POINT_UNITS[lab], arr)
     for j in spec.joints:                       # an R joint's relative angle, (-180, 180]
         if j.type == "R":
-            add(with_unit(f"joint.{j.name}.angle", JOINT_UNITS["angle"]),
-                kin.relative_angle_deg(*j.links), "angle")
+            add(f"joint.{j.name}.angle", JOINT_UNITS["angle"], kin.relative_angle_deg(*j.links))
     transmission = smallest_transmission_angle(kin)
     if np.isfinite(transmission).any():
-        add(with_unit("transmission_angle", MECHANISM_UNITS["transmission_angle"]),
-            transmission, "angle")
+        add("transmission_angle", MECHANISM_UNITS["transmission_angle"], transmission)
     for m, res in forces.items():
-        effort, kind = ("driver.torque", "moment") if spec.driver.kind == "R" else \
-            ("driver.force", "force")
-        add(with_unit(f"{m}.{effort}", unit_of(effort)), res.driver_torque, kind)
+        effort = "driver.torque" if spec.driver.kind == "R" else "driver.force"
+        add(f"{m}.{effort}", unit_of(effort), res.driver_torque)
         for name in spec.reported_reactions():
             r = res.reactions.get(name)
             if r is None:
                 continue
-            for attr, kind in (("fx", "force"), ("fy", "force"), ("moment", "moment"),
-                               ("px", "length"), ("py", "length")):
+            for attr in ("fx", "fy", "moment", "px", "py"):
                 v = getattr(r, attr)
                 if v is not None:
-                    add(with_unit(f"{m}.joint.{name}.{attr}", JOINT_UNITS[attr]), v, kind)
+                    add(f"{m}.joint.{name}.{attr}", JOINT_UNITS[attr], v)
             if r.friction is not None:     # a couple in an R joint, a force in a T joint
-                add(with_unit(f"{m}.joint.{name}.friction", joint_unit("friction", r.type)),
-                    r.friction, "moment" if r.type == "R" else "force")
+                add(f"{m}.joint.{name}.friction", joint_unit("friction", r.type), r.friction)
     return out
