@@ -142,7 +142,6 @@ class Equilibrated:
         y = self._solve(rhs)
         y[:, :, overflow] = np.inf
         cond = self._probed_cond(y[:, 1:])
-        cond[self.vanishing] = np.inf
         with np.errstate(over="ignore", invalid="ignore"):
             x = y[:, 0, :] / self.cs
         cond[overflow] = np.nan
@@ -151,11 +150,13 @@ class Equilibrated:
 
     def _probed_cond(self, y: np.ndarray) -> np.ndarray:
         """The condition number estimate (n,) from the solutions y (m, 2, n) for the probes:
-        ||As||_F max_k ||y_k|| / ||z_k||, inf where not finite."""
+        ||As||_F max_k ||y_k|| / ||z_k||, inf where not finite or a row or column vanishes
+        (:func:`vanishing_lines`)."""
         with np.errstate(over="ignore", invalid="ignore"):
             probe = np.sqrt(np.einsum("ikn,ikn->kn", y, y)) / PROBE_NORMS[self.m][:, None]
             cond = self.fro * probe.max(axis=0)
         cond[~np.isfinite(cond)] = np.inf
+        cond[self.vanishing] = np.inf
         return cond
 
     def solve_many(self, B: np.ndarray) -> np.ndarray:
@@ -414,7 +415,6 @@ class _SmallGroup:
         eq = Equilibrated(At, members)
         cond = eq._probed_cond(eq._solve(np.broadcast_to(PROBES[:m, :, None],
                                                           (m, 2, At.shape[2]))))
-        cond[eq.vanishing] = np.inf
         cond[eq.overflow] = np.nan
         self.cond, self.rs, self.cs, self.As = cond, eq.rs, eq.cs, eq.As
         with np.errstate(over="ignore", invalid="ignore"):
