@@ -42,7 +42,7 @@ def _one(path: Path, out: Path, name: str) -> int:
         dyn = run_dynamics(build_mechanism(spec), analysis_of)
         final = od.write_folder(out, name,
                                 lambda tmp: write_histories(histories_of(dyn.simulation), tmp),
-                                carry=lambda entry: entry not in od.DYNAMICS_ENTRIES)
+                                carry=od.all_but(od.DYNAMICS_ENTRIES))
         return dyn, final
 
     ok, done = attempt(path, simulated)

@@ -140,7 +140,7 @@ def write_optimize(result, path: Path, out: Path, name: str, wait: float = 120.0
         compile_typst(typst(doc), tmp / "optimize.pdf", tmp)
 
     with od.writing(out, wait) as out:
-        return od.write_folder(out, name, write, carry=_not_ours)
+        return od.write_folder(out, name, write, carry=od.all_but(od.OPTIMIZE_ENTRIES))
 
 
 def _described(result):
@@ -156,8 +156,3 @@ def _described(result):
              "design's.")
     text = about + ("\n\n" + a.spec.description if a.spec.description else "")
     return replace(a, spec=replace(a.spec, description=text))
-
-
-def _not_ours(entry: str) -> bool:
-    """The entries of an old folder a new optimisation keeps: all but its own."""
-    return entry not in od.OPTIMIZE_ENTRIES

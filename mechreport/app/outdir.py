@@ -364,6 +364,12 @@ def swap_in(out: Path, tmp: Path, name: str,
     return final
 
 
+def all_but(entries):
+    """The ``carry`` of a command that writes ``entries`` into a folder: every other entry of
+    the old folder is kept (a study's folder keeps a report, ...)."""
+    return lambda entry: entry not in entries
+
+
 def write_folder(out: Path, name: str, write, carry) -> Path:
     """Write ``OUT/name`` whole: ``write(tmp)`` fills a fresh private folder
     (:func:`make_tmp_dir`), which is checked (nothing in it leads outside) and swapped in

@@ -221,7 +221,7 @@ def write_study(run, out: Path, name: str, reports: int = 0, wait: float = 120.0
         compile_typst(typst(doc), tmp / "study.pdf", tmp)
 
     with od.writing(out, wait) as out:
-        return od.write_folder(out, name, write, carry=_not_the_study)
+        return od.write_folder(out, name, write, carry=od.all_but(od.STUDY_ENTRIES))
 
 
 def _version() -> str:
@@ -280,12 +280,7 @@ def variant_report(run, i: int, rank: int, tmp: Path, folder: str) -> None:
     write_report_folder(analysis, where, f"{folder}/{spec_file.name}", spec_sha256(spec_file))
 
 
-def _not_the_study(entry: str) -> bool:
-    """The entries of an old folder a new study keeps: all but the study's (its report)."""
-    return entry not in od.STUDY_ENTRIES
-
-
 def install(out: Path, tmp: Path, name: str) -> Path:
     """Make ``tmp`` (a complete study folder) ``OUT/name``, carrying over the entries of the
     old folder that are not a study's (its report); two renames, undone if the second fails."""
-    return od.swap_in(out, tmp, name, carry=_not_the_study)
+    return od.swap_in(out, tmp, name, carry=od.all_but(od.STUDY_ENTRIES))

@@ -183,7 +183,7 @@ def write_tolerance(result, out: Path, name: str, wait: float = 120.0, *, date: 
                                                                allow_nan=False) + "\n")
 
     with od.writing(out, wait) as out:
-        return od.write_folder(out, name, write, carry=_not_the_tolerance)
+        return od.write_folder(out, name, write, carry=od.all_but(od.TOLERANCE_ENTRIES))
 
 
 def report_summary(report: Path, quantities: dict, sha256: str) -> dict | None:
@@ -226,8 +226,3 @@ def carry_into_report(summary: Path, record: Path, sha256: str) -> None:
     from ..report.files import atomic_write_text
     merged = with_tolerance(json.loads(summary.read_text(encoding="utf-8")), quantities)
     atomic_write_text(summary, json.dumps(merged, indent=2, allow_nan=False) + "\n")
-
-
-def _not_the_tolerance(entry: str) -> bool:
-    """The entries of an old folder a new tolerance analysis keeps: all but its own."""
-    return entry not in od.TOLERANCE_ENTRIES
