@@ -24,6 +24,7 @@ Print-only hints (page setup, table rules and widths) are in :class:`Layout` and
 differently on purpose, :class:`Either` (inline) and :class:`Only` (blocks) hold both."""
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 
 # ----------------------------------------------------------------------------- inline runs
@@ -112,6 +113,12 @@ class Ref:
     in print, which numbers its headings instead."""
     text: str
     anchor: str
+
+
+def heading_id(text: str) -> str:
+    """The anchor GitHub gives a heading of ``text`` (a :class:`Ref`'s ``anchor``; report.md's
+    and report.html's ids)."""
+    return re.sub(r"[^a-z0-9 _-]", "", text.lower()).replace(" ", "-")
 
 
 Inline = object   # str | run | list[str | run]

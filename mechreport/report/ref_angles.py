@@ -3,12 +3,12 @@ method, the vectors and the drawing (a :class:`~mechreport.report.scene.Scene`);
 layers of the same drawings."""
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
 
 from ..forces import METHODS
 from ..units import DASH, Display, deg
 from .scene import Scene, build_scene
+from .document import heading_id
 from .section import Figure, effort_of
 from .text import kinematics_rows
 
@@ -78,7 +78,7 @@ def reference_angles(analysis, ref: str, symbols, colors, d: Display
     _, _, coord, unit = effort_of(spec)
     for angle in spec.at:
         title = f"{coord[0].upper()}{coord[1:]} {deg(angle)}{unit}"
-        anchor = re.sub(r"[^a-z0-9 _-]", "", title.lower()).replace(" ", "-")
+        anchor = heading_id(title)
         k = kin.index_of(angle)
         if k is None:
             why = next((f.reason for f in analysis.flags if abs(f.angle - angle) < 1e-9),

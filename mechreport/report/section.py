@@ -1,22 +1,17 @@
-"""What every section of the report model shares: the number formatter (:func:`num`), a
-:class:`Figure`, the display units of an analysis, the driver's effort and coordinate, the
-joints' colours (their reaction symbols are :func:`mechreport.post.records.reaction_symbols`)."""
+"""What every section of the report model shares: a :class:`Figure`, the display units of
+an analysis, the driver's effort and coordinate, the joints' colours (their reaction
+symbols are :func:`mechreport.post.records.reaction_symbols`)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..units import SIG_DIGITS, Display, fmt
+from ..units import Display
 from ..post.records import reaction_symbols
 from .mpl import PALETTE
 from .spec_items import effort_of
 from .text import spec_display
 
-__all__ = ["Figure", "display_of", "effort_of", "joint_colors", "num", "reaction_symbols"]
-
-
-def num(x, digits: int = SIG_DIGITS) -> str:
-    """``x`` (already in the unit it is shown in) by the one formatter; "—" for None/NaN."""
-    return fmt(x, digits)
+__all__ = ["Figure", "display_of", "effort_of", "joint_colors", "reaction_symbols"]
 
 
 @dataclass

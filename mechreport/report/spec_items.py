@@ -68,7 +68,7 @@ def driver_item(spec) -> DriverItem:
         effort, label = "moment", "driver torque M"
         coord, suffix = getattr(d, "coordinate", "crank angle"), "°"
     return DriverItem(spec.joint(d.joint).written, d.link, spec.number(d.link), kind,
-                      kind == "R" and d.crank, d.at_rest, d.at_rest and d.alpha == 0,
+                      kind == "R" and d.crank, d.at_rest, d.holds,
                       d.omega, d.alpha, d.rpm if kind == "R" else None, coord, effort, label,
                       suffix, unit)
 

@@ -12,7 +12,6 @@ FAIL: a design verdict) is a PASS/FAIL badge; math is written in its plain-text 
 from __future__ import annotations
 
 import html as _html
-import re
 
 from . import document as d
 
@@ -50,11 +49,6 @@ def _opens_section(b) -> bool:
     return False
 
 
-def heading_id(text: str) -> str:
-    """The id GitHub gives a heading of ``text`` (as report.md's anchors are written)."""
-    return re.sub(r"[^a-z0-9 _-]", "", text.lower()).replace(" ", "-")
-
-
 class _Writer:
     """One document's writer: it remembers the heading ids given (repeats get ``-1``,
     ``-2``, as on GitHub)."""
@@ -67,7 +61,7 @@ class _Writer:
     def block(self, b) -> str:
         if isinstance(b, d.Heading):
             text = plain(b.text)
-            base = heading_id(text)
+            base = d.heading_id(text)
             n = self.ids.get(base, 0)
             self.ids[base] = n + 1
             hid = base if n == 0 else f"{base}-{n}"

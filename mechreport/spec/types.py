@@ -245,6 +245,12 @@ class Driver:
         return self.omega == 0.0
 
     @property
+    def holds(self) -> bool:
+        """At rest without acceleration: a static problem (no inertia forces; the driver's
+        effort holds the mechanism)."""
+        return self.at_rest and self.alpha == 0
+
+    @property
     def crank(self) -> bool:
         """An R joint with ground: the classic crank, whose angle is the sweep's."""
         return self.kind == "R" and GROUND in self.links

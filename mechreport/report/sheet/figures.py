@@ -250,7 +250,7 @@ def mechanism_figure(analysis, k: int, path: Path) -> Path:
             spot = _arc(ax, c.at, 0.06 * ext, c.value > 0, KNOWN, labels=labels)
             tips.append((tex_symbol(c.label), spot, (1, -1), KNOWN))
     drv = spec.driver
-    if drv.crank and not (drv.at_rest and drv.alpha == 0):   # no speed on a crank at rest
+    if drv.crank and not drv.holds:   # no speed on a crank at rest
         pivot = analysis.joint_points()[drv.joint][k]
         n = spec.number(drv.link)
         ccw = drv.alpha >= 0 if drv.at_rest else drv.omega >= 0

@@ -1078,7 +1078,7 @@ def _kinematics_task(spec, shorts: str) -> str:
     """What the kinematics asks: only what is not trivially zero (at rest, no velocity; at
     rest without acceleration, positions alone)."""
     d = spec.driver
-    if d.at_rest and d.alpha == 0:
+    if d.holds:
         return f"the positions of the joints and of the centres of mass at {shorts};"
     if d.at_rest:
         return (f"the positions and accelerations of the joints and of the centres of mass, "
@@ -1092,7 +1092,7 @@ def _has_inertia(spec) -> bool:
     """Whether some link has an inertia force or couple: the driver moves or accelerates,
     and some link has a mass or a moment of inertia."""
     d = spec.driver
-    if d.at_rest and d.alpha == 0:
+    if d.holds:
         return False
     return any(l.mass > 0 or l.inertia > 0 for l in spec.links)
 

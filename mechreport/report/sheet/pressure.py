@@ -19,7 +19,7 @@ def pressure_rule(load, angle: float, cycle: float) -> str:
           else f"{fmt(read)}°")
     area = (f"A = π d²/4 = {sci(pr.area)} m² (d = {sci(pr.bore)} m)" if pr.bore is not None
             else f"A = {sci(pr.area)} m²")
-    force = (p - pr.ambient) * pr.scale * pr.area
+    force = pr.pressure_pa(p) * pr.area
     ux, uy = load.direction
     return (f"p = {fmt(p)} {pr.unit} (the diagram at {at}), p_a = {fmt(pr.ambient)} {pr.unit}, "
             f"{area}: (p − p_a) A = {fmt(force)} N along ({fmt(ux)}, {fmt(uy)})")
