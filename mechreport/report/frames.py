@@ -109,7 +109,7 @@ def frame_indices(sweep_angles: np.ndarray, analysed: np.ndarray,
     return out, step
 
 
-def _arrow_forces(analysis, res) -> np.ndarray:
+def arrow_forces(analysis, res) -> np.ndarray:
     """The largest force [N] drawn as an arrow at each analysed angle (n,): joint reactions,
     applied forces, a T driver's push (NaN where none is finite)."""
     mags = [np.hypot(r.fx, r.fy) for r in res.reactions.values()]
@@ -170,7 +170,7 @@ def animation_data(analysis, ref: str, sweep, colors: dict[str, str],
     flagged = [float(a) for a in sweep.flagged]
     unit = coord_unit
 
-    largest = _arrow_forces(analysis, res)
+    largest = arrow_forces(analysis, res)
     force_ref = force_reference(largest, near, ks + strip_ks)
 
     def frame(k: int) -> Frame:

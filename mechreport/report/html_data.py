@@ -19,6 +19,7 @@ from ..kinematics.frames import rotate
 from ..spec import GROUND
 from ..units import deg
 from .drawing import ARROW_LEN     # an arrow of the reference force: as animation.gif
+from .frames import CLIP, arrow_forces, force_reference
 from .mpl import INK, LOAD_COLOR, MOMENT_COLOR
 
 #: positions are stored as whole numbers of extent / GRID
@@ -117,21 +118,18 @@ def html_data(analysis, model) -> dict:
                "text": {"f": _texts(j.f, "force", d), "fx": _texts(j.fx, "force", d),
                         "fy": _texts(j.fy, "force", d)}}
               for j in sw.joints]
-    mags = np.vstack([np.hypot(j.fx, j.fy) for j in sw.joints]
-                     + [np.hypot(*np.asarray(ld.force, float).T) for ld in loads]
-                     + [np.zeros(n)])
-    largest = np.where(np.isfinite(mags), mags, 0.0).max(axis=0)
-    away = ~np.asarray(sw.near, bool) if len(sw.near) == n and (~sw.near).any() else \
-        np.ones(n, bool)
-    force_ref = (model.animation.force_ref if model.animation is not None
-                 else float(largest[away].max(initial=0.0)))
+    near = np.asarray(sw.near, bool) if len(sw.near) == n else np.zeros(n, bool)
+    # the arrows' scale is the animation's (without one, set as it would be: no frame cut)
+    force_ref = (model.animation.force_ref if model.animation is not None else
+                 force_reference(arrow_forces(analysis, analysis.forces[
+                     analysis.sweep_summary().method]), near, []))
     force_ref = force_ref if np.isfinite(force_ref) else 0.0        # no arrows then
     shaking = np.asarray(sw.shaking.f, float) if sw.shaking is not None else None
     data = {
         "title": model.name,
         "coord": model.coord, "unit": model.coord_unit,
         "angles": [float(deg(a)) for a in np.asarray(sw.angles, float)],
-        "near": [bool(x) for x in (sw.near if len(sw.near) == n else np.zeros(n, bool))],
+        "near": [bool(x) for x in near],
         "flagged": [float(a) for a in sw.flagged],
         "refs": [float(a) for a in sw.ref_angles],
         "method": sw.method_title,
@@ -141,7 +139,7 @@ def html_data(analysis, model) -> dict:
                    "values": _floats(d.value(np.asarray(sw.torque, float), effort_kind)),
                    "text": _texts(sw.torque, effort_kind, d)},
         "geometry": {"grid": GRID, "extent": extent, "force_ref": force_ref,
-                     "arrow": ARROW_LEN,
+                     "arrow": ARROW_LEN, "clip": CLIP,
                      "links": [{"name": link.name,
                                 "points": [grid(paths[(link.name, p)]) for p in link.points]}
                                for link in spec.links],

@@ -112,8 +112,8 @@
       if (!at || fx === null || fy === null || !(g.force_ref > 0)) return;
       var f = Math.hypot(fx, fy);
       if (!(f > 0)) return;
-      var len = g.arrow * G * f / g.force_ref, cut = len > 1.3 * g.arrow * G;
-      if (cut) len = 1.3 * g.arrow * G;
+      var len = g.arrow * G * f / g.force_ref, cut = len > g.clip * g.arrow * G;
+      if (cut) len = g.clip * g.arrow * G;
       var ux = fx / f, uy = fy / f;
       var tip = [at[0] + ux * len, at[1] + uy * len];
       svg("line", { x1: at[0], y1: -at[1], x2: tip[0], y2: -tip[1], stroke: color,
