@@ -22,6 +22,7 @@ from pathlib import Path
 from ..document import Doc, Layout, Print
 from ..files import atomic_write_bytes, atomic_write_text
 from ..pdf import compile_typst
+from ..write_html import description_html
 from ..write_markdown import markdown
 from ..write_typst import typst
 from .expr import fmt, round_off
@@ -103,12 +104,6 @@ def key_document(variants, name: str) -> Doc:
 
 # ------------------------------------------------------------------------------ Moodle
 
-def _markdown_html(text: str) -> str:
-    """User Markdown as HTML with raw HTML off (an ``<script>`` stays text)."""
-    from markdown_it import MarkdownIt
-    return MarkdownIt("commonmark", {"html": False}).render(str(text))
-
-
 def _table(header: list[str], rows: list[list]) -> str:
     head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
     body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in r) + "</tr>"
@@ -124,7 +119,7 @@ def problem_html(sheet, p, folder: Path, spec) -> dict:
     with round_off(p.zero):
         parts = []
         if p.own_statement:
-            parts.append(_markdown_html(p.statement[0]))
+            parts.append(description_html(p.statement[0]))   # no raw HTML, no images
         else:
             parts += [f"<p>{html.escape(s)}</p>" for s in p.statement]
         parts.append("<p>Data, SI units (points and centres of mass C in each link's own "
