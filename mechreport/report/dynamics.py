@@ -12,6 +12,7 @@ import numpy as np
 from ..dynamics.mean_speed import RTOL as SHOOTING_RTOL
 from ..dynamics.simulate import RTOL, STARTUP_FRACTION, STEADY_RTOL
 from ..units import RPM, Display, deg, fmt
+from .text import cycle_name
 
 #: the columns of dynamics.csv / dynamics.parquet, in order, as the format names them
 HISTORY_COLUMNS = ("time [s]", "crank.angle [deg]", "crank.omega [rad/s]",
@@ -129,7 +130,7 @@ def dynamics_section(analysis, d: Display) -> DynamicsSection | None:
         v = dyn.values
         swing, inertia, _ = dyn.estimate
         estimate = v["dynamics.speed_fluctuation_estimate"]
-        cyc = "turn" if sim_cycle(dyn) == 360 else f"{fmt(sim_cycle(dyn))}° cycle"
+        cyc = cycle_name(spec.cycle)
         head = (f"Periodic state found at a time-mean speed of {fmt(sd.mean_rpm)} rpm under the "
                 f"constant driving torque {fmt(sim.drive_torque)} N·m." if mean_speed else
                 f"Steady state after {sim.turns} {cyc}s (t = {fmt(cycle.t0 + cycle.period)} "
@@ -175,14 +176,9 @@ def dynamics_section(analysis, d: Display) -> DynamicsSection | None:
                         sim.startup_time,
                         (cycle.omega_max_angle, cycle.omega_max / RPM) if cycle else None,
                         (cycle.omega_min_angle, cycle.omega_min / RPM) if cycle else None,
-                        sim_cycle(dyn), not mean_speed)
+                        spec.cycle, not mean_speed)
     return DynamicsSection(intro, outcome, rows, why, compared, verdicts, plot,
                            histories_of(sim))
-
-
-def sim_cycle(dyn) -> float:
-    """The length of the dynamics' cycle [deg] (360, or the loads' longer cycle)."""
-    return float(np.degrees(dyn.equation.period))
 
 
 def histories_of(sim) -> list[np.ndarray]:

@@ -40,6 +40,7 @@ from .strength import StrengthSection, strength_section
 from .sweep_section import (SweepData, agreement_rows, bearing_rows, flag_rows,
                             left_out_text, peak_text, power_check_text,
                             sweep_figures, sweep_series, torque_texts)
+from .text import cycle_name
 
 #: what other modules import from here (a section's own names from its module above)
 __all__ = ["ReportModel", "build_model"]
@@ -175,8 +176,7 @@ def _dynamics_figures(section) -> dict[str, Figure]:
     if section is None:
         return {}
     plot = section.plot
-    over = ("over the steady turn" if plot.cycle == 360 else
-            f"over the steady {plot.cycle:g}° cycle") + ", its largest and smallest speed marked"
+    over = f"over the steady {cycle_name(plot.cycle)}, its largest and smallest speed marked"
     if not plot.startup_shown:          # mean_rpm: no start-up
         text = f"Crank speed {over} (the mean dashed)."
     else:

@@ -6,9 +6,11 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from ..units import with_unit
 from .document import (Blank, Box, Code, Columns, Description, Doc, Either, Emph, Figure,
                        Gap, Heading, Item, Items, Key, Layout, Link, NewLine, Only, Pairs,
                        Paragraph, Print, Ref, Space, Strong, Table, Wording)
+from .text import cycle_name
 
 #: the report's pages: justified 10 pt text, numbered sections, figures never split
 LAYOUT = Layout(margin=(1.8, 1.9, 1.8), size=10, title_size=17, heading_sizes=(),
@@ -22,7 +24,7 @@ CYCLE_FIGURES = ("pressure", "turning_moment", "flywheel", "breakdown", "transmi
 
 def _u(label: str, unit: str) -> Wording:
     """A column heading with its unit: ``peak [kN]``."""
-    return Wording(f"{label} [{unit}]")
+    return Wording(with_unit(label, unit))
 
 
 def _table(header, rows, right=frozenset(), size: float = 8, **how) -> Table:
@@ -254,7 +256,7 @@ def _dynamics(doc: Doc, m, y) -> None:
         doc.add(Gap())
     _figure(doc, m, "dynamics")
     # a 720° engine cycle is a cycle, not a turn; with mean_rpm the drive is no motor
-    span = "turn" if y.plot.cycle == 360 else f"{y.plot.cycle:g}° cycle"
+    span = cycle_name(y.plot.cycle)
     drive = "motor's" if y.plot.startup_shown else "constant driving torque's"
     if y.compared:
         doc.p(Wording(f"The forces at that motion: the steady {span} analysed like the sweep, "

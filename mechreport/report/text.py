@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from ..kinematics import Kinematics
-from ..units import Display
+from ..units import Display, fmt
 
 
 def _table(header: list[str], rows: list[list[str]]) -> str:
@@ -88,3 +88,9 @@ def kinematics_table(kin: Kinematics) -> str:
         blocks.append(f"{spec.name}: {spec.driver.coordinate} {angle:g} {spec.axis_unit}"
                       f"\n\n{pts}\n\n{lks}")
     return "\n\n".join(blocks) if blocks else f"{spec.name}: no angle could be solved"
+
+
+def cycle_name(period: float) -> str:
+    """What one cycle of the loads is called in the report's text: ``turn`` (360 degrees),
+    else ``720° cycle``."""
+    return "turn" if period == 360 else f"{fmt(period)}° cycle"
