@@ -68,11 +68,7 @@ def plan_of(study: Study) -> Plan:
         values = np.stack([g.reshape(-1) for g in grids], axis=1) if d else np.zeros((1, 0))
         return Plan(keys, values, "grid", study.seed)
     n = int(study.count)
-    rng = np.random.default_rng(study.seed)
-    if study.sample == "random":
-        unit = rng.random((n, d))
-    else:
-        unit = _latin_hypercube(d, n, rng)
+    unit = unit_samples(study.sample, n, d, study.seed)
     values = np.empty((n, d))
     for j, v in enumerate(study.vary):
         u = unit[:, j]
@@ -83,6 +79,13 @@ def plan_of(study: Study) -> Plan:
         else:
             values[:, j] = v.start + u * (v.stop - v.start)
     return Plan(keys, values, study.sample, study.seed)
+
+
+def unit_samples(sample: str, n: int, d: int, seed) -> np.ndarray:
+    """``n`` points (n, d) in [0, 1]^d of the ``sample`` kind (``random``, else a Latin
+    hypercube) from the generator of ``seed``: a study's and a tolerance analysis's draw."""
+    rng = np.random.default_rng(seed)
+    return rng.random((n, d)) if sample == "random" else _latin_hypercube(d, n, rng)
 
 
 def _latin_hypercube(d: int, n: int, rng: np.random.Generator) -> np.ndarray:

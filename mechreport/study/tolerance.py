@@ -43,7 +43,7 @@ import numpy as np
 
 from .evaluate import reason_of, row_of
 from .executor import Lost, Words
-from .plan import Plan, _latin_hypercube
+from .plan import Plan, unit_samples
 from .tolerance_stats import STATUSES, analyse_samples
 from .variants import DROPPED, BaseSpec, variant_spec
 
@@ -61,9 +61,8 @@ def tolerance_plan(tol) -> Plan:
     whose ``values`` (count, len(vary)) are in the spec's own units."""
     from scipy.stats import norm
     n, d = int(tol.count), len(tol.vary)
-    rng = np.random.default_rng(tol.seed)
-    unit = rng.random((n, d)) if tol.sample == "random" else _latin_hypercube(d, n, rng)
-    unit = np.clip(unit, 1e-12, 1.0 - 1e-12)       # a normal's inverse is finite inside
+    # inside (0, 1): a normal's inverse is finite there
+    unit = np.clip(unit_samples(tol.sample, n, d, tol.seed), 1e-12, 1.0 - 1e-12)
     values = np.empty((n, d))
     for j, v in enumerate(tol.vary):
         if v.dist == "normal":
