@@ -57,12 +57,18 @@ class Constraint:
     scale: float = 1.0
     unit: str | None = None
 
-    def show(self, value: float) -> str:
-        """``value`` [SI] in the bound's unit: ``59.07 deg``."""
+    @property
+    def written_unit(self) -> tuple[str, float]:
+        """The unit the bound was written in (the quantity's SI unit if none) and its size
+        [SI]."""
         from ..units import EXPECT_UNITS
         si = unit_of(self.quantity) or ""
         unit = self.unit or si
-        f = EXPECT_UNITS.get(si, {}).get(unit, 1.0) if self.unit else 1.0
+        return unit, EXPECT_UNITS.get(si, {}).get(unit, 1.0) if self.unit else 1.0
+
+    def show(self, value: float) -> str:
+        """``value`` [SI] in the bound's unit: ``59.07 deg``."""
+        unit, f = self.written_unit
         return f"{value / f:.6g}{' ' + unit if unit else ''}"
 
     @property
@@ -70,10 +76,7 @@ class Constraint:
         """``design limits.transmission_angle`` or ``cycle.transmission_angle.min >= 40 deg``."""
         if self.kind == "design":
             return f"design {self.item}"
-        from ..units import EXPECT_UNITS
-        si = unit_of(self.quantity) or ""
-        unit = self.unit or si
-        f = EXPECT_UNITS.get(si, {}).get(unit, 1.0) if self.unit else 1.0
+        unit, f = self.written_unit
         parts = []
         if self.low is not None:
             parts.append(f">= {self.low / f:.6g}")
