@@ -36,7 +36,7 @@ def optimize_command(path, out="out", scheduler: str | None = None, jobs: int | 
     from ..study.optimize import load_optimize_base, problem_of, run_optimize
     from .process import check_stop, stop_requests
     from .progress import StudyProgress, duration
-    from .study import cluster_client, placement, stop_said
+    from .runs import cluster_client, placement, stop_said
     from .workers import worker_init
 
     err = stream or sys.stderr

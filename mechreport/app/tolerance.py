@@ -88,7 +88,7 @@ def tolerance_command(path, out="out", method: str | None = None,
     from ..study.tolerance_stats import analyse_samples
     from .process import check_stop, stop_requests
     from .progress import StudyProgress, duration
-    from .study import cluster_client, lost_line, placement, stop_said
+    from .runs import cluster_client, lost_line, placement, stop_said
     from .workers import worker_init
 
     err = stream or sys.stderr
