@@ -16,7 +16,7 @@ from .mpl import (BLUE, GREEN, INK, ORANGE, PALETTE, PURPLE, SKY, STYLES, VERMIL
 def cycle_axis(ax, cd, label: bool = True) -> None:
     """0-360 deg over one turn (0 to the cycle, ticks every 90 deg, over a longer cycle),
     interpolated (left-out) angles marked."""
-    period = getattr(cd, "period", 360.0)
+    period = cd.period
     ax.set_xlim(0, period)
     ax.set_xticks(np.arange(0, period + 1, 45 if period == 360.0 else 90))
     if label:

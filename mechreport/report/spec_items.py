@@ -60,13 +60,13 @@ class DriverItem:
 def driver_item(spec) -> DriverItem:
     """The driver of ``spec`` described (see :class:`DriverItem`)."""
     d = spec.driver
-    kind = getattr(d, "kind", "R")
+    kind = d.kind
     unit = spec.units.get("length", "m")
     if kind == "T":
         effort, label, coord, suffix = "force", "driver force F", "stroke", " " + unit
     else:
         effort, label = "moment", "driver torque M"
-        coord, suffix = getattr(d, "coordinate", "crank angle"), "°"
+        coord, suffix = d.coordinate, "°"
     return DriverItem(spec.joint(d.joint).written, d.link, spec.number(d.link), kind,
                       kind == "R" and d.crank, d.at_rest, d.holds,
                       d.omega, d.alpha, d.rpm if kind == "R" else None, coord, effort, label,

@@ -974,7 +974,7 @@ def _profile_text(profile, spec, shift: float = 0.0) -> str:
     points = ", ".join(f"{fmt(a)}{unit}: {fmt(v)}" for a, v in profile)
     if len(profile) == 1:
         return f"the profile {points} (constant)"
-    cycle = getattr(spec, "cycle", 360.0)
+    cycle = spec.cycle
     turn = ("" if spec.axis_unit != "deg" else ", repeating every turn" if cycle == 360.0
             else f", repeating every {fmt(cycle)}° cycle")
     phase = (f"; shifted by {fmt(shift)}°: the value at φ is the profile's at φ − {fmt(shift)}°"
