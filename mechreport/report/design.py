@@ -125,19 +125,18 @@ def design_summary(analysis, d: Display) -> DesignSummary:
                      rev.inertial, rev.shaking_balanced,
                      [float(a) for a in rev.cycle.interpolated],
                      [name for name, part in sources.items() if d.zero(part, "moment")],
-                     rev.cycle.period, *_pressures(spec, rev.cycle.angles))
+                     rev.cycle.period, *_pressures(spec, rev.cycle.angles, d.pressure))
     return DesignSummary(verdict_rows, values, counter, interp, "", passed, data,
                          list(bearings.values()), _absent_figures(spec, rev, d))
 
 
-def _pressures(spec, angles: np.ndarray) -> tuple[dict[str, np.ndarray], str]:
+def _pressures(spec, angles: np.ndarray, unit: str) -> tuple[dict[str, np.ndarray], str]:
     """Each pressure load's pressure at ``angles`` [deg] as written (the profile's values,
-    phased by its shift; absolute or gauge as the profile is), in ``report.units.pressure``
-    (default: the first pressure load's unit), and that unit."""
+    phased by its shift; absolute or gauge as the profile is), in the display's ``unit``
+    (``report.units.pressure``, default the first pressure load's), and that unit."""
     loads = [ld for ld in spec.loads if ld.pressure is not None]
     if not loads:
         return {}, "Pa"
-    unit = (spec.report.units or {}).get("pressure", loads[0].pressure.unit)
     scale = PRESSURE_UNITS[unit]
     return ({ld.label: profile_at(ld.pressure.profile, angles, spec.cycle, ld.shift)
              * (ld.pressure.scale / scale) for ld in loads}, unit)

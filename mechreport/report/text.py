@@ -26,15 +26,17 @@ def kin_display(kin: Kinematics) -> Display:
 
 def spec_display(spec, scales: dict) -> Display:
     """The spec's display units (``report.units``; lengths, forces and moments by default in
-    the spec's own units, the rest in :class:`~mechreport.units.Display`'s) with ``scales``
-    [SI] of each kind of quantity (the round-off rule): the one place that reads them, for
-    the reports (:func:`.section.display_of`) and the terminal."""
+    the spec's own units, pressures in the first pressure load's, the rest in
+    :class:`~mechreport.units.Display`'s) with ``scales`` [SI] of each kind of quantity (the
+    round-off rule): the one place that reads them, for the reports
+    (:func:`.section.display_of`) and the terminal."""
     units = dict(spec.report.units)
     for key, si in (("length", "m"), ("force", "N"), ("moment", "N*m")):
         units.setdefault(key, spec.units.get(key, si))    # the spec's own units
+    written = next((ld.pressure.unit for ld in spec.loads if ld.pressure is not None), "Pa")
     return Display(units["length"], units["force"], units["moment"], units.get("mass", "kg"),
                    scales, stress=units.get("stress", "MPa"),
-                   pressure=units.get("pressure", "Pa"))
+                   pressure=units.get("pressure", written))
 
 
 def kinematics_rows(kin: Kinematics, k: int, d: Display | None = None
