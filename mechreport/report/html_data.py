@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..kinematics.frames import rotate
 from ..spec import GROUND
 from ..units import deg
 from .drawing import ARROW_LEN     # an arrow of the reference force: as animation.gif
@@ -66,10 +65,8 @@ def _texts(a, kind: str, d) -> list[str]:
 def _push(analysis, effort) -> np.ndarray:
     """A T driver's push (n, 2) [N]: its force ``effort`` (n,) [N] along its joint's line,
     which turns with the guide (as the animation draws it)."""
-    spec, kin = analysis.spec, analysis.kinematics
-    joint = spec.joint(spec.driver.joint)
-    theta = np.asarray(kin.theta, float)[:, spec.number(joint.guide)]
-    u = rotate(np.asarray(joint.line.direction, float), theta)
+    joint = analysis.spec.joint(analysis.spec.driver.joint)
+    u = analysis.kinematics.frames.rotate(joint.guide, joint.line.direction)
     return np.asarray(effort, float)[:, None] * u
 
 
