@@ -14,7 +14,12 @@ JOINT_KINDS = {"R": "pin (R)", "T": "slider (T)"}
 
 def link_label(spec, name: str) -> str:
     """``link 2 (crank)``: a link by its number and name."""
-    return f"link {spec.number(name)} ({name})"
+    return numbered_link(spec.number(name), name)
+
+
+def numbered_link(number: int, name: str) -> str:
+    """``link 2 (crank)`` for link ``name`` numbered ``number``."""
+    return f"link {number} ({name})"
 
 
 @dataclass(frozen=True)
@@ -46,7 +51,7 @@ class DriverItem:
     @property
     def label(self) -> str:
         """``link 2 (crank)``."""
-        return f"link {self.number} ({self.link})"
+        return numbered_link(self.number, self.link)
 
     @property
     def rate_unit(self) -> str:
@@ -98,7 +103,7 @@ class LoadItem:
     @property
     def where(self) -> str:
         """``link 2 (crank) at B``."""
-        return f"link {self.number} ({self.link})" + (f" at {self.point}" if self.point else "")
+        return numbered_link(self.number, self.link) + (f" at {self.point}" if self.point else "")
 
 
 def load_items(spec) -> list[LoadItem]:

@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...spec import GROUND
+from ..spec_items import numbered_link
 from .expr import Equation, Expr, Num, Op, Paren, Point, Raw, RVec, Sym, fmt
 from .symbols import (DEG_, K_, M_, MS2_, MS_, RADS2_, RADS_, I_, J_, R, alpha, delta_sym,
                       omega, point_vec, theta)
@@ -207,7 +208,7 @@ def rigid_lines(st: State, link: str, p: str, rp, q: str, rq, exact=None) -> lis
 def _link_title(spec, links) -> str:
     ls = [spec.link(l) for l in links]
     if len(ls) == 1:
-        return f"link {ls[0].number} ({ls[0].name})"
+        return numbered_link(ls[0].number, ls[0].name)
     return "links " + ", ".join(str(l.number) for l in ls) + " (" + \
         ", ".join(l.name for l in ls) + ")"
 

@@ -23,7 +23,8 @@ from ...spec import GROUND
 from ...kinematics.frames import perp
 from .expr import (ZERO, Equation, Expr, Num, Op, Paren, Point, Raw, Sym, fmt, round_off,
                    sheet_zero)
-from ..spec_items import JOINT_KINDS, LoadItem, driver_item, link_label, load_items
+from ..spec_items import (JOINT_KINDS, LoadItem, driver_item, link_label, load_items,
+                          numbered_link)
 from .kinematics import derive, scalar, vec_expr
 from .pressure import pressure_rule
 from .statement import eng, sci, statement
@@ -268,7 +269,7 @@ def _vec(v) -> str:
 def _free_body(spec, bodies) -> str:
     links = sorted((spec.link(b) for b in bodies), key=lambda l: l.number)
     if len(links) == 1:
-        return f"link {links[0].number} ({links[0].name})"
+        return numbered_link(links[0].number, links[0].name)
     return "links " + " & ".join(str(l.number) for l in links) + \
         " (" + ", ".join(l.name for l in links) + ")"
 
@@ -1061,7 +1062,7 @@ def _build_problem(analysis, options: SheetOptions | None = None,
     sized = [l for l in spec.links if l.strength is not None]
     if sized:
         tasks.append("the axial force N, shear force V and bending moment M at the middle of "
-                     "each member of " + _join_and([f"link {l.number} ({l.name})"
+                     "each member of " + _join_and([numbered_link(l.number, l.name)
                                                     for l in sized])
                      + ", and the largest normal stress there;")
     if "power" in methods:
