@@ -42,7 +42,7 @@ import numpy as np
 
 from .optimize_eval import Constraint, Judged, Problem, judge_chunk, judge_outcome, score
 from .plan import _latin_hypercube
-from .variants import BaseSpec
+from .variants import BaseSpec, section_base
 
 #: share of the budget kept for the polish, and its most evaluations
 POLISH_SHARE = 0.15
@@ -211,9 +211,7 @@ def optimize_base(spec, src) -> BaseSpec:
     """The :class:`BaseSpec` of a validated ``spec`` (with an ``optimize`` section) read from
     ``src``: its data tree without ``study``, ``expect`` and ``optimize``, the varied paths
     those of ``optimize.vary``."""
-    from .variants import DROPPED
-    data = {k: v for k, v in src.data.items() if k not in DROPPED + ("optimize",)}
-    return BaseSpec(spec, data, src, {v.key: v.path for v in spec.optimize.vary})
+    return section_base(spec, src, spec.optimize.vary, ("optimize",))
 
 
 def load_optimize_base(spec) -> BaseSpec:

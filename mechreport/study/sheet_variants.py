@@ -24,7 +24,7 @@ import numpy as np
 
 from ..errors import MechreportError, Problem, SpecError
 from ..spec import Spec
-from .variants import BaseSpec, variant_spec
+from .variants import BaseSpec, section_base, variant_spec
 
 #: draws allowed per variant asked for (and at least MIN_DRAWS): redraws are bounded
 MAX_DRAWS_PER_VARIANT = 10
@@ -166,8 +166,7 @@ def sheet_base(src) -> tuple[Spec, BaseSpec]:
     if settings is None:
         raise SpecError([Problem(src.filename, None, "sheet", "this spec has no "
                                  "'sheet: {variants: ...}' section")])
-    data = {k: v for k, v in src.data.items() if k not in ("study", "expect")}
-    return spec, BaseSpec(spec, data, src, {v.key: v.path for v in settings.vary})
+    return spec, section_base(spec, src, settings.vary)
 
 
 def make_variants(path: str | Path, count: int | None = None, seed: int | None = None,

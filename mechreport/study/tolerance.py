@@ -45,7 +45,7 @@ from .evaluate import reason_of, row_of
 from .executor import Lost, Words
 from .plan import Plan, unit_samples
 from .tolerance_stats import STATUSES, analyse_samples
-from .variants import DROPPED, BaseSpec, variant_spec
+from .variants import BaseSpec, section_base, variant_spec
 
 TOLERANCE_WORDS = Words(item="sample", run="tolerance analysis",
                         kept="the samples computed are kept")
@@ -89,8 +89,7 @@ def tolerance_base(src) -> BaseSpec:
         raise SpecError([Problem(src.filename, None, "", "this spec has no 'tolerances:' "
                                  "section; `mechreport tolerance` needs one saying what is "
                                  "uncertain and what to keep (docs/spec.md, section 21)")])
-    data = {k: v for k, v in src.data.items() if k not in DROPPED + ("tolerances",)}
-    return BaseSpec(spec, data, src, {v.key: v.path for v in spec.tolerances.vary})
+    return section_base(spec, src, spec.tolerances.vary, ("tolerances",))
 
 
 # ------------------------------------------------------------------------- one sample

@@ -72,9 +72,15 @@ def study_base(src: Source) -> BaseSpec:
 
 def base_of(spec: Spec, src: Source) -> BaseSpec:
     """The :class:`BaseSpec` of a validated ``spec`` read from ``src``."""
-    data = {k: v for k, v in src.data.items() if k not in DROPPED}
-    paths = {v.key: v.path for v in spec.study.vary} if spec.study is not None else {}
-    return BaseSpec(spec, data, src, paths)
+    return section_base(spec, src, spec.study.vary if spec.study is not None else ())
+
+
+def section_base(spec: Spec, src: Source, vary, drop: tuple[str, ...] = ()) -> BaseSpec:
+    """The :class:`BaseSpec` of a validated ``spec`` read from ``src`` whose varied keys are
+    those of ``vary`` (a section's entries, each with its ``key`` and ``path``): the data
+    tree without ``DROPPED`` and the section's own keys ``drop``."""
+    data = {k: v for k, v in src.data.items() if k not in DROPPED + drop}
+    return BaseSpec(spec, data, src, {v.key: v.path for v in vary})
 
 
 def replaced(data: Any, changes: Mapping[tuple, Any]) -> Any:
