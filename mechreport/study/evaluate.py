@@ -50,23 +50,35 @@ def evaluate_chunk(base: BaseSpec, variants: Sequence[Mapping[str, float]], meth
                    keep: Sequence[str]) -> list[Row]:
     """One :class:`Row` per variant of ``variants`` (see the module docstring): the variants
     that build are analysed together by :func:`mechreport.batch.analyse_variants`."""
+    return batch_results(base, variants, method, lambda outcome: row_of(outcome, keep),
+                         lambda exc, _: failed_row(len(keep), reason_of(exc, base.file)))
+
+
+def batch_results(base: BaseSpec, variants: Sequence[Mapping[str, float]], method: str,
+                  result, failed) -> list:
+    """One result per variant of ``variants`` ({varied key: value}), never raising for a
+    variant's sake (a study's rows, a tolerance analysis's samples, the optimiser's
+    candidates): the variants whose spec builds are analysed together
+    (:func:`mechreport.pipeline.batch.analyse_variants`, ``method``) and each gives
+    ``result(outcome)``; ``failed(exc, analysed)`` stands for one whose spec cannot be built
+    (``analysed`` False) or whose analysis or result raised (True)."""
     from ..pipeline.batch import analyse_variants
-    rows: list[Row | None] = [None] * len(variants)
+    out: list = [None] * len(variants)
     specs, where = [], []
     for i, values in enumerate(variants):
         try:
             specs.append(variant_spec(base, values))
             where.append(i)
         except Exception as exc:  # noqa: BLE001 - a failing variant is a row, never a crash
-            rows[i] = failed_row(len(keep), reason_of(exc, base.file))
+            out[i] = failed(exc, False)
     for i, outcome in zip(where, analyse_variants(specs, method)):
         try:
             if outcome.exception is not None:
                 raise outcome.exception
-            rows[i] = row_of(outcome, keep)
+            out[i] = result(outcome)
         except Exception as exc:  # noqa: BLE001
-            rows[i] = failed_row(len(keep), reason_of(exc, base.file))
-    return rows
+            out[i] = failed(exc, True)
+    return out
 
 
 def row_of(analysis, keep: Sequence[str]) -> Row:

@@ -34,8 +34,8 @@ from typing import Sequence
 import numpy as np
 
 from ..quantities import unit_of
-from .evaluate import reason_of, row_of
-from .variants import BaseSpec, variant_spec
+from .evaluate import batch_results, reason_of, row_of
+from .variants import BaseSpec
 
 FAILED = 1e4
 UNTRUSTED = 1e3
@@ -165,22 +165,11 @@ def judge_chunk(problem: Problem, start: int, values: np.ndarray) -> tuple[int, 
     """Candidates ``values`` (m, d) [spec units] analysed as one batch (the study's
     :func:`~mechreport.pipeline.batch.analyse_variants`, one method, the trust test on
     each); (start, one :class:`Judged` each). Never raises for a candidate's sake."""
-    from ..pipeline.batch import analyse_variants
-    keys = problem.keys
-    out: list[Judged | None] = [None] * len(values)
-    specs, where = [], []
-    for i, row in enumerate(values):
-        try:
-            specs.append(variant_spec(problem.base, {k: float(v) for k, v in zip(keys, row)}))
-            where.append(i)
-        except Exception as exc:  # noqa: BLE001 - a failing candidate is judged, never a crash
-            out[i] = failed(problem, reason_of(exc, problem.base.file))
-    for i, outcome in zip(where, analyse_variants(specs, problem.method)):
-        try:
-            out[i] = judge_outcome(problem, outcome)
-        except Exception as exc:  # noqa: BLE001
-            out[i] = failed(problem, reason_of(exc, problem.base.file))
-    return start, out
+    candidates = [{k: float(v) for k, v in zip(problem.keys, row)} for row in values]
+    return start, batch_results(
+        problem.base, candidates, problem.method,
+        lambda outcome: judge_outcome(problem, outcome),
+        lambda exc, _: failed(problem, reason_of(exc, problem.base.file)))
 
 
 def judge_outcome(problem: Problem, outcome) -> Judged:

@@ -41,7 +41,7 @@ from typing import Sequence
 
 import numpy as np
 
-from .evaluate import reason_of, row_of
+from .evaluate import batch_results, reason_of, row_of
 from .executor import Lost, Words
 from .plan import Plan, unit_samples
 from .tolerance_stats import STATUSES, analyse_samples
@@ -123,27 +123,13 @@ def evaluate_samples(base: BaseSpec, samples: Sequence[dict], method: str,
     study's variants are (:func:`mechreport.pipeline.batch.analyse_variants`); never raises
     for a sample's sake."""
     from ..errors import AssemblyError, SpecError
-    from ..pipeline.batch import analyse_variants
-    out: list[Sample | None] = [None] * len(samples)
-    specs, where = [], []
-    for i, values in enumerate(samples):
-        try:
-            specs.append(variant_spec(base, values))
-            where.append(i)
-        except SpecError as exc:
-            out[i] = _failed("invalid", reason_of(exc, base.file), len(keep), len(items))
-        except Exception as exc:  # noqa: BLE001 - a failing sample is a row, never a crash
-            out[i] = _failed("failed", reason_of(exc, base.file), len(keep), len(items))
-    for i, outcome in zip(where, analyse_variants(specs, method)):
-        try:
-            if outcome.exception is not None:
-                raise outcome.exception
-            out[i] = _sample_of(outcome, keep, items, base.file)
-        except AssemblyError as exc:
-            out[i] = _failed("no assembly", reason_of(exc, base.file), len(keep), len(items))
-        except Exception as exc:  # noqa: BLE001
-            out[i] = _failed("failed", reason_of(exc, base.file), len(keep), len(items))
-    return out
+
+    def failed(exc: Exception, analysed: bool) -> Sample:
+        status = ("no assembly" if analysed and isinstance(exc, AssemblyError) else
+                  "invalid" if not analysed and isinstance(exc, SpecError) else "failed")
+        return _failed(status, reason_of(exc, base.file), len(keep), len(items))
+    return batch_results(base, samples, method,
+                         lambda outcome: _sample_of(outcome, keep, items, base.file), failed)
 
 
 def _sample_of(outcome, keep, items, file: str) -> Sample:
