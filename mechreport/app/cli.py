@@ -106,8 +106,6 @@ def _sheet_angles(text: str) -> tuple[float, ...]:
     return values
 
 
-
-
 BUILD_EPILOG = """\
 exit status: 0 if every spec was built and passed its check; 1 if any spec failed to build,
 or was built but failed its check (expectations or method agreement: the report and the

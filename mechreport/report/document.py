@@ -390,7 +390,6 @@ class Doc:
         self.add(Figure(path, caption, height=height, **how))
 
 
-
 @dataclass(frozen=True)
 class Either:
     """Where the formats say a thing differently on purpose: ``text`` in the text formats

@@ -301,5 +301,3 @@ def build_document(result: OptimizeResult, figures: dict[str, str], *, sha256: s
         items.append(["the optimum's full report: ", Code(report)])
     doc.items(items)
     return doc
-
-
