@@ -1,6 +1,6 @@
 """The Design summary: the verdicts, the cycle quantities, the bearings, the
 counterweight and the cycle's plot data (:class:`CycleData`) and its figures; its record in
-summary.json is :mod:`mechreport.pipeline.records`'."""
+summary.json is written by :mod:`mechreport.pipeline.records`."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field

@@ -1,6 +1,6 @@
 """The Friction section: per joint its friction, its loss per cycle and share, the
 efficiency, where friction self-locks, the effort with and without friction (plot and
-figure); its record in summary.json is :mod:`mechreport.pipeline.records`'."""
+figure); its record in summary.json is written by :mod:`mechreport.pipeline.records`."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
